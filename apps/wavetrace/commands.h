@@ -1,0 +1,35 @@
+// The subcommands of the `wavetrace` command line. Each registers its options on a CLI11
+// subcommand and runs from a plain options struct; bad input exits with kExitBadInput.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <string>
+
+namespace wavetrace::cli {
+
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitFailure = 1;   // the render or the write failed
+inline constexpr int kExitBadInput = 2;  // bad scene, bad option: nothing was written
+
+struct RenderOptions {
+    std::string scene;
+    std::string output;
+    int width = 0, height = 0, spp = 0;  // 0: the scene file's value
+    uint64_t seed = 0;
+    int threads = 0;  // 0: all hardware threads
+    std::string aov = "color";
+    float exposure = 0.0f;
+};
+
+struct InfoOptions {
+    std::string scene;
+    int threads = 0;
+};
+
+void add_render_command(CLI::App& app, RenderOptions& options);
+void add_info_command(CLI::App& app, InfoOptions& options);
+int run_render(const RenderOptions& options);
+int run_info(const InfoOptions& options);
+
+}  // namespace wavetrace::cli

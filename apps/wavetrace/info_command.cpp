@@ -1,0 +1,78 @@
+#include <fmt/core.h>
+#include <tbb/global_control.h>
+
+#include <iostream>
+#include <optional>
+
+#include "commands.h"
+#include "wavetrace/wavetrace.h"
+
+namespace wavetrace::cli {
+
+void add_info_command(CLI::App& app, InfoOptions& o) {
+    CLI::App* cmd = app.add_subcommand("info", "describe a scene: counts, bounds, BVH, memory");
+    cmd->add_option("scene", o.scene, "scene file (JSON)")->required();
+    cmd->add_option("--threads", o.threads, "worker threads for the BVH build (default: all)");
+}
+
+namespace {
+
+std::string mib(size_t bytes) { return fmt::format("{:.2f} MiB", bytes / (1024.0 * 1024.0)); }
+
+template <class T>
+size_t bytes_of(const std::vector<T>& v) {
+    return v.size() * sizeof(T);
+}
+
+}  // namespace
+
+int run_info(const InfoOptions& o) {
+    if (o.threads < 0) {
+        std::cerr << "wavetrace: error: --threads: expected a positive count\n";
+        return kExitBadInput;
+    }
+    std::optional<tbb::global_control> threads;
+    if (o.threads > 0) threads.emplace(tbb::global_control::max_allowed_parallelism, o.threads);
+    Scene scene;
+    try {
+        scene = load_scene(o.scene);
+    } catch (const std::exception& e) {
+        std::cerr << "wavetrace: error: " << e.what() << "\n";
+        return kExitBadInput;
+    }
+    Bvh bvh = Bvh::build(scene);
+    const BvhStats& st = bvh.stats();
+    Aabb b = scene.bounds();
+    std::vector<PrimRef> emitters = collect_emitters(scene);
+    size_t geometry = bytes_of(scene.spheres) + bytes_of(scene.quads) + bytes_of(scene.triangles) +
+                      bytes_of(scene.positions) + bytes_of(scene.normals) + bytes_of(scene.uvs);
+    size_t texels = 0;
+    for (const ImageData& img : scene.images) texels += bytes_of(img.texels);
+    const Background& bg = scene.background;
+    std::string background =
+        bg.kind == Background::Kind::Constant
+            ? fmt::format("constant [{} {} {}]", bg.radiance.x, bg.radiance.y, bg.radiance.z)
+            : fmt::format("environment {}", scene.images[bg.image].path);
+
+    fmt::print("scene        {}\n", o.scene);
+    fmt::print("primitives   {} ({} triangles, {} quads, {} spheres)\n", scene.primitive_count(),
+               scene.triangles.size(), scene.quads.size(), scene.spheres.size());
+    fmt::print("meshes       {} ({} vertices)\n", scene.meshes.size(), scene.positions.size());
+    fmt::print("lights       {} emissive primitives; background {}\n", emitters.size(), background);
+    fmt::print("materials    {}, textures {}, images {}, media {}\n", scene.materials.size(),
+               scene.textures.size(), scene.images.size(), scene.media.size());
+    fmt::print("bounds       [{:.4g} {:.4g} {:.4g}] .. [{:.4g} {:.4g} {:.4g}]\n", b.lo.x, b.lo.y,
+               b.lo.z, b.hi.x, b.hi.y, b.hi.z);
+    fmt::print("camera       from [{} {} {}] at [{} {} {}], vfov {}, {}x{}\n",
+               scene.camera.look_from.x, scene.camera.look_from.y, scene.camera.look_from.z,
+               scene.camera.look_at.x, scene.camera.look_at.y, scene.camera.look_at.z,
+               scene.camera.vfov, scene.render.width, scene.render.height);
+    fmt::print("bvh          {} nodes ({} leaves, {} B each), depth {}, SAH cost {:.2f}, "
+               "build {:.1f} ms\n",
+               st.nodes, st.leaves, sizeof(BvhNode), st.depth, st.sah_cost, st.build_ms);
+    fmt::print("memory       geometry {}, bvh {}, textures {}\n", mib(geometry), mib(st.bytes),
+               mib(texels));
+    return kExitOk;
+}
+
+}  // namespace wavetrace::cli

@@ -1,0 +1,22 @@
+// wavetrace: render a scene, or describe it.
+#include <iostream>
+
+#include "commands.h"
+
+int main(int argc, char** argv) {
+    using namespace wavetrace::cli;
+    CLI::App app{"wavetrace: a physically based path tracer with a wavefront engine"};
+    app.require_subcommand(1);
+    RenderOptions render;
+    InfoOptions info;
+    add_render_command(app, render);
+    add_info_command(app, info);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        int code = app.exit(e);
+        return code == 0 ? kExitOk : kExitBadInput;
+    }
+    if (app.got_subcommand("render")) return run_render(render);
+    return run_info(info);
+}

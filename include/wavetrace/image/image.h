@@ -1,0 +1,52 @@
+#pragma once
+
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "wavetrace/math/vec3.h"
+#include "wavetrace/scene/texture.h"
+
+namespace wavetrace {
+
+// A linear RGB float image, row 0 at the top.
+struct Image {
+    int width = 0;
+    int height = 0;
+    std::vector<Color> pixels;
+
+    Image() = default;
+    Image(int w, int h) : width(w), height(h), pixels(static_cast<size_t>(w) * h) {}
+    Color& at(int x, int y) { return pixels[static_cast<size_t>(y) * width + x]; }
+    const Color& at(int x, int y) const { return pixels[static_cast<size_t>(y) * width + x]; }
+};
+
+class ImageError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+struct WriteOptions {
+    float exposure = 0.0f;  // LDR outputs are scaled by 2^exposure before encoding
+    // Extra string attributes stored in the file's metadata (EXR header, PNG text).
+    std::vector<std::pair<std::string, std::string>> metadata;
+};
+
+// Whether the extension of `path` names an 8-bit display format (PNG, JPEG) as opposed to a
+// linear float one (EXR, HDR, PFM).
+bool is_ldr_path(const std::filesystem::path& path);
+// Throws ImageError unless the extension is one write_image() handles.
+void check_output_path(const std::filesystem::path& path);
+
+// Writes by extension: .png/.jpg/.jpeg as 8-bit sRGB (clamped), .exr (32-bit float),
+// .hdr, .pfm as linear float. The file appears atomically: it is written to a temporary file
+// in the same folder and renamed, so a failed write leaves no partial image.
+void write_image(const std::filesystem::path& path, const Image& image,
+                 const WriteOptions& options = {});
+
+// Reads any image OpenImageIO can, as linear RGB: 8- and 16-bit integer files are taken as
+// sRGB-encoded and decoded; float files (EXR, HDR, PFM) as linear. Grey images are expanded.
+ImageData read_image(const std::filesystem::path& path);
+
+}  // namespace wavetrace

@@ -1,0 +1,26 @@
+#pragma once
+
+#include <cmath>
+
+#include "wavetrace/math/vec3.h"
+
+namespace wavetrace {
+
+// Orthonormal frame around a unit normal n, built without branches on the normal's
+// direction: Duff et al., "Building an Orthonormal Basis, Revisited", JCGT 6(1), 2017.
+struct Frame {
+    Vec3 s, t, n;
+
+    static Frame from_normal(Vec3 n) {
+        float sign = std::copysign(1.0f, n.z);
+        float a = -1.0f / (sign + n.z);
+        float b = n.x * n.y * a;
+        return {{1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x},
+                {b, sign + n.y * n.y * a, -n.y},
+                n};
+    }
+    constexpr Vec3 to_local(Vec3 v) const { return {dot(v, s), dot(v, t), dot(v, n)}; }
+    constexpr Vec3 to_world(Vec3 v) const { return v.x * s + v.y * t + v.z * n; }
+};
+
+}  // namespace wavetrace

@@ -1,0 +1,19 @@
+#pragma once
+
+#include "wavetrace/math/constants.h"
+#include "wavetrace/math/vec3.h"
+
+namespace wavetrace {
+
+// A ray o + t d, valid for t in [tmin, tmax]. The direction need not be unit length;
+// t is measured in units of |d|.
+struct Ray {
+    Point3 o;
+    Vec3 d;
+    float tmin = 0.0f;
+    float tmax = kInfinity;
+
+    constexpr Point3 at(float t) const { return o + t * d; }
+};
+
+}  // namespace wavetrace

@@ -1,0 +1,38 @@
+#pragma once
+
+#include "wavetrace/math/vec3.h"
+
+namespace wavetrace {
+
+// Affine transform as a row-major 4x4 matrix with its inverse kept alongside, so that
+// normals transform by the inverse transpose without a second inversion.
+class Transform {
+public:
+    constexpr Transform() = default;
+
+    static Transform translate(Vec3 t);
+    static Transform scale(Vec3 s);  // every component must be non-zero
+    // Rotation by `degrees` about `axis` (any non-zero vector), right-handed.
+    static Transform rotate(Vec3 axis, float degrees);
+
+    // this applied after `first`: (a * b)(p) = a(b(p)).
+    Transform operator*(const Transform& first) const;
+
+    Point3 point(Point3 p) const;
+    Vec3 vector(Vec3 v) const;
+    Normal3 normal(Normal3 n) const;  // not renormalized
+
+    bool is_identity() const;
+    // True when the linear part is a rotation times a uniform scale, which maps spheres to spheres.
+    bool preserves_shape(float* uniform_scale) const;
+    Transform inverse() const { return Transform(inv_, m_); }
+
+private:
+    using Mat4 = float[4][4];
+    Transform(const Mat4& m, const Mat4& inv);
+
+    float m_[4][4] = {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}, {0, 0, 0, 1}};
+    float inv_[4][4] = {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}, {0, 0, 0, 1}};
+};
+
+}  // namespace wavetrace

@@ -1,0 +1,28 @@
+#pragma once
+
+#include "wavetrace/math/vec3.h"
+#include "wavetrace/scene/ids.h"
+
+namespace wavetrace {
+
+// What rays that leave the scene see: a constant radiance, or an equirectangular
+// (latitude-longitude) environment image scaled by `radiance`.
+// Mapping, with +y up: u = 0.5 + atan2(d.x, -d.z) / (2 pi) (so -z is the image centre),
+// v = acos(d.y) / pi with v = 0 the top row (straight up).
+struct Background {
+    enum class Kind : uint8_t { Constant, Environment };
+    Kind kind = Kind::Constant;
+    Color radiance{0.0f};  // Constant: the radiance. Environment: a per-channel scale.
+    ImageId image = kNone;
+    float rotation = 0.0f;  // Environment: rotation about +y, degrees
+
+    bool is_black() const {
+        return kind == Kind::Constant && radiance.x == 0 && radiance.y == 0 && radiance.z == 0;
+    }
+};
+
+struct Scene;
+// Radiance arriving along direction d (d need not be unit length) from the background.
+Color eval_background(const Scene& scene, Vec3 d);
+
+}  // namespace wavetrace

@@ -1,0 +1,31 @@
+// Ray-primitive intersection for the three primitive kinds the BVH holds. Shared by the
+// BVH traversal and by tests; each returns false or fills t and two surface parameters.
+#pragma once
+
+#include "wavetrace/math/ray.h"
+#include "wavetrace/scene/shapes.h"
+
+namespace wavetrace {
+
+struct PrimHit {
+    float t;
+    float u, v;  // triangle: barycentrics of v1 and v2; quad: (alpha, beta); sphere: unused
+};
+
+// Nearest root in [ray.tmin, ray.tmax] of |o + t d - c| = r, computed with the
+// cancellation-free discriminant of Haines et al., "Precision Improvements for Ray/Sphere
+// Intersection", Ray Tracing Gems ch. 7 (2019). A ray starting inside hits the far side.
+bool intersect_sphere(const Ray& ray, Point3 center, float radius, PrimHit* hit);
+
+// The seed's quad test: hit the plane, then express the point in the (u, v) basis.
+// Edges are inclusive on both sides so that rays through the shared edge of two adjacent
+// quads hit at least one of them.
+bool intersect_quad(const Ray& ray, Point3 q, Vec3 u, Vec3 v, PrimHit* hit);
+
+// Watertight ray/triangle test: Woop, Benthin and Wald, "Watertight Ray/Triangle
+// Intersection", JCGT 2(1), 2013, with pbrt-v4's double-precision fallback for edge
+// functions that round to zero and its conservative bound that t is above zero.
+// Rays through a shared edge or vertex of a closed mesh hit at least one of its triangles.
+bool intersect_triangle(const Ray& ray, Point3 p0, Point3 p1, Point3 p2, PrimHit* hit);
+
+}  // namespace wavetrace

@@ -1,0 +1,105 @@
+// The scene: plain arrays of shapes, materials, textures and media, with builder helpers.
+// Loaded from JSON by load_scene() or built in code; the BVH is built over it afterwards.
+#pragma once
+
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "wavetrace/math/aabb.h"
+#include "wavetrace/math/transform.h"
+#include "wavetrace/scene/background.h"
+#include "wavetrace/scene/camera.h"
+#include "wavetrace/scene/ids.h"
+#include "wavetrace/scene/material.h"
+#include "wavetrace/scene/medium.h"
+#include "wavetrace/scene/shapes.h"
+#include "wavetrace/scene/texture.h"
+
+namespace wavetrace {
+
+// Limits on what a scene file or the command line may ask for: beyond them a request is
+// taken for a mistake, not a render.
+inline constexpr int kMaxImageSide = 32768;
+inline constexpr long long kMaxPixels = 1LL << 27;  // 134 M pixels, e.g. 16384 x 8192
+inline constexpr int kMaxSpp = 1 << 20;
+inline constexpr int kMaxDepth = 1024;
+
+// Defaults for a render of this scene; the command line overrides them.
+struct RenderSettings {
+    int width = 600;
+    int height = 600;
+    int spp = 16;
+    int max_depth = 50;
+};
+
+struct Scene {
+    std::string name;
+    Camera camera;
+    RenderSettings render;
+    Background background;
+
+    std::vector<Texture> textures;
+    std::vector<ImageData> images;
+    std::vector<Material> materials;
+    std::vector<Medium> media;
+
+    std::vector<Sphere> spheres;
+    std::vector<Quad> quads;
+    std::vector<Mesh> meshes;
+    std::vector<Triangle> triangles;
+    std::vector<Point3> positions;  // mesh vertices, all meshes back to back
+    std::vector<Normal3> normals;   // per vertex; zero for meshes without normals
+    std::vector<Vec2> uvs;          // per vertex; zero for meshes without uvs
+
+    // ---- builders (all transforms are baked into the stored shapes) ----
+    TextureId add_texture(const Texture& texture);
+    TextureId add_solid(Color color);
+    ImageId add_image(ImageData image);
+    MaterialId add_material(Material material);
+    // A medium of the given density whose phase function has the given albedo texture.
+    MediumId add_medium(std::string medium_name, float density, TextureId albedo);
+    // The pass-through material of medium boundaries (created on first use).
+    MaterialId interface_material();
+
+    void add_sphere(Sphere sphere, const Transform& to_world = {});
+    void add_quad(Quad quad, const Transform& to_world = {});
+    // Six outward-facing quads spanning [lo, hi].
+    void add_box(Point3 lo, Point3 hi, MaterialId material, MediumId interior,
+                 const Transform& to_world = {});
+    // Appends a mesh; normals and uvs may be empty (else one per position). Indices are
+    // relative to this mesh's positions. Degenerate triangles (zero area, repeated or
+    // out-of-range indices, non-finite vertices) are skipped; returns how many were.
+    size_t add_mesh(Mesh mesh, const std::vector<Point3>& positions,
+                    const std::vector<Normal3>& normals, const std::vector<Vec2>& uvs,
+                    const std::vector<uint32_t>& indices, const Transform& to_world = {});
+
+    // ---- queries ----
+    size_t primitive_count() const { return spheres.size() + quads.size() + triangles.size(); }
+    Aabb bounds() const;
+    Aabb prim_bounds(PrimRef prim) const;
+    MaterialId prim_material(PrimRef prim) const;
+    MediumId prim_interior(PrimRef prim) const;
+    float prim_area(PrimRef prim) const;
+};
+
+// Every primitive whose material emits: the scene's area lights.
+std::vector<PrimRef> collect_emitters(const Scene& scene);
+
+// Bad scene input: the message names the file and the place in it
+// ("scenes/x.json: /objects/3/radius: expected a positive number, got -1").
+class SceneError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+struct LoadOptions {
+    // Called with warnings (e.g. skipped degenerate triangles); default: print to stderr.
+    void (*warn)(const std::string& message) = nullptr;
+};
+
+// Loads a JSON scene file (see docs/scene-format.md). Throws SceneError on bad input.
+Scene load_scene(const std::filesystem::path& path, const LoadOptions& options = {});
+
+}  // namespace wavetrace

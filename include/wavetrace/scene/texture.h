@@ -1,0 +1,49 @@
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "wavetrace/math/vec3.h"
+#include "wavetrace/scene/ids.h"
+
+namespace wavetrace {
+
+enum class TextureKind : uint8_t {
+    Solid,    // a constant colour
+    Checker,  // 3-D checkerboard of two sub-textures, cells of size `scale` (RTNW §4.3)
+    Noise,    // Perlin turbulence "marble": 0.5 (1 + sin(scale z + 10 turb(p))) (RTNW §5)
+    Image,    // an image mapped by the surface's (u, v), bilinear, wrapping
+};
+
+// A texture is a plain record; which fields matter depends on `kind`.
+struct Texture {
+    TextureKind kind = TextureKind::Solid;
+    Color color{0.0f};       // Solid: the colour. Noise: the colour multiplied in.
+    float scale = 1.0f;      // Checker: cell size (world units). Noise: frequency.
+    TextureId even = kNone;  // Checker: the texture of even cells
+    TextureId odd = kNone;   // Checker: the texture of odd cells
+    ImageId image = kNone;   // Image: index into Scene::images
+};
+
+// A decoded image held as linear RGB floats, row 0 at the top.
+struct ImageData {
+    std::string path;  // where it was read from, for messages
+    int width = 0;
+    int height = 0;
+    std::vector<Color> texels;
+
+    Color texel(int x, int y) const { return texels[static_cast<size_t>(y) * width + x]; }
+    // Bilinear lookup with wrapping; u runs left to right, v bottom to top (OpenGL convention).
+    Color bilinear(float u, float v) const;
+};
+
+struct Scene;
+// Evaluates texture `id` at surface coordinates `uv` and world point `p`.
+Color eval_texture(const Scene& scene, TextureId id, Vec2 uv, Point3 p);
+// Perlin turbulence (RTNW §5.6): the sum of 7 octaves of |noise|, in [0, ~1.5).
+float perlin_turbulence(Point3 p, int octaves = 7);
+// Perlin gradient noise in [-1, 1].
+float perlin_noise(Point3 p);
+
+}  // namespace wavetrace

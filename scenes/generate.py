@@ -1,0 +1,166 @@
+#!/usr/bin/env python3
+"""Writes the shipped scene files. The JSON files are committed; this script documents how
+they were made (the Cornell walls shared by five scenes, the random floor and sphere cluster
+of `everything`) and remakes them: `python3 scenes/generate.py`.
+
+The scenes follow Peter Shirley's "Ray Tracing in One Weekend" series (the seed):
+The Next Week (RTNW) §7-10 and The Rest of Your Life (ROYL) §6-12."""
+import json
+import os
+import random
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+
+def cornell_camera():
+    return {"look_from": [278, 278, -800], "look_at": [278, 278, 0], "up": [0, 1, 0], "vfov": 40}
+
+
+def cornell_materials(light=15):
+    return {
+        "red": {"type": "lambertian", "albedo": [0.65, 0.05, 0.05]},
+        "white": {"type": "lambertian", "albedo": [0.73, 0.73, 0.73]},
+        "green": {"type": "lambertian", "albedo": [0.12, 0.45, 0.15]},
+        "light": {"type": "diffuse_light", "radiance": [light, light, light]},
+    }
+
+
+def cornell_walls(light_quad=None):
+    # ROYL §6: walls face into the box; the light faces down.
+    light = light_quad or {"q": [213, 554, 227], "u": [130, 0, 0], "v": [0, 0, 105]}
+    return [
+        {"type": "quad", "q": [555, 0, 0], "u": [0, 0, 555], "v": [0, 555, 0], "material": "green"},
+        {"type": "quad", "q": [0, 0, 555], "u": [0, 0, -555], "v": [0, 555, 0], "material": "red"},
+        dict(type="quad", material="light", **light),
+        {"type": "quad", "q": [0, 555, 0], "u": [555, 0, 0], "v": [0, 0, 555], "material": "white"},
+        {"type": "quad", "q": [0, 0, 555], "u": [555, 0, 0], "v": [0, 0, -555], "material": "white"},
+        {"type": "quad", "q": [555, 0, 555], "u": [-555, 0, 0], "v": [0, 555, 0], "material": "white"},
+    ]
+
+
+def rotate_y(degrees):
+    return {"rotate": {"axis": [0, 1, 0], "degrees": degrees}}
+
+
+def tall_box(**kw):
+    return dict(type="box", min=[0, 0, 0], max=[165, 330, 165],
+                transform=[rotate_y(15), {"translate": [265, 0, 295]}], **kw)
+
+
+def short_box(**kw):
+    return dict(type="box", min=[0, 0, 0], max=[165, 165, 165],
+                transform=[rotate_y(-18), {"translate": [130, 0, 65]}], **kw)
+
+
+def cornell_scene(description, objects, materials=None, media=None, light_quad=None, light=15,
+                  spp=64):
+    scene = {
+        "description": description,
+        "render": {"width": 600, "height": 600, "spp": spp, "max_depth": 50},
+        "camera": cornell_camera(),
+        "background": [0, 0, 0],
+        "materials": {**cornell_materials(light), **(materials or {})},
+    }
+    if media:
+        scene["media"] = media
+    scene["objects"] = cornell_walls(light_quad) + objects
+    return scene
+
+
+def everything():
+    # RTNW §10 final scene. The seed's moving sphere is static here (no motion blur).
+    rng = random.Random(1)
+    objects = []
+    w = 100.0
+    floor = []
+    for i in range(20):
+        for j in range(20):
+            x0, z0 = -1000.0 + i * w, -1000.0 + j * w
+            y1 = round(rng.uniform(1, 101), 3)
+            floor.append({"type": "box", "min": [x0, 0, z0], "max": [x0 + w, y1, z0 + w],
+                          "material": "ground"})
+    objects.append({"type": "group", "objects": floor})
+    objects.append({"type": "quad", "q": [123, 554, 147], "u": [300, 0, 0], "v": [0, 0, 265],
+                    "material": "light"})
+    objects.append({"type": "sphere", "center": [400, 400, 200], "radius": 50, "material": "orange"})
+    objects.append({"type": "sphere", "center": [260, 150, 45], "radius": 50, "material": "glass"})
+    objects.append({"type": "sphere", "center": [0, 150, 145], "radius": 50, "material": "brushed"})
+    # A glass ball filled with blue smoke, and thin fog over the whole scene.
+    objects.append({"type": "sphere", "center": [360, 150, 145], "radius": 70, "material": "glass",
+                    "interior": "blue_smoke"})
+    objects.append({"type": "sphere", "center": [0, 0, 0], "radius": 5000, "interior": "fog"})
+    objects.append({"type": "sphere", "center": [400, 200, 400], "radius": 100, "material": "earth"})
+    objects.append({"type": "sphere", "center": [220, 280, 300], "radius": 80, "material": "marble"})
+    cluster = []
+    for _ in range(1000):
+        c = [round(rng.uniform(0, 165), 3) for _ in range(3)]
+        cluster.append({"type": "sphere", "center": c, "radius": 10, "material": "white"})
+    objects.append({"type": "group", "objects": cluster,
+                    "transform": [rotate_y(15), {"translate": [-100, 270, 395]}]})
+    return {
+        "description": "The seed's final scene (Ray Tracing: The Next Week, section 10)",
+        "render": {"width": 800, "height": 800, "spp": 256, "max_depth": 40},
+        "camera": {"look_from": [478, 278, -600], "look_at": [278, 278, 0], "up": [0, 1, 0],
+                   "vfov": 40},
+        "background": [0, 0, 0],
+        "materials": {
+            "ground": {"type": "lambertian", "albedo": [0.48, 0.83, 0.53]},
+            "light": {"type": "diffuse_light", "radiance": [7, 7, 7]},
+            "orange": {"type": "lambertian", "albedo": [0.7, 0.3, 0.1]},
+            "glass": {"type": "dielectric", "ior": 1.5},
+            "brushed": {"type": "metal", "albedo": [0.8, 0.8, 0.9], "roughness": 1.0},
+            "earth": {"type": "lambertian",
+                      "albedo": {"type": "image", "file": "textures/earthmap.jpg"}},
+            "marble": {"type": "lambertian", "albedo": {"type": "noise", "scale": 0.2}},
+            "white": {"type": "lambertian", "albedo": [0.73, 0.73, 0.73]},
+        },
+        "media": {
+            "blue_smoke": {"density": 0.2, "albedo": [0.2, 0.4, 0.9]},
+            "fog": {"density": 0.0001, "albedo": [1, 1, 1]},
+        },
+        "objects": objects,
+    }
+
+
+SCENES = {
+    "cornell": cornell_scene(
+        "The Cornell box with two white blocks (ROYL section 6)",
+        [tall_box(material="white"), short_box(material="white")]),
+    "cornell-glass": cornell_scene(
+        "The Cornell box with a tall white block and a glass ball (ROYL section 12)",
+        [tall_box(material="white"),
+         {"type": "sphere", "center": [190, 90, 190], "radius": 90, "material": "glass"}],
+        materials={"glass": {"type": "dielectric", "ior": 1.5}}),
+    "cornell-mirror": cornell_scene(
+        "The Cornell box with a mirror block (ROYL section 12's aluminium block as a perfect mirror)",
+        [tall_box(material="mirror"), short_box(material="white")],
+        materials={"mirror": {"type": "mirror", "albedo": [0.8, 0.85, 0.88]}}),
+    "cornell-smoke": cornell_scene(
+        "The Cornell box with the blocks as black smoke and white fog (RTNW section 9)",
+        [tall_box(interior="smoke"), short_box(interior="fog")],
+        media={"smoke": {"density": 0.01, "albedo": [0, 0, 0]},
+               "fog": {"density": 0.01, "albedo": [1, 1, 1]}},
+        light_quad={"q": [113, 554, 127], "u": [330, 0, 0], "v": [0, 0, 305]}, light=7),
+    "bunny": cornell_scene(
+        "The Stanford bunny (69,451 triangles) in the Cornell box",
+        [tall_box(material="white"),
+         {"type": "mesh", "file": "meshes/bunny.ply", "material": "white", "normals": "smooth",
+          "transform": [{"scale": 1500}, rotate_y(180), {"translate": [200, -49.48, 200]}]}]),
+    "dragon": cornell_scene(
+        "The Stanford dragon (100,000 triangles) in the Cornell box",
+        [{"type": "mesh", "file": "meshes/dragon_100k.obj", "material": "gold", "normals": "smooth",
+          "transform": [{"scale": 32}, rotate_y(200), {"translate": [278, 0, 290]}]}],
+        materials={"gold": {"type": "metal", "albedo": [0.95, 0.7, 0.3], "roughness": 0.3}}),
+    "everything": everything(),
+}
+
+
+def main():
+    for name, scene in SCENES.items():
+        with open(os.path.join(HERE, name + ".json"), "w") as f:
+            json.dump(scene, f, indent=1)
+            f.write("\n")
+
+
+if __name__ == "__main__":
+    main()

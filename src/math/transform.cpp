@@ -1,0 +1,102 @@
+#include "wavetrace/math/transform.h"
+
+#include <cmath>
+
+#include "wavetrace/math/constants.h"
+
+namespace wavetrace {
+
+Transform::Transform(const Mat4& m, const Mat4& inv) {
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j) {
+            m_[i][j] = m[i][j];
+            inv_[i][j] = inv[i][j];
+        }
+}
+
+Transform Transform::translate(Vec3 t) {
+    Mat4 m = {{1, 0, 0, t.x}, {0, 1, 0, t.y}, {0, 0, 1, t.z}, {0, 0, 0, 1}};
+    Mat4 inv = {{1, 0, 0, -t.x}, {0, 1, 0, -t.y}, {0, 0, 1, -t.z}, {0, 0, 0, 1}};
+    return Transform(m, inv);
+}
+
+Transform Transform::scale(Vec3 s) {
+    Mat4 m = {{s.x, 0, 0, 0}, {0, s.y, 0, 0}, {0, 0, s.z, 0}, {0, 0, 0, 1}};
+    Mat4 inv = {{1 / s.x, 0, 0, 0}, {0, 1 / s.y, 0, 0}, {0, 0, 1 / s.z, 0}, {0, 0, 0, 1}};
+    return Transform(m, inv);
+}
+
+// Rodrigues' rotation formula; the inverse of a rotation is its transpose.
+Transform Transform::rotate(Vec3 axis, float degrees) {
+    Vec3 a = normalize(axis);
+    float s = std::sin(radians(degrees)), c = std::cos(radians(degrees));
+    Mat4 m = {{a.x * a.x + (1 - a.x * a.x) * c, a.x * a.y * (1 - c) - a.z * s,
+               a.x * a.z * (1 - c) + a.y * s, 0},
+              {a.x * a.y * (1 - c) + a.z * s, a.y * a.y + (1 - a.y * a.y) * c,
+               a.y * a.z * (1 - c) - a.x * s, 0},
+              {a.x * a.z * (1 - c) - a.y * s, a.y * a.z * (1 - c) + a.x * s,
+               a.z * a.z + (1 - a.z * a.z) * c, 0},
+              {0, 0, 0, 1}};
+    Mat4 inv;
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j) inv[i][j] = m[j][i];
+    return Transform(m, inv);
+}
+
+Transform Transform::operator*(const Transform& first) const {
+    Mat4 m, inv;
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j) {
+            m[i][j] = 0;
+            inv[i][j] = 0;
+            for (int k = 0; k < 4; ++k) {
+                m[i][j] += m_[i][k] * first.m_[k][j];
+                inv[i][j] += first.inv_[i][k] * inv_[k][j];
+            }
+        }
+    return Transform(m, inv);
+}
+
+Point3 Transform::point(Point3 p) const {
+    return {m_[0][0] * p.x + m_[0][1] * p.y + m_[0][2] * p.z + m_[0][3],
+            m_[1][0] * p.x + m_[1][1] * p.y + m_[1][2] * p.z + m_[1][3],
+            m_[2][0] * p.x + m_[2][1] * p.y + m_[2][2] * p.z + m_[2][3]};
+}
+
+Vec3 Transform::vector(Vec3 v) const {
+    return {m_[0][0] * v.x + m_[0][1] * v.y + m_[0][2] * v.z,
+            m_[1][0] * v.x + m_[1][1] * v.y + m_[1][2] * v.z,
+            m_[2][0] * v.x + m_[2][1] * v.y + m_[2][2] * v.z};
+}
+
+// Normals transform by the inverse transpose of the linear part.
+Normal3 Transform::normal(Normal3 n) const {
+    return {inv_[0][0] * n.x + inv_[1][0] * n.y + inv_[2][0] * n.z,
+            inv_[0][1] * n.x + inv_[1][1] * n.y + inv_[2][1] * n.z,
+            inv_[0][2] * n.x + inv_[1][2] * n.y + inv_[2][2] * n.z};
+}
+
+bool Transform::is_identity() const {
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j)
+            if (m_[i][j] != (i == j ? 1.0f : 0.0f)) return false;
+    return true;
+}
+
+// M^T M = s^2 I exactly when M is a rotation (or reflection) times a uniform scale s.
+bool Transform::preserves_shape(float* uniform_scale) const {
+    Vec3 c[3] = {{m_[0][0], m_[1][0], m_[2][0]},
+                 {m_[0][1], m_[1][1], m_[2][1]},
+                 {m_[0][2], m_[1][2], m_[2][2]}};
+    float s2 = dot(c[0], c[0]);
+    constexpr float tol = 1e-5f;
+    for (int i = 0; i < 3; ++i) {
+        if (std::fabs(dot(c[i], c[i]) - s2) > tol * s2) return false;
+        for (int j = i + 1; j < 3; ++j)
+            if (std::fabs(dot(c[i], c[j])) > tol * s2) return false;
+    }
+    if (uniform_scale) *uniform_scale = std::sqrt(s2);
+    return true;
+}
+
+}  // namespace wavetrace

@@ -1,0 +1,127 @@
+#include "wavetrace/scene/intersect.h"
+
+#include <cmath>
+
+#include "wavetrace/math/constants.h"
+
+namespace wavetrace {
+
+bool intersect_sphere(const Ray& ray, Point3 center, float radius, PrimHit* hit) {
+    // Solve a t^2 + 2 b t + c = 0 with f = o - center, a = d.d, b = f.d, c = f.f - r^2.
+    // The quarter-discriminant b^2 - a c equals a (r^2 - |f - (b/a) d|^2), which does not
+    // cancel catastrophically when the ray passes far from the centre (RT Gems, eq. 7.5).
+    Vec3 f = ray.o - center;
+    float a = dot(ray.d, ray.d);
+    float b = dot(f, ray.d);
+    float c = dot(f, f) - radius * radius;
+    Vec3 l = f - (b / a) * ray.d;
+    float disc = a * (radius * radius - dot(l, l));
+    if (disc < 0.0f) return false;
+    // Stable roots: q = -(b + sign(b) sqrt(disc)), t0 = c / q, t1 = q / a (RT Gems, eq. 7.8).
+    float q = -(b + std::copysign(std::sqrt(disc), b));
+    float t0 = q != 0.0f ? c / q : 0.0f;
+    float t1 = q / a;
+    if (t0 > t1) std::swap(t0, t1);
+    float t = t0;
+    if (t < ray.tmin || t > ray.tmax) {
+        t = t1;
+        if (t < ray.tmin || t > ray.tmax) return false;
+    }
+    *hit = {t, 0.0f, 0.0f};
+    return true;
+}
+
+bool intersect_quad(const Ray& ray, Point3 q, Vec3 u, Vec3 v, PrimHit* hit) {
+    Vec3 n = cross(u, v);
+    float denom = dot(n, ray.d);
+    if (denom == 0.0f) return false;  // parallel to the plane
+    float t = dot(n, q - ray.o) / denom;
+    if (!(t >= ray.tmin && t <= ray.tmax)) return false;
+    // Planar coordinates of the hit: p - q = alpha u + beta v, solved with w = n / (n.n).
+    Vec3 p = ray.at(t) - q;
+    Vec3 w = n / dot(n, n);
+    float alpha = dot(w, cross(p, v));
+    float beta = dot(w, cross(u, p));
+    if (!(alpha >= 0.0f && alpha <= 1.0f && beta >= 0.0f && beta <= 1.0f)) return false;
+    *hit = {t, alpha, beta};
+    return true;
+}
+
+namespace {
+
+// a*b - c*d without catastrophic cancellation (Kahan's algorithm with an FMA).
+inline float difference_of_products(float a, float b, float c, float d) {
+    float cd = c * d;
+    float err = std::fma(-c, d, cd);
+    float dop = std::fma(a, b, -cd);
+    return dop + err;
+}
+
+inline Vec3 permute(Vec3 v, int x, int y, int z) { return {v[x], v[y], v[z]}; }
+
+}  // namespace
+
+bool intersect_triangle(const Ray& ray, Point3 p0, Point3 p1, Point3 p2, PrimHit* hit) {
+    // Translate to the ray origin, permute so that the ray's largest direction component is z,
+    // then shear so that the ray runs along +z: the test becomes a 2-D edge-function test at
+    // the origin, evaluated identically for the two triangles sharing an edge.
+    Vec3 p0t = p0 - ray.o, p1t = p1 - ray.o, p2t = p2 - ray.o;
+    int kz = max_dimension(abs(ray.d));
+    int kx = kz + 1 == 3 ? 0 : kz + 1;
+    int ky = kx + 1 == 3 ? 0 : kx + 1;
+    Vec3 d = permute(ray.d, kx, ky, kz);
+    p0t = permute(p0t, kx, ky, kz);
+    p1t = permute(p1t, kx, ky, kz);
+    p2t = permute(p2t, kx, ky, kz);
+
+    float sx = -d.x / d.z, sy = -d.y / d.z, sz = 1.0f / d.z;
+    p0t.x += sx * p0t.z;
+    p0t.y += sy * p0t.z;
+    p1t.x += sx * p1t.z;
+    p1t.y += sy * p1t.z;
+    p2t.x += sx * p2t.z;
+    p2t.y += sy * p2t.z;
+
+    float e0 = difference_of_products(p1t.x, p2t.y, p1t.y, p2t.x);
+    float e1 = difference_of_products(p2t.x, p0t.y, p2t.y, p0t.x);
+    float e2 = difference_of_products(p0t.x, p1t.y, p0t.y, p1t.x);
+    if (e0 == 0.0f || e1 == 0.0f || e2 == 0.0f) {
+        // On an edge in float precision: decide it in double so that both triangles sharing
+        // the edge agree on which side the ray passes (Woop et al. §3.3).
+        e0 = static_cast<float>(double(p1t.x) * p2t.y - double(p1t.y) * p2t.x);
+        e1 = static_cast<float>(double(p2t.x) * p0t.y - double(p2t.y) * p0t.x);
+        e2 = static_cast<float>(double(p0t.x) * p1t.y - double(p0t.y) * p1t.x);
+    }
+    if ((e0 < 0 || e1 < 0 || e2 < 0) && (e0 > 0 || e1 > 0 || e2 > 0)) return false;
+    float det = e0 + e1 + e2;
+    if (det == 0.0f) return false;
+
+    p0t.z *= sz;
+    p1t.z *= sz;
+    p2t.z *= sz;
+    float t_scaled = e0 * p0t.z + e1 * p1t.z + e2 * p2t.z;
+    if (det < 0 && (t_scaled > ray.tmin * det || t_scaled < ray.tmax * det)) return false;
+    if (det > 0 && (t_scaled < ray.tmin * det || t_scaled > ray.tmax * det)) return false;
+
+    float inv_det = 1.0f / det;
+    float t = t_scaled * inv_det;
+
+    // Reject hits whose t may be <= 0 given the rounding error of the computation above
+    // (pbrt-v4, §6.8.7): keeps a ray leaving a triangle from hitting it again.
+    float max_zt = max_component(abs(Vec3{p0t.z, p1t.z, p2t.z}));
+    float delta_z = gamma(3) * max_zt;
+    float max_xt = max_component(abs(Vec3{p0t.x, p1t.x, p2t.x}));
+    float max_yt = max_component(abs(Vec3{p0t.y, p1t.y, p2t.y}));
+    float delta_x = gamma(5) * (max_xt + max_zt);
+    float delta_y = gamma(5) * (max_yt + max_zt);
+    float delta_e = 2 * (gamma(2) * max_xt * max_yt + delta_y * max_xt + delta_x * max_yt);
+    float max_e = max_component(abs(Vec3{e0, e1, e2}));
+    float delta_t =
+        3 * (gamma(3) * max_e * max_zt + delta_e * max_zt + delta_z * max_e) * std::fabs(inv_det);
+    if (t <= delta_t) return false;
+
+    *hit = {t, e1 * inv_det, e2 * inv_det};
+    return true;
+}
+
+}  // namespace wavetrace

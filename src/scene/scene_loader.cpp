@@ -1,0 +1,383 @@
+// JSON scene files -> Scene. The format is documented in docs/scene-format.md; every check
+// here has a matching sentence there.
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <sstream>
+
+#include "json_reader.h"
+#include "mesh_file.h"
+#include "wavetrace/image/image.h"
+#include "wavetrace/scene/scene.h"
+
+namespace wavetrace {
+namespace fs = std::filesystem;
+using json_reader::Object;
+using json_reader::Value;
+
+namespace {
+
+constexpr float kMaxCoordinate = 1e7f;  // beyond this float spacing exceeds ~1 unit
+
+class Loader {
+public:
+    Loader(const fs::path& path, const LoadOptions& options)
+        : path_(path), file_(path.string()), options_(options) {}
+
+    Scene load() {
+        std::ifstream in(path_, std::ios::binary);
+        std::error_code ec;
+        if (fs::is_directory(path_, ec)) throw SceneError(file_ + ": is a directory, not a scene file");
+        if (!in) throw SceneError(file_ + ": cannot open scene file: " + std::strerror(errno));
+        std::stringstream text;
+        text << in.rdbuf();
+        json_ = json_reader::parse(text.str(), file_);
+
+        Object root(Value(json_, file_, ""));
+        scene_.name = path_.stem().string();
+        if (auto v = root.optional("description")) v->string();
+        if (auto v = root.optional("render")) read_render(*v);
+        read_camera(root.required("camera"));
+        if (auto v = root.optional("background")) read_background(*v);
+        if (auto v = root.optional("materials")) read_materials(*v);
+        if (auto v = root.optional("media")) read_media(*v);
+        Value objects = root.required("objects");
+        for (size_t i = 0; i < objects.size(); ++i) read_object(objects[i], Transform{});
+        root.finish();
+        if (skipped_triangles_ > 0) warn(std::to_string(skipped_triangles_) +
+                                         " degenerate triangles skipped");
+        return std::move(scene_);
+    }
+
+private:
+    void warn(const std::string& message) const {
+        std::string full = file_ + ": warning: " + message;
+        if (options_.warn) options_.warn(full);
+        else std::cerr << full << "\n";
+    }
+
+    // A path in the scene file, relative to the scene file's folder.
+    fs::path resolve(const Value& v) const {
+        fs::path p = v.string();
+        if (p.empty()) v.fail("expected a file name, got \"\"");
+        return p.is_absolute() ? p : path_.parent_path() / p;
+    }
+
+    void read_render(const Value& v) {
+        Object o(v);
+        RenderSettings& r = scene_.render;
+        if (auto x = o.optional("width")) r.width = x->integer(1, kMaxImageSide);
+        if (auto x = o.optional("height")) r.height = x->integer(1, kMaxImageSide);
+        if (auto x = o.optional("spp")) r.spp = x->integer(1, kMaxSpp);
+        if (auto x = o.optional("max_depth")) r.max_depth = x->integer(1, kMaxDepth);
+        o.finish();
+        if (static_cast<long long>(r.width) * r.height > kMaxPixels)
+            v.fail("width x height = " + std::to_string(static_cast<long long>(r.width) * r.height) +
+                   " pixels exceeds the limit of " + std::to_string(kMaxPixels));
+    }
+
+    Vec3 point(const Value& v) const {
+        Vec3 p = v.vec3();
+        if (max_component(abs(p)) > kMaxCoordinate)
+            v.fail("coordinate beyond +-1e7, got " + v.describe());
+        return p;
+    }
+
+    void read_camera(const Value& v) {
+        Object o(v);
+        Camera& c = scene_.camera;
+        c.look_from = point(o.required("look_from"));
+        Value at = o.required("look_at");
+        c.look_at = point(at);
+        if (c.look_at == c.look_from) at.fail("look_at must differ from look_from");
+        if (auto x = o.optional("up")) {
+            c.up = x->nonzero_vec3();
+            Vec3 forward = normalize(c.look_at - c.look_from);
+            if (length(cross(normalize(c.up), forward)) < 1e-6f)
+                x->fail("up must not be parallel to the viewing direction");
+        }
+        if (auto x = o.optional("vfov")) {
+            c.vfov = x->in_range(0.0f, 179.0f);
+            if (!(c.vfov > 0.0f)) x->fail("expected a number in (0, 179], got " + x->describe());
+        }
+        if (auto x = o.optional("aperture")) c.aperture = x->non_negative();
+        if (auto x = o.optional("focus_distance")) c.focus_distance = x->positive();
+        o.finish();
+    }
+
+    void read_background(const Value& v) {
+        Background& bg = scene_.background;
+        if (!v.is_object()) {
+            bg.kind = Background::Kind::Constant;
+            bg.radiance = v.color();
+            return;
+        }
+        Object o(v);
+        std::string type = o.required("type").string();
+        if (type == "constant") {
+            bg.kind = Background::Kind::Constant;
+            bg.radiance = o.required("radiance").color();
+        } else if (type == "environment") {
+            bg.kind = Background::Kind::Environment;
+            Value file = o.required("file");
+            bg.image = scene_.add_image(read_image_at(file));
+            bg.radiance = Vec3(1.0f);
+            if (auto x = o.optional("scale")) bg.radiance = x->color();
+            if (auto x = o.optional("rotation")) bg.rotation = x->number();
+        } else {
+            o.required("type").fail("unknown background type \"" + type +
+                                    "\" (expected constant or environment)");
+        }
+        o.finish();
+    }
+
+    ImageData read_image_at(const Value& file) const {
+        fs::path p = resolve(file);
+        std::error_code ec;
+        if (!fs::exists(p, ec)) file.fail("cannot open image '" + p.string() + "': no such file");
+        try {
+            return read_image(p);
+        } catch (const ImageError& e) {
+            file.fail(e.what());
+        }
+    }
+
+    // A texture: a colour [r, g, b] (or a grey number), or an object with a "type".
+    TextureId read_texture(const Value& v) {
+        if (!v.is_object()) return scene_.add_solid(v.color());
+        Object o(v);
+        Value type_value = o.required("type");
+        std::string type = type_value.string();
+        Texture t;
+        if (type == "solid") {
+            t.kind = TextureKind::Solid;
+            t.color = o.required("color").color();
+        } else if (type == "checker") {
+            t.kind = TextureKind::Checker;
+            t.scale = o.required("scale").positive();
+            t.even = read_texture(o.required("even"));
+            t.odd = read_texture(o.required("odd"));
+        } else if (type == "noise") {
+            t.kind = TextureKind::Noise;
+            t.scale = o.required("scale").positive();
+            t.color = Vec3(1.0f);
+            if (auto x = o.optional("color")) t.color = x->color();
+        } else if (type == "image") {
+            t.kind = TextureKind::Image;
+            t.image = scene_.add_image(read_image_at(o.required("file")));
+        } else {
+            type_value.fail("unknown texture type \"" + type +
+                            "\" (expected solid, checker, noise or image)");
+        }
+        o.finish();
+        return scene_.add_texture(t);
+    }
+
+    void read_materials(const Value& v) {
+        Object all(v);
+        for (const auto& [name, unused] : v.raw().items()) {
+            Value mv = all.required(name);
+            Object o(mv);
+            Value type_value = o.required("type");
+            std::string type = type_value.string();
+            Material m;
+            m.name = name;
+            if (type == "lambertian") {
+                m.kind = MaterialKind::Lambertian;
+                m.albedo = read_texture(o.required("albedo"));
+            } else if (type == "metal") {
+                m.kind = MaterialKind::Metal;
+                m.albedo = read_texture(o.required("albedo"));
+                if (auto x = o.optional("roughness")) m.roughness = x->in_range(0.0f, 1.0f);
+            } else if (type == "mirror") {
+                m.kind = MaterialKind::Mirror;
+                auto x = o.optional("albedo");
+                m.albedo = x ? read_texture(*x) : scene_.add_solid(Vec3(1.0f));
+            } else if (type == "dielectric") {
+                m.kind = MaterialKind::Dielectric;
+                m.ior = o.required("ior").positive();
+            } else if (type == "diffuse_light") {
+                m.kind = MaterialKind::DiffuseLight;
+                m.emission = read_texture(o.required("radiance"));
+                if (auto x = o.optional("two_sided")) m.two_sided = x->boolean();
+            } else {
+                type_value.fail("unknown material type \"" + type +
+                                "\" (expected lambertian, metal, mirror, dielectric or "
+                                "diffuse_light; media are declared under /media)");
+            }
+            o.finish();
+            materials_[name] = scene_.add_material(std::move(m));
+        }
+        all.finish();
+    }
+
+    void read_media(const Value& v) {
+        Object all(v);
+        for (const auto& [name, unused] : v.raw().items()) {
+            Object o(all.required(name));
+            float density = o.required("density").positive();
+            TextureId albedo = read_texture(o.required("albedo"));
+            o.finish();
+            media_[name] = scene_.add_medium(name, density, albedo);
+        }
+        all.finish();
+    }
+
+    Transform read_transform(const Value& v) const {
+        Transform t;
+        for (size_t i = 0; i < v.size(); ++i) {
+            Value step = v[i];
+            Object o(step);
+            Transform s;
+            int ops = 0;
+            if (auto x = o.optional("translate")) {
+                s = Transform::translate(point(*x));
+                ++ops;
+            }
+            if (auto x = o.optional("rotate")) {
+                Object r(*x);
+                Vec3 axis = r.required("axis").nonzero_vec3();
+                float degrees = r.required("degrees").number();
+                r.finish();
+                s = Transform::rotate(axis, degrees);
+                ++ops;
+            }
+            if (auto x = o.optional("scale")) {
+                Vec3 k = x->is_number() ? Vec3(x->number()) : x->vec3();
+                if (k.x == 0 || k.y == 0 || k.z == 0 || max_component(abs(k)) > kMaxCoordinate ||
+                    min_component(abs(k)) < 1.0f / kMaxCoordinate)
+                    x->fail("expected a non-zero scale within [1e-7, 1e7], got " + x->describe());
+                s = Transform::scale(k);
+                ++ops;
+            }
+            o.finish();
+            if (ops != 1)
+                step.fail("expected exactly one of \"translate\", \"rotate\" or \"scale\"");
+            t = s * t;  // steps apply in the order listed
+        }
+        return t;
+    }
+
+    MaterialId material_ref(const Value& v) const {
+        std::string name = v.string();
+        auto it = materials_.find(name);
+        if (it == materials_.end()) v.fail("no material named \"" + name + "\" in /materials");
+        return it->second;
+    }
+
+    MediumId medium_ref(const Value& v) const {
+        std::string name = v.string();
+        auto it = media_.find(name);
+        if (it == media_.end()) v.fail("no medium named \"" + name + "\" in /media");
+        return it->second;
+    }
+
+    void read_object(const Value& v, const Transform& parent) {
+        Object o(v);
+        Value type_value = o.required("type");
+        std::string type = type_value.string();
+        Transform to_world = parent;
+        if (auto x = o.optional("transform")) to_world = parent * read_transform(*x);
+
+        if (type == "group") {
+            Value children = o.required("objects");
+            o.finish();
+            for (size_t i = 0; i < children.size(); ++i) read_object(children[i], to_world);
+            return;
+        }
+
+        // Surface material and interior medium; a shape with only a medium is an invisible
+        // boundary (the seed's constant_medium).
+        MediumId interior = kNone;
+        if (auto x = o.optional("interior")) interior = medium_ref(*x);
+        MaterialId material;
+        if (auto x = o.optional("material")) {
+            material = material_ref(*x);
+        } else if (interior != kNone) {
+            material = scene_.interface_material();
+        } else {
+            v.fail("missing required key \"material\" (or \"interior\" for a medium boundary)");
+        }
+
+        if (type == "sphere") {
+            Sphere s;
+            s.center = point(o.required("center"));
+            Value radius = o.required("radius");
+            s.radius = radius.positive();
+            s.material = material;
+            s.interior = interior;
+            o.finish();
+            float scale;
+            if (!to_world.preserves_shape(&scale))
+                v.fail("a sphere's transform must not scale non-uniformly");
+            scene_.add_sphere(s, to_world);
+        } else if (type == "quad") {
+            Quad q;
+            q.q = point(o.required("q"));
+            q.u = o.required("u").nonzero_vec3();
+            Value vv = o.required("v");
+            q.v = vv.nonzero_vec3();
+            if (length_squared(cross(q.u, q.v)) == 0.0f) vv.fail("u and v must not be parallel");
+            q.material = material;
+            q.interior = interior;
+            o.finish();
+            scene_.add_quad(q, to_world);
+        } else if (type == "box") {
+            Point3 lo = point(o.required("min"));
+            Value max_value = o.required("max");
+            Point3 hi = point(max_value);
+            if (!(hi.x > lo.x && hi.y > lo.y && hi.z > lo.z))
+                max_value.fail("expected max > min in every axis, got " + max_value.describe());
+            o.finish();
+            scene_.add_box(lo, hi, material, interior, to_world);
+        } else if (type == "mesh") {
+            Value file = o.required("file");
+            std::string normals = "file";
+            if (auto x = o.optional("normals")) {
+                normals = x->string();
+                if (normals != "file" && normals != "flat" && normals != "smooth")
+                    x->fail("expected \"file\", \"flat\" or \"smooth\", got " + x->describe());
+            }
+            o.finish();
+            fs::path p = resolve(file);
+            MeshFile mesh;
+            try {
+                mesh = read_mesh_file(p);
+            } catch (const std::exception& e) {
+                file.fail("cannot read mesh '" + p.string() + "': " + e.what());
+            }
+            if (normals == "flat") mesh.normals.clear();
+            if (normals == "smooth") mesh.normals = smooth_normals(mesh.positions, mesh.indices);
+            Mesh m;
+            m.name = p.filename().string();
+            m.material = material;
+            m.interior = interior;
+            skipped_triangles_ += scene_.add_mesh(std::move(m), mesh.positions, mesh.normals,
+                                                  mesh.uvs, mesh.indices, to_world);
+        } else {
+            type_value.fail("unknown object type \"" + type +
+                            "\" (expected sphere, quad, box, mesh or group)");
+        }
+        if (scene_.primitive_count() > kMaxPrimsPerKind)
+            v.fail("too many primitives (more than 2^30)");
+    }
+
+    fs::path path_;
+    std::string file_;
+    const LoadOptions& options_;
+    nlohmann::json json_;
+    Scene scene_;
+    std::map<std::string, MaterialId> materials_;
+    std::map<std::string, MediumId> media_;
+    size_t skipped_triangles_ = 0;
+};
+
+}  // namespace
+
+Scene load_scene(const fs::path& path, const LoadOptions& options) {
+    return Loader(path, options).load();
+}
+
+}  // namespace wavetrace

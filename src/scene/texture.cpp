@@ -1,0 +1,117 @@
+#include "wavetrace/scene/texture.h"
+
+#include <array>
+#include <cmath>
+
+#include "wavetrace/scene/scene.h"
+
+namespace wavetrace {
+
+Color ImageData::bilinear(float u, float v) const {
+    // Texel centres sit at half-integer coordinates; wrap in both directions.
+    float x = (u - std::floor(u)) * static_cast<float>(width) - 0.5f;
+    float y = (1.0f - (v - std::floor(v))) * static_cast<float>(height) - 0.5f;
+    float fx = std::floor(x), fy = std::floor(y);
+    float tx = x - fx, ty = y - fy;
+    auto wrap = [](int i, int n) { return ((i % n) + n) % n; };
+    int x0 = wrap(static_cast<int>(fx), width), x1 = wrap(static_cast<int>(fx) + 1, width);
+    int y0 = wrap(static_cast<int>(fy), height), y1 = wrap(static_cast<int>(fy) + 1, height);
+    return (1 - ty) * ((1 - tx) * texel(x0, y0) + tx * texel(x1, y0)) +
+           ty * ((1 - tx) * texel(x0, y1) + tx * texel(x1, y1));
+}
+
+namespace {
+
+// Ken Perlin's gradient noise with random unit gradients and trilinear Hermite blending, as
+// the seed builds it (RTNW §5). Tables come from a fixed splitmix64 stream, so the noise is
+// the same on every platform.
+class Perlin {
+public:
+    Perlin() {
+        uint64_t state = 0x5eed5eedULL;
+        auto next = [&state] {
+            uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
+            z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+            z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+            return z ^ (z >> 31);
+        };
+        auto uniform = [&] { return static_cast<float>(next() >> 40) * 0x1p-24f; };
+        for (Vec3& g : gradients_) {
+            do {
+                g = {2 * uniform() - 1, 2 * uniform() - 1, 2 * uniform() - 1};
+            } while (length_squared(g) > 1.0f || length_squared(g) < 1e-4f);
+            g = normalize(g);
+        }
+        for (auto& perm : perm_) {
+            for (int i = 0; i < kCount; ++i) perm[i] = i;
+            for (int i = kCount - 1; i > 0; --i) std::swap(perm[i], perm[next() % (i + 1)]);
+        }
+    }
+
+    float noise(Point3 p) const {
+        float u = p.x - std::floor(p.x), v = p.y - std::floor(p.y), w = p.z - std::floor(p.z);
+        int i = static_cast<int>(std::floor(p.x)), j = static_cast<int>(std::floor(p.y)),
+            k = static_cast<int>(std::floor(p.z));
+        float uu = u * u * (3 - 2 * u), vv = v * v * (3 - 2 * v), ww = w * w * (3 - 2 * w);
+        float accum = 0;
+        for (int di = 0; di < 2; ++di)
+            for (int dj = 0; dj < 2; ++dj)
+                for (int dk = 0; dk < 2; ++dk) {
+                    const Vec3& g = gradients_[perm_[0][(i + di) & 255] ^
+                                               perm_[1][(j + dj) & 255] ^ perm_[2][(k + dk) & 255]];
+                    Vec3 weight{u - di, v - dj, w - dk};
+                    accum += (di * uu + (1 - di) * (1 - uu)) * (dj * vv + (1 - dj) * (1 - vv)) *
+                             (dk * ww + (1 - dk) * (1 - ww)) * dot(g, weight);
+                }
+        return accum;
+    }
+
+private:
+    static constexpr int kCount = 256;
+    std::array<Vec3, kCount> gradients_;
+    std::array<std::array<int, kCount>, 3> perm_;
+};
+
+const Perlin& perlin() {
+    static const Perlin instance;
+    return instance;
+}
+
+}  // namespace
+
+float perlin_noise(Point3 p) { return perlin().noise(p); }
+
+float perlin_turbulence(Point3 p, int octaves) {
+    float accum = 0, weight = 1;
+    for (int i = 0; i < octaves; ++i) {
+        accum += weight * perlin().noise(p);
+        weight *= 0.5f;
+        p *= 2.0f;
+    }
+    return std::fabs(accum);
+}
+
+Color eval_texture(const Scene& scene, TextureId id, Vec2 uv, Point3 p) {
+    for (;;) {
+        const Texture& t = scene.textures[id];
+        switch (t.kind) {
+            case TextureKind::Solid: return t.color;
+            case TextureKind::Checker: {
+                // Cells of side `scale`: the parity of the sum of the cell indices.
+                float inv = 1.0f / t.scale;
+                long sum = static_cast<long>(std::floor(inv * p.x)) +
+                           static_cast<long>(std::floor(inv * p.y)) +
+                           static_cast<long>(std::floor(inv * p.z));
+                id = (sum % 2 == 0) ? t.even : t.odd;
+                continue;
+            }
+            case TextureKind::Noise:
+                return t.color * (0.5f * (1.0f + std::sin(t.scale * p.z +
+                                                          10.0f * perlin_turbulence(p))));
+            case TextureKind::Image: return scene.images[t.image].bilinear(uv.x, uv.y);
+        }
+        return {};
+    }
+}
+
+}  // namespace wavetrace

@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Installs the Debian packages wavetrace builds with, and only those that are missing.
+# Idempotent and silent when everything is already there.
+set -euo pipefail
+
+packages=(
+  build-essential cmake pkg-config
+  libtbb-dev            # oneTBB: parallel_for / parallel_invoke / global_control
+  libopenimageio-dev    # image textures in, PNG/JPEG/EXR/HDR/PFM out
+  libembree-dev         # Embree 3: the intersection reference in tests and benchmarks
+  libassimp-dev         # meshes: OBJ+MTL, PLY (ASCII and binary), glTF 2.0
+  nlohmann-json3-dev    # scene files
+  libcli11-dev          # command line
+  libfmt-dev            # formatting
+  libgtest-dev libgmock-dev
+  libbenchmark-dev
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  status=$(dpkg-query -W -f='${Status}' "$p" 2>/dev/null || true)
+  [[ "$status" == "install ok installed" ]] || missing+=("$p")
+done
+[[ ${#missing[@]} -eq 0 ]] && exit 0
+
+echo "install-deps: installing ${missing[*]}" >&2
+sudo=""
+if [[ $(id -u) -ne 0 ]]; then sudo="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+$sudo apt-get update -qq >/dev/null
+$sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
