@@ -2,6 +2,10 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <bit>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
 #include <cmath>
 #include <system_error>
 
@@ -23,6 +27,19 @@ float srgb_encode(float linear) {
 }
 float srgb_decode(float encoded) {
     return encoded <= 0.04045f ? encoded / 12.92f : std::pow((encoded + 0.055f) / 1.055f, 2.4f);
+}
+
+// Portable float map: "PF", size, a negative scale for little-endian, then rows bottom to
+// top. Written here because Debian's OpenImageIO 2.4 reads PFM but has no PFM writer.
+std::string write_pfm(const fs::path& path, const Image& image) {
+    std::ofstream out(path, std::ios::binary);
+    out << "PF\n" << image.width << " " << image.height << "\n-1.0\n";
+    static_assert(std::endian::native == std::endian::little);
+    for (int y = image.height - 1; y >= 0; --y)
+        out.write(reinterpret_cast<const char*>(&image.at(0, y)),
+                  static_cast<std::streamsize>(sizeof(Color)) * image.width);
+    out.close();
+    return out ? "" : std::string(std::strerror(errno));
 }
 
 }  // namespace
@@ -66,19 +83,23 @@ void write_image(const fs::path& path, const Image& image, const WriteOptions& o
     fs::path dir = path.parent_path().empty() ? fs::path(".") : path.parent_path();
     fs::path tmp = dir / ("." + path.stem().string() + ".tmp" + std::to_string(::getpid()) +
                           path.extension().string());
-    auto out = OIIO::ImageOutput::create(tmp.string());
-    if (!out) throw ImageError(path.string() + ": cannot write: " + OIIO::geterror());
-    bool ok = out->open(tmp.string(), spec) &&
-              (ldr ? out->write_image(OIIO::TypeDesc::UINT8, bytes.data())
-                   : out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data())) &&
-              out->close();
-    if (!ok) {
-        std::string err = out->geterror();
-        std::error_code ec;
+    std::string err;
+    if (lower_extension(path) == ".pfm") {
+        err = write_pfm(tmp, image);
+    } else {
+        auto out = OIIO::ImageOutput::create(tmp.string());
+        if (!out) throw ImageError(path.string() + ": cannot write: " + OIIO::geterror());
+        bool ok = out->open(tmp.string(), spec) &&
+                  (ldr ? out->write_image(OIIO::TypeDesc::UINT8, bytes.data())
+                       : out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data())) &&
+                  out->close();
+        if (!ok) err = out->geterror();
+    }
+    std::error_code ec;
+    if (!err.empty()) {
         fs::remove(tmp, ec);
         throw ImageError(path.string() + ": cannot write: " + err);
     }
-    std::error_code ec;
     fs::rename(tmp, path, ec);
     if (ec) {
         fs::remove(tmp, ec);

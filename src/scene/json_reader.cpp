@@ -143,8 +143,11 @@ std::optional<Value> Object::optional(const std::string& key) {
 
 Value Object::required(const std::string& key) {
     auto v = optional(key);
-    if (!v) v_.fail("missing required key \"" + key + "\"");
-    return *v;
+    if (v) return *v;
+    std::string hint;
+    for (const auto& [present, unused] : v_.raw().items())
+        if (edit_distance(present, key) <= 2) hint = " (is \"" + present + "\" a typo?)";
+    v_.fail("missing required key \"" + key + "\"" + hint);
 }
 
 void Object::finish() const {
@@ -187,6 +190,12 @@ json parse(const std::string& text, const std::string& file) {
         std::string detail = pos == std::string::npos ? what : what.substr(pos + 2);
         throw SceneError(file + ":" + std::to_string(line) + ":" + std::to_string(col) +
                          ": invalid JSON: " + detail);
+    } catch (const json::exception& e) {
+        // E.g. a number too large for a double ("1e999"); nlohmann gives no position here.
+        std::string what = e.what();
+        auto pos = what.find("] ");
+        throw SceneError(file + ": invalid JSON: " +
+                         (pos == std::string::npos ? what : what.substr(pos + 2)));
     }
 }
 

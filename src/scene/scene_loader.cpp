@@ -92,11 +92,11 @@ private:
         Value at = o.required("look_at");
         c.look_at = point(at);
         if (c.look_at == c.look_from) at.fail("look_at must differ from look_from");
-        if (auto x = o.optional("up")) {
-            c.up = x->nonzero_vec3();
-            Vec3 forward = normalize(c.look_at - c.look_from);
-            if (length(cross(normalize(c.up), forward)) < 1e-6f)
-                x->fail("up must not be parallel to the viewing direction");
+        auto up = o.optional("up");
+        if (up) c.up = up->nonzero_vec3();
+        if (length(cross(normalize(c.up), normalize(c.look_at - c.look_from))) < 1e-6f) {
+            if (up) up->fail("up must not be parallel to the viewing direction");
+            v.fail("the viewing direction is parallel to the default up [0, 1, 0]; set \"up\"");
         }
         if (auto x = o.optional("vfov")) {
             c.vfov = x->in_range(0.0f, 179.0f);

@@ -1,0 +1,173 @@
+// BVH invariants and agreement with brute force.
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include <cstring>
+#include <vector>
+
+#include "test_paths.h"
+#include "wavetrace/render/sampler.h"
+#include "wavetrace/scene/bvh.h"
+#include "wavetrace/scene/intersect.h"
+#include "wavetrace/scene/scene.h"
+
+using namespace wavetrace;
+
+namespace {
+
+// Every primitive kind, some overlapping, some coincident centroids, a big enclosing sphere.
+Scene mixed_scene(int n) {
+    Scene s;
+    Material m;
+    MaterialId mat = s.add_material(m);
+    auto u = [](int i, int d) { return sample_1d(7, static_cast<uint32_t>(i), 0, d); };
+    std::vector<Point3> pos;
+    std::vector<uint32_t> idx;
+    for (int i = 0; i < n; ++i) {
+        Point3 c{100 * u(i, 0), 100 * u(i, 1), 100 * u(i, 2)};
+        switch (i % 3) {
+            case 0: s.add_sphere({c, 0.5f + 2 * u(i, 3), mat, kNone}); break;
+            case 1: s.add_quad({c, {3 * u(i, 4) + 0.1f, 0, 0}, {0, 1, 3 * u(i, 5)}, mat, kNone}); break;
+            case 2:
+                for (int k = 0; k < 3; ++k) {
+                    pos.push_back(c + Vec3{4 * u(i, 6 + k), 4 * u(i, 9 + k), 4 * u(i, 12 + k)});
+                    idx.push_back(static_cast<uint32_t>(pos.size() - 1));
+                }
+                break;
+        }
+    }
+    for (int i = 0; i < 20; ++i) s.add_sphere({{50, 50, 50}, 1.0f + i, mat, kNone});  // same centroid
+    s.add_mesh({}, pos, {}, {}, idx);
+    return s;
+}
+
+struct Checker {
+    const Bvh& bvh;
+    const Scene& scene;
+    std::vector<int> seen;
+    int max_depth = 0;
+
+    void visit(uint32_t index, int depth) {
+        const BvhNode& node = bvh.nodes()[index];
+        max_depth = std::max(max_depth, depth);
+        if (node.is_leaf()) {
+            for (uint32_t i = node.offset; i < node.offset + node.count; ++i) {
+                ASSERT_LT(i, bvh.prims().size());
+                PrimRef p = bvh.prims()[i];
+                ASSERT_TRUE(node.bounds().contains(scene.prim_bounds(p)));
+                ++seen[i];
+            }
+            return;
+        }
+        uint32_t a = index + 1, b = node.offset;
+        ASSERT_GT(b, a) << "children must follow their parent depth-first";
+        ASSERT_LT(b, bvh.nodes().size());
+        EXPECT_TRUE(node.bounds().contains(bvh.nodes()[a].bounds()));
+        EXPECT_TRUE(node.bounds().contains(bvh.nodes()[b].bounds()));
+        visit(a, depth + 1);
+        visit(b, depth + 1);
+    }
+};
+
+}  // namespace
+
+TEST(Bvh, EachPrimitiveInExactlyOneLeafAndBoundsNest) {
+    Scene scene = mixed_scene(6000);
+    Bvh bvh = Bvh::build(scene);
+    ASSERT_EQ(bvh.prims().size(), scene.primitive_count());
+    Checker check{bvh, scene, std::vector<int>(bvh.prims().size(), 0)};
+    check.visit(0, 1);
+    for (int count : check.seen) ASSERT_EQ(count, 1);
+    // The permutation covers every primitive once.
+    std::vector<int> refs_seen(scene.primitive_count(), 0);
+    size_t tri = scene.triangles.size(), quad = scene.quads.size();
+    for (PrimRef p : bvh.prims()) {
+        size_t flat = p.kind() == PrimKind::Triangle ? p.index()
+                      : p.kind() == PrimKind::Quad   ? tri + p.index()
+                                                     : tri + quad + p.index();
+        ++refs_seen[flat];
+    }
+    for (int count : refs_seen) ASSERT_EQ(count, 1);
+    EXPECT_EQ(check.max_depth, bvh.stats().depth);
+    EXPECT_LT(bvh.stats().depth, Bvh::kStackSize);
+    EXPECT_EQ(bvh.stats().nodes, bvh.nodes().size());
+    EXPECT_EQ(bvh.stats().leaves * 2 - 1, bvh.stats().nodes);
+    for (const BvhNode& n : bvh.nodes())
+        if (n.is_leaf()) EXPECT_LE(n.count, static_cast<uint32_t>(BvhBuildConfig{}.max_leaf_size));
+}
+
+TEST(Bvh, ClosestHitMatchesBruteForce) {
+    Scene scene = mixed_scene(3000);
+    Bvh bvh = Bvh::build(scene);
+    int hits = 0;
+    for (uint32_t i = 0; i < 20000; ++i) {
+        auto u = [&](int d) { return sample_1d(11, i, 0, d); };
+        Point3 o{-20 + 140 * u(0), -20 + 140 * u(1), -20 + 140 * u(2)};
+        Vec3 d{u(3) - 0.5f, u(4) - 0.5f, u(5) - 0.5f};
+        Ray ray{o, d};
+        // Brute force over every primitive.
+        float best = kInfinity;
+        auto test = [&](bool h, const PrimHit& ph) {
+            if (h && ph.t < best) best = ph.t;
+        };
+        for (const Triangle& t : scene.triangles) {
+            PrimHit ph;
+            test(intersect_triangle(ray, scene.positions[t.v[0]], scene.positions[t.v[1]],
+                                    scene.positions[t.v[2]], &ph), ph);
+        }
+        for (const Quad& q : scene.quads) {
+            PrimHit ph;
+            test(intersect_quad(ray, q.q, q.u, q.v, &ph), ph);
+        }
+        for (const Sphere& s : scene.spheres) {
+            PrimHit ph;
+            test(intersect_sphere(ray, s.center, s.radius, &ph), ph);
+        }
+        Hit hit = bvh.intersect(ray);
+        ASSERT_EQ(hit.found(), best < kInfinity) << "ray " << i;
+        ASSERT_EQ(bvh.occluded(ray), best < kInfinity) << "ray " << i;
+        if (hit.found()) {
+            ++hits;
+            ASSERT_EQ(hit.t, best) << "ray " << i;
+        }
+    }
+    EXPECT_GT(hits, 1000);
+}
+
+TEST(Bvh, BuildDoesNotDependOnThreadCount) {
+    Scene scene = mixed_scene(30000);  // large enough for the parallel paths
+    BvhBuildConfig config;
+    config.parallel_threshold = 256;
+    auto build_with = [&](int threads) {
+        tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+        return Bvh::build(scene, config);
+    };
+    Bvh one = build_with(1), two = build_with(2), eight = build_with(8);
+    for (const Bvh* other : {&two, &eight}) {
+        ASSERT_EQ(one.nodes().size(), other->nodes().size());
+        EXPECT_EQ(0, std::memcmp(one.nodes().data(), other->nodes().data(),
+                                 one.nodes().size() * sizeof(BvhNode)));
+        EXPECT_EQ(0, std::memcmp(one.prims().data(), other->prims().data(),
+                                 one.prims().size() * sizeof(PrimRef)));
+    }
+}
+
+TEST(Bvh, EmptySceneNeverHits) {
+    Scene scene;
+    Bvh bvh = Bvh::build(scene);
+    EXPECT_FALSE(bvh.intersect({{0, 0, 0}, {0, 0, 1}}).found());
+    EXPECT_FALSE(bvh.occluded({{0, 0, 0}, {0, 0, 1}}));
+}
+
+TEST(Bvh, ShippedScenesHaveSaneTrees) {
+    for (const char* name : {"cornell", "bunny", "dragon", "everything"}) {
+        Scene scene = load_scene(scene_path(name));
+        Bvh bvh = Bvh::build(scene);
+        const BvhStats& s = bvh.stats();
+        std::printf("%-10s %8zu prims %8zu nodes depth %2d SAH %.2f\n", name,
+                    scene.primitive_count(), s.nodes, s.depth, s.sah_cost);
+        EXPECT_EQ(bvh.prims().size(), scene.primitive_count());
+        EXPECT_LT(s.depth, Bvh::kStackSize);
+        EXPECT_GT(s.sah_cost, 0.0f);
+    }
+}

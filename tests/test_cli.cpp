@@ -1,0 +1,107 @@
+// The command line, run as a user would: exit codes, messages, and what gets written.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "temp_dir.h"
+#include "test_paths.h"
+#include "wavetrace/image/image.h"
+
+using namespace wavetrace;
+
+namespace {
+
+struct CliResult {
+    int code;
+    std::string out, err;
+};
+
+CliResult run(const TempDir& dir, const std::string& args) {
+    std::string cmd = "'" + cli_path().string() + "' " + args + " > '" +
+                      (dir.path() / "stdout").string() + "' 2> '" + (dir.path() / "stderr").string() + "'";
+    int status = std::system(cmd.c_str());
+    auto slurp = [](const std::filesystem::path& p) {
+        std::stringstream s;
+        s << std::ifstream(p).rdbuf();
+        return s.str();
+    };
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(dir.path() / "stdout"),
+            slurp(dir.path() / "stderr")};
+}
+
+std::string scene(const char* name) { return "'" + scene_path(name).string() + "'"; }
+
+}  // namespace
+
+TEST(Cli, RendersNormalAovOfTheDragon) {
+    TempDir dir;
+    auto out = dir.path() / "n.png";
+    CliResult r = run(dir, "render " + scene("dragon") + " --aov normal --width 64 --height 48 -o '" +
+                         out.string() + "'");
+    EXPECT_EQ(r.code, 0) << r.err;
+    ImageData img = read_image(out);
+    EXPECT_EQ(img.width, 64);
+    EXPECT_EQ(img.height, 48);
+    EXPECT_NE(r.out.find("n.png"), std::string::npos);
+}
+
+TEST(Cli, InfoDescribesTheScene) {
+    TempDir dir;
+    CliResult r = run(dir, "info " + scene("everything"));
+    EXPECT_EQ(r.code, 0) << r.err;
+    for (const char* field : {"primitives   3408", "1007 spheres", "lights       1", "bounds", "bvh",
+                              "SAH cost", "memory"})
+        EXPECT_NE(r.out.find(field), std::string::npos) << field << "\n" << r.out;
+}
+
+TEST(Cli, MalformedSceneExitsTwoNamingThePlaceAndWritesNothing) {
+    TempDir dir;
+    auto bad = dir.write("bad.json", R"({"camera": {"look_from": [0,0,-5], "look_at": [0,0,0]},
+        "materials": {"w": {"type": "lambertian", "albedo": 0.5}},
+        "objects": [{"type": "sphere", "center": [0,0,0], "radius": -1, "material": "w"}]})");
+    auto out = dir.path() / "x.png";
+    CliResult r = run(dir, "render '" + bad.string() + "' --aov albedo -o '" + out.string() + "'");
+    EXPECT_EQ(r.code, 2);
+    EXPECT_NE(r.err.find(bad.string() + ": /objects/0/radius: expected a positive number, got -1"),
+              std::string::npos)
+        << r.err;
+    EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+TEST(Cli, BadOptionsExitTwoAndWriteNothing) {
+    TempDir dir;
+    auto out = dir.path() / "x.png";
+    std::string o = " -o '" + out.string() + "'";
+    EXPECT_EQ(run(dir, "render " + scene("cornell") + " --aov albedo --width 100000" + o).code, 2);
+    CliResult huge = run(dir, "render " + scene("cornell") + " --aov albedo --width 30000 --height 30000" + o);
+    EXPECT_EQ(huge.code, 2);
+    EXPECT_NE(huge.err.find("exceeds the limit"), std::string::npos) << huge.err;
+    EXPECT_EQ(run(dir, "render " + scene("cornell") + " --aov albedo --spp 0x" + o).code, 2);
+    EXPECT_EQ(run(dir, "render " + scene("cornell") + " --aov bogus" + o).code, 2);
+    EXPECT_EQ(run(dir, "render " + scene("cornell") + " --frobnicate" + o).code, 2);
+    CliResult color = run(dir, "render " + scene("cornell") + o);
+    EXPECT_EQ(color.code, 2);
+    EXPECT_NE(color.err.find("needs a light-transport engine"), std::string::npos) << color.err;
+    CliResult missing = run(dir, "render '" + (dir.path() / "none.json").string() + "' --aov albedo" + o);
+    EXPECT_EQ(missing.code, 2);
+    EXPECT_NE(missing.err.find("none.json: cannot open scene file"), std::string::npos) << missing.err;
+    CliResult ext = run(dir, "render " + scene("cornell") + " --aov albedo -o '" +
+                           (dir.path() / "x.gif").string() + "'");
+    EXPECT_EQ(ext.code, 2);
+    EXPECT_NE(ext.err.find("unsupported output format"), std::string::npos) << ext.err;
+    EXPECT_FALSE(std::filesystem::exists(out));
+    EXPECT_EQ(run(dir, "info '" + (dir.path() / "none.json").string() + "'").code, 2);
+}
+
+TEST(Cli, OutputDoesNotDependOnThreadCount) {
+    TempDir dir;
+    auto a = dir.path() / "a.exr", b = dir.path() / "b.exr";
+    std::string common = "render " + scene("everything") + " --aov albedo --spp 3 --width 96 --height 96";
+    ASSERT_EQ(run(dir, common + " --threads 1 -o '" + a.string() + "'").code, 0);
+    ASSERT_EQ(run(dir, common + " --threads 2 -o '" + b.string() + "'").code, 0);
+    ImageData ia = read_image(a), ib = read_image(b);
+    ASSERT_EQ(ia.texels.size(), ib.texels.size());
+    for (size_t i = 0; i < ia.texels.size(); ++i) ASSERT_EQ(ia.texels[i], ib.texels[i]) << i;
+}

@@ -1,0 +1,240 @@
+// Our BVH against Embree 3 on the same rays: camera rays plus rays leaving random surface
+// points in cosine-distributed directions, over a million per scene.
+#include <embree3/rtcore.h>
+#include <gtest/gtest.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+
+#include <cmath>
+#include <vector>
+
+#include "test_paths.h"
+#include "wavetrace/math/constants.h"
+#include "wavetrace/math/frame.h"
+#include "wavetrace/render/sampler.h"
+#include "wavetrace/scene/bvh.h"
+#include "wavetrace/scene/scene.h"
+
+using namespace wavetrace;
+
+namespace {
+
+constexpr int kCameraSide = 512;             // 262,144 camera rays
+constexpr uint32_t kSurfaceRays = 786'432;   // + surface rays = 1,048,576 rays per scene
+constexpr float kRelTolerance = 1e-4f;
+
+// The scene mirrored into Embree: geometry id = primitive kind, primitive id = index.
+class EmbreeScene {
+public:
+    explicit EmbreeScene(const Scene& s) {
+        device_ = rtcNewDevice(nullptr);
+        scene_ = rtcNewScene(device_);
+        rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
+        if (!s.triangles.empty()) {
+            RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+            auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
+                g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), s.positions.size()));
+            for (size_t i = 0; i < s.positions.size(); ++i)
+                for (int k = 0; k < 3; ++k) v[3 * i + k] = s.positions[i][k];
+            auto* idx = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
+                g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), s.triangles.size()));
+            for (size_t i = 0; i < s.triangles.size(); ++i)
+                for (int k = 0; k < 3; ++k) idx[3 * i + k] = s.triangles[i].v[k];
+            attach(g, PrimKind::Triangle);
+        }
+        if (!s.quads.empty()) {
+            RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_QUAD);
+            auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
+                g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 4 * s.quads.size()));
+            auto* idx = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
+                g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT4, 4 * sizeof(uint32_t), s.quads.size()));
+            for (size_t i = 0; i < s.quads.size(); ++i) {
+                const Quad& q = s.quads[i];
+                Point3 corners[4] = {q.q, q.q + q.u, q.q + q.u + q.v, q.q + q.v};
+                for (int c = 0; c < 4; ++c) {
+                    for (int k = 0; k < 3; ++k) v[3 * (4 * i + c) + k] = corners[c][k];
+                    idx[4 * i + c] = static_cast<uint32_t>(4 * i + c);
+                }
+            }
+            attach(g, PrimKind::Quad);
+        }
+        if (!s.spheres.empty()) {
+            RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_SPHERE_POINT);
+            auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
+                g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), s.spheres.size()));
+            for (size_t i = 0; i < s.spheres.size(); ++i) {
+                for (int k = 0; k < 3; ++k) v[4 * i + k] = s.spheres[i].center[k];
+                v[4 * i + 3] = s.spheres[i].radius;
+            }
+            attach(g, PrimKind::Sphere);
+        }
+        rtcCommitScene(scene_);
+    }
+    ~EmbreeScene() {
+        rtcReleaseScene(scene_);
+        rtcReleaseDevice(device_);
+    }
+
+    Hit intersect(const Ray& ray) const {
+        RTCIntersectContext context;
+        rtcInitIntersectContext(&context);
+        RTCRayHit rh{};
+        rh.ray.org_x = ray.o.x;
+        rh.ray.org_y = ray.o.y;
+        rh.ray.org_z = ray.o.z;
+        rh.ray.dir_x = ray.d.x;
+        rh.ray.dir_y = ray.d.y;
+        rh.ray.dir_z = ray.d.z;
+        rh.ray.tnear = ray.tmin;
+        rh.ray.tfar = ray.tmax;
+        rh.ray.mask = ~0u;
+        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        rtcIntersect1(scene_, &context, &rh);
+        Hit hit;
+        if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
+            hit.t = rh.ray.tfar;
+            hit.prim = PrimRef::make(static_cast<PrimKind>(rh.hit.geomID), rh.hit.primID);
+        }
+        return hit;
+    }
+
+private:
+    void attach(RTCGeometry g, PrimKind kind) {
+        rtcCommitGeometry(g);
+        rtcAttachGeometryByID(scene_, g, static_cast<unsigned>(kind));
+        rtcReleaseGeometry(g);
+    }
+
+    RTCDevice device_;
+    RTCScene scene_;
+};
+
+// Ray i: the first kCameraSide^2 are camera rays through jittered pixel positions; the rest
+// leave a random point of a random primitive, on a random side, cosine-distributed.
+Ray make_ray(const Scene& scene, const CameraRays& camera, uint32_t i) {
+    auto u = [&](uint32_t dim) { return sample_1d(2024, i, 0, dim); };
+    const uint32_t camera_rays = kCameraSide * kCameraSide;
+    if (i < camera_rays)
+        return camera.generate((i % kCameraSide) + u(0), (i / kCameraSide) + u(1), u(2), u(3));
+
+    size_t n = scene.primitive_count();
+    size_t flat = std::min(n - 1, static_cast<size_t>(u(4) * static_cast<float>(n)));
+    size_t tri = scene.triangles.size(), quad = scene.quads.size();
+    Point3 p;
+    Normal3 normal;
+    float a = u(5), b = u(6);
+    if (flat < tri) {
+        const Triangle& t = scene.triangles[flat];
+        Point3 p0 = scene.positions[t.v[0]], p1 = scene.positions[t.v[1]], p2 = scene.positions[t.v[2]];
+        float s = std::sqrt(a);  // uniform on the triangle
+        p = (1 - s) * p0 + s * (1 - b) * p1 + s * b * p2;
+        normal = normalize(cross(p1 - p0, p2 - p0));
+    } else if (flat < tri + quad) {
+        const Quad& q = scene.quads[flat - tri];
+        p = q.q + a * q.u + b * q.v;
+        normal = normalize(cross(q.u, q.v));
+    } else {
+        const Sphere& s = scene.spheres[flat - tri - quad];
+        float z = 1 - 2 * a, r = std::sqrt(std::max(0.0f, 1 - z * z)), phi = 2 * kPi * b;
+        normal = {r * std::cos(phi), r * std::sin(phi), z};
+        p = s.center + s.radius * normal;
+    }
+    if (u(7) < 0.5f) normal = -normal;
+    // Cosine-weighted direction about the chosen side (Malley's method).
+    float r = std::sqrt(u(8)), phi = 2 * kPi * u(9);
+    Vec3 local{r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0f, 1 - r * r))};
+    Vec3 d = Frame::from_normal(normal).to_world(local);
+    // Start just off the surface so that neither side reports the surface itself.
+    float eps = 1e-4f * (max_component(abs(p)) + 1.0f);
+    return Ray{p + eps * normal, d};
+}
+
+struct Tally {
+    size_t rays = 0, both_hit = 0, both_miss = 0, only_ours = 0, only_embree = 0;
+    size_t same = 0, ties = 0, different = 0;
+    double max_rel_t = 0;
+    std::vector<uint32_t> examples;  // a few disagreeing rays, for the report
+
+    Tally& operator+=(const Tally& o) {
+        rays += o.rays;
+        both_hit += o.both_hit;
+        both_miss += o.both_miss;
+        only_ours += o.only_ours;
+        only_embree += o.only_embree;
+        same += o.same;
+        ties += o.ties;
+        different += o.different;
+        max_rel_t = std::max(max_rel_t, o.max_rel_t);
+        examples.insert(examples.end(), o.examples.begin(), o.examples.end());
+        return *this;
+    }
+};
+
+void compare_scene(const char* name) {
+    Scene scene = load_scene(scene_path(name));
+    Bvh bvh = Bvh::build(scene);
+    EmbreeScene embree(scene);
+    CameraRays camera(scene.camera, kCameraSide, kCameraSide);
+    const uint32_t total = kCameraSide * kCameraSide + kSurfaceRays;
+
+    Tally t = tbb::parallel_reduce(
+        tbb::blocked_range<uint32_t>(0, total, 4096), Tally{},
+        [&](const tbb::blocked_range<uint32_t>& r, Tally acc) {
+            for (uint32_t i = r.begin(); i < r.end(); ++i) {
+                Ray ray = make_ray(scene, camera, i);
+                Hit ours = bvh.intersect(ray), ref = embree.intersect(ray);
+                ++acc.rays;
+                if (!ours.found() || !ref.found()) {
+                    if (ours.found()) ++acc.only_ours;
+                    else if (ref.found()) ++acc.only_embree;
+                    else ++acc.both_miss;
+                    if (ours.found() != ref.found() && acc.examples.size() < 3) acc.examples.push_back(i);
+                    continue;
+                }
+                ++acc.both_hit;
+                double rel = std::fabs(double(ours.t) - ref.t) / std::max(double(ref.t), 1e-30);
+                // Relative 1e-4, with a floor of one float ulp of the hit point's coordinates:
+                // no float intersector can place a hit more finely than that (it matters only
+                // for rays that start a hair away from another surface).
+                Point3 p = ray.at(ref.t);
+                double ulp_floor = std::ldexp(double(max_component(abs(p))), -23) / length(ray.d);
+                bool t_agrees = std::fabs(double(ours.t) - ref.t) <= kRelTolerance * ref.t + ulp_floor;
+                // A tie: two primitives hit at the same distance (a shared edge, coplanar faces).
+                if (ours.prim == ref.prim && t_agrees) ++acc.same;
+                else if (t_agrees) ++acc.ties;
+                else ++acc.different;
+                if (!t_agrees && acc.examples.size() < 3) acc.examples.push_back(i);
+                if (ours.prim == ref.prim) acc.max_rel_t = std::max(acc.max_rel_t, rel);
+            }
+            return acc;
+        },
+        [](Tally a, const Tally& b) { return a += b; });
+
+    double hit_agreement = double(t.both_hit + t.both_miss) / double(t.rays);
+    double hit_match = t.both_hit ? double(t.same + t.ties) / double(t.both_hit) : 1.0;
+    std::printf(
+        "embree-agreement %-10s rays %zu | hit/miss agree %.5f%% (both hit %zu, both miss %zu, only "
+        "ours %zu, only embree %zu) | both hit: same prim+t %zu, ties %zu, differ %zu (%.5f%% agree) "
+        "| max rel t diff (same prim) %.2e\n",
+        name, t.rays, 100 * hit_agreement, t.both_hit, t.both_miss, t.only_ours, t.only_embree,
+        t.same, t.ties, t.different, 100 * hit_match, t.max_rel_t);
+    for (size_t k = 0; k < std::min<size_t>(t.examples.size(), 8); ++k) {
+        Ray ray = make_ray(scene, camera, t.examples[k]);
+        Hit ours = bvh.intersect(ray), ref = embree.intersect(ray);
+        std::printf("  ray %u o (%g %g %g) d (%g %g %g): ours kind %u prim %u t %.7g | embree kind %u prim %u t %.7g\n",
+                    t.examples[k], ray.o.x, ray.o.y, ray.o.z, ray.d.x, ray.d.y, ray.d.z,
+                    static_cast<unsigned>(ours.prim.kind()), ours.prim.index(), ours.t,
+                    static_cast<unsigned>(ref.prim.kind()), ref.prim.index(), ref.t);
+    }
+    EXPECT_GE(t.rays, 1'000'000u);
+    EXPECT_GE(hit_agreement, 0.9999) << name;
+    EXPECT_GE(hit_match, 0.9999) << name;
+    EXPECT_GT(t.both_hit, t.rays / 2) << name << ": too few hits for the test to mean much";
+}
+
+}  // namespace
+
+TEST(EmbreeAgreement, Cornell) { compare_scene("cornell"); }
+TEST(EmbreeAgreement, Bunny) { compare_scene("bunny"); }
+TEST(EmbreeAgreement, Dragon) { compare_scene("dragon"); }
+TEST(EmbreeAgreement, Everything) { compare_scene("everything"); }

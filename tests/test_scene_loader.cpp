@@ -1,0 +1,235 @@
+// Scene files: the shipped scenes load, and each class of bad input is reported with the file
+// and the place in it.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "temp_dir.h"
+#include "test_paths.h"
+#include "wavetrace/scene/scene.h"
+
+using namespace wavetrace;
+
+namespace {
+
+const char* kCamera = R"("camera": {"look_from": [0, 0, -5], "look_at": [0, 0, 0]})";
+const char* kMaterials = R"("materials": {"white": {"type": "lambertian", "albedo": [0.5, 0.5, 0.5]}})";
+
+std::string scene_with_objects(const std::string& objects, const std::string& extra = "") {
+    return std::string("{") + kCamera + ", " + kMaterials + (extra.empty() ? "" : ", " + extra) +
+           ", \"objects\": [" + objects + "]}";
+}
+
+// Loads `text` as x.json in a temp folder and returns the error message ("" if it loaded).
+std::string load_error(const TempDir& dir, const std::string& text) {
+    std::filesystem::path p = dir.write("x.json", text);
+    try {
+        load_scene(p);
+    } catch (const SceneError& e) {
+        std::string msg = e.what();
+        // Messages start with the file; strip the temp folder for readable expectations.
+        EXPECT_EQ(msg.rfind(p.string(), 0), 0u) << msg;
+        return msg.substr(p.string().size());
+    }
+    return "";
+}
+
+}  // namespace
+
+TEST(SceneLoader, ShippedScenesLoad) {
+    for (const char* name : {"cornell", "cornell-glass", "cornell-mirror", "cornell-smoke",
+                             "everything", "bunny", "dragon"}) {
+        SCOPED_TRACE(name);
+        Scene s = load_scene(scene_path(name));
+        EXPECT_GT(s.primitive_count(), 0u);
+        EXPECT_FALSE(collect_emitters(s).empty());
+    }
+    Scene dragon = load_scene(scene_path("dragon"));
+    EXPECT_EQ(dragon.triangles.size(), 100000u);
+    Scene bunny = load_scene(scene_path("bunny"));
+    EXPECT_EQ(bunny.triangles.size(), 69451u);
+    Scene everything = load_scene(scene_path("everything"));
+    EXPECT_EQ(everything.spheres.size(), 1007u);  // 1000 in the cluster + 7
+    EXPECT_EQ(everything.media.size(), 2u);
+}
+
+TEST(SceneLoader, ObjectsAndTransformsBuildTheRightGeometry) {
+    TempDir dir;
+    std::filesystem::path p = dir.write("x.json", scene_with_objects(R"(
+        {"type": "sphere", "center": [1, 0, 0], "radius": 1, "material": "white",
+         "transform": [{"scale": 2}, {"rotate": {"axis": [0, 0, 1], "degrees": 90}},
+                       {"translate": [0, 0, 5]}]},
+        {"type": "box", "min": [0, 0, 0], "max": [1, 2, 3], "material": "white"},
+        {"type": "group", "transform": [{"translate": [10, 0, 0]}], "objects": [
+            {"type": "quad", "q": [0, 0, 0], "u": [1, 0, 0], "v": [0, 1, 0], "material": "white"}]}
+    )"));
+    Scene s = load_scene(p);
+    ASSERT_EQ(s.spheres.size(), 1u);
+    // scale 2 -> centre (2,0,0), r 2; rotate 90 about z -> (0,2,0); translate -> (0,2,5).
+    EXPECT_NEAR(s.spheres[0].center.x, 0, 1e-5);
+    EXPECT_NEAR(s.spheres[0].center.y, 2, 1e-5);
+    EXPECT_NEAR(s.spheres[0].center.z, 5, 1e-5);
+    EXPECT_NEAR(s.spheres[0].radius, 2, 1e-5);
+    ASSERT_EQ(s.quads.size(), 7u);  // six box faces + one
+    EXPECT_EQ(s.quads[6].q.x, 10.0f);
+    Aabb box;
+    for (int i = 0; i < 6; ++i) box.grow(s.prim_bounds(PrimRef::make(PrimKind::Quad, i)));
+    EXPECT_EQ(box.lo, Vec3(0, 0, 0));
+    EXPECT_EQ(box.hi, Vec3(1, 2, 3));
+    // Box faces point outwards: each face's normal points away from the box centre.
+    for (int i = 0; i < 6; ++i) {
+        const Quad& q = s.quads[i];
+        Vec3 n = cross(q.u, q.v);
+        EXPECT_GT(dot(n, q.q + 0.5f * (q.u + q.v) - box.center()), 0.0f) << "face " << i;
+    }
+}
+
+TEST(SceneLoader, SyntaxErrorGivesLineAndColumn) {
+    TempDir dir;
+    std::string err = load_error(dir, "{\n  \"camera\": {\n    \"look_from\": [0, 0, -5],,\n");
+    EXPECT_EQ(err.rfind(":3:", 0), 0u) << err;
+    EXPECT_NE(err.find("invalid JSON"), std::string::npos) << err;
+}
+
+TEST(SceneLoader, UnknownKeyIsAnErrorWithASuggestion) {
+    TempDir dir;
+    EXPECT_EQ(load_error(dir, scene_with_objects(
+                                  R"({"type": "sphere", "center": [0, 0, 0], "radus": 1, "material": "white"})")),
+              ": /objects/0: missing required key \"radius\" (is \"radus\" a typo?)");
+    EXPECT_EQ(load_error(dir, scene_with_objects(
+                                  R"({"type": "sphere", "center": [0, 0, 0], "radius": 1, "radus": 1, "material": "white"})")),
+              ": /objects/0/radus: unknown key (did you mean \"radius\"?)");
+    std::string err = load_error(dir, std::string("{") + kCamera + ", \"objets\": []}");
+    EXPECT_EQ(err, ": /: missing required key \"objects\" (is \"objets\" a typo?)");
+    err = load_error(dir, std::string("{") + kCamera + ", \"objects\": [], \"materails\": {}}");
+    EXPECT_EQ(err, ": /materails: unknown key (did you mean \"materials\"?)");
+}
+
+TEST(SceneLoader, WrongTypesAreNamed) {
+    TempDir dir;
+    EXPECT_EQ(load_error(dir, scene_with_objects(
+                                  R"({"type": "sphere", "center": [0, 0], "radius": 1, "material": "white"})")),
+              ": /objects/0/center: expected an array of 3 numbers, got [0,0]");
+    EXPECT_EQ(load_error(dir, scene_with_objects(
+                                  R"({"type": "sphere", "center": [0, 0, 0], "radius": "big", "material": "white"})")),
+              ": /objects/0/radius: expected a positive number, got \"big\"");
+    EXPECT_EQ(load_error(dir, scene_with_objects(R"({"type": "cone", "material": "white"})")),
+              ": /objects/0/type: unknown object type \"cone\" (expected sphere, quad, box, mesh or group)");
+    EXPECT_EQ(load_error(dir, scene_with_objects(
+                                  R"({"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "chalk"})")),
+              ": /objects/0/material: no material named \"chalk\" in /materials");
+    EXPECT_EQ(load_error(dir, std::string("{") + kCamera + ", \"objects\": {}}"),
+              ": /objects: expected an array, got {}");
+}
+
+TEST(SceneLoader, NonFiniteNumbersAreRejected) {
+    TempDir dir;
+    // NaN is not JSON at all; an overflowing literal parses to infinity or fails to parse.
+    EXPECT_NE(load_error(dir, scene_with_objects(
+                                  R"({"type": "sphere", "center": [0, 0, NaN], "radius": 1, "material": "white"})"))
+                  .find("invalid JSON"),
+              std::string::npos);
+    std::string err = load_error(dir, scene_with_objects(
+                                          R"({"type": "sphere", "center": [0, 0, 1e999], "radius": 1, "material": "white"})"));
+    EXPECT_EQ(err, ": invalid JSON: number overflow parsing '1e999'");
+    EXPECT_EQ(load_error(dir, scene_with_objects(
+                                  R"({"type": "sphere", "center": [0, 0, 1e39], "radius": 1, "material": "white"})")),
+              ": /objects/0/center/2: expected a finite number, got 1e+39");
+}
+
+TEST(SceneLoader, NegativeAndZeroSizesAreRejected) {
+    TempDir dir;
+    EXPECT_EQ(load_error(dir, scene_with_objects(
+                                  R"({"type": "sphere", "center": [0, 0, 0], "radius": -1, "material": "white"})")),
+              ": /objects/0/radius: expected a positive number, got -1");
+    EXPECT_EQ(load_error(dir, scene_with_objects(
+                                  R"({"type": "sphere", "center": [0, 0, 0], "radius": 0, "material": "white"})")),
+              ": /objects/0/radius: expected a positive number, got 0");
+    EXPECT_EQ(load_error(dir, scene_with_objects(
+                                  R"({"type": "box", "min": [0, 0, 0], "max": [1, 0, 1], "material": "white"})")),
+              ": /objects/0/max: expected max > min in every axis, got [1,0,1]");
+    EXPECT_EQ(load_error(dir, scene_with_objects(
+                                  R"({"type": "quad", "q": [0, 0, 0], "u": [1, 0, 0], "v": [2, 0, 0], "material": "white"})")),
+              ": /objects/0/v: u and v must not be parallel");
+    EXPECT_EQ(load_error(dir, scene_with_objects(
+                                  R"({"type": "box", "min": [0, 0, 0], "max": [1, 1, 1], "material": "white",
+                                      "transform": [{"scale": [1, 0, 1]}]})")),
+              ": /objects/0/transform/0/scale: expected a non-zero scale within [1e-7, 1e7], got [1,0,1]");
+    EXPECT_EQ(load_error(dir, scene_with_objects(
+                                  R"({"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "white",
+                                      "transform": [{"scale": [1, 2, 1]}]})")),
+              ": /objects/0: a sphere's transform must not scale non-uniformly");
+    std::string bad_render = std::string("{") + kCamera + R"(, "render": {"width": -5}, "objects": []})";
+    EXPECT_EQ(load_error(dir, bad_render), ": /render/width: expected an integer in [1, 32768], got -5");
+    std::string huge = std::string("{") + kCamera + R"(, "render": {"width": 32768, "height": 32768}, "objects": []})";
+    EXPECT_NE(load_error(dir, huge).find("/render: width x height = 1073741824 pixels exceeds"),
+              std::string::npos);
+    std::string bad_medium = std::string("{") + kCamera + R"(, "media": {"fog": {"density": -0.1, "albedo": 1}}, "objects": []})";
+    EXPECT_EQ(load_error(dir, bad_medium), ": /media/fog/density: expected a positive number, got -0.1");
+    std::string bad_albedo = std::string("{") + kCamera +
+                             R"(, "materials": {"m": {"type": "lambertian", "albedo": [1, -1, 1]}}, "objects": []})";
+    EXPECT_EQ(load_error(dir, bad_albedo), ": /materials/m/albedo/1: expected a non-negative number, got -1");
+}
+
+TEST(SceneLoader, CameraMustBeWellPosed) {
+    TempDir dir;
+    EXPECT_EQ(load_error(dir, R"({"camera": {"look_from": [0, 0, 0], "look_at": [0, 0, 0]}, "objects": []})"),
+              ": /camera/look_at: look_at must differ from look_from");
+    EXPECT_EQ(load_error(dir, R"({"camera": {"look_from": [0, 0, 0], "look_at": [0, 1, 0]}, "objects": []})"),
+              ": /camera: the viewing direction is parallel to the default up [0, 1, 0]; set \"up\"");
+    EXPECT_EQ(load_error(dir, R"({"camera": {"look_from": [0, 0, 0], "look_at": [1, 0, 0], "up": [-2, 0, 0]}, "objects": []})"),
+              ": /camera/up: up must not be parallel to the viewing direction");
+    EXPECT_EQ(load_error(dir, R"({"objects": []})"), ": /: missing required key \"camera\"");
+}
+
+TEST(SceneLoader, MissingAndUnreadableFilesAreNamed) {
+    TempDir dir;
+    try {
+        load_scene(dir.path() / "nope.json");
+        FAIL();
+    } catch (const SceneError& e) {
+        EXPECT_NE(std::string(e.what()).find("nope.json: cannot open scene file"), std::string::npos);
+    }
+    std::string err = load_error(dir, scene_with_objects(
+                                          R"({"type": "mesh", "file": "meshes/nope.obj", "material": "white"})"));
+    EXPECT_NE(err.find(": /objects/0/file: cannot read mesh '"), std::string::npos) << err;
+    EXPECT_NE(err.find("nope.obj': no such file"), std::string::npos) << err;
+    std::filesystem::create_directories(dir.path() / "adir.obj");
+    err = load_error(dir, scene_with_objects(R"({"type": "mesh", "file": "adir.obj", "material": "white"})"));
+    EXPECT_NE(err.find("is a directory"), std::string::npos) << err;
+    err = load_error(dir, scene_with_objects("", R"("background": {"type": "environment", "file": "sky.hdr"})"));
+    EXPECT_NE(err.find(": /background/file: cannot open image '"), std::string::npos) << err;
+}
+
+TEST(SceneLoader, UnsupportedFormatsAreNamed) {
+    TempDir dir;
+    dir.write("mesh.xyz", "1 2 3\n");
+    std::string err = load_error(dir, scene_with_objects(R"({"type": "mesh", "file": "mesh.xyz", "material": "white"})"));
+    EXPECT_NE(err.find("unsupported mesh format '.xyz'"), std::string::npos) << err;
+    dir.write("tex.png", "this is not a png");
+    err = load_error(dir, std::string("{") + kCamera +
+                              R"(, "materials": {"m": {"type": "lambertian", "albedo": {"type": "image", "file": "tex.png"}}}, "objects": []})");
+    EXPECT_NE(err.find(": /materials/m/albedo/file: "), std::string::npos) << err;
+    EXPECT_NE(err.find("cannot read image"), std::string::npos) << err;
+    dir.write("broken.obj", "v 0 0 0\nv 1 0 0\nf 1 2 7\n");
+    err = load_error(dir, scene_with_objects(R"({"type": "mesh", "file": "broken.obj", "material": "white"})"));
+    EXPECT_NE(err.find(": /objects/0/file: cannot read mesh"), std::string::npos) << err;
+}
+
+TEST(SceneLoader, DegenerateTrianglesAreSkippedAndCounted) {
+    TempDir dir;
+    // Four triangles: one good, one with zero area (collinear), one repeating a vertex, one
+    // good. Written with `v`/`f` only.
+    dir.write("m.obj",
+              "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nv 1 1 1\n"
+              "f 1 2 3\nf 1 2 4\nf 1 1 3\nf 2 5 3\n");
+    std::filesystem::path p =
+        dir.write("x.json", scene_with_objects(R"({"type": "mesh", "file": "m.obj", "material": "white"})"));
+    static std::string warning;
+    warning.clear();
+    LoadOptions options;
+    options.warn = [](const std::string& w) { warning = w; };
+    Scene s = load_scene(p, options);
+    EXPECT_EQ(s.triangles.size(), 2u);
+    EXPECT_NE(warning.find("2 degenerate triangles skipped"), std::string::npos) << warning;
+}

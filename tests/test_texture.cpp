@@ -1,0 +1,82 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "test_paths.h"
+#include "wavetrace/scene/scene.h"
+#include "wavetrace/scene/surface.h"
+
+using namespace wavetrace;
+
+TEST(Texture, CheckerAlternatesInThreeDimensions) {
+    Scene s;
+    TextureId even = s.add_solid({1, 0, 0}), odd = s.add_solid({0, 0, 1});
+    Texture t;
+    t.kind = TextureKind::Checker;
+    t.scale = 2.0f;
+    t.even = even;
+    t.odd = odd;
+    TextureId c = s.add_texture(t);
+    EXPECT_EQ(eval_texture(s, c, {}, {0.5f, 0.5f, 0.5f}), Color(1, 0, 0));
+    EXPECT_EQ(eval_texture(s, c, {}, {2.5f, 0.5f, 0.5f}), Color(0, 0, 1));
+    EXPECT_EQ(eval_texture(s, c, {}, {2.5f, 2.5f, 0.5f}), Color(1, 0, 0));
+    EXPECT_EQ(eval_texture(s, c, {}, {-0.5f, 0.5f, 0.5f}), Color(0, 0, 1));
+}
+
+TEST(Texture, ImageIsBilinearAndWraps) {
+    ImageData img;
+    img.width = 2;
+    img.height = 1;
+    img.texels = {Color(0.0f), Color(1.0f)};
+    // Texel centres at u = 0.25 and 0.75; halfway between them is the mean.
+    EXPECT_FLOAT_EQ(img.bilinear(0.25f, 0.5f).x, 0.0f);
+    EXPECT_FLOAT_EQ(img.bilinear(0.75f, 0.5f).x, 1.0f);
+    EXPECT_FLOAT_EQ(img.bilinear(0.5f, 0.5f).x, 0.5f);
+    // u = 0 lies halfway between the last and the first texel (wrapping).
+    EXPECT_FLOAT_EQ(img.bilinear(0.0f, 0.5f).x, 0.5f);
+    EXPECT_FLOAT_EQ(img.bilinear(1.25f, 0.5f).x, 0.0f);
+}
+
+TEST(Texture, NoiseIsDeterministicBoundedAndVaries) {
+    float lo = 1e9f, hi = -1e9f;
+    for (int i = 0; i < 2000; ++i) {
+        Point3 p{i * 0.37f, i * 0.11f, i * -0.23f};
+        float n = perlin_noise(p);
+        EXPECT_EQ(n, perlin_noise(p));
+        lo = std::min(lo, n);
+        hi = std::max(hi, n);
+        EXPECT_GE(perlin_turbulence(p), 0.0f);
+    }
+    EXPECT_GE(lo, -1.0f);
+    EXPECT_LE(hi, 1.0f);
+    EXPECT_GT(hi - lo, 0.5f);
+    EXPECT_EQ(perlin_noise({3, 4, 5}), 0.0f);  // gradient noise vanishes on the lattice
+}
+
+TEST(Texture, EarthImageIsDecodedFromSrgb) {
+    Scene s = load_scene(scene_path("everything"));
+    ASSERT_EQ(s.images.size(), 1u);
+    const ImageData& earth = s.images[0];
+    EXPECT_EQ(earth.width, 1024);
+    EXPECT_EQ(earth.height, 512);
+    for (const Color& c : earth.texels) {
+        ASSERT_GE(min_component(c), 0.0f);
+        ASSERT_LE(max_component(c), 1.0f);
+    }
+}
+
+TEST(Surface, SphereUvFollowsTheSeed) {
+    Scene s;
+    s.add_material({});
+    s.add_sphere({{0, 0, 0}, 1, 0, kNone});
+    Hit hit{1.0f, PrimRef::make(PrimKind::Sphere, 0)};
+    // The point (1, 0, 0): theta = pi/2, phi = pi -> (0.5, 0.5).
+    SurfaceHit h = surface_at(s, Ray{{2, 0, 0}, {-1, 0, 0}}, hit);
+    EXPECT_NEAR(h.uv.x, 0.5f, 1e-6f);
+    EXPECT_NEAR(h.uv.y, 0.5f, 1e-6f);
+    EXPECT_TRUE(h.front_face);
+    EXPECT_NEAR(h.ng.x, 1.0f, 1e-6f);
+    // From inside the ray arrives at the back.
+    SurfaceHit inside = surface_at(s, Ray{{0, 0, 0}, {1, 0, 0}}, hit);
+    EXPECT_FALSE(inside.front_face);
+}
