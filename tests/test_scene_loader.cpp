@@ -100,7 +100,10 @@ TEST(SceneLoader, UnknownKeyIsAnErrorWithASuggestion) {
                                   R"({"type": "sphere", "center": [0, 0, 0], "radius": 1, "radus": 1, "material": "white"})")),
               ": /objects/0/radus: unknown key (did you mean \"radius\"?)");
     std::string err = load_error(dir, std::string("{") + kCamera + ", \"objets\": []}");
-    EXPECT_EQ(err, ": /: missing required key \"objects\" (is \"objets\" a typo?)");
+    EXPECT_EQ(err, ": /objets: unknown key (did you mean \"objects\"?)");
+    // Inside objects, a missing key is reported with its likely misspelling.
+    EXPECT_EQ(load_error(dir, std::string("{\"camera\": {\"look_from\": [0, 0, 1], \"lok_at\": [0, 0, 0]}}")),
+              ": /camera: missing required key \"look_at\" (is \"lok_at\" a typo?)");
     err = load_error(dir, std::string("{") + kCamera + ", \"objects\": [], \"materails\": {}}");
     EXPECT_EQ(err, ": /materails: unknown key (did you mean \"materials\"?)");
 }
@@ -232,4 +235,42 @@ TEST(SceneLoader, DegenerateTrianglesAreSkippedAndCounted) {
     Scene s = load_scene(p, options);
     EXPECT_EQ(s.triangles.size(), 2u);
     EXPECT_NE(warning.find("2 degenerate triangles skipped"), std::string::npos) << warning;
+}
+
+TEST(SceneLoader, MirroringTransformsKeepOutsidesOutside) {
+    TempDir dir;
+    dir.write("t.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");  // normal +z
+    std::filesystem::path p = dir.write("x.json", scene_with_objects(R"(
+        {"type": "box", "min": [0, 0, 0], "max": [1, 2, 3], "material": "white",
+         "transform": [{"scale": [-1, 1, 1]}]},
+        {"type": "mesh", "file": "t.obj", "material": "white", "transform": [{"scale": [1, 1, -1]}]}
+    )"));
+    Scene s = load_scene(p);
+    Aabb box;
+    for (int i = 0; i < 6; ++i) box.grow(s.prim_bounds(PrimRef::make(PrimKind::Quad, i)));
+    EXPECT_EQ(box.lo, Vec3(-1, 0, 0));
+    for (int i = 0; i < 6; ++i) {
+        const Quad& q = s.quads[i];
+        EXPECT_GT(dot(cross(q.u, q.v), q.q + 0.5f * (q.u + q.v) - box.center()), 0.0f) << i;
+    }
+    // Mirrored in z, the triangle's front must now face -z.
+    const Triangle& t = s.triangles.at(0);
+    Vec3 n = cross(s.positions[t.v[1]] - s.positions[t.v[0]], s.positions[t.v[2]] - s.positions[t.v[0]]);
+    EXPECT_LT(n.z, 0.0f);
+}
+
+TEST(SceneLoader, ReflectancesAboveOneAndFarGeometryAreRejected) {
+    TempDir dir;
+    std::string glowing = std::string("{") + kCamera +
+                          R"(, "materials": {"m": {"type": "lambertian", "albedo": [1.2, 0.5, 0.5]}}, "objects": []})";
+    EXPECT_EQ(load_error(dir, glowing),
+              ": /materials/m/albedo: expected a reflectance with components in [0, 1], got [1.2,0.5,0.5]");
+    EXPECT_EQ(load_error(dir, scene_with_objects(R"({"type": "sphere", "center": [0, 0, 0], "radius": 1,
+        "material": "white", "transform": [{"translate": [9e6, 0, 0]}, {"translate": [9e6, 0, 0]}]})")),
+              ": /objects/0: after its transform the object reaches beyond +-1e7");
+    // A misspelt top-level key is reported as such, before the errors it would cause.
+    std::string typo = std::string("{") + kCamera +
+                       R"(, "materals": {"white": {"type": "lambertian", "albedo": 0.5}},
+        "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "white"}]})";
+    EXPECT_EQ(load_error(dir, typo), ": /materals: unknown key (did you mean \"materials\"?)");
 }

@@ -83,6 +83,12 @@ bool Transform::is_identity() const {
     return true;
 }
 
+bool Transform::flips_handedness() const {
+    Vec3 c0{m_[0][0], m_[1][0], m_[2][0]}, c1{m_[0][1], m_[1][1], m_[2][1]},
+        c2{m_[0][2], m_[1][2], m_[2][2]};
+    return dot(cross(c0, c1), c2) < 0.0f;
+}
+
 // M^T M = s^2 I exactly when M is a rotation (or reflection) times a uniform scale s.
 bool Transform::preserves_shape(float* uniform_scale) const {
     Vec3 c[3] = {{m_[0][0], m_[1][0], m_[2][0]},

@@ -124,6 +124,13 @@ Vec3 Value::color() const {
     return {(*this)[0].non_negative(), (*this)[1].non_negative(), (*this)[2].non_negative()};
 }
 
+Vec3 Value::reflectance() const {
+    Vec3 c = color();
+    if (max_component(c) > 1.0f)
+        fail("expected a reflectance with components in [0, 1], got " + describe());
+    return c;
+}
+
 Vec3 Value::nonzero_vec3() const {
     Vec3 v = vec3();
     if (v.x == 0 && v.y == 0 && v.z == 0) fail("expected a non-zero vector, got " + describe());
@@ -148,6 +155,12 @@ Value Object::required(const std::string& key) {
     for (const auto& [present, unused] : v_.raw().items())
         if (edit_distance(present, key) <= 2) hint = " (is \"" + present + "\" a typo?)";
     v_.fail("missing required key \"" + key + "\"" + hint);
+}
+
+void Object::only(std::initializer_list<const char*> known) const {
+    Object check(v_);
+    for (const char* k : known) check.read_.push_back(k);
+    check.finish();
 }
 
 void Object::finish() const {

@@ -42,6 +42,7 @@ public:
     std::string string() const;
     Vec3 vec3() const;           // [x, y, z], finite
     Vec3 color() const;          // [r, g, b] or a number, each finite and >= 0
+    Vec3 reflectance() const;    // a color() with every component <= 1
     Vec3 nonzero_vec3() const;   // finite and not all zero
 
     size_t size() const;  // array length; fails if not an array
@@ -62,6 +63,9 @@ public:
     Value required(const std::string& key);
     bool has(const std::string& key) const { return v_.raw().contains(key); }
     const Value& value() const { return v_; }
+    // Fails on the first key not in `known`, before anything is read: for objects whose
+    // misspelt keys would otherwise surface later as confusing errors.
+    void only(std::initializer_list<const char*> known) const;
     void finish() const;
 
 private:

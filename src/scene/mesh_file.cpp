@@ -16,7 +16,7 @@ MeshFile read_mesh_file(const std::filesystem::path& path) {
     std::string ext = path.extension().string();
     if (ext.empty() || !importer.IsExtensionSupported(ext))
         throw std::runtime_error("unsupported mesh format '" + ext +
-                                 "' (use .obj, .ply, .gltf or .glb)");
+                                 "' (Assimp reads e.g. .obj, .ply, .gltf, .glb, .stl)");
     // Keep only triangles. Assimp's OBJ reader un-indexes faces; joining identical vertices
     // restores the shared indexing (and the memory) of the file.
     importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);

@@ -70,6 +70,9 @@ void Scene::add_quad(Quad quad, const Transform& to_world) {
     quad.q = to_world.point(quad.q);
     quad.u = to_world.vector(quad.u);
     quad.v = to_world.vector(quad.v);
+    // cross(M u, M v) = det(M) M^-T (u x v): a mirroring transform turns the normal inwards
+    // unless u and v trade places.
+    if (to_world.flips_handedness()) std::swap(quad.u, quad.v);
     quads.push_back(quad);
 }
 
@@ -107,8 +110,10 @@ size_t Scene::add_mesh(Mesh mesh, const std::vector<Point3>& pos, const std::vec
 
     size_t skipped = 0;
     const uint32_t base = meshes.back().first_vertex;
+    const bool flip = to_world.flips_handedness();  // keep the winding's outside outside
     for (size_t i = 0; i + 2 < indices.size(); i += 3) {
         uint32_t a = indices[i], b = indices[i + 1], c = indices[i + 2];
+        if (flip) std::swap(b, c);
         bool bad = a >= pos.size() || b >= pos.size() || c >= pos.size() || a == b || b == c ||
                    a == c;
         if (!bad) {

@@ -36,6 +36,7 @@ public:
         json_ = json_reader::parse(text.str(), file_);
 
         Object root(Value(json_, file_, ""));
+        root.only({"description", "render", "camera", "background", "materials", "media", "objects"});
         scene_.name = path_.stem().string();
         if (auto v = root.optional("description")) v->string();
         if (auto v = root.optional("render")) read_render(*v);
@@ -99,8 +100,9 @@ private:
             v.fail("the viewing direction is parallel to the default up [0, 1, 0]; set \"up\"");
         }
         if (auto x = o.optional("vfov")) {
-            c.vfov = x->in_range(0.0f, 179.0f);
-            if (!(c.vfov > 0.0f)) x->fail("expected a number in (0, 179], got " + x->describe());
+            if (!x->is_number() || !(x->number() > 0.0f && x->number() <= 179.0f))
+                x->fail("expected a number in (0, 179], got " + x->describe());
+            c.vfov = x->number();
         }
         if (auto x = o.optional("aperture")) c.aperture = x->non_negative();
         if (auto x = o.optional("focus_distance")) c.focus_distance = x->positive();
@@ -144,26 +146,31 @@ private:
         }
     }
 
-    // A texture: a colour [r, g, b] (or a grey number), or an object with a "type".
-    TextureId read_texture(const Value& v) {
-        if (!v.is_object()) return scene_.add_solid(v.color());
+    // A texture: a colour [r, g, b] (or a grey number), or an object with a "type". Reflectances
+    // (albedos) must not exceed 1 in any channel; radiances may.
+    enum class Range { Reflectance, Radiance };
+    TextureId read_texture(const Value& v, Range range) {
+        auto colour = [range](const Value& c) {
+            return range == Range::Reflectance ? c.reflectance() : c.color();
+        };
+        if (!v.is_object()) return scene_.add_solid(colour(v));
         Object o(v);
         Value type_value = o.required("type");
         std::string type = type_value.string();
         Texture t;
         if (type == "solid") {
             t.kind = TextureKind::Solid;
-            t.color = o.required("color").color();
+            t.color = colour(o.required("color"));
         } else if (type == "checker") {
             t.kind = TextureKind::Checker;
             t.scale = o.required("scale").positive();
-            t.even = read_texture(o.required("even"));
-            t.odd = read_texture(o.required("odd"));
+            t.even = read_texture(o.required("even"), range);
+            t.odd = read_texture(o.required("odd"), range);
         } else if (type == "noise") {
             t.kind = TextureKind::Noise;
             t.scale = o.required("scale").positive();
             t.color = Vec3(1.0f);
-            if (auto x = o.optional("color")) t.color = x->color();
+            if (auto x = o.optional("color")) t.color = colour(*x);
         } else if (type == "image") {
             t.kind = TextureKind::Image;
             t.image = scene_.add_image(read_image_at(o.required("file")));
@@ -186,21 +193,21 @@ private:
             m.name = name;
             if (type == "lambertian") {
                 m.kind = MaterialKind::Lambertian;
-                m.albedo = read_texture(o.required("albedo"));
+                m.albedo = read_texture(o.required("albedo"), Range::Reflectance);
             } else if (type == "metal") {
                 m.kind = MaterialKind::Metal;
-                m.albedo = read_texture(o.required("albedo"));
+                m.albedo = read_texture(o.required("albedo"), Range::Reflectance);
                 if (auto x = o.optional("roughness")) m.roughness = x->in_range(0.0f, 1.0f);
             } else if (type == "mirror") {
                 m.kind = MaterialKind::Mirror;
                 auto x = o.optional("albedo");
-                m.albedo = x ? read_texture(*x) : scene_.add_solid(Vec3(1.0f));
+                m.albedo = x ? read_texture(*x, Range::Reflectance) : scene_.add_solid(Vec3(1.0f));
             } else if (type == "dielectric") {
                 m.kind = MaterialKind::Dielectric;
                 m.ior = o.required("ior").positive();
             } else if (type == "diffuse_light") {
                 m.kind = MaterialKind::DiffuseLight;
-                m.emission = read_texture(o.required("radiance"));
+                m.emission = read_texture(o.required("radiance"), Range::Radiance);
                 if (auto x = o.optional("two_sided")) m.two_sided = x->boolean();
             } else {
                 type_value.fail("unknown material type \"" + type +
@@ -218,7 +225,7 @@ private:
         for (const auto& [name, unused] : v.raw().items()) {
             Object o(all.required(name));
             float density = o.required("density").positive();
-            TextureId albedo = read_texture(o.required("albedo"));
+            TextureId albedo = read_texture(o.required("albedo"), Range::Reflectance);
             o.finish();
             media_[name] = scene_.add_medium(name, density, albedo);
         }
@@ -288,6 +295,7 @@ private:
             return;
         }
 
+        const Counts before = counts();
         // Surface material and interior medium; a shape with only a medium is an invisible
         // boundary (the seed's constant_medium).
         MediumId interior = kNone;
@@ -360,8 +368,31 @@ private:
             type_value.fail("unknown object type \"" + type +
                             "\" (expected sphere, quad, box, mesh or group)");
         }
-        if (scene_.primitive_count() > kMaxPrimsPerKind)
-            v.fail("too many primitives (more than 2^30)");
+        check_new_primitives(v, before);
+    }
+
+    struct Counts {
+        size_t triangles, quads, spheres;
+    };
+    Counts counts() const { return {scene_.triangles.size(), scene_.quads.size(), scene_.spheres.size()}; }
+
+    // The object's primitives, once transformed, must stay in the range where float
+    // coordinates are precise, and each kind must stay addressable by a PrimRef.
+    void check_new_primitives(const Value& v, const Counts& before) const {
+        Counts now = counts();
+        if (now.triangles > kMaxPrimsPerKind || now.quads > kMaxPrimsPerKind ||
+            now.spheres > kMaxPrimsPerKind)
+            v.fail("too many primitives of one kind (the limit is 2^30 - 1)");
+        Aabb box;
+        for (size_t i = before.triangles; i < now.triangles; ++i)
+            box.grow(scene_.prim_bounds(PrimRef::make(PrimKind::Triangle, static_cast<uint32_t>(i))));
+        for (size_t i = before.quads; i < now.quads; ++i)
+            box.grow(scene_.prim_bounds(PrimRef::make(PrimKind::Quad, static_cast<uint32_t>(i))));
+        for (size_t i = before.spheres; i < now.spheres; ++i)
+            box.grow(scene_.prim_bounds(PrimRef::make(PrimKind::Sphere, static_cast<uint32_t>(i))));
+        if (!box.empty() && (max_component(abs(box.lo)) > kMaxCoordinate ||
+                             max_component(abs(box.hi)) > kMaxCoordinate))
+            v.fail("after its transform the object reaches beyond +-1e7");
     }
 
     fs::path path_;

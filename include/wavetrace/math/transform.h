@@ -23,6 +23,9 @@ public:
     Normal3 normal(Normal3 n) const;  // not renormalized
 
     bool is_identity() const;
+    // True when the transform mirrors (its linear part has a negative determinant): shapes
+    // then need their winding flipped to keep their outside outside.
+    bool flips_handedness() const;
     // True when the linear part is a rotation times a uniform scale, which maps spheres to spheres.
     bool preserves_shape(float* uniform_scale) const;
     Transform inverse() const { return Transform(inv_, m_); }
