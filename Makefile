@@ -1,0 +1,26 @@
+# The two commands of the README's quick start, plus their parts.
+#   make demo   install what is missing, build, render the Cornell box, print the image's path
+#   make test   install what is missing, build, run the whole test suite
+BUILD_DIR ?= build
+JOBS ?= $(shell nproc)
+
+.PHONY: all deps build demo test clean
+
+all: build
+
+deps:
+	@tools/install-deps.sh
+
+build: deps
+	@cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=Release --log-level=WARNING
+	@cmake --build $(BUILD_DIR) -j $(JOBS)
+
+demo: build
+	@mkdir -p out
+	@$(BUILD_DIR)/bin/wavetrace render scenes/cornell.json --aov albedo --spp 4 -o out/cornell.png
+
+test: build
+	@cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
+
+clean:
+	rm -rf $(BUILD_DIR) out
