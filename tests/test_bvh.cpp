@@ -92,8 +92,11 @@ TEST(Bvh, EachPrimitiveInExactlyOneLeafAndBoundsNest) {
     EXPECT_LT(bvh.stats().depth, Bvh::kStackSize);
     EXPECT_EQ(bvh.stats().nodes, bvh.nodes().size());
     EXPECT_EQ(bvh.stats().leaves * 2 - 1, bvh.stats().nodes);
-    for (const BvhNode& n : bvh.nodes())
-        if (n.is_leaf()) EXPECT_LE(n.count, static_cast<uint32_t>(BvhBuildConfig{}.max_leaf_size));
+    for (const BvhNode& n : bvh.nodes()) {
+        if (n.is_leaf()) {
+            EXPECT_LE(n.count, static_cast<uint32_t>(BvhBuildConfig{}.max_leaf_size));
+        }
+    }
 }
 
 TEST(Bvh, ClosestHitMatchesBruteForce) {

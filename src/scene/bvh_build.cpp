@@ -206,7 +206,32 @@ Bvh Bvh::build(const Scene& scene, const BvhBuildConfig& config) {
 
     // Flatten depth-first; leaves' ranges are already contiguous in `prims` in this order.
     bvh.prims_.resize(prims.size());
-    for (size_t i = 0; i < prims.size(); ++i) bvh.prims_[i] = prims[i].ref;
+    bvh.prim_data_.resize(prims.size());
+    for (size_t i = 0; i < prims.size(); ++i) {
+        PrimRef ref = prims[i].ref;
+        bvh.prims_[i] = ref;
+        BvhPrim& d = bvh.prim_data_[i];
+        d.ref = ref;
+        uint32_t k = ref.index();
+        switch (ref.kind()) {
+            case PrimKind::Triangle: {
+                const Triangle& t = scene.triangles[k];
+                d.a = scene.positions[t.v[0]];
+                d.b = scene.positions[t.v[1]];
+                d.c = scene.positions[t.v[2]];
+                break;
+            }
+            case PrimKind::Quad:
+                d.a = scene.quads[k].q;
+                d.b = scene.quads[k].u;
+                d.c = scene.quads[k].v;
+                break;
+            case PrimKind::Sphere:
+                d.a = scene.spheres[k].center;
+                d.b = Vec3{scene.spheres[k].radius, 0, 0};
+                break;
+        }
+    }
     float root_area = std::max(root->box.half_area(), 1e-30f);
     BvhStats& stats = bvh.stats_;
     auto flatten = [&](auto&& self, const BuildNode& n, int depth) -> uint32_t {
@@ -232,7 +257,8 @@ Bvh Bvh::build(const Scene& scene, const BvhBuildConfig& config) {
     bvh.nodes_.shrink_to_fit();
 
     stats.nodes = bvh.nodes_.size();
-    stats.bytes = bvh.nodes_.size() * sizeof(BvhNode) + bvh.prims_.size() * sizeof(PrimRef);
+    stats.bytes = bvh.nodes_.size() * sizeof(BvhNode) + bvh.prims_.size() * sizeof(PrimRef) +
+                  bvh.prim_data_.size() * sizeof(BvhPrim);
     stats.build_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return bvh;

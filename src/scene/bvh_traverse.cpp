@@ -3,46 +3,43 @@
 
 #include "wavetrace/scene/bvh.h"
 #include "wavetrace/scene/intersect.h"
-#include "wavetrace/scene/scene.h"
 
 namespace wavetrace {
 namespace {
 
-inline bool intersect_prim(const Scene& scene, PrimRef ref, const Ray& ray, PrimHit* hit) {
-    uint32_t i = ref.index();
-    switch (ref.kind()) {
-        case PrimKind::Triangle: {
-            const Triangle& tri = scene.triangles[i];
-            return intersect_triangle(ray, scene.positions[tri.v[0]], scene.positions[tri.v[1]],
-                                      scene.positions[tri.v[2]], hit);
-        }
-        case PrimKind::Quad: {
-            const Quad& q = scene.quads[i];
-            return intersect_quad(ray, q.q, q.u, q.v, hit);
-        }
-        case PrimKind::Sphere: {
-            const Sphere& s = scene.spheres[i];
-            return intersect_sphere(ray, s.center, s.radius, hit);
-        }
+inline bool intersect_prim(const BvhPrim& p, const Ray& ray, PrimHit* hit) {
+    switch (p.ref.kind()) {
+        case PrimKind::Triangle: return intersect_triangle(ray, p.a, p.b, p.c, hit);
+        case PrimKind::Quad: return intersect_quad(ray, p.a, p.b, p.c, hit);
+        case PrimKind::Sphere: return intersect_sphere(ray, p.a, p.b.x, hit);
     }
     return false;
 }
 
-// Slab test. fmin/fmax drop the NaN of 0 * inf (a ray in a slab's boundary plane), and the
-// exit distance is widened by 1 + 2 gamma(3) so that rounding never culls a box the ray
-// really touches (Ize, "Robust BVH Ray Traversal", JCGT 2(2), 2013).
+// Branch-free min/max that compile to minss/maxss (std::fmin is a libm call without
+// -ffast-math). Inputs are never NaN: see safe_inverse().
+inline float min2(float a, float b) { return a < b ? a : b; }
+inline float max2(float a, float b) { return a > b ? a : b; }
+
+// 1/d with zero components replaced by a huge finite value of the same sign: the slab
+// distances (lo - o) / d then stay finite (a ray inside a slab's boundary plane gives 0, not
+// the NaN of 0 * inf), so the slab test needs no NaN handling.
+inline float safe_inverse(float d) {
+    return std::fabs(d) > 1e-30f ? 1.0f / d : std::copysign(1e30f, d);
+}
+
+// Slab test; the exit distance is widened by 1 + 2 gamma(3) so that rounding never culls a
+// box the ray really touches (Ize, "Robust BVH Ray Traversal", JCGT 2(2), 2013).
 inline bool hit_box(const BvhNode& node, Vec3 o, Vec3 inv_d, float tmin, float tmax,
                     float* t_entry) {
     float tx0 = (node.lo.x - o.x) * inv_d.x, tx1 = (node.hi.x - o.x) * inv_d.x;
     float ty0 = (node.lo.y - o.y) * inv_d.y, ty1 = (node.hi.y - o.y) * inv_d.y;
     float tz0 = (node.lo.z - o.z) * inv_d.z, tz1 = (node.hi.z - o.z) * inv_d.z;
-    float t_near = std::fmax(std::fmax(std::fmin(tx0, tx1), std::fmin(ty0, ty1)),
-                             std::fmax(std::fmin(tz0, tz1), tmin));
-    float t_far = std::fmin(std::fmin(std::fmax(tx0, tx1), std::fmax(ty0, ty1)),
-                            std::fmax(tz0, tz1)) *
+    float t_near = max2(max2(min2(tx0, tx1), min2(ty0, ty1)), max2(min2(tz0, tz1), tmin));
+    float t_far = min2(min2(max2(tx0, tx1), max2(ty0, ty1)), max2(tz0, tz1)) *
                   (1.0f + 2.0f * gamma(3));
     *t_entry = t_near;
-    return t_near <= std::fmin(t_far, tmax);
+    return t_near <= min2(t_far, tmax);
 }
 
 }  // namespace
@@ -51,8 +48,7 @@ template <bool AnyHit>
 bool Bvh::traverse(const Ray& ray_in, Hit* hit) const {
     if (nodes_.empty()) return false;
     Ray ray = ray_in;
-    const Vec3 inv_d{1.0f / ray.d.x, 1.0f / ray.d.y, 1.0f / ray.d.z};
-    const Scene& scene = *scene_;
+    const Vec3 inv_d{safe_inverse(ray.d.x), safe_inverse(ray.d.y), safe_inverse(ray.d.z)};
 
     struct Entry {
         uint32_t node;
@@ -70,7 +66,7 @@ bool Bvh::traverse(const Ray& ray_in, Hit* hit) const {
         if (node.is_leaf()) {
             for (uint32_t i = node.offset; i < node.offset + node.count; ++i) {
                 PrimHit ph;
-                if (intersect_prim(scene, prims_[i], ray, &ph)) {
+                if (intersect_prim(prim_data_[i], ray, &ph)) {
                     found = true;
                     if constexpr (AnyHit) return true;
                     ray.tmax = ph.t;

@@ -28,6 +28,15 @@ struct BvhNode {
 };
 static_assert(sizeof(BvhNode) == 32);
 
+// A primitive's geometry copied into leaf order, so that a leaf's primitives are read from one
+// contiguous block without indirection. Triangle: a, b, c are the vertices. Quad: a = q,
+// b = u, c = v. Sphere: a = centre, b.x = radius.
+struct BvhPrim {
+    Vec3 a, b, c;
+    PrimRef ref;
+};
+static_assert(sizeof(BvhPrim) == 40);
+
 struct BvhBuildConfig {
     int bins = 32;                   // SAH bins per axis
     int max_leaf_size = 8;           // leaves never hold more primitives than this
@@ -42,7 +51,7 @@ struct BvhStats {
     int depth = 0;        // of the deepest leaf, the root at depth 1
     float sah_cost = 0;   // expected cost of a random ray hitting the root box, in the config's units
     double build_ms = 0;
-    size_t bytes = 0;     // nodes plus the primitive index array
+    size_t bytes = 0;     // nodes, primitive references and leaf-ordered primitive data
 };
 
 // The closest hit found along a ray; prim is invalid for a miss.
@@ -80,6 +89,7 @@ private:
     const Scene* scene_ = nullptr;
     std::vector<BvhNode> nodes_;
     std::vector<PrimRef> prims_;
+    std::vector<BvhPrim> prim_data_;  // prims_' geometry, same order
     BvhStats stats_;
 };
 
