@@ -2,7 +2,9 @@
 
 #include <cmath>
 
+#include "temp_dir.h"
 #include "test_paths.h"
+#include "wavetrace/image/image.h"
 #include "wavetrace/scene/scene.h"
 #include "wavetrace/scene/surface.h"
 
@@ -79,4 +81,29 @@ TEST(Surface, SphereUvFollowsTheSeed) {
     // From inside the ray arrives at the back.
     SurfaceHit inside = surface_at(s, Ray{{0, 0, 0}, {1, 0, 0}}, hit);
     EXPECT_FALSE(inside.front_face);
+}
+
+TEST(Background, EnvironmentMapIsLatLongWithMinusZAtTheCentre) {
+    TempDir dir;
+    // Four columns of grey 0, 1, 2, 3 in the top row, 10 more in the bottom row (HDR values
+    // survive EXR).
+    Image env(4, 2);
+    for (int y = 0; y < 2; ++y)
+        for (int x = 0; x < 4; ++x) env.at(x, y) = Color(static_cast<float>(x + 10 * y));
+    write_image(dir.path() / "env.exr", env);
+    auto p = dir.write("s.json", R"({"camera": {"look_from": [0, 0, -5], "look_at": [0, 0, 0]},
+        "background": {"type": "environment", "file": "env.exr", "scale": [2, 2, 2]},
+        "objects": []})");
+    Scene s = load_scene(p);
+    ASSERT_EQ(s.background.kind, Background::Kind::Environment);
+    // Column centres sit at u = 1/8, 3/8, 5/8, 7/8; -z maps to u = 1/2, +x to 3/4, -x to 1/4,
+    // +z to the seam at u = 0 = 1.
+    // At the horizon the two rows mix equally (+5).
+    EXPECT_NEAR(eval_background(s, {0, 0, -1}).x, 2 * (1.5f + 5), 1e-5f);
+    EXPECT_NEAR(eval_background(s, {1, 0, 0}).x, 2 * (2.5f + 5), 1e-5f);
+    EXPECT_NEAR(eval_background(s, {-1, 0, 0}).x, 2 * (0.5f + 5), 1e-5f);
+    EXPECT_NEAR(eval_background(s, {0, 0, 1}).x, 2 * (1.5f + 5), 1e-5f);
+    // The poles are clamped to the top and bottom rows, not wrapped into each other.
+    EXPECT_NEAR(eval_background(s, {0, 3, 0}).x, 2 * 1.5f, 1e-5f);
+    EXPECT_NEAR(eval_background(s, {0, -3, 0}).x, 2 * 11.5f, 1e-5f);
 }

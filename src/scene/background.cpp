@@ -15,7 +15,7 @@ Color eval_background(const Scene& scene, Vec3 d) {
     float theta = std::acos(std::fmax(-1.0f, std::fmin(1.0f, w.y)));
     float u = 0.5f + phi * (0.5f * kInvPi);
     float v = 1.0f - theta * kInvPi;  // bilinear() takes v bottom-to-top
-    return bg.radiance * scene.images[bg.image].bilinear(u, v);
+    return bg.radiance * scene.images[bg.image].bilinear(u, v, /*wrap_v=*/false);
 }
 
 }  // namespace wavetrace

@@ -1,5 +1,6 @@
 #include "wavetrace/scene/texture.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -7,10 +8,12 @@
 
 namespace wavetrace {
 
-Color ImageData::bilinear(float u, float v) const {
-    // Texel centres sit at half-integer coordinates; wrap in both directions.
+Color ImageData::bilinear(float u, float v, bool wrap_v) const {
+    // Texel centres sit at half-integer coordinates.
+    v = wrap_v ? v - std::floor(v) : std::clamp(v, 0.0f, 1.0f);
     float x = (u - std::floor(u)) * static_cast<float>(width) - 0.5f;
-    float y = (1.0f - (v - std::floor(v))) * static_cast<float>(height) - 0.5f;
+    float y = std::clamp((1.0f - v) * static_cast<float>(height) - 0.5f, wrap_v ? -0.5f : 0.0f,
+                         wrap_v ? static_cast<float>(height) - 0.5f : static_cast<float>(height - 1));
     float fx = std::floor(x), fy = std::floor(y);
     float tx = x - fx, ty = y - fy;
     auto wrap = [](int i, int n) { return ((i % n) + n) % n; };

@@ -34,8 +34,10 @@ struct ImageData {
     std::vector<Color> texels;
 
     Color texel(int x, int y) const { return texels[static_cast<size_t>(y) * width + x]; }
-    // Bilinear lookup with wrapping; u runs left to right, v bottom to top (OpenGL convention).
-    Color bilinear(float u, float v) const;
+    // Bilinear lookup; u runs left to right, v bottom to top (OpenGL convention). u always
+    // wraps; v wraps for textures and is clamped for latitude-longitude maps (whose top and
+    // bottom rows are the poles, not neighbours).
+    Color bilinear(float u, float v, bool wrap_v = true) const;
 };
 
 struct Scene;
