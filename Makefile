@@ -19,8 +19,11 @@ demo: build
 	@mkdir -p out
 	@$(BUILD_DIR)/bin/wavetrace render scenes/cornell.json --aov albedo --spp 4 -o out/cornell.png
 
+# Tests that measure something (e.g. agreement with Embree) leave a line in build/reports/.
 test: build
+	@rm -rf $(BUILD_DIR)/reports
 	@cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
+	@cat $(BUILD_DIR)/reports/*.txt 2>/dev/null || true
 
 clean:
 	rm -rf $(BUILD_DIR) out

@@ -6,6 +6,8 @@
 #include <tbb/parallel_reduce.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <vector>
 
 #include "test_paths.h"
@@ -212,12 +214,18 @@ void compare_scene(const char* name) {
 
     double hit_agreement = double(t.both_hit + t.both_miss) / double(t.rays);
     double hit_match = t.both_hit ? double(t.same + t.ties) / double(t.both_hit) : 1.0;
-    std::printf(
+    char line[512];
+    std::snprintf(line, sizeof line,
         "embree-agreement %-10s rays %zu | hit/miss agree %.5f%% (both hit %zu, both miss %zu, only "
         "ours %zu, only embree %zu) | both hit: same prim+t %zu, ties %zu, differ %zu (%.5f%% agree) "
         "| max rel t diff (same prim) %.2e\n",
         name, t.rays, 100 * hit_agreement, t.both_hit, t.both_miss, t.only_ours, t.only_embree,
         t.same, t.ties, t.different, 100 * hit_match, t.max_rel_t);
+    std::fputs(line, stdout);
+    // Also into the build's report folder, which `make test` prints after the suite: ctest
+    // shows a passing test's output only when asked to be verbose.
+    std::filesystem::create_directories(WAVETRACE_REPORT_DIR);
+    std::ofstream(std::filesystem::path(WAVETRACE_REPORT_DIR) / ("embree-agreement-" + std::string(name) + ".txt")) << line;
     for (size_t k = 0; k < std::min<size_t>(t.examples.size(), 8); ++k) {
         Ray ray = make_ray(scene, camera, t.examples[k]);
         Hit ours = bvh.intersect(ray), ref = embree.intersect(ray);
