@@ -1,0 +1,50 @@
+// Scattering at a surface or medium vertex, for every material kind: evaluate, sample, pdf.
+// Shared by both engines. All directions are unit vectors in the shading frame's local
+// coordinates (z along the shading normal on the side the light arrives from is NOT assumed:
+// wo may be on either side), pointing away from the vertex.
+//
+// Contract (as Mitsuba's BSDF::eval/sample): eval() returns f(wo, wi) |cos theta_i| — the
+// cosine is included — and 0 for delta lobes; pdf() is the solid-angle density with which
+// sample() picks wi (0 for delta lobes); sample() returns wi and weight = f |cos| / pdf (for
+// delta lobes the lobe's throughput). For the isotropic phase function "cos" is 1.
+#pragma once
+
+#include "wavetrace/math/vec3.h"
+#include "wavetrace/scene/material.h"
+
+namespace wavetrace {
+
+// A material resolved at one point: the kind and its parameters with textures evaluated.
+struct BsdfParams {
+    MaterialKind kind = MaterialKind::Lambertian;
+    Color albedo{0.0f};
+    float alpha = 0.0f;  // Metal: GGX roughness alpha = roughness^2 (0: a perfect mirror)
+    float eta = 1.0f;    // Dielectric: IOR inside / IOR outside as seen by the ray (front: ior)
+
+    bool is_delta() const;  // every lobe is a Dirac delta: never light-sampled
+};
+
+struct BsdfSample {
+    Vec3 wi;
+    Color weight{0.0f};  // f |cos| / pdf, or the delta lobe's throughput
+    float pdf = 0.0f;    // solid angle; 0 for delta lobes
+    bool delta = false;
+    bool transmitted = false;  // wi crossed the surface
+    bool valid = false;
+};
+
+Color bsdf_eval(const BsdfParams& b, Vec3 wo, Vec3 wi);
+float bsdf_pdf(const BsdfParams& b, Vec3 wo, Vec3 wi);
+// u_lobe picks between lobes (dielectric reflection/refraction); (u1, u2) the direction.
+BsdfSample bsdf_sample(const BsdfParams& b, Vec3 wo, float u_lobe, float u1, float u2);
+
+// GGX (Trowbridge-Reitz) pieces, exposed for tests.
+float ggx_d(Vec3 h, float alpha);
+float ggx_g1(Vec3 w, float alpha);
+// A visible normal for wo (wo.z > 0): Heitz, "Sampling the GGX Distribution of Visible
+// Normals", JCGT 7(4), 2018.
+Vec3 ggx_sample_visible_normal(Vec3 wo, float alpha, float u1, float u2);
+// Unpolarized Fresnel reflectance of a smooth dielectric, cos_i > 0 on the incident side.
+float fresnel_dielectric(float cos_i, float eta);
+
+}  // namespace wavetrace
