@@ -85,21 +85,43 @@ inline Result test(const std::function<std::optional<Vec3>(uint32_t)>& sample,
         }
         observed[cell(*w)] += 1;
     }
-    // Expected counts: n times the density integrated over each cell (midpoint rule on a
-    // 12 x 12 grid in (cos theta, phi), where the area element is exactly d(cos) d(phi)).
-    const int sub = 12;
+    // Expected counts: n times the density integrated over each cell, by the midpoint rule in
+    // (cos theta, phi), where the area element is exactly d(cos) d(phi). Cells where the
+    // density is not constant, and their neighbours (the edge of a light's solid angle may
+    // clip a cell between the coarse grid's points), are integrated on a grid sixteen times
+    // finer, so that discontinuities do not bias the expectation.
     const double dz = 2.0 / cos_bins, dphi = 2 * kPi / phi_bins;
+    auto integrate = [&](int i, int j, int sub, bool* varies) {
+        double sum = 0, lo = INFINITY, hi = -INFINITY;
+        for (int a = 0; a < sub; ++a)
+            for (int b = 0; b < sub; ++b) {
+                double z = -1 + (i + (a + 0.5) / sub) * dz;
+                double phi = (j + (b + 0.5) / sub) * dphi;
+                double rr = std::sqrt(std::max(0.0, 1 - z * z));
+                double p = pdf(Vec3(float(rr * std::cos(phi)), float(rr * std::sin(phi)), float(z)));
+                sum += p;
+                lo = std::min(lo, p);
+                hi = std::max(hi, p);
+            }
+        if (varies) *varies = hi > lo * 1.05 && (lo == 0 || hi > 0);
+        return sum / (sub * sub) * dz * dphi * n;
+    };
+    std::vector<char> varies(cos_bins * phi_bins, 0);
     for (int i = 0; i < cos_bins; ++i)
         for (int j = 0; j < phi_bins; ++j) {
-            double sum = 0;
-            for (int a = 0; a < sub; ++a)
-                for (int b = 0; b < sub; ++b) {
-                    double z = -1 + (i + (a + 0.5) / sub) * dz;
-                    double phi = (j + (b + 0.5) / sub) * dphi;
-                    double rr = std::sqrt(std::max(0.0, 1 - z * z));
-                    sum += pdf(Vec3(float(rr * std::cos(phi)), float(rr * std::sin(phi)), float(z)));
+            bool v = false;
+            expected[i * phi_bins + j] = integrate(i, j, 8, &v);
+            varies[i * phi_bins + j] = v;
+        }
+    for (int i = 0; i < cos_bins; ++i)
+        for (int j = 0; j < phi_bins; ++j) {
+            bool refine = false;
+            for (int di = -1; di <= 1; ++di)
+                for (int dj = -1; dj <= 1; ++dj) {
+                    int ii = i + di, jj = (j + dj + phi_bins) % phi_bins;
+                    if (ii >= 0 && ii < cos_bins && varies[ii * phi_bins + jj]) refine = true;
                 }
-            expected[i * phi_bins + j] = sum / (sub * sub) * dz * dphi * n;
+            if (refine) expected[i * phi_bins + j] = integrate(i, j, 128, nullptr);
         }
     // Pool low-expectation cells (Mitsuba: into one cell), then Pearson's statistic.
     std::vector<int> order(expected.size());

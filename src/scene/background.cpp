@@ -1,5 +1,6 @@
 #include "wavetrace/scene/background.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "wavetrace/math/constants.h"
@@ -7,15 +8,26 @@
 
 namespace wavetrace {
 
+Vec2 environment_uv(const Background& bg, Vec3 w) {
+    float phi = std::atan2(w.x, -w.z) - radians(bg.rotation);
+    float theta = std::acos(std::clamp(w.y, -1.0f, 1.0f));
+    float u = 0.5f + phi * (0.5f * kInvPi);
+    return {u - std::floor(u), theta * kInvPi};
+}
+
+Vec3 environment_direction(const Background& bg, float u, float row) {
+    float phi = (u - 0.5f) * 2.0f * kPi + radians(bg.rotation);
+    float theta = row * kPi;
+    float sin_theta = std::sin(theta);
+    return {sin_theta * std::sin(phi), std::cos(theta), -sin_theta * std::cos(phi)};
+}
+
 Color eval_background(const Scene& scene, Vec3 d) {
     const Background& bg = scene.background;
     if (bg.kind == Background::Kind::Constant) return bg.radiance;
-    Vec3 w = normalize(d);
-    float phi = std::atan2(w.x, -w.z) - radians(bg.rotation);
-    float theta = std::acos(std::fmax(-1.0f, std::fmin(1.0f, w.y)));
-    float u = 0.5f + phi * (0.5f * kInvPi);
-    float v = 1.0f - theta * kInvPi;  // bilinear() takes v bottom-to-top
-    return bg.radiance * scene.images[bg.image].bilinear(u, v, /*wrap_v=*/false);
+    Vec2 uv = environment_uv(bg, normalize(d));
+    // bilinear() takes v bottom-to-top.
+    return bg.radiance * scene.images[bg.image].bilinear(uv.x, 1.0f - uv.y, /*wrap_v=*/false);
 }
 
 }  // namespace wavetrace

@@ -25,4 +25,9 @@ struct Scene;
 // Radiance arriving along direction d (d need not be unit length) from the background.
 Color eval_background(const Scene& scene, Vec3 d);
 
+// The environment mapping and its inverse: unit direction <-> (u, row) in [0,1)^2, with row 0
+// the top of the image (straight up). The Jacobian is d(omega) = 2 pi^2 sin(theta) du drow.
+Vec2 environment_uv(const Background& bg, Vec3 unit_dir);
+Vec3 environment_direction(const Background& bg, float u, float row);
+
 }  // namespace wavetrace

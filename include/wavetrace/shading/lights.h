@@ -1,0 +1,71 @@
+// Light selection and sampling with solid-angle densities, for next-event estimation and
+// MIS. Every emissive primitive is a light; so is a non-black background.
+//
+// Densities returned here include the probability of selecting the light, so they compare
+// directly with BSDF densities in MIS weights. Lights are selected in proportion to their
+// power (area x pi x luminance of the radiance, doubled if two-sided; textured emitters count
+// with luminance 1; the background as a sphere of the scene's radius, 4 pi^2 r^2 L).
+#pragma once
+
+#include <unordered_map>
+#include <vector>
+
+#include "wavetrace/math/constants.h"
+#include "wavetrace/math/vec3.h"
+#include "wavetrace/scene/ids.h"
+#include "wavetrace/shading/distribution.h"
+
+namespace wavetrace {
+
+struct Scene;
+
+struct LightSample {
+    Vec3 wi;                 // unit direction from the reference point to the light
+    float dist = kInfinity;  // to the sampled point (infinity for the background)
+    Color radiance{0.0f};    // emitted towards the reference point (0 from a back face)
+    float pdf = 0.0f;        // solid angle, selection included
+    PrimRef prim;            // invalid for the background
+    bool valid = false;
+};
+
+class LightSet {
+public:
+    LightSet() = default;
+    explicit LightSet(const Scene& scene);
+
+    bool empty() const { return count_ == 0; }
+    size_t size() const { return count_; }
+    bool has_background() const { return background_; }
+    // Probability that sampling picks this emissive primitive (0 if it is not a light).
+    float selection_probability(PrimRef prim) const;
+    float background_selection_probability() const;
+
+    // Samples a light point as seen from `ref` with three uniform numbers.
+    LightSample sample(const Scene& scene, Point3 ref, float u_select, float u1, float u2) const;
+    // Density with which sample() from `ref` produces direction wi hitting emitter `prim` at
+    // point p (distance dist). Zero for non-emitters.
+    float pdf_prim(const Scene& scene, Point3 ref, PrimRef prim, Vec3 wi, float dist) const;
+    // Density with which sample() produces background direction wi.
+    float pdf_background(const Scene& scene, Vec3 wi) const;
+    // Total density of direction wi from `ref` over all lights, ignoring occlusion: the
+    // density a "pick a light, then a point" sampler assigns to wi. O(number of emitters).
+    float pdf_direction(const Scene& scene, Point3 ref, Vec3 wi) const;
+
+private:
+    float prim_pdf_given_selection(const Scene& scene, Point3 ref, PrimRef prim, Vec3 wi,
+                                   float dist) const;
+
+    std::vector<PrimRef> emitters_;                  // light i < emitters_.size()
+    std::unordered_map<uint32_t, uint32_t> index_;   // PrimRef bits -> light index
+    bool background_ = false;                        // the last light, if present
+    size_t count_ = 0;
+    Distribution1D select_;
+    Distribution2D environment_;  // over the environment image's texels, luminance x sin(theta)
+};
+
+// Radiance a surface emits towards the side the ray came from (0 unless the material emits;
+// one-sided emitters emit only on their front).
+struct SurfaceHit;
+Color emitted_radiance(const Scene& scene, const SurfaceHit& hit);
+
+}  // namespace wavetrace

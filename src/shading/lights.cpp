@@ -1,0 +1,248 @@
+#include "wavetrace/shading/lights.h"
+
+#include <cmath>
+
+#include "wavetrace/math/frame.h"
+#include "wavetrace/scene/intersect.h"
+#include "wavetrace/scene/scene.h"
+#include "wavetrace/scene/surface.h"
+#include "wavetrace/shading/warp.h"
+
+namespace wavetrace {
+namespace {
+
+// Geometry of a sphere seen from outside: the cone of directions it subtends.
+struct SphereCone {
+    float one_minus_cos;  // 1 - cos(theta_max), computed without cancellation
+    bool outside;
+};
+SphereCone sphere_cone(const Sphere& s, Point3 ref) {
+    float d2 = length_squared(s.center - ref), r2 = s.radius * s.radius;
+    if (d2 <= r2 * 1.0001f) return {0.0f, false};
+    float sin2 = r2 / d2;
+    // 1 - sqrt(1 - s) = s / (1 + sqrt(1 - s)): exact for tiny cones of far spheres.
+    return {sin2 / (1.0f + std::sqrt(1.0f - sin2)), true};
+}
+
+}  // namespace
+
+LightSet::LightSet(const Scene& scene) {
+    emitters_ = collect_emitters(scene);
+    std::vector<float> power;
+    for (uint32_t i = 0; i < emitters_.size(); ++i) {
+        PrimRef prim = emitters_[i];
+        index_[prim.bits] = i;
+        const Material& m = scene.materials[scene.prim_material(prim)];
+        const Texture& e = scene.textures[m.emission];
+        float lum = e.kind == TextureKind::Solid ? luminance(e.color) : 1.0f;
+        power.push_back(scene.prim_area(prim) * kPi * lum * (m.two_sided ? 2.0f : 1.0f));
+    }
+    background_ = !scene.background.is_black();
+    if (background_) {
+        const Background& bg = scene.background;
+        Aabb b = scene.bounds();
+        float r = b.empty() ? 1.0f : 0.5f * length(b.extent());
+        float lum = luminance(bg.radiance);
+        if (bg.kind == Background::Kind::Environment) {
+            const ImageData& img = scene.images[bg.image];
+            // Texel weights: luminance times sin(theta) (the area of the texel's band of the
+            // sphere), plus a small floor so that no direction the bilinear lookup can light
+            // has zero density.
+            std::vector<float> w(static_cast<size_t>(img.width) * img.height);
+            double mean = 0;
+            for (int y = 0; y < img.height; ++y) {
+                float sin_theta = std::sin(kPi * (y + 0.5f) / img.height);
+                for (int x = 0; x < img.width; ++x) {
+                    float v = luminance(img.texel(x, y)) * sin_theta;
+                    w[static_cast<size_t>(y) * img.width + x] = v;
+                    mean += v;
+                }
+            }
+            mean /= static_cast<double>(w.size());
+            for (float& v : w) v += static_cast<float>(1e-3 * mean) + 1e-12f;
+            environment_ = Distribution2D(w, img.width, img.height);
+            lum *= static_cast<float>(mean * 2.0 / kPi);  // mean luminance over the sphere
+        }
+        power.push_back(4.0f * kPi * kPi * r * r * lum);
+    }
+    count_ = power.size();
+    if (count_ > 0) select_ = Distribution1D(power);
+}
+
+float LightSet::selection_probability(PrimRef prim) const {
+    auto it = index_.find(prim.bits);
+    return it == index_.end() ? 0.0f : select_.probability(it->second);
+}
+
+float LightSet::background_selection_probability() const {
+    return background_ ? select_.probability(count_ - 1) : 0.0f;
+}
+
+LightSample LightSet::sample(const Scene& scene, Point3 ref, float u_select, float u1,
+                             float u2) const {
+    LightSample ls;
+    if (count_ == 0) return ls;
+    float select_prob;
+    size_t i = select_.sample_discrete(u_select, &select_prob);
+
+    if (background_ && i == count_ - 1) {
+        const Background& bg = scene.background;
+        float pdf;
+        if (bg.kind == Background::Kind::Constant) {
+            ls.wi = sample_uniform_sphere(u1, u2);
+            pdf = uniform_sphere_pdf();
+        } else {
+            float u, row, pdf_uv;
+            environment_.sample(u1, u2, &u, &row, &pdf_uv);
+            float sin_theta = std::sin(kPi * row);
+            if (sin_theta <= 0.0f) return ls;
+            ls.wi = environment_direction(bg, u, row);
+            pdf = pdf_uv / (2.0f * kPi * kPi * sin_theta);
+        }
+        ls.radiance = eval_background(scene, ls.wi);
+        ls.pdf = pdf * select_prob;
+        ls.valid = ls.pdf > 0.0f;
+        return ls;
+    }
+
+    // A point on an emissive primitive, expressed as a Hit along the segment ref -> point
+    // (t = 1) so that surface_at() supplies its normal, uv and side like any other hit.
+    PrimRef prim = emitters_[i];
+    Hit hit{1.0f, prim, 0.0f, 0.0f};
+    Point3 p;
+    float pdf_solid = 0;
+    switch (prim.kind()) {
+        case PrimKind::Quad: {
+            const Quad& q = scene.quads[prim.index()];
+            hit.u = u1;
+            hit.v = u2;
+            p = q.q + u1 * q.u + u2 * q.v;
+            break;
+        }
+        case PrimKind::Triangle: {
+            const Triangle& t = scene.triangles[prim.index()];
+            sample_uniform_triangle(u1, u2, &hit.u, &hit.v);
+            p = (1 - hit.u - hit.v) * scene.positions[t.v[0]] + hit.u * scene.positions[t.v[1]] +
+                hit.v * scene.positions[t.v[2]];
+            break;
+        }
+        case PrimKind::Sphere: {
+            const Sphere& s = scene.spheres[prim.index()];
+            SphereCone cone = sphere_cone(s, ref);
+            if (cone.outside) {
+                // Uniform in the cone of directions the sphere subtends (pbrt-v4 §6.2.4),
+                // then the nearest point of the sphere along that direction.
+                Vec3 axis = normalize(s.center - ref);
+                float cos_t = 1.0f - u1 * cone.one_minus_cos;
+                float sin_t = std::sqrt(std::max(0.0f, u1 * cone.one_minus_cos * (2.0f - u1 * cone.one_minus_cos)));
+                float phi = 2.0f * kPi * u2;
+                Vec3 w = Frame::from_normal(axis).to_world(
+                    {sin_t * std::cos(phi), sin_t * std::sin(phi), cos_t});
+                PrimHit ph;
+                float t = intersect_sphere(Ray{ref, w}, s.center, s.radius, &ph)
+                              ? ph.t
+                              : dot(s.center - ref, w);  // grazing: the tangent point
+                p = ref + t * w;
+                pdf_solid = 1.0f / (2.0f * kPi * cone.one_minus_cos);
+            } else {
+                p = s.center + s.radius * sample_uniform_sphere(u1, u2);
+            }
+            break;
+        }
+    }
+    Vec3 d = p - ref;
+    float dist2 = length_squared(d);
+    if (!(dist2 > 0.0f)) return ls;
+    ls.dist = std::sqrt(dist2);
+    ls.wi = d / ls.dist;
+    SurfaceHit sh = surface_at(scene, Ray{ref, d}, hit);
+    if (pdf_solid == 0.0f) {
+        // Uniform by area, converted to solid angle: p_w = r^2 / (|cos theta_l| A).
+        float cos_l = std::fabs(dot(sh.ng, ls.wi));
+        if (cos_l <= 0.0f) return ls;
+        pdf_solid = dist2 / (cos_l * scene.prim_area(prim));
+    }
+    ls.radiance = emitted_radiance(scene, sh);
+    ls.pdf = pdf_solid * select_prob;
+    ls.prim = prim;
+    ls.valid = std::isfinite(ls.pdf) && ls.pdf > 0.0f;
+    return ls;
+}
+
+float LightSet::prim_pdf_given_selection(const Scene& scene, Point3 ref, PrimRef prim, Vec3 wi,
+                                         float dist) const {
+    if (prim.kind() == PrimKind::Sphere) {
+        SphereCone cone = sphere_cone(scene.spheres[prim.index()], ref);
+        if (cone.outside) return 1.0f / (2.0f * kPi * cone.one_minus_cos);
+    }
+    Point3 p = ref + dist * wi;
+    Normal3 n;
+    switch (prim.kind()) {
+        case PrimKind::Quad: n = cross(scene.quads[prim.index()].u, scene.quads[prim.index()].v); break;
+        case PrimKind::Triangle: {
+            const Triangle& t = scene.triangles[prim.index()];
+            n = cross(scene.positions[t.v[1]] - scene.positions[t.v[0]],
+                      scene.positions[t.v[2]] - scene.positions[t.v[0]]);
+            break;
+        }
+        case PrimKind::Sphere: n = p - scene.spheres[prim.index()].center; break;
+    }
+    float cos_l = std::fabs(dot(normalize(n), wi));
+    if (cos_l <= 0.0f) return 0.0f;
+    return dist * dist / (cos_l * scene.prim_area(prim));
+}
+
+float LightSet::pdf_prim(const Scene& scene, Point3 ref, PrimRef prim, Vec3 wi, float dist) const {
+    float sel = selection_probability(prim);
+    return sel > 0.0f ? sel * prim_pdf_given_selection(scene, ref, prim, wi, dist) : 0.0f;
+}
+
+float LightSet::pdf_background(const Scene& scene, Vec3 wi) const {
+    if (!background_) return 0.0f;
+    float sel = background_selection_probability();
+    const Background& bg = scene.background;
+    if (bg.kind == Background::Kind::Constant) return sel * uniform_sphere_pdf();
+    Vec2 uv = environment_uv(bg, wi);
+    float sin_theta = std::sin(kPi * uv.y);
+    if (sin_theta <= 0.0f) return 0.0f;
+    return sel * environment_.pdf(uv.x, uv.y) / (2.0f * kPi * kPi * sin_theta);
+}
+
+float LightSet::pdf_direction(const Scene& scene, Point3 ref, Vec3 wi) const {
+    float pdf = pdf_background(scene, wi);
+    Ray ray{ref, wi};
+    for (PrimRef prim : emitters_) {
+        PrimHit ph;
+        bool hit = false;
+        uint32_t i = prim.index();
+        switch (prim.kind()) {
+            case PrimKind::Quad: {
+                const Quad& q = scene.quads[i];
+                hit = intersect_quad(ray, q.q, q.u, q.v, &ph);
+                break;
+            }
+            case PrimKind::Triangle: {
+                const Triangle& t = scene.triangles[i];
+                hit = intersect_triangle(ray, scene.positions[t.v[0]], scene.positions[t.v[1]],
+                                         scene.positions[t.v[2]], &ph);
+                break;
+            }
+            case PrimKind::Sphere: {
+                const Sphere& s = scene.spheres[i];
+                hit = intersect_sphere(ray, s.center, s.radius, &ph);
+                break;
+            }
+        }
+        if (hit && ph.t > 0.0f) pdf += pdf_prim(scene, ref, prim, wi, ph.t);
+    }
+    return pdf;
+}
+
+Color emitted_radiance(const Scene& scene, const SurfaceHit& hit) {
+    if (hit.material == kNone) return {};
+    const Material& m = scene.materials[hit.material];
+    if (!m.is_emissive() || (!hit.front_face && !m.two_sided)) return {};
+    return eval_texture(scene, m.emission, hit.uv, hit.p);
+}
+
+}  // namespace wavetrace

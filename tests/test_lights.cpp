@@ -1,0 +1,175 @@
+// Light sampling against its solid-angle density (chi-square) for every light kind, and each
+// density's integral over the sphere of directions.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "chi2.h"
+#include "temp_dir.h"
+#include "wavetrace/image/image.h"
+#include "wavetrace/render/sampler.h"
+#include "wavetrace/scene/scene.h"
+#include "wavetrace/shading/lights.h"
+#include "wavetrace/shading/warp.h"
+
+using namespace wavetrace;
+
+namespace {
+
+constexpr uint32_t kSamples = 300'000;
+constexpr double kSignificance = 1e-3;
+
+float u(uint32_t seed, uint32_t i, uint32_t dim) { return sample_1d(seed, i, 0, dim); }
+
+MaterialId add_light(Scene& s, bool two_sided = false) {
+    Material m;
+    m.kind = MaterialKind::DiffuseLight;
+    m.emission = s.add_solid({4, 3, 2});
+    m.two_sided = two_sided;
+    return s.add_material(m);
+}
+
+struct LightCase {
+    std::string name;
+    Scene scene;
+    Point3 ref;
+};
+
+std::vector<LightCase> cases(const TempDir& dir) {
+    std::vector<LightCase> out;
+    {
+        LightCase c{"quad", {}, {0.2f, -0.3f, 2.0f}};  // in front (the normal is about +z)
+        c.scene.add_quad({{-1, -0.5f, 1}, {2, 0, 0.3f}, {0, 1.5f, 0.2f}, add_light(c.scene), kNone});
+        out.push_back(std::move(c));
+    }
+    {
+        LightCase c{"quad-behind", {}, {0.2f, -0.3f, 0.1f}};  // sees the back: radiance 0
+        c.scene.add_quad({{-1, -0.5f, 1}, {2, 0, 0.3f}, {0, 1.5f, 0.2f}, add_light(c.scene), kNone});
+        out.push_back(std::move(c));
+    }
+    {
+        LightCase c{"triangle", {}, {0.1f, 0.2f, -0.4f}};
+        c.scene.add_mesh({.material = add_light(c.scene, true)},
+                         {{-1, -1, 0.5f}, {1.5f, -0.5f, 0.8f}, {0, 1.2f, 0.3f}}, {}, {}, {0, 1, 2});
+        out.push_back(std::move(c));
+    }
+    {
+        LightCase c{"sphere-outside", {}, {0, 0, 0}};
+        c.scene.add_sphere({{0.5f, 1.2f, 1.0f}, 0.8f, add_light(c.scene), kNone});
+        out.push_back(std::move(c));
+    }
+    {
+        LightCase c{"sphere-far", {}, {0, 0, 0}};  // a small cone
+        c.scene.add_sphere({{3, 2, 6}, 1.2f, add_light(c.scene), kNone});
+        out.push_back(std::move(c));
+    }
+    {
+        LightCase c{"sphere-inside", {}, {0.2f, 0.1f, -0.3f}};
+        c.scene.add_sphere({{0, 0, 0}, 1.0f, add_light(c.scene, true), kNone});
+        out.push_back(std::move(c));
+    }
+    {
+        LightCase c{"two-lights", {}, {0, 0, 0}};
+        MaterialId m = add_light(c.scene);
+        c.scene.add_sphere({{0.5f, 1.2f, 1.0f}, 0.6f, m, kNone});
+        c.scene.add_quad({{-1, -1, -1}, {2, 0, 0}, {0, 0.5f, 0}, m, kNone});
+        out.push_back(std::move(c));
+    }
+    {
+        LightCase c{"background-constant", {}, {0, 0, 0}};
+        c.scene.background.radiance = Color(0.5f);
+        out.push_back(std::move(c));
+    }
+    {
+        // An environment map with a bright spot, a gradient and a black band.
+        Image env(64, 32);
+        for (int y = 0; y < 32; ++y)
+            for (int x = 0; x < 64; ++x) {
+                float v = 0.2f + x / 64.0f + (y > 20 && y < 24 ? -1.0f : 0.0f);
+                if (std::abs(x - 40) < 3 && std::abs(y - 10) < 3) v = 50.0f;
+                env.at(x, y) = Color(std::max(0.0f, v));
+            }
+        write_image(dir.path() / "env.exr", env);
+        LightCase c{"background-environment", {}, {0, 0, 0}};
+        c.scene.background.kind = Background::Kind::Environment;
+        c.scene.background.radiance = Color(1.0f);
+        c.scene.background.rotation = 30.0f;
+        c.scene.background.image = c.scene.add_image(read_image(dir.path() / "env.exr"));
+        out.push_back(std::move(c));
+    }
+    return out;
+}
+
+}  // namespace
+
+TEST(Lights, SamplingMatchesDensityChiSquare) {
+    TempDir dir;
+    uint32_t seed = 500;
+    for (LightCase& c : cases(dir)) {
+        LightSet lights(c.scene);
+        ++seed;
+        auto result = chi2::test(
+            [&](uint32_t i) -> std::optional<Vec3> {
+                LightSample ls = lights.sample(c.scene, c.ref, u(seed, i, 0), u(seed, i, 1), u(seed, i, 2));
+                if (!ls.valid) return std::nullopt;
+                return ls.wi;
+            },
+            [&](Vec3 w) { return double(lights.pdf_direction(c.scene, c.ref, w)); }, kSamples);
+        std::printf("chi2 %-24s %s\n", c.name.c_str(), result.summary().c_str());
+        EXPECT_GT(result.p_value, kSignificance) << c.name << ": " << result.summary();
+        EXPECT_EQ(result.lost, 0u) << c.name;
+    }
+}
+
+TEST(Lights, SampledPdfAndRadianceAreConsistent) {
+    TempDir dir;
+    for (LightCase& c : cases(dir)) {
+        LightSet lights(c.scene);
+        for (uint32_t i = 0; i < 3000; ++i) {
+            LightSample ls = lights.sample(c.scene, c.ref, u(3, i, 0), u(3, i, 1), u(3, i, 2));
+            ASSERT_TRUE(ls.valid) << c.name;
+            float pdf = ls.prim.valid() ? lights.pdf_prim(c.scene, c.ref, ls.prim, ls.wi, ls.dist)
+                                        : lights.pdf_background(c.scene, ls.wi);
+            EXPECT_NEAR(ls.pdf, pdf, 2e-3f * pdf) << c.name;
+            if (c.name == "quad-behind") {
+                EXPECT_EQ(ls.radiance, Color(0.0f));
+            }
+            if (c.name == "quad") {
+                EXPECT_EQ(ls.radiance, Color(4, 3, 2));
+            }
+        }
+    }
+}
+
+TEST(Lights, DensityIntegratesToOne) {
+    TempDir dir;
+    for (LightCase& c : cases(dir)) {
+        LightSet lights(c.scene);
+        const uint32_t n = 1'000'000;
+        double sum = 0, sum2 = 0;
+        for (uint32_t i = 0; i < n; ++i) {
+            Vec3 w = sample_uniform_sphere(u(21, i, 0), u(21, i, 1));
+            double v = lights.pdf_direction(c.scene, c.ref, w) / uniform_sphere_pdf();
+            sum += v;
+            sum2 += v * v;
+        }
+        double mean = sum / n, se = std::sqrt(std::max(0.0, sum2 / n - mean * mean) / n);
+        std::printf("integral %-24s %.5f +- %.5f\n", c.name.c_str(), mean, se);
+        EXPECT_NEAR(mean, 1.0, 4 * se) << c.name;
+    }
+}
+
+TEST(Lights, SelectionFollowsPower) {
+    Scene s;
+    Material bright;
+    bright.kind = MaterialKind::DiffuseLight;
+    bright.emission = s.add_solid(Color(3.0f));
+    Material dim = bright;
+    dim.emission = s.add_solid(Color(1.0f));
+    MaterialId b = s.add_material(bright), d = s.add_material(dim);
+    s.add_quad({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, b, kNone});  // power 3 pi
+    s.add_quad({{0, 0, 5}, {2, 0, 0}, {0, 1, 0}, d, kNone});  // power 2 pi
+    LightSet lights(s);
+    EXPECT_NEAR(lights.selection_probability(PrimRef::make(PrimKind::Quad, 0)), 0.6f, 1e-6f);
+    EXPECT_NEAR(lights.selection_probability(PrimRef::make(PrimKind::Quad, 1)), 0.4f, 1e-6f);
+}
