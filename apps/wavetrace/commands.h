@@ -20,6 +20,10 @@ struct RenderOptions {
     int threads = 0;  // 0: all hardware threads
     std::string aov = "color";
     float exposure = 0.0f;
+    std::string engine = "megakernel";
+    std::string strategy = "mis";
+    std::string heuristic = "power";
+    int max_depth = 0;  // 0: the scene file's value
 };
 
 struct InfoOptions {

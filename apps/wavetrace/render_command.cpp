@@ -5,6 +5,8 @@
 #include <cmath>
 #include <iostream>
 #include <optional>
+#include <mutex>
+#include <unistd.h>
 
 #include "commands.h"
 #include "wavetrace/wavetrace.h"
@@ -23,14 +25,68 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
     cmd->add_option("--spp", o.spp, "samples per pixel (default: the scene's)");
     cmd->add_option("--seed", o.seed, "random seed")->capture_default_str();
     cmd->add_option("--threads", o.threads, "worker threads (default: all)");
-    cmd->add_option("--aov", o.aov, "what to render")
+    cmd->add_option("--aov", o.aov, "what to render: color (light transport) or a primary-ray AOV")
         ->check(CLI::IsMember({"color", "albedo", "normal", "depth"}))
         ->capture_default_str();
     cmd->add_option("--exposure", o.exposure, "exposure in stops for .png/.jpg output")
         ->capture_default_str();
+    cmd->add_option("--engine", o.engine, "light-transport engine")
+        ->check(CLI::IsMember({"megakernel"}))
+        ->capture_default_str();
+    cmd->add_option("--strategy", o.strategy, "estimator of the rendering equation")
+        ->check(CLI::IsMember({"bsdf", "light", "mixture", "nee", "mis"}))
+        ->capture_default_str();
+    cmd->add_option("--mis-heuristic", o.heuristic, "MIS weighting heuristic")
+        ->check(CLI::IsMember({"balance", "power"}))
+        ->capture_default_str();
+    cmd->add_option("--max-depth", o.max_depth, "most ray segments per path (default: the scene's)");
 }
 
 namespace {
+
+void map_aov_to_display(Aov aov, Image& image) {
+    if (aov == Aov::Normal) {
+        for (Color& c : image.pixels)
+            if (c.x != 0 || c.y != 0 || c.z != 0) c = 0.5f * (c + Color(1.0f));
+    } else if (aov == Aov::Depth) {
+        float far = 0;
+        for (const Color& c : image.pixels)
+            if (std::isfinite(c.x)) far = std::max(far, c.x);
+        for (Color& c : image.pixels) c = std::isfinite(c.x) && far > 0 ? c / far : Color(1.0f);
+    }
+}
+
+// A progress line on stderr, only when stderr is a terminal: percent, elapsed, ETA, Mpaths/s.
+class Progress {
+public:
+    explicit Progress(const RenderConfig& c)
+        : enabled_(::isatty(2)),
+          paths_(double(c.width) * c.height * c.spp),
+          start_(std::chrono::steady_clock::now()) {}
+
+    ProgressCallback callback() {
+        if (!enabled_) return {};
+        return [this](double fraction) {
+            auto now = std::chrono::steady_clock::now();
+            std::lock_guard<std::mutex> lock(mutex_);
+            if (now - last_ < std::chrono::milliseconds(200) && fraction < 1.0) return;
+            last_ = now;
+            double elapsed = std::chrono::duration<double>(now - start_).count();
+            double eta = fraction > 0 ? elapsed * (1 - fraction) / fraction : 0;
+            std::fprintf(stderr, "\r%5.1f%%  elapsed %6.1f s  ETA %6.1f s  %6.2f Mpaths/s   ",
+                         100 * fraction, elapsed, eta, paths_ * fraction / std::max(elapsed, 1e-9) * 1e-6);
+        };
+    }
+    void finish() {
+        if (enabled_) std::fprintf(stderr, "\r%70s\r", "");
+    }
+
+private:
+    bool enabled_;
+    double paths_;
+    std::chrono::steady_clock::time_point start_, last_{};
+    std::mutex mutex_;
+};
 
 // Range checks shared by all numeric options: each failure names the option.
 std::optional<std::string> check_options(const RenderOptions& o, const RenderSettings& r) {
@@ -40,6 +96,8 @@ std::optional<std::string> check_options(const RenderOptions& o, const RenderSet
         return fmt::format("--height: expected 1..{}, got {}", kMaxImageSide, o.height);
     if (o.spp < 0 || o.spp > kMaxSpp)
         return fmt::format("--spp: expected 1..{}, got {}", kMaxSpp, o.spp);
+    if (o.max_depth < 0 || o.max_depth > kMaxDepth)
+        return fmt::format("--max-depth: expected 1..{}, got {}", kMaxDepth, o.max_depth);
     if (o.threads < 0) return fmt::format("--threads: expected a positive count, got {}", o.threads);
     if (!std::isfinite(o.exposure) || std::fabs(o.exposure) > 64)
         return fmt::format("--exposure: expected a number in [-64, 64], got {}", o.exposure);
@@ -56,11 +114,6 @@ int run_render(const RenderOptions& o) {
     std::optional<tbb::global_control> threads;
     if (o.threads > 0) threads.emplace(tbb::global_control::max_allowed_parallelism, o.threads);
 
-    if (o.aov == "color") {
-        std::cerr << "wavetrace: error: --aov color needs a light-transport engine, and this build "
-                     "has none yet; use --aov albedo, normal or depth\n";
-        return kExitBadInput;
-    }
     fs::path output =
         o.output.empty() ? fs::path(fs::path(o.scene).stem().string() + ".png") : fs::path(o.output);
     Scene scene;
@@ -77,34 +130,52 @@ int run_render(const RenderOptions& o) {
         return kExitBadInput;
     }
 
-    AovSettings settings;
-    settings.width = o.width ? o.width : scene.render.width;
-    settings.height = o.height ? o.height : scene.render.height;
-    settings.spp = o.spp ? o.spp : 1;
-    settings.seed = o.seed;
-    Aov aov = o.aov == "albedo" ? Aov::Albedo : o.aov == "normal" ? Aov::Normal : Aov::Depth;
-
+    const int width = o.width ? o.width : scene.render.width;
+    const int height = o.height ? o.height : scene.render.height;
     Bvh bvh = Bvh::build(scene);
-    Image image = render_aov(scene, bvh, aov, settings);
-
-    // 8-bit outputs cannot hold negative normals or unbounded depths: map them to [0, 1].
-    if (is_ldr_path(output)) {
-        if (aov == Aov::Normal) {
-            for (Color& c : image.pixels)
-                if (c.x != 0 || c.y != 0 || c.z != 0) c = 0.5f * (c + Color(1.0f));
-        } else if (aov == Aov::Depth) {
-            float far = 0;
-            for (const Color& c : image.pixels)
-                if (std::isfinite(c.x)) far = std::max(far, c.x);
-            for (Color& c : image.pixels) c = std::isfinite(c.x) && far > 0 ? c / far : Color(1.0f);
-        }
-    }
     WriteOptions write;
     write.exposure = o.exposure;
-    write.metadata = {{"wavetrace:scene", o.scene},
-                      {"wavetrace:aov", o.aov},
-                      {"wavetrace:spp", std::to_string(settings.spp)},
-                      {"wavetrace:seed", std::to_string(o.seed)}};
+    write.metadata = {{"wavetrace:scene", o.scene}, {"wavetrace:seed", std::to_string(o.seed)}};
+    Image image;
+    std::string summary;
+    if (o.aov == "color") {
+        RenderConfig config;
+        config.width = width;
+        config.height = height;
+        config.spp = o.spp ? o.spp : scene.render.spp;
+        config.seed = o.seed;
+        config.strategy = *parse_strategy(o.strategy);
+        config.heuristic = o.heuristic == "balance" ? MisHeuristic::Balance : MisHeuristic::Power;
+        config.max_depth = o.max_depth ? o.max_depth : scene.render.max_depth;
+        RenderStats stats;
+        Progress progress(config);
+        Film film = render_megakernel(scene, bvh, config, &stats, progress.callback());
+        progress.finish();
+        image = film.mean();
+        write.metadata.insert(write.metadata.end(),
+                              {{"wavetrace:engine", o.engine},
+                               {"wavetrace:strategy", o.strategy},
+                               {"wavetrace:mis_heuristic", o.heuristic},
+                               {"wavetrace:spp", std::to_string(config.spp)},
+                               {"wavetrace:max_depth", std::to_string(config.max_depth)},
+                               {"wavetrace:render_seconds", fmt::format("{:.3f}", stats.seconds)}});
+        summary = fmt::format("{} {} {}x{} {} spp: {:.2f} s, {:.2f} Mpaths/s, {:.2f} Mrays/s, "
+                              "{} invalid samples",
+                              o.engine, o.strategy, width, height, config.spp, stats.seconds,
+                              stats.paths / stats.seconds * 1e-6, stats.rays / stats.seconds * 1e-6,
+                              film.invalid_samples());
+    } else {
+        AovSettings settings{width, height, o.spp ? o.spp : 1, o.seed};
+        Aov aov = o.aov == "albedo" ? Aov::Albedo : o.aov == "normal" ? Aov::Normal : Aov::Depth;
+        image = render_aov(scene, bvh, aov, settings);
+        write.metadata.push_back({"wavetrace:aov", o.aov});
+        write.metadata.push_back({"wavetrace:spp", std::to_string(settings.spp)});
+        summary = fmt::format("{} {}x{} {} spp", o.aov, width, height, settings.spp);
+
+        // 8-bit outputs cannot hold negative normals or unbounded depths: map them to [0, 1].
+        if (is_ldr_path(output)) map_aov_to_display(aov, image);
+    }
+
     try {
         write_image(output, image, write);
     } catch (const ImageError& e) {
@@ -113,8 +184,8 @@ int run_render(const RenderOptions& o) {
     }
     double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::cerr << fmt::format("wavetrace: {} {}x{} {} spp -> {} ({:.2f} s)\n", o.aov, settings.width,
-                             settings.height, settings.spp, output.string(), seconds);
+    std::cerr << fmt::format("wavetrace: {} -> {} ({:.2f} s in all)\n", summary, output.string(),
+                             seconds);
     std::cout << output.string() << "\n";
     return kExitOk;
 }

@@ -7,8 +7,9 @@
 
 namespace wavetrace {
 
-// The dimension layout. Camera dimensions come first; the path-tracing engines append their
-// per-bounce dimensions after kCameraDims.
+// The dimension layout: the camera's dimensions first, then kBounceDims per path vertex
+// (bounce b uses kCameraDims + b * kBounceDims + BounceDim). Both engines draw every decision
+// from here, so the same (seed, pixel, sample) traces the same path in either.
 enum SampleDim : uint32_t {
     kDimPixelX = 0,  // jitter inside the pixel
     kDimPixelY = 1,
@@ -16,6 +17,26 @@ enum SampleDim : uint32_t {
     kDimLensV = 3,
     kCameraDims = 4,
 };
+
+enum BounceDim : uint32_t {
+    kDimMediumDistance = 0,  // free-flight distance along the ray that reaches this vertex
+    kDimLightSelect = 1,     // next-event estimation: which light ...
+    kDimLightU = 2,          // ... and where on it
+    kDimLightV = 3,
+    kDimTechnique = 4,       // one-sample strategies: which technique picks the direction
+    kDimDirectionU = 5,      // a light- or uniformly-sampled continuation direction
+    kDimDirectionV = 6,
+    kDimDirectionSelect = 7,  // ... its light choice
+    kDimBsdfLobe = 8,        // BSDF sampling: lobe choice (dielectric reflect / refract) ...
+    kDimBsdfU = 9,           // ... and direction
+    kDimBsdfV = 10,
+    kDimRoulette = 11,       // Russian roulette
+    kBounceDims = 12,
+};
+
+constexpr uint32_t bounce_dim(int bounce, BounceDim d) {
+    return kCameraDims + static_cast<uint32_t>(bounce) * kBounceDims + d;
+}
 
 // SplitMix64's finaliser (Steele et al., "Fast Splittable Pseudorandom Number Generators",
 // OOPSLA 2014): a bijective 64-bit mix with full avalanche.

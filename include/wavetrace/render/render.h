@@ -1,0 +1,35 @@
+// What a light-transport render is asked to do, shared by both engines.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "wavetrace/shading/mis.h"
+
+namespace wavetrace {
+
+// The five estimators of the rendering equation (see docs/sampling.md for what each counts).
+enum class Strategy {
+    Bsdf,     // follow BSDF samples; count emission wherever a path hits a light
+    Light,    // continue along light-sampled directions, with a defensive uniform component
+    Mixture,  // one-sample mixture: half BSDF, half light sampling, density 0.5 p_b + 0.5 p_l
+    Nee,      // next-event estimation: shadow ray per vertex; BSDF-hit emission only after delta
+    Mis,      // NEE and BSDF-hit emission both, weighted by the balance or power heuristic
+};
+
+const char* to_string(Strategy s);
+std::optional<Strategy> parse_strategy(const std::string& name);
+
+struct RenderConfig {
+    int width = 0;
+    int height = 0;
+    int spp = 1;
+    uint64_t seed = 0;
+    Strategy strategy = Strategy::Mis;
+    MisHeuristic heuristic = MisHeuristic::Power;
+    int max_depth = 50;  // the most ray segments a path may have (the seed's max_depth)
+    int rr_depth = 3;    // Russian roulette from this many scattering vertices on
+};
+
+}  // namespace wavetrace

@@ -1,0 +1,32 @@
+// The media a path is inside, innermost last. Crossing into a shape pushes its interior
+// medium (kNone for a shape without one: a glass ball in fog is fog-free inside); crossing out
+// pops. Media nest at most kMaxNesting deep; deeper nesting is clamped (the innermost wins).
+#pragma once
+
+#include <cstdint>
+
+#include "wavetrace/scene/ids.h"
+
+namespace wavetrace {
+
+struct MediumStack {
+    static constexpr int kMaxNesting = 4;
+    MediumId entries[kMaxNesting] = {kNone, kNone, kNone, kNone};
+    int8_t size = 0;
+
+    MediumId current() const { return size > 0 ? entries[size - 1] : kNone; }
+    void push(MediumId m) {
+        if (size < kMaxNesting) entries[size++] = m;
+        else entries[kMaxNesting - 1] = m;
+    }
+    void pop() {
+        if (size > 0) --size;
+    }
+    // Crossing a surface with interior `m`: entering from its front pushes, leaving pops.
+    void cross(MediumId m, bool entering) {
+        if (entering) push(m);
+        else pop();
+    }
+};
+
+}  // namespace wavetrace

@@ -1,0 +1,207 @@
+#include "wavetrace/shading/path_vertex.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "wavetrace/scene/scene.h"
+#include "wavetrace/shading/warp.h"
+
+namespace wavetrace {
+
+Vertex surface_vertex(const Scene& scene, const SurfaceHit& hit) {
+    Vertex v;
+    v.p = hit.p;
+    v.ng = hit.ng;
+    v.frame = Frame::from_normal(hit.ns);
+    v.interior = hit.interior;
+    const Material& m = scene.materials[hit.material];
+    v.bsdf.kind = m.kind;
+    if (m.albedo != kNone) v.bsdf.albedo = eval_texture(scene, m.albedo, hit.uv, hit.p);
+    v.bsdf.alpha = m.roughness * m.roughness;
+    v.bsdf.eta = m.ior;
+    return v;
+}
+
+Vertex medium_vertex(const Scene& scene, MediumId medium, Point3 p) {
+    Vertex v;
+    v.p = p;
+    v.frame = Frame::from_normal({0, 0, 1});
+    const Material& phase = scene.materials[scene.media[medium].phase];
+    v.bsdf.kind = MaterialKind::Isotropic;
+    v.bsdf.albedo = eval_texture(scene, phase.albedo, {}, p);
+    return v;
+}
+
+bool can_sample_lights(const Vertex& v, const LightSet& lights) {
+    return !lights.empty() && !v.bsdf.is_delta() &&
+           (v.bsdf.kind == MaterialKind::Lambertian || v.bsdf.kind == MaterialKind::Metal ||
+            v.bsdf.kind == MaterialKind::Isotropic);
+}
+
+Point3 offset_origin(const Vertex& v, Vec3 w) {
+    if (!v.on_surface()) return v.p;
+    float eps = 2e-5f * (1.0f + max_component(abs(v.p)));
+    return v.p + (dot(w, v.ng) > 0.0f ? eps : -eps) * v.ng;
+}
+
+namespace {
+
+// f |cos| at a vertex for world directions, with the geometric-normal test that keeps
+// reflection-only materials from leaking light through the surface when shading and
+// geometric normals disagree.
+Color eval_world(const Vertex& v, Vec3 wo, Vec3 wi, float* pdf) {
+    if (v.on_surface() && dot(wo, v.ng) * dot(wi, v.ng) <= 0.0f) {
+        *pdf = 0.0f;
+        return {};
+    }
+    Vec3 lo = v.frame.to_local(wo), li = v.frame.to_local(wi);
+    *pdf = bsdf_pdf(v.bsdf, lo, li);
+    return bsdf_eval(v.bsdf, lo, li);
+}
+
+}  // namespace
+
+DirectSample sample_direct(const Scene& scene, const LightSet& lights, const Vertex& v, Vec3 wo,
+                           float u_select, float u1, float u2) {
+    DirectSample d;
+    LightSample ls = lights.sample(scene, v.p, u_select, u1, u2);
+    if (!ls.valid || max_component(ls.radiance) <= 0.0f) return d;
+    Color f = eval_world(v, wo, ls.wi, &d.pdf_bsdf);
+    if (max_component(f) <= 0.0f) return d;
+    d.value = f * ls.radiance / ls.pdf;
+    d.pdf_light = ls.pdf;
+    Point3 o = offset_origin(v, ls.wi);
+    // Stop short of the light itself: 1e-4 relative, plus the origin offset.
+    float tmax = std::isinf(ls.dist) ? kInfinity : ls.dist * (1.0f - 1e-4f);
+    d.shadow = Ray{o, ls.wi, 0.0f, tmax};
+    d.valid = true;
+    return d;
+}
+
+float transmittance(const Scene& scene, const Bvh& bvh, Ray ray, MediumStack media, uint64_t* rays) {
+    if (scene.media.empty()) {
+        ++*rays;
+        return bvh.occluded(ray) ? 0.0f : 1.0f;
+    }
+    float tr = 1.0f;
+    for (int crossing = 0; crossing < 64; ++crossing) {
+        ++*rays;
+        Hit hit = bvh.intersect(ray);
+        float end = hit.found() ? hit.t : ray.tmax;
+        MediumId m = media.current();
+        if (m != kNone) {
+            if (std::isinf(end)) return 0.0f;  // an unbounded medium absorbs everything
+            tr *= std::exp(-scene.media[m].density * (end - ray.tmin) * length(ray.d));
+        }
+        if (!hit.found()) return tr;
+        SurfaceHit s = surface_at(scene, ray, hit);
+        if (scene.materials[s.material].kind != MaterialKind::Interface) return 0.0f;
+        media.cross(s.interior, s.front_face);
+        ray.tmin = hit.t;
+        // Step over the boundary: restart just past it along the same line.
+        ray.o = ray.at(hit.t) + (2e-5f * (1.0f + max_component(abs(s.p)))) * normalize(ray.d);
+        ray.tmax = std::isinf(ray.tmax) ? ray.tmax : ray.tmax - hit.t;
+        ray.tmin = 0.0f;
+    }
+    return 0.0f;
+}
+
+Continuation sample_continuation(Strategy strategy, const Scene& scene, const LightSet& lights,
+                                 const Vertex& v, Vec3 wo, const ContinuationSamples& u) {
+    Continuation c;
+    const bool lights_ok = can_sample_lights(v, lights);
+    const bool one_sample =
+        (strategy == Strategy::Mixture && lights_ok) ||
+        (strategy == Strategy::Light && !v.bsdf.is_delta() && can_sample_lights(v, lights));
+    if (!one_sample) {
+        Vec3 lo = v.frame.to_local(wo);
+        BsdfSample s = bsdf_sample(v.bsdf, lo, u.lobe, u.bsdf_u1, u.bsdf_u2);
+        if (!s.valid) return c;
+        c.wi = v.frame.to_world(s.wi);
+        // Reflection must stay on wo's side of the geometric surface, transmission cross it.
+        if (v.on_surface()) {
+            bool crosses = dot(wo, v.ng) * dot(c.wi, v.ng) < 0.0f;
+            if (crosses != s.transmitted) return c;
+        }
+        c.weight = s.weight;
+        c.pdf_bsdf = s.pdf;
+        c.delta = s.delta;
+        c.transmitted = s.transmitted;
+        c.valid = true;
+        return c;
+    }
+    // One-sample combination of two techniques, each picked with probability 1/2; the sample
+    // is weighted by the combined density (Veach 1997, §9.2.4, one-sample model with the
+    // balance heuristic). Mixture pairs light sampling with BSDF sampling; Light pairs it with
+    // a uniform sphere, a "defensive" component (Hesterberg 1995) without which light-sampled
+    // directions could never find indirect light arriving from where no light is.
+    if (u.technique < 0.5f) {
+        LightSample ls = lights.sample(scene, v.p, u.select, u.u1, u.u2);
+        if (!ls.valid) return c;
+        c.wi = ls.wi;
+    } else if (strategy == Strategy::Light) {
+        c.wi = sample_uniform_sphere(u.u1, u.u2);
+    } else {
+        Vec3 lo = v.frame.to_local(wo);
+        BsdfSample s = bsdf_sample(v.bsdf, lo, u.lobe, u.bsdf_u1, u.bsdf_u2);
+        if (!s.valid) return c;
+        c.wi = v.frame.to_world(s.wi);
+    }
+    float pdf_b;
+    Color f = eval_world(v, wo, c.wi, &pdf_b);
+    float pdf_l = lights.pdf_direction(scene, v.p, c.wi);
+    float other = strategy == Strategy::Light ? uniform_sphere_pdf() : pdf_b;
+    float pdf = 0.5f * pdf_l + 0.5f * other;
+    if (!(pdf > 0.0f) || max_component(f) <= 0.0f) return c;
+    c.weight = f / pdf;
+    c.pdf_bsdf = pdf_b;
+    c.valid = true;
+    return c;
+}
+
+float emission_weight(Strategy strategy, MisHeuristic heuristic, bool counts_fully,
+                      float pdf_bsdf, float pdf_light) {
+    switch (strategy) {
+        case Strategy::Bsdf:
+        case Strategy::Light:
+        case Strategy::Mixture: return 1.0f;
+        case Strategy::Nee: return counts_fully ? 1.0f : 0.0f;
+        case Strategy::Mis: return counts_fully ? 1.0f : mis_weight(heuristic, pdf_bsdf, pdf_light);
+    }
+    return 0.0f;
+}
+
+float survival_probability(Color beta) { return std::clamp(max_component(beta), 0.05f, 0.95f); }
+
+float sample_free_flight(float density, float u) { return -std::log1p(-u) / density; }
+
+MediumStack media_at(const Scene& scene, const Bvh& bvh, Point3 p) {
+    MediumStack outside_in;  // boundaries we are inside of, innermost first
+    if (scene.media.empty()) return outside_in;
+    // An arbitrary fixed direction, unlikely to graze axis-aligned geometry.
+    Ray ray{p, normalize(Vec3{0.3141f, 0.2718f, 0.9093f})};
+    int n_entered = 0;  // shapes entered on the way out, not yet left
+    MediumId found[MediumStack::kMaxNesting];
+    int n_found = 0;
+    for (int i = 0; i < 256; ++i) {
+        Hit hit = bvh.intersect(ray);
+        if (!hit.found()) break;
+        SurfaceHit s = surface_at(scene, ray, hit);
+        const MaterialKind kind = scene.materials[s.material].kind;
+        if (kind == MaterialKind::Interface || kind == MaterialKind::Dielectric) {
+            if (s.front_face) {
+                ++n_entered;
+            } else if (n_entered > 0) {
+                --n_entered;  // leaving a shape entered on the way
+            } else if (n_found < MediumStack::kMaxNesting) {
+                found[n_found++] = s.interior;  // leaving a shape p is inside of
+            }
+        }
+        ray.o = ray.at(hit.t) + (2e-5f * (1.0f + max_component(abs(s.p)))) * ray.d;
+        ray.tmin = 0.0f;
+    }
+    for (int i = n_found - 1; i >= 0; --i) outside_in.push(found[i]);
+    return outside_in;
+}
+
+}  // namespace wavetrace
