@@ -128,6 +128,54 @@ def everything():
     }
 
 
+def veach_mis():
+    """Veach's multiple-importance-sampling scene (thesis, 1997, fig. 9.2): four glossy plates of
+    increasing smoothness, each reflecting four spherical lights of increasing size and equal
+    power (radiance proportional to 1 / radius^2). Each plate's normal bisects the directions
+    to the camera and to the row of lights, so every plate shows all four highlights."""
+    import math
+
+    def norm(v):
+        length = math.sqrt(sum(c * c for c in v))
+        return [c / length for c in v]
+
+    camera = [0.0, 2.0, 15.0]
+    light_row = [0.0, 0.0, 0.0]
+    objects = []
+    materials = {"floor": {"type": "lambertian", "albedo": [0.25, 0.25, 0.25]}}
+    roughness = [0.35, 0.2, 0.1, 0.05]  # top (nearest the lights) to bottom
+    centers = [[0.0, -2.6, 0.9], [0.0, -3.2, 2.1], [0.0, -3.65, 3.3], [0.0, -3.95, 4.5]]
+    for k, (c, r) in enumerate(zip(centers, roughness)):
+        to_cam = norm([camera[i] - c[i] for i in range(3)])
+        to_light = norm([light_row[i] - c[i] for i in range(3)])
+        n = norm([to_cam[i] + to_light[i] for i in range(3)])
+        t = norm([0.0, n[2], -n[1]])  # n x (1, 0, 0): u x v then points along n
+        q = [c[i] - 4.0 * (1 if i == 0 else 0) - 0.55 * t[i] for i in range(3)]
+        name = "plate%d" % (k + 1)
+        materials[name] = {"type": "metal", "albedo": [0.8, 0.8, 0.8], "roughness": r}
+        objects.append({"type": "quad", "q": [round(x, 5) for x in q], "u": [8, 0, 0],
+                        "v": [round(1.1 * x, 5) for x in t], "material": name})
+    radii = [0.0333, 0.1, 0.3, 0.9]
+    for k, r in enumerate(radii):
+        name = "light%d" % (k + 1)
+        le = round(1.0 / (r * r), 4)  # equal power: radiance x area is the same for all four
+        materials[name] = {"type": "diffuse_light", "radiance": [le, le, le]}
+        objects.append({"type": "sphere", "center": [-3.75 + 2.5 * k, 0.0, 0.0], "radius": r,
+                        "material": name})
+    objects.append({"type": "quad", "q": [-10, -4.2, -4], "u": [0, 0, 14], "v": [20, 0, 0],
+                    "material": "floor"})
+    objects.append({"type": "quad", "q": [-10, -4.2, -4], "u": [20, 0, 0], "v": [0, 10, 0],
+                    "material": "floor"})
+    return {
+        "description": "Veach's MIS scene: four glossy plates, four sphere lights of equal power",
+        "render": {"width": 512, "height": 384, "spp": 64, "max_depth": 8},
+        "camera": {"look_from": camera, "look_at": [0, -2, 2.5], "up": [0, 1, 0], "vfov": 28},
+        "background": [0, 0, 0],
+        "materials": materials,
+        "objects": objects,
+    }
+
+
 SCENES = {
     "cornell": cornell_scene(
         "The Cornell box with two white blocks (ROYL section 6)",
@@ -158,6 +206,7 @@ SCENES = {
           "transform": [{"scale": 32}, rotate_y(200), {"translate": [278, 0, 290]}]}],
         materials={"gold": {"type": "metal", "albedo": [0.95, 0.7, 0.3], "roughness": 0.3}}),
     "everything": everything(),
+    "veach-mis": veach_mis(),
 }
 
 

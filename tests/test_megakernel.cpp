@@ -1,0 +1,198 @@
+// The reference engine's correctness, measured: closed forms (white furnace, irradiance from
+// a parallel square), agreement of the five strategies, determinism, and finite samples.
+// Bounds come from each render's own per-pixel sample variance.
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include <cmath>
+
+#include "temp_dir.h"
+#include "test_paths.h"
+#include "wavetrace/render/megakernel.h"
+#include "wavetrace/scene/bvh.h"
+#include "wavetrace/scene/scene.h"
+
+using namespace wavetrace;
+
+namespace {
+
+const Strategy kStrategies[] = {Strategy::Bsdf, Strategy::Light, Strategy::Mixture, Strategy::Nee,
+                                Strategy::Mis};
+
+Film render(const Scene& scene, Strategy strategy, int w, int h, int spp, uint64_t seed = 1,
+            int max_depth = 50) {
+    Bvh bvh = Bvh::build(scene);
+    RenderConfig c;
+    c.width = w;
+    c.height = h;
+    c.spp = spp;
+    c.seed = seed;
+    c.strategy = strategy;
+    c.max_depth = max_depth;
+    return render_megakernel(scene, bvh, c);
+}
+
+// Mean of a region's pixel means (luminance) and its standard error.
+struct Estimate {
+    double mean = 0, se = 0;
+};
+Estimate region(const Film& film, int x0, int y0, int w, int h) {
+    Image m = film.mean(), v = film.variance_of_mean();
+    double sum = 0, var = 0;
+    for (int y = y0; y < y0 + h; ++y)
+        for (int x = x0; x < x0 + w; ++x) {
+            sum += luminance(m.at(x, y));
+            // Var of a luminance mean, channels treated as independent (conservative enough
+            // for a z-test; they are positively correlated in practice, which would only
+            // make this smaller... so bound it from above by the correlated case).
+            Color s = v.at(x, y);
+            double sd = 0.2126 * std::sqrt(s.x) + 0.7152 * std::sqrt(s.y) + 0.0722 * std::sqrt(s.z);
+            var += sd * sd;
+        }
+    double n = double(w) * h;
+    return {sum / n, std::sqrt(var) / n};
+}
+
+// The largest count of |z| > 4 outliers among n independent tests that is still consistent
+// with normal errors at significance 1e-3 (binomial upper tail).
+int allowed_outliers(int n) {
+    const double p = std::erfc(4.0 / std::sqrt(2.0));  // P(|z| > 4) = 6.3e-5
+    double pk = std::pow(1 - p, n), tail = 1 - pk;
+    int k = 0;
+    while (tail >= 1e-3) {
+        ++k;
+        pk *= (n - k + 1) / double(k) * p / (1 - p);
+        tail -= pk;
+    }
+    return k;
+}
+
+Scene furnace_scene(float albedo) {
+    // A lambertian sphere filling the whole view, in a uniform white environment. The sphere
+    // is convex, so light leaving it never returns: every pixel sees albedo x 1.
+    Scene s;
+    Material m;
+    m.kind = MaterialKind::Lambertian;
+    m.albedo = s.add_solid(Color(albedo));
+    s.add_sphere({{0, 0, 0}, 1.0f, s.add_material(m), kNone});
+    s.background.radiance = Color(1.0f);
+    s.camera.look_from = {0, 0, -3};
+    s.camera.look_at = {0, 0, 0};
+    s.camera.vfov = 20;  // half-angle 10 deg < asin(1/3) = 19.5 deg: all pixels see the sphere
+    return s;
+}
+
+}  // namespace
+
+TEST(Megakernel, WhiteFurnace) {
+    for (float albedo : {1.0f, 0.5f})
+        for (Strategy st : kStrategies) {
+            Film film = render(furnace_scene(albedo), st, 16, 16, 64);
+            Estimate e = region(film, 0, 0, 16, 16);
+            std::printf("furnace albedo %.1f %-8s mean %.5f +- %.5f (expected %.1f)\n", albedo,
+                        to_string(st), e.mean, e.se, albedo);
+            EXPECT_NEAR(e.mean, albedo, 4 * e.se + 1e-6) << to_string(st);
+            EXPECT_EQ(film.invalid_samples(), 0u);
+        }
+}
+
+// A diffuse plane of albedo rho lit by a square emitter of side 2a and radiance Le, parallel
+// to it at height h: the point below the centre reflects rho Le F, with the form factor of a
+// differential area to a centred parallel rectangle (sum of four corner rectangles,
+// Howell's catalogue C-11): F = 2/pi [A/sqrt(1+A^2) atan(B/sqrt(1+A^2)) + B/sqrt(1+B^2)
+// atan(A/sqrt(1+B^2))], A = a/h, B = b/h.
+TEST(Megakernel, IrradianceUnderAParallelSquare) {
+    const float rho = 0.6f, le = 5.0f, a = 0.5f, h = 1.0f;
+    Scene s;
+    Material floor;
+    floor.kind = MaterialKind::Lambertian;
+    floor.albedo = s.add_solid(Color(rho));
+    Material light;
+    light.kind = MaterialKind::DiffuseLight;
+    light.emission = s.add_solid(Color(le));
+    s.add_quad({{-50, 0, -50}, {0, 0, 100}, {100, 0, 0}, s.add_material(floor), kNone});
+    s.add_quad({{-a, h, -a}, {2 * a, 0, 0}, {0, 0, 2 * a}, s.add_material(light), kNone});
+    s.camera.look_from = {0, 0.5f, -3};
+    s.camera.look_at = {0, 0, 0};
+    s.camera.vfov = 0.01f;  // one pixel seeing a 0.5 mm patch around the centre
+    const double A = a / h, B = a / h;
+    const double F = 2 / 3.14159265358979 *
+                     (A / std::sqrt(1 + A * A) * std::atan(B / std::sqrt(1 + A * A)) +
+                      B / std::sqrt(1 + B * B) * std::atan(A / std::sqrt(1 + B * B)));
+    const double expected = rho * le * F;
+    for (Strategy st : kStrategies) {
+        Film film = render(s, st, 1, 1, 40000, 3, 2);
+        Estimate e = region(film, 0, 0, 1, 1);
+        std::printf("irradiance %-8s %.5f +- %.5f (closed form %.5f)\n", to_string(st), e.mean, e.se,
+                    expected);
+        EXPECT_NEAR(e.mean, expected, 4 * e.se) << to_string(st);
+    }
+}
+
+// The five strategies estimate one integral: 8x8-block means agree within 4 combined
+// standard errors, with no more outlying blocks than normal errors would explain.
+TEST(Megakernel, StrategiesAgree) {
+    struct Case {
+        const char* scene;
+        int w, h, spp, max_depth;
+    };
+    // veach-mis is compared on direct illumination (paths of two segments), which is what the
+    // scene is about: the lights' highlights in the plates. Its longer paths include glossy
+    // caustics on the floor (floor -> near-mirror plate -> light) that the single strategies
+    // find so rarely that no affordable sample count gives them a trustworthy variance.
+    for (const Case& c : {Case{"cornell", 48, 48, 192, 8}, Case{"cornell-glass", 48, 48, 192, 8},
+                          Case{"cornell-smoke", 48, 48, 192, 8}, Case{"veach-mis", 32, 24, 1024, 2}}) {
+        Scene scene = load_scene(scene_path(c.scene));
+        std::vector<Film> films;
+        for (Strategy st : kStrategies)
+            films.push_back(render(scene, st, c.w, c.h, c.spp, 7, c.max_depth));
+        int tests = 0, outliers = 0;
+        double worst = 0;
+        for (int by = 0; by < c.h / 8; ++by)
+            for (int bx = 0; bx < c.w / 8; ++bx) {
+                Estimate ref = region(films.back(), bx * 8, by * 8, 8, 8);  // MIS
+                for (size_t k = 0; k + 1 < films.size(); ++k) {
+                    Estimate e = region(films[k], bx * 8, by * 8, 8, 8);
+                    double se = std::sqrt(e.se * e.se + ref.se * ref.se);
+                    double z = se > 0 ? std::fabs(e.mean - ref.mean) / se : 0;
+                    worst = std::max(worst, z);
+                    ++tests;
+                    if (z > 4) {
+                        ++outliers;
+                        std::printf("  %s block (%d,%d) %s %.4f vs mis %.4f: z %.1f\n", c.scene, bx, by,
+                                    to_string(kStrategies[k]), e.mean, ref.mean, z);
+                    }
+                }
+            }
+        int allowed = allowed_outliers(tests);
+        std::printf("agreement %-14s %d block comparisons, %d beyond 4 sigma (allowed %d), worst z %.2f\n",
+                    c.scene, tests, outliers, allowed, worst);
+        EXPECT_LE(outliers, allowed) << c.scene;
+        for (const Film& f : films) EXPECT_EQ(f.invalid_samples(), 0u) << c.scene;
+    }
+}
+
+TEST(Megakernel, BitIdenticalForAnyThreadCount) {
+    Scene scene = load_scene(scene_path("cornell-smoke"));
+    auto with = [&](int threads) {
+        tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+        return render(scene, Strategy::Mis, 40, 40, 8, 5).mean();
+    };
+    Image one = with(1), two = with(2), five = with(5);
+    for (size_t i = 0; i < one.pixels.size(); ++i) {
+        ASSERT_EQ(one.pixels[i], two.pixels[i]) << i;
+        ASSERT_EQ(one.pixels[i], five.pixels[i]) << i;
+    }
+}
+
+TEST(Megakernel, EveryShippedSceneRendersFiniteSamples) {
+    for (const char* name : {"cornell", "cornell-glass", "cornell-mirror", "cornell-smoke",
+                             "everything", "bunny", "dragon", "veach-mis"})
+        for (Strategy st : kStrategies) {
+            Film film = render(load_scene(scene_path(name)), st, 24, 24, 2);
+            EXPECT_EQ(film.invalid_samples(), 0u) << name << " " << to_string(st);
+            double sum = 0;
+            for (const Color& c : film.mean().pixels) sum += luminance(c);
+            EXPECT_GT(sum, 0.0) << name << " " << to_string(st);
+        }
+}
