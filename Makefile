@@ -17,7 +17,7 @@ build: deps
 
 demo: build
 	@mkdir -p out
-	@$(BUILD_DIR)/bin/wavetrace render scenes/cornell.json --aov albedo --spp 4 -o out/cornell.png
+	@$(BUILD_DIR)/bin/wavetrace render scenes/cornell.json --spp 32 -o out/cornell.png
 
 # Tests that measure something (e.g. agreement with Embree) leave a line in build/reports/.
 test: build

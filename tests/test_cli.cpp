@@ -1,4 +1,5 @@
 // The command line, run as a user would: exit codes, messages, and what gets written.
+#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
@@ -81,9 +82,9 @@ TEST(Cli, BadOptionsExitTwoAndWriteNothing) {
     EXPECT_EQ(run(dir, "render " + scene("cornell") + " --aov albedo --spp 0x" + o).code, 2);
     EXPECT_EQ(run(dir, "render " + scene("cornell") + " --aov bogus" + o).code, 2);
     EXPECT_EQ(run(dir, "render " + scene("cornell") + " --frobnicate" + o).code, 2);
-    CliResult color = run(dir, "render " + scene("cornell") + o);
-    EXPECT_EQ(color.code, 2);
-    EXPECT_NE(color.err.find("needs a light-transport engine"), std::string::npos) << color.err;
+    EXPECT_EQ(run(dir, "render " + scene("cornell") + " --strategy best" + o).code, 2);
+    EXPECT_EQ(run(dir, "render " + scene("cornell") + " --max-depth 0x" + o).code, 2);
+    EXPECT_EQ(run(dir, "render " + scene("cornell") + " --max-depth 5000" + o).code, 2);
     CliResult missing = run(dir, "render '" + (dir.path() / "none.json").string() + "' --aov albedo" + o);
     EXPECT_EQ(missing.code, 2);
     EXPECT_NE(missing.err.find("none.json: cannot open scene file"), std::string::npos) << missing.err;
@@ -95,10 +96,33 @@ TEST(Cli, BadOptionsExitTwoAndWriteNothing) {
     EXPECT_EQ(run(dir, "info '" + (dir.path() / "none.json").string() + "'").code, 2);
 }
 
+TEST(Cli, ColorRenderRecordsItsSettingsInTheExr) {
+    TempDir dir;
+    auto out = dir.path() / "c.exr";
+    CliResult r = run(dir, "render " + scene("cornell-smoke") +
+                               " --strategy nee --mis-heuristic balance --spp 3 --seed 9 --max-depth 7"
+                               " --width 20 --height 10 -o '" + out.string() + "'");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.err.find("megakernel nee 20x10 3 spp"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("Mpaths/s"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("0 invalid samples"), std::string::npos) << r.err;
+    auto in = OIIO::ImageInput::open(out.string());
+    ASSERT_TRUE(in);
+    const OIIO::ImageSpec& spec = in->spec();
+    EXPECT_EQ(spec.get_string_attribute("wavetrace:engine"), "megakernel");
+    EXPECT_EQ(spec.get_string_attribute("wavetrace:strategy"), "nee");
+    EXPECT_EQ(spec.get_string_attribute("wavetrace:mis_heuristic"), "balance");
+    EXPECT_EQ(spec.get_string_attribute("wavetrace:spp"), "3");
+    EXPECT_EQ(spec.get_string_attribute("wavetrace:seed"), "9");
+    EXPECT_EQ(spec.get_string_attribute("wavetrace:max_depth"), "7");
+    EXPECT_NE(spec.get_string_attribute("wavetrace:scene").find("cornell-smoke.json"), std::string::npos);
+    EXPECT_FALSE(spec.get_string_attribute("wavetrace:render_seconds").empty());
+}
+
 TEST(Cli, OutputDoesNotDependOnThreadCount) {
     TempDir dir;
     auto a = dir.path() / "a.exr", b = dir.path() / "b.exr";
-    std::string common = "render " + scene("everything") + " --aov albedo --spp 3 --width 96 --height 96";
+    std::string common = "render " + scene("everything") + " --spp 3 --width 48 --height 48";
     ASSERT_EQ(run(dir, common + " --threads 1 -o '" + a.string() + "'").code, 0);
     ASSERT_EQ(run(dir, common + " --threads 2 -o '" + b.string() + "'").code, 0);
     ImageData ia = read_image(a), ib = read_image(b);

@@ -5,6 +5,7 @@
 #include <tbb/global_control.h>
 
 #include <cmath>
+#include <map>
 
 #include "temp_dir.h"
 #include "test_paths.h"
@@ -195,4 +196,55 @@ TEST(Megakernel, EveryShippedSceneRendersFiniteSamples) {
             for (const Color& c : film.mean().pixels) sum += luminance(c);
             EXPECT_GT(sum, 0.0) << name << " " << to_string(st);
         }
+}
+
+// Veach's point, on his scene: at equal sample counts MIS is never much worse than the best
+// single strategy for a region, and better than each of them over the whole image. Regions:
+// each plate's strip of the image cut into four columns, one per light (16 regions).
+TEST(Megakernel, MisEarnsItsName) {
+    Scene scene = load_scene(scene_path("veach-mis"));
+    const int w = 64, h = 48, spp = 32, depth = 2;
+    Image ref = render(scene, Strategy::Mis, w, h, 2048, 99, depth).mean();
+    // Relative squared error per pixel, (x - r)^2 / (r^2 + 1e-3), summed over a region.
+    auto rmse = [&](const Image& img, int x0, int y0, int x1, int y1) {
+        double sum = 0;
+        for (int y = y0; y < y1; ++y)
+            for (int x = x0; x < x1; ++x) {
+                double r = luminance(ref.at(x, y)), v = luminance(img.at(x, y));
+                sum += (v - r) * (v - r) / (r * r + 1e-3);
+            }
+        return sum / ((x1 - x0) * (y1 - y0));
+    };
+    // The plates occupy the lower half of the image, one above the other: four bands of rows,
+    // each cut into four columns (one per light).
+    const int plate_top = h / 2, plate_rows = (h - plate_top) / 4;
+    std::map<Strategy, Image> images;
+    for (Strategy st : {Strategy::Bsdf, Strategy::Light, Strategy::Nee, Strategy::Mis})
+        images[st] = render(scene, st, w, h, spp, 1, depth).mean();
+    int worse = 0;
+    for (int plate = 0; plate < 4; ++plate)
+        for (int col = 0; col < 4; ++col) {
+            int x0 = col * w / 4, x1 = (col + 1) * w / 4;
+            int y0 = plate_top + plate * plate_rows, y1 = y0 + plate_rows;
+            double best = INFINITY;
+            Strategy best_st = Strategy::Bsdf;
+            for (Strategy st : {Strategy::Bsdf, Strategy::Light, Strategy::Nee}) {
+                double e = rmse(images[st], x0, y0, x1, y1);
+                if (e < best) {
+                    best = e;
+                    best_st = st;
+                }
+            }
+            double mis = rmse(images[Strategy::Mis], x0, y0, x1, y1);
+            std::printf("mis-region plate %d light %d: mis rMSE %.4g, best single %.4g (%s)\n",
+                        plate + 1, col + 1, mis, best, to_string(best_st));
+            if (mis > 1.1 * best) ++worse;
+        }
+    EXPECT_EQ(worse, 0);
+    double mis_all = rmse(images[Strategy::Mis], 0, 0, w, h);
+    for (Strategy st : {Strategy::Bsdf, Strategy::Light, Strategy::Nee}) {
+        double e = rmse(images[st], 0, 0, w, h);
+        std::printf("mis-overall %-6s rMSE %.4g (mis %.4g)\n", to_string(st), e, mis_all);
+        EXPECT_LT(mis_all, e) << to_string(st);
+    }
 }
