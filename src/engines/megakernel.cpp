@@ -1,5 +1,6 @@
 // The megakernel: per pixel sample, a recursive ray_color in the seed's style (depth-limited,
-// with Russian roulette), calling the shared per-vertex functions of shading/path_vertex.h.
+// with Russian roulette). Every step of a path is a call into shading/path_vertex.h, the code
+// the wavefront kernels call too.
 #include "wavetrace/render/megakernel.h"
 
 #include <tbb/blocked_range.h>
@@ -7,7 +8,6 @@
 
 #include <atomic>
 #include <chrono>
-#include <cmath>
 
 #include "wavetrace/render/sampler.h"
 #include "wavetrace/scene/bvh.h"
@@ -28,117 +28,45 @@ struct PathContext {
     uint32_t pixel;
     uint32_t sample;
     uint64_t rays = 0;
-
-    float u(int bounce, BounceDim d) const {
-        return sample_1d(config.seed, pixel, sample, bounce_dim(bounce, d));
-    }
 };
-
-// What the vertex before a ray segment leaves for the emission it may find.
-struct Previous {
-    Point3 p;
-    float pdf_bsdf = 0.0f;
-    bool counts_fully = true;  // camera ray, or a vertex that could not sample lights
-};
-
-Color ray_color(PathContext& ctx, Ray ray, int bounce, MediumStack media, const Previous& prev,
-                Color beta);
-
-// Emission reaching the previous vertex along `ray`, weighted by the strategy.
-float weight_for_emitter(const PathContext& ctx, const Previous& prev, PrimRef prim, Vec3 wi,
-                         float dist) {
-    if (prev.counts_fully || ctx.config.strategy != Strategy::Mis)
-        return emission_weight(ctx.config.strategy, ctx.config.heuristic, prev.counts_fully, 0, 0);
-    float pdf_light = prim.valid() ? ctx.lights.pdf_prim(ctx.scene, prev.p, prim, wi, dist)
-                                   : ctx.lights.pdf_background(ctx.scene, wi);
-    return emission_weight(ctx.config.strategy, ctx.config.heuristic, false, prev.pdf_bsdf, pdf_light);
-}
-
-// Scattering at a vertex: next-event estimation, then the continuation, recursively.
-Color scatter(PathContext& ctx, const Vertex& v, Vec3 wo, int bounce, MediumStack media, Color beta) {
-    Color radiance{0.0f};
-    // A vertex may scatter only if the path may still grow by a segment.
-    if (bounce + 1 >= ctx.config.max_depth) return radiance;
-    const Strategy strategy = ctx.config.strategy;
-    const bool lights_ok = can_sample_lights(v, ctx.lights);
-
-    if (lights_ok && (strategy == Strategy::Nee || strategy == Strategy::Mis)) {
-        DirectSample d = sample_direct(ctx.scene, ctx.lights, v, wo, ctx.u(bounce, kDimLightSelect),
-                                       ctx.u(bounce, kDimLightU), ctx.u(bounce, kDimLightV));
-        if (d.valid) {
-            float w = strategy == Strategy::Mis
-                          ? mis_weight(ctx.config.heuristic, d.pdf_light, d.pdf_bsdf)
-                          : 1.0f;
-            if (w > 0.0f) {
-                float tr = transmittance(ctx.scene, ctx.bvh, d.shadow, media, &ctx.rays);
-                radiance += d.value * (w * tr);
-            }
-        }
-    }
-
-    ContinuationSamples cs{ctx.u(bounce, kDimTechnique),  ctx.u(bounce, kDimDirectionSelect),
-                           ctx.u(bounce, kDimDirectionU), ctx.u(bounce, kDimDirectionV),
-                           ctx.u(bounce, kDimBsdfLobe),   ctx.u(bounce, kDimBsdfU),
-                           ctx.u(bounce, kDimBsdfV)};
-    Continuation c = sample_continuation(strategy, ctx.scene, ctx.lights, v, wo, cs);
-    if (!c.valid) return radiance;
-    Color weight = c.weight;
-    if (bounce + 1 >= ctx.config.rr_depth) {
-        float q = survival_probability(beta * weight);
-        if (ctx.u(bounce, kDimRoulette) >= q) return radiance;
-        weight /= q;
-    }
-    if (c.transmitted) media.cross(v.interior, dot(c.wi, v.ng) < 0.0f);
-    Previous next{v.p, c.pdf_bsdf, c.delta || !lights_ok};
-    Ray r{offset_origin(v, c.wi), c.wi};
-    return radiance + weight * ray_color(ctx, r, bounce + 1, media, next, beta * weight);
-}
 
 // Radiance arriving along `ray` (the seed's ray_color). `bounce` numbers the vertex the ray
-// will reach: 0 for camera rays.
-Color ray_color(PathContext& ctx, Ray ray, int bounce, MediumStack media, const Previous& prev,
-                Color beta) {
-    const Scene& scene = ctx.scene;
-    const float dir_length = length(ray.d);
-    const Vec3 dir = ray.d / dir_length;
-    // The free-flight distance is drawn once per segment; boundary crossings use up the
-    // distance travelled in each medium (memorylessness keeps this exact).
-    float flight = -std::log1p(-ctx.u(bounce, kDimMediumDistance));  // in optical depth units
+// will reach: 0 for camera rays. `beta` is the path throughput so far, for Russian roulette.
+Color ray_color(PathContext& ctx, Ray ray, int bounce, MediumStack media,
+                const PreviousVertex& prev, Color beta) {
+    const RenderConfig& cfg = ctx.config;
+    float flight = segment_flight(cfg.seed, ctx.pixel, ctx.sample, bounce);
     for (int crossing = 0; crossing < kMaxCrossings; ++crossing) {
         ++ctx.rays;
         Hit hit = ctx.bvh.intersect(ray);
-        MediumId m = media.current();
-        if (m != kNone) {
-            float density = scene.media[m].density;
-            float seg = hit.found() ? (hit.t - ray.tmin) * dir_length : kInfinity;
-            float s = flight / density;  // world distance to the scattering event
-            if (s < seg) {
-                Point3 p = ray.o + (ray.tmin + s / dir_length) * ray.d;
-                return scatter(ctx, medium_vertex(scene, m, p), -dir, bounce, media, beta);
-            }
-            flight -= density * seg;
+        SegmentResult seg = resolve_segment(ctx.scene, ctx.lights, cfg, ray, hit, media, flight, prev);
+        switch (seg.event) {
+            case SegmentEvent::Cross: ray = seg.next; continue;
+            case SegmentEvent::Emission: return seg.emission;
+            case SegmentEvent::End: return {};
+            case SegmentEvent::Scatter: break;
         }
-        if (!hit.found()) {
-            if (scene.background.is_black()) return {};
-            Color le = eval_background(scene, dir);
-            return le * weight_for_emitter(ctx, prev, PrimRef{}, dir, kInfinity);
+        if (!may_scatter(cfg, bounce)) return {};
+        const Vertex& v = seg.vertex;
+        VertexSamples u = vertex_samples(cfg.seed, ctx.pixel, ctx.sample, bounce);
+
+        // Next-event estimation: a shadow ray to a light sample, weighted for the strategy.
+        Color radiance{0.0f};
+        if ((cfg.strategy == Strategy::Nee || cfg.strategy == Strategy::Mis) &&
+            can_sample_lights(v, ctx.lights)) {
+            DirectSample d = sample_direct(ctx.scene, ctx.lights, v, seg.wo, u.light_select,
+                                           u.light_u, u.light_v);
+            float w = d.valid ? direct_weight(cfg.strategy, cfg.heuristic, d.pdf_light, d.pdf_bsdf) : 0;
+            if (w > 0.0f)
+                radiance += d.value * (w * transmittance(ctx.scene, ctx.bvh, d.shadow, media, &ctx.rays));
         }
-        SurfaceHit s = surface_at(scene, ray, hit);
-        const MaterialKind kind = scene.materials[s.material].kind;
-        if (kind == MaterialKind::Interface) {
-            media.cross(s.interior, s.front_face);
-            ray.o = s.p + (2e-5f * (1.0f + max_component(abs(s.p)))) * dir;
-            ray.d = dir;
-            ray.tmin = 0.0f;
-            continue;
-        }
-        if (kind == MaterialKind::DiffuseLight) {
-            Color le = emitted_radiance(scene, s);
-            if (max_component(le) <= 0.0f) return {};
-            float dist = length(s.p - prev.p);
-            return le * weight_for_emitter(ctx, prev, hit.prim, dir, dist);
-        }
-        return scatter(ctx, surface_vertex(scene, s), -dir, bounce, media, beta);
+
+        // The continuation, recursively.
+        PathStep step = continue_path(ctx.scene, ctx.lights, cfg, v, seg.wo, bounce, beta, media,
+                                      u.continuation, u.roulette);
+        if (!step.alive) return radiance;
+        return radiance + step.weight * ray_color(ctx, step.next, bounce + 1, media, step.prev,
+                                                  beta * step.weight);
     }
     return {};
 }
@@ -166,11 +94,9 @@ Film render_megakernel(const Scene& scene, const Bvh& bvh, const RenderConfig& c
                     const uint32_t pixel = static_cast<uint32_t>(y) * config.width + x;
                     for (int i = 0; i < config.spp; ++i) {
                         PathContext ctx{scene, bvh, lights, config, pixel, static_cast<uint32_t>(i)};
-                        auto u = [&](uint32_t dim) { return sample_1d(config.seed, pixel, i, dim); };
-                        Ray ray = camera.generate(x + u(kDimPixelX), y + u(kDimPixelY), u(kDimLensU),
-                                                  u(kDimLensV));
-                        Previous camera_vertex{ray.o, 0.0f, true};
-                        Color c = ray_color(ctx, ray, 0, camera_media, camera_vertex, Color(1.0f));
+                        Ray ray = generate_camera_ray(camera, config.seed, pixel, i, x, y);
+                        Color c = ray_color(ctx, ray, 0, camera_media, PreviousVertex{ray.o},
+                                            Color(1.0f));
                         film.add(static_cast<int>(pixel), c);
                         tile_rays += ctx.rays;
                     }

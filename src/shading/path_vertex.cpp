@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "wavetrace/render/sampler.h"
 #include "wavetrace/scene/scene.h"
 #include "wavetrace/shading/warp.h"
 
@@ -169,6 +170,102 @@ float emission_weight(Strategy strategy, MisHeuristic heuristic, bool counts_ful
         case Strategy::Mis: return counts_fully ? 1.0f : mis_weight(heuristic, pdf_bsdf, pdf_light);
     }
     return 0.0f;
+}
+
+float direct_weight(Strategy strategy, MisHeuristic heuristic, float pdf_light, float pdf_bsdf) {
+    return strategy == Strategy::Mis ? mis_weight(heuristic, pdf_light, pdf_bsdf) : 1.0f;
+}
+
+SegmentResult resolve_segment(const Scene& scene, const LightSet& lights, const RenderConfig& config,
+                              const Ray& ray, const Hit& hit, MediumStack& media, float& flight,
+                              const PreviousVertex& prev) {
+    SegmentResult r;
+    const float dir_length = length(ray.d);
+    const Vec3 dir = ray.d / dir_length;
+    const MediumId m = media.current();
+    if (m != kNone) {
+        const float density = scene.media[m].density;
+        const float seg = hit.found() ? (hit.t - ray.tmin) * dir_length : kInfinity;
+        const float s = flight / density;  // world distance to the scattering event
+        if (s < seg) {
+            r.event = SegmentEvent::Scatter;
+            r.vertex = medium_vertex(scene, m, ray.o + (ray.tmin + s / dir_length) * ray.d);
+            r.wo = -dir;
+            return r;
+        }
+        flight -= density * seg;  // memoryless: the rest carries over past the boundary
+    }
+    // Emission found by this segment, weighted for the strategy (MIS needs the density with
+    // which the previous vertex's light sampling would have produced it).
+    auto weighted = [&](Color le, PrimRef prim, float dist) {
+        float pdf_light = 0.0f;
+        if (config.strategy == Strategy::Mis && !prev.counts_fully)
+            pdf_light = prim.valid() ? lights.pdf_prim(scene, prev.p, prim, dir, dist)
+                                     : lights.pdf_background(scene, dir);
+        r.event = SegmentEvent::Emission;
+        r.emission = le * emission_weight(config.strategy, config.heuristic, prev.counts_fully,
+                                          prev.pdf_bsdf, pdf_light);
+    };
+    if (!hit.found()) {
+        if (!scene.background.is_black()) weighted(eval_background(scene, dir), PrimRef{}, kInfinity);
+        return r;
+    }
+    SurfaceHit s = surface_at(scene, ray, hit);
+    const MaterialKind kind = scene.materials[s.material].kind;
+    if (kind == MaterialKind::Interface) {
+        media.cross(s.interior, s.front_face);
+        r.event = SegmentEvent::Cross;
+        r.next = Ray{s.p + (2e-5f * (1.0f + max_component(abs(s.p)))) * dir, dir};
+        return r;
+    }
+    if (kind == MaterialKind::DiffuseLight) {
+        Color le = emitted_radiance(scene, s);
+        if (max_component(le) > 0.0f) weighted(le, hit.prim, length(s.p - prev.p));
+        return r;
+    }
+    r.event = SegmentEvent::Scatter;
+    r.vertex = surface_vertex(scene, s);
+    r.wo = -dir;
+    return r;
+}
+
+PathStep continue_path(const Scene& scene, const LightSet& lights, const RenderConfig& config,
+                       const Vertex& v, Vec3 wo, int bounce, Color beta, MediumStack& media,
+                       const ContinuationSamples& u, float u_roulette) {
+    PathStep step;
+    Continuation c = sample_continuation(config.strategy, scene, lights, v, wo, u);
+    if (!c.valid) return step;
+    step.weight = c.weight;
+    if (bounce + 1 >= config.rr_depth) {
+        float q = survival_probability(beta * step.weight);
+        if (u_roulette >= q) return step;
+        step.weight /= q;
+    }
+    if (c.transmitted) media.cross(v.interior, dot(c.wi, v.ng) < 0.0f);
+    step.prev = {v.p, c.pdf_bsdf, c.delta || !can_sample_lights(v, lights)};
+    step.next = Ray{offset_origin(v, c.wi), c.wi};
+    step.alive = true;
+    return step;
+}
+
+VertexSamples vertex_samples(uint64_t seed, uint32_t pixel, uint32_t sample, int bounce) {
+    auto u = [&](BounceDim d) { return sample_1d(seed, pixel, sample, bounce_dim(bounce, d)); };
+    return {u(kDimLightSelect),
+            u(kDimLightU),
+            u(kDimLightV),
+            {u(kDimTechnique), u(kDimDirectionSelect), u(kDimDirectionU), u(kDimDirectionV),
+             u(kDimBsdfLobe), u(kDimBsdfU), u(kDimBsdfV)},
+            u(kDimRoulette)};
+}
+
+Ray generate_camera_ray(const CameraRays& camera, uint64_t seed, uint32_t pixel, uint32_t sample,
+                        int x, int y) {
+    auto u = [&](uint32_t dim) { return sample_1d(seed, pixel, sample, dim); };
+    return camera.generate(x + u(kDimPixelX), y + u(kDimPixelY), u(kDimLensU), u(kDimLensV));
+}
+
+float segment_flight(uint64_t seed, uint32_t pixel, uint32_t sample, int bounce) {
+    return -std::log1p(-sample_1d(seed, pixel, sample, bounce_dim(bounce, kDimMediumDistance)));
 }
 
 float survival_probability(Color beta) { return std::clamp(max_component(beta), 0.05f, 0.95f); }

@@ -10,6 +10,7 @@
 #include "wavetrace/math/ray.h"
 #include "wavetrace/render/render.h"
 #include "wavetrace/scene/bvh.h"
+#include "wavetrace/scene/camera.h"
 #include "wavetrace/scene/surface.h"
 #include "wavetrace/shading/bsdf.h"
 #include "wavetrace/shading/lights.h"
@@ -81,6 +82,68 @@ Continuation sample_continuation(Strategy strategy, const Scene& scene, const Li
 // `counts_fully`: a camera ray, or the previous vertex could not sample lights (delta lobes).
 float emission_weight(Strategy strategy, MisHeuristic heuristic, bool counts_fully,
                       float pdf_bsdf, float pdf_light);
+// Weight of a next-event (shadow ray) contribution: 1 for NEE, w(p_l, p_b) for MIS.
+float direct_weight(Strategy strategy, MisHeuristic heuristic, float pdf_light, float pdf_bsdf);
+
+// --- path segments ----------------------------------------------------------------------
+// What the vertex a segment starts from leaves for the emission the segment may find.
+struct PreviousVertex {
+    Point3 p;
+    float pdf_bsdf = 0.0f;
+    bool counts_fully = true;  // camera ray, or a vertex that could not sample lights
+};
+
+enum class SegmentEvent : uint8_t {
+    Scatter,   // the path scatters at `vertex` (a surface or a point in a medium)
+    Emission,  // the segment ends on an emitter or in the background: `emission` (weighted)
+    Cross,     // the segment crossed a medium boundary and goes on as `next`
+    End,       // absorbed: a black background, the back of an emitter, or too many crossings
+};
+
+struct SegmentResult {
+    SegmentEvent event = SegmentEvent::End;
+    Vertex vertex;
+    Vec3 wo;                 // Scatter: unit direction back along the segment
+    Color emission{0.0f};    // Emission: radiance times the strategy's weight
+    Ray next;                // Cross: the continuing ray
+};
+
+// Resolves one ray segment given its closest hit: medium scattering before the hit (consuming
+// `flight`, the optical depth left, drawn once per segment), escaping, emitters, medium
+// boundaries (updating `media`), or a surface to scatter at.
+SegmentResult resolve_segment(const Scene& scene, const LightSet& lights, const RenderConfig& config,
+                              const Ray& ray, const Hit& hit, MediumStack& media, float& flight,
+                              const PreviousVertex& prev);
+
+// The continuation of a path at a scattering vertex, Russian roulette included: the next ray,
+// the factor for the path throughput, the record for weighting emission the next segment
+// finds, and the media after a transmission. `alive` is false when the path ends here.
+struct PathStep {
+    bool alive = false;
+    Ray next;
+    Color weight{0.0f};
+    PreviousVertex prev;
+};
+PathStep continue_path(const Scene& scene, const LightSet& lights, const RenderConfig& config,
+                       const Vertex& v, Vec3 wo, int bounce, Color beta, MediumStack& media,
+                       const ContinuationSamples& u, float u_roulette);
+// The uniform numbers of vertex `bounce` of path (pixel, sample), from the dimension layout
+// of render/sampler.h: what both engines draw, so that they trace the same paths.
+struct VertexSamples {
+    float light_select, light_u, light_v;  // next-event estimation
+    ContinuationSamples continuation;
+    float roulette;
+};
+VertexSamples vertex_samples(uint64_t seed, uint32_t pixel, uint32_t sample, int bounce);
+// Optical depth a segment reaching vertex `bounce` may travel before scattering in a medium.
+float segment_flight(uint64_t seed, uint32_t pixel, uint32_t sample, int bounce);
+
+// The camera ray of sample `sample` of pixel (x, y), jittered over the pixel and the lens.
+Ray generate_camera_ray(const CameraRays& camera, uint64_t seed, uint32_t pixel, uint32_t sample,
+                        int x, int y);
+
+// Whether a vertex reached by segment `bounce` may scatter: the path may still grow.
+inline bool may_scatter(const RenderConfig& config, int bounce) { return bounce + 1 < config.max_depth; }
 
 // Russian roulette survival probability for path throughput beta.
 float survival_probability(Color beta);
