@@ -20,7 +20,8 @@ struct RenderOptions {
     int threads = 0;  // 0: all hardware threads
     std::string aov = "color";
     float exposure = 0.0f;
-    std::string engine = "megakernel";
+    std::string engine = "wavefront";
+    size_t wave_size = 0;  // 0: the engine's default
     std::string strategy = "mis";
     std::string heuristic = "power";
     int max_depth = 0;  // 0: the scene file's value

@@ -31,7 +31,7 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
     cmd->add_option("--exposure", o.exposure, "exposure in stops for .png/.jpg output")
         ->capture_default_str();
     cmd->add_option("--engine", o.engine, "light-transport engine")
-        ->check(CLI::IsMember({"megakernel"}))
+        ->check(CLI::IsMember({"wavefront", "megakernel"}))
         ->capture_default_str();
     cmd->add_option("--strategy", o.strategy, "estimator of the rendering equation")
         ->check(CLI::IsMember({"bsdf", "light", "mixture", "nee", "mis"}))
@@ -40,6 +40,8 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
         ->check(CLI::IsMember({"balance", "power"}))
         ->capture_default_str();
     cmd->add_option("--max-depth", o.max_depth, "most ray segments per path (default: the scene's)");
+    cmd->add_option("--wave-size", o.wave_size,
+                    "wavefront: paths in flight per wave (default 65536, at most the pixel count)");
 }
 
 namespace {
@@ -96,6 +98,8 @@ std::optional<std::string> check_options(const RenderOptions& o, const RenderSet
         return fmt::format("--height: expected 1..{}, got {}", kMaxImageSide, o.height);
     if (o.spp < 0 || o.spp > kMaxSpp)
         return fmt::format("--spp: expected 1..{}, got {}", kMaxSpp, o.spp);
+    if (o.wave_size > (size_t(1) << 26))
+        return fmt::format("--wave-size: expected 1..{}, got {}", size_t(1) << 26, o.wave_size);
     if (o.max_depth < 0 || o.max_depth > kMaxDepth)
         return fmt::format("--max-depth: expected 1..{}, got {}", kMaxDepth, o.max_depth);
     if (o.threads < 0) return fmt::format("--threads: expected a positive count, got {}", o.threads);
@@ -149,7 +153,11 @@ int run_render(const RenderOptions& o) {
         config.max_depth = o.max_depth ? o.max_depth : scene.render.max_depth;
         RenderStats stats;
         Progress progress(config);
-        Film film = render_megakernel(scene, bvh, config, &stats, progress.callback());
+        WavefrontConfig wavefront;
+        if (o.wave_size > 0) wavefront.wave_size = o.wave_size;
+        Film film = o.engine == "megakernel"
+                        ? render_megakernel(scene, bvh, config, &stats, progress.callback())
+                        : render_wavefront(scene, bvh, config, wavefront, &stats, progress.callback());
         progress.finish();
         image = film.mean();
         write.metadata.insert(write.metadata.end(),

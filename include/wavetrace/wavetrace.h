@@ -11,6 +11,7 @@
 #include "wavetrace/render/film.h"
 #include "wavetrace/render/megakernel.h"
 #include "wavetrace/render/render.h"
+#include "wavetrace/render/wavefront.h"
 #include "wavetrace/render/sampler.h"
 #include "wavetrace/scene/bvh.h"
 #include "wavetrace/scene/intersect.h"
