@@ -72,6 +72,9 @@ int run_info(const InfoOptions& o) {
                st.nodes, st.leaves, sizeof(BvhNode), st.depth, st.sah_cost, st.build_ms);
     fmt::print("memory       geometry {}, bvh {}, textures {}\n", mib(geometry), mib(st.bytes),
                mib(texels));
+    const size_t per_path = wavefront_bytes_per_path(), wave = WavefrontConfig{}.wave_size;
+    fmt::print("wavefront    {} B of queues per path in flight; {} paths per wave: {}\n", per_path, wave,
+               mib(per_path * wave));
     return kExitOk;
 }
 

@@ -6,6 +6,7 @@
 #include <iostream>
 #include <optional>
 #include <mutex>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include "commands.h"
@@ -45,6 +46,13 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
 }
 
 namespace {
+
+// The process's peak resident set so far (getrusage reports KiB on Linux).
+double peak_rss_mib() {
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    return usage.ru_maxrss / 1024.0;
+}
 
 void map_aov_to_display(Aov aov, Image& image) {
     if (aov == Aov::Normal) {
@@ -168,10 +176,10 @@ int run_render(const RenderOptions& o) {
                                {"wavetrace:max_depth", std::to_string(config.max_depth)},
                                {"wavetrace:render_seconds", fmt::format("{:.3f}", stats.seconds)}});
         summary = fmt::format("{} {} {}x{} {} spp: {:.2f} s, {:.2f} Mpaths/s, {:.2f} Mrays/s, "
-                              "{} invalid samples",
+                              "{} invalid samples, peak memory {:.1f} MiB",
                               o.engine, o.strategy, width, height, config.spp, stats.seconds,
                               stats.paths / stats.seconds * 1e-6, stats.rays / stats.seconds * 1e-6,
-                              film.invalid_samples());
+                              film.invalid_samples(), peak_rss_mib());
     } else {
         AovSettings settings{width, height, o.spp ? o.spp : 1, o.seed};
         Aov aov = o.aov == "albedo" ? Aov::Albedo : o.aov == "normal" ? Aov::Normal : Aov::Depth;
