@@ -103,13 +103,13 @@ TEST(Cli, ColorRenderRecordsItsSettingsInTheExr) {
                                " --strategy nee --mis-heuristic balance --spp 3 --seed 9 --max-depth 7"
                                " --width 20 --height 10 -o '" + out.string() + "'");
     ASSERT_EQ(r.code, 0) << r.err;
-    EXPECT_NE(r.err.find("megakernel nee 20x10 3 spp"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("wavefront nee 20x10 3 spp"), std::string::npos) << r.err;  // the default engine
     EXPECT_NE(r.err.find("Mpaths/s"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("0 invalid samples"), std::string::npos) << r.err;
     auto in = OIIO::ImageInput::open(out.string());
     ASSERT_TRUE(in);
     const OIIO::ImageSpec& spec = in->spec();
-    EXPECT_EQ(spec.get_string_attribute("wavetrace:engine"), "megakernel");
+    EXPECT_EQ(spec.get_string_attribute("wavetrace:engine"), "wavefront");
     EXPECT_EQ(spec.get_string_attribute("wavetrace:strategy"), "nee");
     EXPECT_EQ(spec.get_string_attribute("wavetrace:mis_heuristic"), "balance");
     EXPECT_EQ(spec.get_string_attribute("wavetrace:spp"), "3");
