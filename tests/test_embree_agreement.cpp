@@ -1,6 +1,5 @@
 // Our BVH against Embree 3 on the same rays: camera rays plus rays leaving random surface
 // points in cosine-distributed directions, over a million per scene.
-#include <embree3/rtcore.h>
 #include <gtest/gtest.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
@@ -10,6 +9,7 @@
 #include <fstream>
 #include <vector>
 
+#include "reference/embree_mirror.h"
 #include "test_paths.h"
 #include "wavetrace/math/constants.h"
 #include "wavetrace/math/frame.h"
@@ -24,92 +24,6 @@ namespace {
 constexpr int kCameraSide = 512;             // 262,144 camera rays
 constexpr uint32_t kSurfaceRays = 786'432;   // + surface rays = 1,048,576 rays per scene
 constexpr float kRelTolerance = 1e-4f;
-
-// The scene mirrored into Embree: geometry id = primitive kind, primitive id = index.
-class EmbreeScene {
-public:
-    explicit EmbreeScene(const Scene& s) {
-        device_ = rtcNewDevice(nullptr);
-        scene_ = rtcNewScene(device_);
-        rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
-        if (!s.triangles.empty()) {
-            RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
-            auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
-                g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), s.positions.size()));
-            for (size_t i = 0; i < s.positions.size(); ++i)
-                for (int k = 0; k < 3; ++k) v[3 * i + k] = s.positions[i][k];
-            auto* idx = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
-                g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), s.triangles.size()));
-            for (size_t i = 0; i < s.triangles.size(); ++i)
-                for (int k = 0; k < 3; ++k) idx[3 * i + k] = s.triangles[i].v[k];
-            attach(g, PrimKind::Triangle);
-        }
-        if (!s.quads.empty()) {
-            RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_QUAD);
-            auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
-                g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 4 * s.quads.size()));
-            auto* idx = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
-                g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT4, 4 * sizeof(uint32_t), s.quads.size()));
-            for (size_t i = 0; i < s.quads.size(); ++i) {
-                const Quad& q = s.quads[i];
-                Point3 corners[4] = {q.q, q.q + q.u, q.q + q.u + q.v, q.q + q.v};
-                for (int c = 0; c < 4; ++c) {
-                    for (int k = 0; k < 3; ++k) v[3 * (4 * i + c) + k] = corners[c][k];
-                    idx[4 * i + c] = static_cast<uint32_t>(4 * i + c);
-                }
-            }
-            attach(g, PrimKind::Quad);
-        }
-        if (!s.spheres.empty()) {
-            RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_SPHERE_POINT);
-            auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
-                g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), s.spheres.size()));
-            for (size_t i = 0; i < s.spheres.size(); ++i) {
-                for (int k = 0; k < 3; ++k) v[4 * i + k] = s.spheres[i].center[k];
-                v[4 * i + 3] = s.spheres[i].radius;
-            }
-            attach(g, PrimKind::Sphere);
-        }
-        rtcCommitScene(scene_);
-    }
-    ~EmbreeScene() {
-        rtcReleaseScene(scene_);
-        rtcReleaseDevice(device_);
-    }
-
-    Hit intersect(const Ray& ray) const {
-        RTCIntersectContext context;
-        rtcInitIntersectContext(&context);
-        RTCRayHit rh{};
-        rh.ray.org_x = ray.o.x;
-        rh.ray.org_y = ray.o.y;
-        rh.ray.org_z = ray.o.z;
-        rh.ray.dir_x = ray.d.x;
-        rh.ray.dir_y = ray.d.y;
-        rh.ray.dir_z = ray.d.z;
-        rh.ray.tnear = ray.tmin;
-        rh.ray.tfar = ray.tmax;
-        rh.ray.mask = ~0u;
-        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-        rtcIntersect1(scene_, &context, &rh);
-        Hit hit;
-        if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
-            hit.t = rh.ray.tfar;
-            hit.prim = PrimRef::make(static_cast<PrimKind>(rh.hit.geomID), rh.hit.primID);
-        }
-        return hit;
-    }
-
-private:
-    void attach(RTCGeometry g, PrimKind kind) {
-        rtcCommitGeometry(g);
-        rtcAttachGeometryByID(scene_, g, static_cast<unsigned>(kind));
-        rtcReleaseGeometry(g);
-    }
-
-    RTCDevice device_;
-    RTCScene scene_;
-};
 
 // Ray i: the first kCameraSide^2 are camera rays through jittered pixel positions; the rest
 // leave a random point of a random primitive, on a random side, cosine-distributed.
@@ -175,7 +89,7 @@ struct Tally {
 void compare_scene(const char* name) {
     Scene scene = load_scene(scene_path(name));
     Bvh bvh = Bvh::build(scene);
-    EmbreeScene embree(scene);
+    EmbreeMirror embree(scene);
     CameraRays camera(scene.camera, kCameraSide, kCameraSide);
     const uint32_t total = kCameraSide * kCameraSide + kSurfaceRays;
 

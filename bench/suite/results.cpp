@@ -1,0 +1,53 @@
+#include "results.h"
+
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <fstream>
+
+namespace wavetrace::bench {
+
+void Results::table(const std::string& name, std::vector<std::string> columns) {
+    tables_.push_back({name, std::move(columns), {}});
+}
+
+void Results::row(const std::string& name, std::vector<nlohmann::json> values) {
+    for (Table& t : tables_)
+        if (t.name == name) t.rows.push_back(std::move(values));
+}
+
+void Results::save(const std::filesystem::path& dir) const {
+    std::filesystem::create_directories(dir);
+    nlohmann::json all = {{"meta", meta_}, {"tables", nlohmann::json::object()}};
+    for (const Table& t : tables_) {
+        std::ofstream csv(dir / (t.name + ".csv"));
+        for (size_t c = 0; c < t.columns.size(); ++c) csv << (c ? "," : "") << t.columns[c];
+        csv << "\n";
+        nlohmann::json rows = nlohmann::json::array();
+        for (const auto& r : t.rows) {
+            nlohmann::json obj;
+            for (size_t c = 0; c < r.size(); ++c) {
+                csv << (c ? "," : "") << (r[c].is_string() ? r[c].get<std::string>() : r[c].dump());
+                obj[t.columns[c]] = r[c];
+            }
+            csv << "\n";
+            rows.push_back(obj);
+        }
+        all["tables"][t.name] = rows;
+    }
+    std::ofstream(dir / "results.json") << all.dump(2) << "\n";
+}
+
+Spread spread(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    if (v.empty()) return {0, 0, 0};
+    return {v.front(), v[v.size() / 2], v.back()};
+}
+
+double peak_rss_mib() {
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    return usage.ru_maxrss / 1024.0;
+}
+
+}  // namespace wavetrace::bench
