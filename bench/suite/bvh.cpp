@@ -1,0 +1,154 @@
+// Our BVH against Embree on the same captured ray batches: coherent primary rays, incoherent
+// diffuse bounces, and shadow rays; single rays on one thread and on all threads, Embree's
+// 8- and 16-wide packets on the primary batch; and build times.
+#include <embree3/rtcore.h>
+#include <tbb/blocked_range.h>
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+
+#include <chrono>
+#include <cstdio>
+#include <functional>
+
+#include "reference/embree_mirror.h"
+#include "sections.h"
+#include "wavetrace/shading/lights.h"
+#include "wavetrace/shading/warp.h"
+#include "wavetrace/wavetrace.h"
+
+namespace wavetrace::bench {
+
+namespace {
+
+struct Batches {
+    std::vector<Ray> primary, diffuse, shadow;
+};
+
+// Primary rays in 4 x 2 pixel tiles (so that 8 consecutive rays form a coherent packet and 16
+// form two), then from each primary hit a cosine-distributed bounce and a shadow ray to a
+// light sample.
+Batches capture(const Scene& scene, const Bvh& bvh, int side) {
+    Batches b;
+    CameraRays camera(scene.camera, side, side);
+    LightSet lights(scene);
+    for (int ty = 0; ty < side; ty += 2)
+        for (int tx = 0; tx < side; tx += 4)
+            for (int y = ty; y < ty + 2; ++y)
+                for (int x = tx; x < tx + 4; ++x)
+                    b.primary.push_back(camera.generate(x + 0.5f, y + 0.5f, 0.5f, 0.5f));
+    uint32_t i = 0;
+    for (const Ray& ray : b.primary) {
+        ++i;
+        Hit hit = bvh.intersect(ray);
+        if (!hit.found()) continue;
+        SurfaceHit s = surface_at(scene, ray, hit);
+        Normal3 n = s.front_face ? s.ng : -s.ng;
+        Vec3 local = sample_cosine_hemisphere(sample_1d(7, i, 0, 0), sample_1d(7, i, 0, 1));
+        Point3 o = s.p + 2e-5f * (1.0f + max_component(abs(s.p))) * n;
+        b.diffuse.push_back(Ray{o, Frame::from_normal(n).to_world(local)});
+        if (lights.empty()) continue;
+        LightSample ls = lights.sample(scene, o, sample_1d(7, i, 0, 2), sample_1d(7, i, 0, 3),
+                                       sample_1d(7, i, 0, 4));
+        if (ls.valid) b.shadow.push_back(Ray{o, ls.wi, 0.0f, ls.dist * (1.0f - 1e-4f)});
+    }
+    return b;
+}
+
+// Mrays/s of `trace` over all rays, median of three runs; `threads` 1 runs serially.
+double mrays(const std::vector<Ray>& rays, int threads, size_t step,
+             const std::function<void(size_t)>& trace) {
+    std::vector<double> rates;
+    for (int run = 0; run < 3; ++run) {
+        auto start = std::chrono::steady_clock::now();
+        if (threads == 1) {
+            for (size_t i = 0; i + step <= rays.size(); i += step) trace(i);
+        } else {
+            tbb::parallel_for(tbb::blocked_range<size_t>(0, rays.size() / step, 64),
+                              [&](const tbb::blocked_range<size_t>& r) {
+                                  for (size_t k = r.begin(); k < r.end(); ++k) trace(k * step);
+                              });
+        }
+        double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        rates.push_back(double(rays.size() / step * step) / s * 1e-6);
+    }
+    return spread(rates).median;
+}
+
+template <int N>
+void embree_packet(const EmbreeMirror& e, const Ray* rays) {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    alignas(64) RTCRayHitNt<N> rh;
+    alignas(64) int valid[N];
+    for (int k = 0; k < N; ++k) {
+        valid[k] = -1;
+        rh.ray.org_x[k] = rays[k].o.x;
+        rh.ray.org_y[k] = rays[k].o.y;
+        rh.ray.org_z[k] = rays[k].o.z;
+        rh.ray.dir_x[k] = rays[k].d.x;
+        rh.ray.dir_y[k] = rays[k].d.y;
+        rh.ray.dir_z[k] = rays[k].d.z;
+        rh.ray.tnear[k] = rays[k].tmin;
+        rh.ray.tfar[k] = rays[k].tmax;
+        rh.ray.mask[k] = ~0u;
+        rh.ray.time[k] = 0;
+        rh.ray.flags[k] = 0;
+        rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+    }
+    if constexpr (N == 8)
+        rtcIntersect8(valid, e.scene(), &context, reinterpret_cast<RTCRayHit8*>(&rh));
+    else
+        rtcIntersect16(valid, e.scene(), &context, reinterpret_cast<RTCRayHit16*>(&rh));
+}
+
+double median_ms(const std::function<double()>& build) {
+    std::vector<double> t;
+    for (int i = 0; i < 3; ++i) t.push_back(build());
+    return spread(t).median;
+}
+
+}  // namespace
+
+void bench_bvh(const Options& o, Results& r) {
+    r.table("bvh", {"scene", "batch", "threads", "rays", "ours_mrays", "embree_mrays",
+                    "ours_over_embree", "embree_packet8_mrays", "embree_packet16_mrays"});
+    r.table("bvh_build", {"scene", "primitives", "ours_ms", "embree_medium_ms", "embree_high_ms"});
+    const int all_threads = tbb::this_task_arena::max_concurrency();
+    for (const char* name : {"cornell", "everything", "dragon"}) {
+        Scene scene = load_scene(o.scenes / (std::string(name) + ".json"));
+        Bvh bvh = Bvh::build(scene);
+        EmbreeMirror embree(scene, RTC_BUILD_QUALITY_MEDIUM, /*robust=*/false);
+        Batches b = capture(scene, bvh, o.quick ? 32 : 512);
+        for (int threads : {1, all_threads}) {
+            tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+            auto row = [&](const char* batch, const std::vector<Ray>& rays, bool shadow, bool packets) {
+                double ours = mrays(rays, threads, 1, [&](size_t i) {
+                    if (shadow) (void)bvh.occluded(rays[i]);
+                    else (void)bvh.intersect(rays[i]);
+                });
+                double ref = mrays(rays, threads, 1, [&](size_t i) {
+                    if (shadow) (void)embree.occluded(rays[i]);
+                    else (void)embree.intersect(rays[i]);
+                });
+                nlohmann::json p8 = nullptr, p16 = nullptr;
+                if (packets) {
+                    p8 = mrays(rays, threads, 8, [&](size_t i) { embree_packet<8>(embree, &rays[i]); });
+                    p16 = mrays(rays, threads, 16, [&](size_t i) { embree_packet<16>(embree, &rays[i]); });
+                }
+                r.row("bvh", {name, batch, threads, rays.size(), ours, ref, ours / ref, p8, p16});
+                std::printf("bvh %-10s %-8s %d thread(s): ours %7.2f Mrays/s, embree %7.2f, ours/embree %.2f\n",
+                            name, batch, threads, ours, ref, ours / ref);
+                std::fflush(stdout);
+            };
+            row("primary", b.primary, false, true);
+            row("diffuse", b.diffuse, false, false);
+            row("shadow", b.shadow, true, false);
+        }
+        double ours = median_ms([&] { return Bvh::build(scene).stats().build_ms; });
+        double medium = median_ms([&] { return EmbreeMirror(scene, RTC_BUILD_QUALITY_MEDIUM, false).build_ms(); });
+        double high = median_ms([&] { return EmbreeMirror(scene, RTC_BUILD_QUALITY_HIGH, false).build_ms(); });
+        r.row("bvh_build", {name, scene.primitive_count(), ours, medium, high});
+    }
+}
+
+}  // namespace wavetrace::bench

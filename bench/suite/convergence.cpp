@@ -1,0 +1,49 @@
+// Relative MSE against a long reference render versus render time, per strategy;
+// efficiency = 1 / (rMSE x time) (higher is better).
+#include <cstdio>
+
+#include "sections.h"
+#include "wavetrace/wavetrace.h"
+
+namespace wavetrace::bench {
+
+void bench_convergence(const Options& o, Results& r) {
+    r.table("convergence", {"scene", "strategy", "spp", "seconds", "rel_mse", "efficiency"});
+    struct Case {
+        const char* scene;
+        int w, h, max_depth;
+    };
+    for (const Case& c : {Case{"cornell", 96, 96, 8}, Case{"veach-mis", 128, 96, 8}}) {
+        Scene scene = load_scene(o.scenes / (std::string(c.scene) + ".json"));
+        Bvh bvh = Bvh::build(scene);
+        RenderConfig cfg;
+        cfg.width = o.quick ? 8 : c.w;
+        cfg.height = o.quick ? 8 : c.h;
+        cfg.max_depth = c.max_depth;
+        cfg.strategy = Strategy::Mis;
+        cfg.spp = o.quick ? 4 : 4096;
+        cfg.seed = 12345;  // the reference uses other random numbers than the renders it judges
+        Image ref = render_wavefront(scene, bvh, cfg).mean();
+        cfg.seed = 1;
+        for (Strategy st : {Strategy::Bsdf, Strategy::Light, Strategy::Mixture, Strategy::Nee, Strategy::Mis})
+            for (int spp : {1, 4, 16, 64, 256}) {
+                if (o.quick && spp > 4) break;
+                cfg.strategy = st;
+                cfg.spp = spp;
+                RenderStats stats;
+                Image img = render_wavefront(scene, bvh, cfg, {}, &stats).mean();
+                double sum = 0;
+                for (size_t i = 0; i < img.pixels.size(); ++i) {
+                    double x = luminance(img.pixels[i]), y = luminance(ref.pixels[i]);
+                    sum += (x - y) * (x - y) / (y * y + 1e-3);
+                }
+                double rmse = sum / double(img.pixels.size());
+                r.row("convergence", {c.scene, to_string(st), spp, stats.seconds, rmse,
+                                      1.0 / (rmse * stats.seconds)});
+            }
+        std::printf("convergence %s done\n", c.scene);
+        std::fflush(stdout);
+    }
+}
+
+}  // namespace wavetrace::bench

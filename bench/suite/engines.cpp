@@ -1,0 +1,72 @@
+// Both engines at equal settings on each benchmark scene, repetitions interleaved (A B A B)
+// so that the machine's drift hits both alike.
+#include <cstdio>
+
+#include "sections.h"
+#include "wavetrace/wavetrace.h"
+
+namespace wavetrace::bench {
+
+namespace {
+double relative_mse(const Image& a, const Image& ref) {
+    double sum = 0;
+    for (size_t i = 0; i < a.pixels.size(); ++i) {
+        double x = luminance(a.pixels[i]), r = luminance(ref.pixels[i]);
+        sum += (x - r) * (x - r) / (r * r + 1e-3);
+    }
+    return sum / double(a.pixels.size());
+}
+}  // namespace
+
+void bench_engines(const Options& o, Results& r) {
+    r.table("engines", {"scene", "width", "height", "spp", "megakernel_mpaths", "wavefront_mpaths",
+                        "megakernel_mrays", "wavefront_mrays", "ratio_min", "ratio_median",
+                        "ratio_max", "rel_mse_between", "wavefront_queue_mib", "film_mib",
+                        "peak_rss_mib"});
+    struct Case {
+        const char* scene;
+        int w, h, spp;
+    };
+    const Case full[] = {{"cornell", 320, 320, 16}, {"everything", 320, 320, 16},
+                         {"bunny", 320, 320, 16},   {"dragon", 320, 320, 16},
+                         {"veach-mis", 384, 288, 16}};
+    const int reps = o.quick ? 1 : 3;
+    for (const Case& c : full) {
+        Scene scene = load_scene(o.scenes / (std::string(c.scene) + ".json"));
+        Bvh bvh = Bvh::build(scene);
+        RenderConfig cfg;
+        cfg.width = o.quick ? 16 : c.w;
+        cfg.height = o.quick ? 16 : c.h;
+        cfg.spp = o.quick ? 1 : c.spp;
+        cfg.seed = 1;
+        cfg.max_depth = scene.render.max_depth;
+        std::vector<double> ratio, mk_paths, wf_paths, mk_rays, wf_rays;
+        Image mk_img, wf_img;
+        WavefrontConfig wf_cfg;
+        for (int rep = 0; rep < reps; ++rep) {
+            RenderStats mk, wf;
+            mk_img = render_megakernel(scene, bvh, cfg, &mk).mean();
+            wf_img = render_wavefront(scene, bvh, cfg, wf_cfg, &wf).mean();
+            ratio.push_back(mk.seconds / wf.seconds);  // > 1: the wavefront is faster
+            mk_paths.push_back(mk.paths / mk.seconds * 1e-6);
+            wf_paths.push_back(wf.paths / wf.seconds * 1e-6);
+            mk_rays.push_back(mk.rays / mk.seconds * 1e-6);
+            wf_rays.push_back(wf.rays / wf.seconds * 1e-6);
+        }
+        Spread s = spread(ratio);
+        const double pixels = double(cfg.width) * cfg.height;
+        const double queue_mib = double(wavefront_bytes_per_path()) *
+                                 std::min<double>(double(wf_cfg.wave_size), pixels) / (1 << 20);
+        const double film_mib = pixels * (6 * sizeof(double) + sizeof(uint32_t)) / (1 << 20);
+        r.row("engines", {c.scene, cfg.width, cfg.height, cfg.spp, spread(mk_paths).median,
+                          spread(wf_paths).median, spread(mk_rays).median, spread(wf_rays).median,
+                          s.min, s.median, s.max, relative_mse(wf_img, mk_img), queue_mib, film_mib,
+                          peak_rss_mib()});
+        std::printf("engines %-10s megakernel %6.3f Mpaths/s  wavefront %6.3f Mpaths/s  "
+                    "wavefront/megakernel %.2f [%.2f, %.2f]\n",
+                    c.scene, spread(mk_paths).median, spread(wf_paths).median, s.median, s.min, s.max);
+        std::fflush(stdout);
+    }
+}
+
+}  // namespace wavetrace::bench

@@ -1,0 +1,51 @@
+// wavetrace_bench: the benchmark suite. Runs each section side by side in this one process and
+// writes results/ (JSON, one CSV per table). `--quick` runs tiny settings, for the test suite.
+#include <CLI/CLI.hpp>
+#include <tbb/task_arena.h>
+
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+
+#include "sections.h"
+
+int main(int argc, char** argv) {
+    using namespace wavetrace::bench;
+    CLI::App app{"wavetrace benchmark suite"};
+    Options o;
+    std::string out = "results", scenes = WAVETRACE_SCENES_DIR;
+    std::vector<std::string> sections = {"engines", "bvh", "scaling", "convergence"};
+    app.add_flag("--quick", o.quick, "tiny settings: check the harness only");
+    app.add_option("--out", out, "results folder")->capture_default_str();
+    app.add_option("--scenes", scenes, "scenes folder")->capture_default_str();
+    app.add_option("--sections", sections, "sections to run")
+        ->check(CLI::IsMember({"engines", "bvh", "scaling", "convergence"}));
+    app.add_option("--max-threads", o.max_threads, "scaling: up to this many threads (default: all)");
+    CLI11_PARSE(app, argc, argv);
+    o.scenes = scenes;
+
+    Results r;
+    std::string cpu = "unknown";
+    {
+        std::ifstream info("/proc/cpuinfo");
+        for (std::string line; std::getline(info, line);)
+            if (line.rfind("model name", 0) == 0) {
+                cpu = line.substr(line.find(':') + 2);
+                break;
+            }
+    }
+    r.note("cpu", cpu);
+    r.note("hardware_threads", tbb::this_task_arena::max_concurrency());
+    r.note("quick", o.quick);
+    auto start = std::chrono::steady_clock::now();
+    for (const std::string& s : sections) {
+        if (s == "engines") bench_engines(o, r);
+        if (s == "bvh") bench_bvh(o, r);
+        if (s == "scaling") bench_scaling(o, r);
+        if (s == "convergence") bench_convergence(o, r);
+    }
+    r.note("seconds", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    r.save(out);
+    std::printf("results written to %s/\n", out.c_str());
+    return 0;
+}

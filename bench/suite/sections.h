@@ -1,0 +1,22 @@
+// The sections of the benchmark suite. Each measures side by side in one process and adds its
+// tables to the results.
+#pragma once
+
+#include <filesystem>
+
+#include "results.h"
+
+namespace wavetrace::bench {
+
+struct Options {
+    bool quick = false;        // tiny settings: checks the harness, measures nothing useful
+    int max_threads = 0;       // scaling goes 1 .. this (0: all hardware threads)
+    std::filesystem::path scenes;
+};
+
+void bench_engines(const Options& o, Results& r);      // megakernel vs wavefront, A B A B ...
+void bench_bvh(const Options& o, Results& r);          // our BVH vs Embree on captured rays
+void bench_scaling(const Options& o, Results& r);      // threads 1..N, both engines
+void bench_convergence(const Options& o, Results& r);  // rMSE vs time per strategy
+
+}  // namespace wavetrace::bench
