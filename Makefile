@@ -4,7 +4,7 @@
 BUILD_DIR ?= build
 JOBS ?= $(shell nproc)
 
-.PHONY: all deps build demo test clean
+.PHONY: all deps build demo test bench clean
 
 all: build
 
@@ -24,6 +24,15 @@ test: build
 	@rm -rf $(BUILD_DIR)/reports
 	@cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
 	@cat $(BUILD_DIR)/reports/*.txt 2>/dev/null || true
+
+# The benchmark suite: both engines side by side, our BVH vs Embree, thread scaling,
+# convergence, kernel micro-benchmarks; results/ gets JSON, CSV and SVG plots.
+bench: build
+	@tools/install-deps.sh --bench
+	@$(BUILD_DIR)/bin/wavetrace_bench --out results
+	@$(BUILD_DIR)/bin/kernel_bench --benchmark_out=results/kernels.json --benchmark_out_format=json
+	@gnuplot -e "dir='results'" bench/plot.gp
+	@echo "results in results/ (JSON, CSV, SVG)"
 
 clean:
 	rm -rf $(BUILD_DIR) out

@@ -16,6 +16,11 @@ packages=(
   libbenchmark-dev
 )
 
+# `install-deps.sh --bench` adds what `make bench` needs beyond the build: gnuplot for plots.
+if [[ "${1:-}" == "--bench" ]]; then
+  packages+=(gnuplot-nox)
+fi
+
 missing=()
 for p in "${packages[@]}"; do
   status=$(dpkg-query -W -f='${Status}' "$p" 2>/dev/null || true)

@@ -1,0 +1,50 @@
+# Plots of a benchmark run: gnuplot -e "dir='results'" bench/plot.gp
+# Reads DIR/*.csv (written by wavetrace_bench) and writes DIR/*.svg.
+if (!exists("dir")) dir = "results"
+set datafile separator ","
+set terminal svg size 720,400 font "sans,12" background rgb "white"
+set key top left
+set grid ytics
+
+# Speed per scene and engine.
+set output dir."/engines.svg"
+set title "Camera paths per second (median of interleaved repetitions)"
+set ylabel "Mpaths/s"
+set style data histograms
+set style histogram clustered gap 1
+set style fill solid 0.8 border -1
+set boxwidth 0.9
+plot dir."/engines.csv" using 5:xtic(1) title "megakernel", "" using 6 title "wavefront"
+
+# Our BVH against Embree, single thread.
+set output dir."/bvh.svg"
+set title "Single-ray traversal, one thread: ours vs Embree"
+set ylabel "Mrays/s"
+plot dir."/bvh.csv" using (column(3) == 1 ? column(5) : 1/0):xtic(strcol(1)."\n".strcol(2)) title "ours", \
+     "" using (column(3) == 1 ? column(6) : 1/0) title "Embree rtcIntersect1/rtcOccluded1"
+
+# Thread scaling.
+set output dir."/scaling.svg"
+set style data linespoints
+set title "Speed-up over one thread"
+set xlabel "threads"
+set ylabel "speed-up"
+set xtics 1
+plot dir."/scaling.csv" using (strcol(1) eq "cornell" && strcol(2) eq "megakernel" ? column(3) : 1/0):5 title "cornell, megakernel", \
+     "" using (strcol(1) eq "cornell" && strcol(2) eq "wavefront" ? column(3) : 1/0):5 title "cornell, wavefront", \
+     "" using (strcol(1) eq "dragon" && strcol(2) eq "megakernel" ? column(3) : 1/0):5 title "dragon, megakernel", \
+     "" using (strcol(1) eq "dragon" && strcol(2) eq "wavefront" ? column(3) : 1/0):5 title "dragon, wavefront", \
+     x title "ideal" dt 2 lc rgb "grey"
+
+# Convergence: relative MSE against time, log-log, one plot per scene.
+set logscale xy
+set xlabel "render time (s)"
+set ylabel "relative MSE"
+set key top right
+set xtics auto
+do for [s in "cornell veach-mis"] {
+    set output dir."/convergence-".s.".svg"
+    set title "Convergence on ".s
+    plot for [st in "bsdf light mixture nee mis"] dir."/convergence.csv" \
+        using (strcol(1) eq s && strcol(2) eq st ? column(4) : 1/0):5 title st
+}
