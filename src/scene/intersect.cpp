@@ -74,14 +74,19 @@ bool intersect_triangle(const Ray& ray, Point3 p0, Point3 p1, Point3 p2, PrimHit
     p2t.x += sx * p2t.z;
     p2t.y += sy * p2t.z;
 
-    // 2-D edge functions in double: the products of two floats are exact there, so each edge
-    // function is correctly rounded, and the triangle on the other side of a shared edge
-    // computes exactly its negation. The two triangles thus never both miss a ray through
-    // their edge (Woop et al. fall back to double only when the float result is 0; doing it
-    // always is as cheap as the FMA-based alternative on CPUs without FMA in the baseline).
-    float e0 = static_cast<float>(double(p1t.x) * p2t.y - double(p1t.y) * p2t.x);
-    float e1 = static_cast<float>(double(p2t.x) * p0t.y - double(p2t.y) * p0t.x);
-    float e2 = static_cast<float>(double(p0t.x) * p1t.y - double(p0t.y) * p1t.x);
+    // 2-D edge functions. In float, the triangle on the other side of a shared edge computes
+    // exactly the negation of this one's value for that edge (same products, subtraction
+    // reversed; no FMA contraction under -std=c++20), so the two never both miss a ray through
+    // it. Only a result of exactly 0 is ambiguous; it is recomputed in double, where the
+    // products of floats are exact (Woop et al. §3.3).
+    float e0 = p1t.x * p2t.y - p1t.y * p2t.x;
+    float e1 = p2t.x * p0t.y - p2t.y * p0t.x;
+    float e2 = p0t.x * p1t.y - p0t.y * p1t.x;
+    if (e0 == 0.0f || e1 == 0.0f || e2 == 0.0f) {
+        e0 = static_cast<float>(double(p1t.x) * p2t.y - double(p1t.y) * p2t.x);
+        e1 = static_cast<float>(double(p2t.x) * p0t.y - double(p2t.y) * p0t.x);
+        e2 = static_cast<float>(double(p0t.x) * p1t.y - double(p0t.y) * p1t.x);
+    }
     if ((e0 < 0 || e1 < 0 || e2 < 0) && (e0 > 0 || e1 > 0 || e2 > 0)) return false;
     float det = e0 + e1 + e2;
     if (det == 0.0f) return false;

@@ -23,8 +23,8 @@ bool intersect_sphere(const Ray& ray, Point3 center, float radius, PrimHit* hit)
 bool intersect_quad(const Ray& ray, Point3 q, Vec3 u, Vec3 v, PrimHit* hit);
 
 // Watertight ray/triangle test: Woop, Benthin and Wald, "Watertight Ray/Triangle
-// Intersection", JCGT 2(1), 2013, with edge functions evaluated in double precision and
-// pbrt-v4's conservative bound that t is above zero.
+// Intersection", JCGT 2(1), 2013 (edge functions in float, recomputed in double when one is
+// exactly 0), with pbrt-v4's conservative bound that t is above zero.
 // Rays through a shared edge or vertex of a closed mesh hit at least one of its triangles.
 bool intersect_triangle(const Ray& ray, Point3 p0, Point3 p1, Point3 p2, PrimHit* hit);
 
