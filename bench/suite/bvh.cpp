@@ -1,7 +1,6 @@
 // Our BVH against Embree on the same captured ray batches: coherent primary rays, incoherent
 // diffuse bounces, and shadow rays; single rays on one thread and on all threads, Embree's
 // 8- and 16-wide packets on the primary batch; and build times.
-#include <embree3/rtcore.h>
 #include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
@@ -74,33 +73,6 @@ double mrays(const std::vector<Ray>& rays, int threads, size_t step,
     return spread(rates).median;
 }
 
-template <int N>
-void embree_packet(const EmbreeMirror& e, const Ray* rays) {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    alignas(64) RTCRayHitNt<N> rh;
-    alignas(64) int valid[N];
-    for (int k = 0; k < N; ++k) {
-        valid[k] = -1;
-        rh.ray.org_x[k] = rays[k].o.x;
-        rh.ray.org_y[k] = rays[k].o.y;
-        rh.ray.org_z[k] = rays[k].o.z;
-        rh.ray.dir_x[k] = rays[k].d.x;
-        rh.ray.dir_y[k] = rays[k].d.y;
-        rh.ray.dir_z[k] = rays[k].d.z;
-        rh.ray.tnear[k] = rays[k].tmin;
-        rh.ray.tfar[k] = rays[k].tmax;
-        rh.ray.mask[k] = ~0u;
-        rh.ray.time[k] = 0;
-        rh.ray.flags[k] = 0;
-        rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
-    }
-    if constexpr (N == 8)
-        rtcIntersect8(valid, e.scene(), &context, reinterpret_cast<RTCRayHit8*>(&rh));
-    else
-        rtcIntersect16(valid, e.scene(), &context, reinterpret_cast<RTCRayHit16*>(&rh));
-}
-
 double median_ms(const std::function<double()>& build) {
     std::vector<double> t;
     for (int i = 0; i < 3; ++i) t.push_back(build());
@@ -132,8 +104,8 @@ void bench_bvh(const Options& o, Results& r) {
                 });
                 nlohmann::json p8 = nullptr, p16 = nullptr;
                 if (packets) {
-                    p8 = mrays(rays, threads, 8, [&](size_t i) { embree_packet<8>(embree, &rays[i]); });
-                    p16 = mrays(rays, threads, 16, [&](size_t i) { embree_packet<16>(embree, &rays[i]); });
+                    p8 = mrays(rays, threads, 8, [&](size_t i) { embree.intersect_packet(&rays[i], 8); });
+                    p16 = mrays(rays, threads, 16, [&](size_t i) { embree.intersect_packet(&rays[i], 16); });
                 }
                 r.row("bvh", {name, batch, threads, rays.size(), ours, ref, ours / ref, p8, p16});
                 std::printf("bvh %-10s %-8s %d thread(s): ours %7.2f Mrays/s, embree %7.2f, ours/embree %.2f\n",

@@ -113,12 +113,15 @@ bool EmbreeMirror::occluded(const Ray& ray) const {
     return r.tfar < 0.0f;  // Embree sets tfar to -inf on occlusion
 }
 
-void EmbreeMirror::intersect8(const Ray* rays, Hit* hits) const {
+namespace {
+
+template <int N>
+void trace_packet(RTCScene scene, const Ray* rays, Hit* hits) {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
-    alignas(32) RTCRayHit8 rh;
-    alignas(32) int valid[8];
-    for (int k = 0; k < 8; ++k) {
+    alignas(64) RTCRayHitNt<N> rh;
+    alignas(64) int valid[N];
+    for (int k = 0; k < N; ++k) {
         valid[k] = -1;
         rh.ray.org_x[k] = rays[k].o.x;
         rh.ray.org_y[k] = rays[k].o.y;
@@ -133,14 +136,25 @@ void EmbreeMirror::intersect8(const Ray* rays, Hit* hits) const {
         rh.ray.flags[k] = 0;
         rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
     }
-    rtcIntersect8(valid, scene_, &context, &rh);
-    for (int k = 0; k < 8; ++k) {
+    if constexpr (N == 8)
+        rtcIntersect8(valid, scene, &context, reinterpret_cast<RTCRayHit8*>(&rh));
+    else
+        rtcIntersect16(valid, scene, &context, reinterpret_cast<RTCRayHit16*>(&rh));
+    if (!hits) return;
+    for (int k = 0; k < N; ++k) {
         hits[k] = Hit{};
         if (rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID) {
             hits[k].t = rh.ray.tfar[k];
             hits[k].prim = PrimRef::make(static_cast<PrimKind>(rh.hit.geomID[k]), rh.hit.primID[k]);
         }
     }
+}
+
+}  // namespace
+
+void EmbreeMirror::intersect_packet(const Ray* rays, int width, Hit* hits) const {
+    if (width == 8) trace_packet<8>(scene_, rays, hits);
+    else trace_packet<16>(scene_, rays, hits);
 }
 
 }  // namespace wavetrace

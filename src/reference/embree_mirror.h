@@ -24,8 +24,9 @@ public:
 
     Hit intersect(const Ray& ray) const;  // rtcIntersect1
     bool occluded(const Ray& ray) const;  // rtcOccluded1
-    // rtcIntersect8 on 8 rays at once; hits[k].t < inf for hits.
-    void intersect8(const Ray* rays, Hit* hits) const;
+    // rtcIntersect8 / rtcIntersect16 on `width` (8 or 16) rays at once; hits may be null when
+    // only the tracing matters (benchmarks).
+    void intersect_packet(const Ray* rays, int width, Hit* hits = nullptr) const;
     RTCScene scene() const { return scene_; }
     double build_ms() const { return build_ms_; }
 
