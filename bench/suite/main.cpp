@@ -8,6 +8,7 @@
 #include <fstream>
 
 #include "sections.h"
+#include "wavetrace/render/wavefront.h"
 
 int main(int argc, char** argv) {
     using namespace wavetrace::bench;
@@ -37,6 +38,7 @@ int main(int argc, char** argv) {
     r.note("cpu", cpu);
     r.note("hardware_threads", tbb::this_task_arena::max_concurrency());
     r.note("quick", o.quick);
+    r.note("wavefront_bytes_per_path", wavetrace::wavefront_bytes_per_path());
     auto start = std::chrono::steady_clock::now();
     for (const std::string& s : sections) {
         if (s == "engines") bench_engines(o, r);
