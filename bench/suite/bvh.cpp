@@ -12,6 +12,7 @@
 #include "reference/embree_mirror.h"
 #include "sections.h"
 #include "wavetrace/shading/lights.h"
+#include "wavetrace/shading/path_vertex.h"
 #include "wavetrace/shading/warp.h"
 #include "wavetrace/wavetrace.h"
 
@@ -43,7 +44,7 @@ Batches capture(const Scene& scene, const Bvh& bvh, int side) {
         SurfaceHit s = surface_at(scene, ray, hit);
         Normal3 n = s.front_face ? s.ng : -s.ng;
         Vec3 local = sample_cosine_hemisphere(sample_1d(7, i, 0, 0), sample_1d(7, i, 0, 1));
-        Point3 o = s.p + 2e-5f * (1.0f + max_component(abs(s.p))) * n;
+        Point3 o = s.p + origin_offset(s.p) * n;
         b.diffuse.push_back(Ray{o, Frame::from_normal(n).to_world(local)});
         if (lights.empty()) continue;
         LightSample ls = lights.sample(scene, o, sample_1d(7, i, 0, 2), sample_1d(7, i, 0, 3),

@@ -18,7 +18,6 @@ namespace wavetrace {
 namespace {
 
 constexpr int kTile = 16;
-constexpr int kMaxCrossings = 64;  // medium boundaries crossed by one ray segment
 
 struct PathContext {
     const Scene& scene;
@@ -36,7 +35,7 @@ Color ray_color(PathContext& ctx, Ray ray, int bounce, MediumStack media,
                 const PreviousVertex& prev, Color beta) {
     const RenderConfig& cfg = ctx.config;
     float flight = segment_flight(cfg.seed, ctx.pixel, ctx.sample, bounce);
-    for (int crossing = 0; crossing < kMaxCrossings; ++crossing) {
+    for (int crossing = 0; crossing < kMaxBoundaryCrossings; ++crossing) {
         ++ctx.rays;
         Hit hit = ctx.bvh.intersect(ray);
         SegmentResult seg = resolve_segment(ctx.scene, ctx.lights, cfg, ray, hit, media, flight, prev);

@@ -3,10 +3,6 @@
 
 namespace wavetrace {
 
-namespace {
-constexpr int kMaxCrossings = 64;  // medium boundaries crossed by one ray segment
-}
-
 void shade(const WaveInputs& in, WaveQueues& q, size_t begin, size_t end) {
     const RenderConfig& cfg = in.config;
     PathState& ps = q.paths;
@@ -23,7 +19,7 @@ void shade(const WaveInputs& in, WaveQueues& q, size_t begin, size_t end) {
         float flight = ps.flight[p];
         SegmentResult seg = resolve_segment(in.scene, in.lights, cfg, ray, hit, media, flight, ps.prev[p]);
         if (seg.event == SegmentEvent::Cross) {
-            if (++ps.crossings[p] >= kMaxCrossings) continue;
+            if (++ps.crossings[p] >= kMaxBoundaryCrossings) continue;
             ps.media[p] = media;
             ps.flight[p] = flight;
             q.rays.origin[i] = seg.next.o;

@@ -41,7 +41,7 @@ bool can_sample_lights(const Vertex& v, const LightSet& lights) {
 
 Point3 offset_origin(const Vertex& v, Vec3 w) {
     if (!v.on_surface()) return v.p;
-    float eps = 2e-5f * (1.0f + max_component(abs(v.p)));
+    float eps = origin_offset(v.p);
     return v.p + (dot(w, v.ng) > 0.0f ? eps : -eps) * v.ng;
 }
 
@@ -85,7 +85,7 @@ float transmittance(const Scene& scene, const Bvh& bvh, Ray ray, MediumStack med
         return bvh.occluded(ray) ? 0.0f : 1.0f;
     }
     float tr = 1.0f;
-    for (int crossing = 0; crossing < 64; ++crossing) {
+    for (int crossing = 0; crossing < kMaxBoundaryCrossings; ++crossing) {
         ++*rays;
         Hit hit = bvh.intersect(ray);
         float end = hit.found() ? hit.t : ray.tmax;
@@ -100,7 +100,7 @@ float transmittance(const Scene& scene, const Bvh& bvh, Ray ray, MediumStack med
         media.cross(s.interior, s.front_face);
         ray.tmin = hit.t;
         // Step over the boundary: restart just past it along the same line.
-        ray.o = ray.at(hit.t) + (2e-5f * (1.0f + max_component(abs(s.p)))) * normalize(ray.d);
+        ray.o = ray.at(hit.t) + origin_offset(s.p) * normalize(ray.d);
         ray.tmax = std::isinf(ray.tmax) ? ray.tmax : ray.tmax - hit.t;
         ray.tmin = 0.0f;
     }
@@ -215,7 +215,7 @@ SegmentResult resolve_segment(const Scene& scene, const LightSet& lights, const 
     if (kind == MaterialKind::Interface) {
         media.cross(s.interior, s.front_face);
         r.event = SegmentEvent::Cross;
-        r.next = Ray{s.p + (2e-5f * (1.0f + max_component(abs(s.p)))) * dir, dir};
+        r.next = Ray{s.p + origin_offset(s.p) * dir, dir};
         return r;
     }
     if (kind == MaterialKind::DiffuseLight) {
@@ -294,7 +294,7 @@ MediumStack media_at(const Scene& scene, const Bvh& bvh, Point3 p) {
                 found[n_found++] = s.interior;  // leaving a shape p is inside of
             }
         }
-        ray.o = ray.at(hit.t) + (2e-5f * (1.0f + max_component(abs(s.p)))) * ray.d;
+        ray.o = ray.at(hit.t) + origin_offset(s.p) * ray.d;
         ray.tmin = 0.0f;
     }
     for (int i = n_found - 1; i >= 0; --i) outside_in.push(found[i]);

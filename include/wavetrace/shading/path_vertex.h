@@ -36,9 +36,16 @@ Vertex medium_vertex(const Scene& scene, MediumId medium, Point3 p);
 // Whether next-event estimation and light-sampled directions apply at this vertex.
 bool can_sample_lights(const Vertex& v, const LightSet& lights);
 
+// How far a new ray starts from the surface point p it leaves: relative to p's magnitude
+// (about 170 float ulps), so that it clears the rounding error of p itself at any scale.
+inline float origin_offset(Point3 p) { return 2e-5f * (1.0f + max_component(abs(p))); }
 // A ray origin just off the surface on the side `w` leaves towards, so that the new ray does
-// not hit the surface it starts on (offset relative to the point's magnitude).
+// not hit the surface it starts on.
 Point3 offset_origin(const Vertex& v, Vec3 w);
+
+// Medium boundaries one ray segment may cross before the path is given up (a guard against
+// degenerate geometry, e.g. a ray trapped between coincident boundaries).
+inline constexpr int kMaxBoundaryCrossings = 64;
 
 // --- next-event estimation -------------------------------------------------------------
 // One light sample from vertex v for a path arriving from direction wo (unit, pointing away
