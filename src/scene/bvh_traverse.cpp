@@ -7,9 +7,11 @@
 namespace wavetrace {
 namespace {
 
-inline bool intersect_prim(const BvhPrim& p, const Ray& ray, PrimHit* hit) {
+inline bool intersect_prim(const BvhPrim& p, const Ray& ray, const TriangleRay& tri_ray,
+                           PrimHit* hit) {
     switch (p.ref.kind()) {
-        case PrimKind::Triangle: return intersect_triangle(ray, p.a, p.b, p.c, hit);
+        case PrimKind::Triangle:
+            return intersect_triangle(tri_ray, ray.tmin, ray.tmax, p.a, p.b, p.c, hit);
         case PrimKind::Quad: return intersect_quad(ray, p.a, p.b, p.c, hit);
         case PrimKind::Sphere: return intersect_sphere(ray, p.a, p.b.x, hit);
     }
@@ -49,6 +51,7 @@ bool Bvh::traverse(const Ray& ray_in, Hit* hit) const {
     if (nodes_.empty()) return false;
     Ray ray = ray_in;
     const Vec3 inv_d{safe_inverse(ray.d.x), safe_inverse(ray.d.y), safe_inverse(ray.d.z)};
+    const TriangleRay tri_ray(ray);
 
     struct Entry {
         uint32_t node;
@@ -66,7 +69,7 @@ bool Bvh::traverse(const Ray& ray_in, Hit* hit) const {
         if (node.is_leaf()) {
             for (uint32_t i = node.offset; i < node.offset + node.count; ++i) {
                 PrimHit ph;
-                if (intersect_prim(prim_data_[i], ray, &ph)) {
+                if (intersect_prim(prim_data_[i], ray, tri_ray, &ph)) {
                     found = true;
                     if constexpr (AnyHit) return true;
                     ray.tmax = ph.t;
@@ -81,7 +84,8 @@ bool Bvh::traverse(const Ray& ray_in, Hit* hit) const {
             bool hit_a = hit_box(nodes_[a], ray.o, inv_d, ray.tmin, ray.tmax, &ta);
             bool hit_b = hit_box(nodes_[b], ray.o, inv_d, ray.tmin, ray.tmax, &tb);
             if (hit_a && hit_b) {
-                if (tb < ta) {
+                // Any-hit traversal takes any order: only closest-hit gains from near-first.
+                if (!AnyHit && tb < ta) {
                     std::swap(a, b);
                     std::swap(ta, tb);
                 }

@@ -53,20 +53,30 @@ inline Vec3 permute(Vec3 v, int x, int y, int z) { return {v[x], v[y], v[z]}; }
 
 }  // namespace
 
+TriangleRay::TriangleRay(const Ray& ray) : o(ray.o) {
+    kz = max_dimension(abs(ray.d));
+    kx = kz + 1 == 3 ? 0 : kz + 1;
+    ky = kx + 1 == 3 ? 0 : kx + 1;
+    Vec3 d = permute(ray.d, kx, ky, kz);
+    sx = -d.x / d.z;
+    sy = -d.y / d.z;
+    sz = 1.0f / d.z;
+}
+
 bool intersect_triangle(const Ray& ray, Point3 p0, Point3 p1, Point3 p2, PrimHit* hit) {
+    return intersect_triangle(TriangleRay(ray), ray.tmin, ray.tmax, p0, p1, p2, hit);
+}
+
+bool intersect_triangle(const TriangleRay& r, float tmin, float tmax, Point3 p0, Point3 p1,
+                        Point3 p2, PrimHit* hit) {
     // Translate to the ray origin, permute so that the ray's largest direction component is z,
     // then shear so that the ray runs along +z: the test becomes a 2-D edge-function test at
     // the origin, evaluated identically for the two triangles sharing an edge.
-    Vec3 p0t = p0 - ray.o, p1t = p1 - ray.o, p2t = p2 - ray.o;
-    int kz = max_dimension(abs(ray.d));
-    int kx = kz + 1 == 3 ? 0 : kz + 1;
-    int ky = kx + 1 == 3 ? 0 : kx + 1;
-    Vec3 d = permute(ray.d, kx, ky, kz);
-    p0t = permute(p0t, kx, ky, kz);
-    p1t = permute(p1t, kx, ky, kz);
-    p2t = permute(p2t, kx, ky, kz);
-
-    float sx = -d.x / d.z, sy = -d.y / d.z, sz = 1.0f / d.z;
+    const int kx = r.kx, ky = r.ky, kz = r.kz;
+    const float sx = r.sx, sy = r.sy, sz = r.sz;
+    Vec3 p0t = permute(p0 - r.o, kx, ky, kz);
+    Vec3 p1t = permute(p1 - r.o, kx, ky, kz);
+    Vec3 p2t = permute(p2 - r.o, kx, ky, kz);
     p0t.x += sx * p0t.z;
     p0t.y += sy * p0t.z;
     p1t.x += sx * p1t.z;
@@ -95,8 +105,8 @@ bool intersect_triangle(const Ray& ray, Point3 p0, Point3 p1, Point3 p2, PrimHit
     p1t.z *= sz;
     p2t.z *= sz;
     float t_scaled = e0 * p0t.z + e1 * p1t.z + e2 * p2t.z;
-    if (det < 0 && (t_scaled > ray.tmin * det || t_scaled < ray.tmax * det)) return false;
-    if (det > 0 && (t_scaled < ray.tmin * det || t_scaled > ray.tmax * det)) return false;
+    if (det < 0 && (t_scaled > tmin * det || t_scaled < tmax * det)) return false;
+    if (det > 0 && (t_scaled < tmin * det || t_scaled > tmax * det)) return false;
 
     float inv_det = 1.0f / det;
     float t = t_scaled * inv_det;

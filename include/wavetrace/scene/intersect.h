@@ -28,4 +28,17 @@ bool intersect_quad(const Ray& ray, Point3 q, Vec3 u, Vec3 v, PrimHit* hit);
 // Rays through a shared edge or vertex of a closed mesh hit at least one of its triangles.
 bool intersect_triangle(const Ray& ray, Point3 p0, Point3 p1, Point3 p2, PrimHit* hit);
 
+// The per-ray part of that test, computed once per ray and reused for every triangle it meets
+// (Woop et al. §3): the axis permutation that makes the direction's largest component z, and
+// the shear that aligns the ray with +z.
+struct TriangleRay {
+    Point3 o;
+    int kx, ky, kz;
+    float sx, sy, sz;
+    explicit TriangleRay(const Ray& ray);
+};
+// The same test with the per-ray part precomputed; hits lie in [tmin, tmax].
+bool intersect_triangle(const TriangleRay& r, float tmin, float tmax, Point3 p0, Point3 p1,
+                        Point3 p2, PrimHit* hit);
+
 }  // namespace wavetrace
