@@ -26,7 +26,7 @@ struct Captured {
     RenderConfig config;
     std::unique_ptr<CameraRays> camera;
     std::unique_ptr<WaveInputs> in;
-    WaveQueues q;  // after generate + intersect + bucket
+    WaveQueues q;       // after generate + intersect + bucket
     WaveQueues shaded;  // after shade + light_sample + shadow compaction + intersect_shadow
     size_t n = 0, shadows = 0;
 
@@ -153,12 +153,30 @@ WAVETRACE_KERNEL_BENCH(BM_IntersectClosest, cornell);
 WAVETRACE_KERNEL_BENCH(BM_IntersectClosest, dragon);
 WAVETRACE_KERNEL_BENCH(BM_IntersectClosest, everything);
 WAVETRACE_KERNEL_BENCH(BM_BucketByMaterial, everything);
-BENCHMARK_CAPTURE(BM_ShadeKind, cornell_lambertian, "cornell", 1 + int(MaterialKind::Lambertian))->Unit(benchmark::kMicrosecond)->UseRealTime();
-BENCHMARK_CAPTURE(BM_ShadeKind, dragon_metal, "dragon", 1 + int(MaterialKind::Metal))->Unit(benchmark::kMicrosecond)->UseRealTime();
-BENCHMARK_CAPTURE(BM_ShadeKind, everything_dielectric, "everything", 1 + int(MaterialKind::Dielectric))->Unit(benchmark::kMicrosecond)->UseRealTime();
-BENCHMARK_CAPTURE(BM_ShadeKind, cornell_miss, "cornell", 0)->Unit(benchmark::kMicrosecond)->UseRealTime();
-BENCHMARK_CAPTURE(BM_ShadeKind, cornell_smoke_interface, "cornell-smoke", 1 + int(MaterialKind::Interface))->Unit(benchmark::kMicrosecond)->UseRealTime();
-BENCHMARK_CAPTURE(BM_ShadeKind, cornell_light, "cornell", 1 + int(MaterialKind::DiffuseLight))->Unit(benchmark::kMicrosecond)->UseRealTime();
+BENCHMARK_CAPTURE(BM_ShadeKind, cornell_lambertian, "cornell", 1 + int(MaterialKind::Lambertian))
+    ->Unit(benchmark::kMicrosecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(BM_ShadeKind, dragon_metal, "dragon", 1 + int(MaterialKind::Metal))
+    ->Unit(benchmark::kMicrosecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(BM_ShadeKind,
+                  everything_dielectric,
+                  "everything",
+                  1 + int(MaterialKind::Dielectric))
+    ->Unit(benchmark::kMicrosecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(BM_ShadeKind, cornell_miss, "cornell", 0)
+    ->Unit(benchmark::kMicrosecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(BM_ShadeKind,
+                  cornell_smoke_interface,
+                  "cornell-smoke",
+                  1 + int(MaterialKind::Interface))
+    ->Unit(benchmark::kMicrosecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(BM_ShadeKind, cornell_light, "cornell", 1 + int(MaterialKind::DiffuseLight))
+    ->Unit(benchmark::kMicrosecond)
+    ->UseRealTime();
 WAVETRACE_KERNEL_BENCH(BM_LightSample, cornell);
 WAVETRACE_KERNEL_BENCH(BM_LightSample, dragon);
 WAVETRACE_KERNEL_BENCH(BM_IntersectShadow, cornell);

@@ -17,7 +17,7 @@ int main() {
     Hit hit = bvh.intersect(ray);
     if (!hit.found()) return 1;
     SurfaceHit s = surface_at(scene, ray, hit);
-    std::printf("hit at t = %g, point (%g %g %g), normal (%g %g %g)\n", hit.t, s.p.x, s.p.y,
-                s.p.z, s.ng.x, s.ng.y, s.ng.z);
+    std::printf("hit at t = %g, point (%g %g %g), normal (%g %g %g)\n", hit.t, s.p.x, s.p.y, s.p.z,
+                s.ng.x, s.ng.y, s.ng.z);
     return bvh.occluded({.o = {0, 5, 0}, .d = {0, -1, 0}}) ? 0 : 1;
 }

@@ -64,7 +64,9 @@ struct Result {
 
 // sample(i) returns a unit direction, or nothing for a lost sample; pdf(w) its density.
 inline Result test(const std::function<std::optional<Vec3>(uint32_t)>& sample,
-                   const std::function<double(Vec3)>& pdf, uint32_t n, int cos_bins = 24,
+                   const std::function<double(Vec3)>& pdf,
+                   uint32_t n,
+                   int cos_bins = 24,
                    int phi_bins = 48) {
     const double kPi = 3.14159265358979323846;
     auto cell = [&](Vec3 w) {
@@ -98,7 +100,8 @@ inline Result test(const std::function<std::optional<Vec3>(uint32_t)>& sample,
                 double z = -1 + (i + (a + 0.5) / sub) * dz;
                 double phi = (j + (b + 0.5) / sub) * dphi;
                 double rr = std::sqrt(std::max(0.0, 1 - z * z));
-                double p = pdf(Vec3(float(rr * std::cos(phi)), float(rr * std::sin(phi)), float(z)));
+                double p =
+                    pdf(Vec3(float(rr * std::cos(phi)), float(rr * std::sin(phi)), float(z)));
                 sum += p;
                 lo = std::min(lo, p);
                 hi = std::max(hi, p);

@@ -8,7 +8,7 @@
 
 // A fresh folder under the system temp folder, removed with its contents at scope exit.
 class TempDir {
-public:
+  public:
     TempDir() {
         static int counter = 0;
         path_ = std::filesystem::temp_directory_path() /
@@ -28,6 +28,6 @@ public:
         return p;
     }
 
-private:
+  private:
     std::filesystem::path path_;
 };

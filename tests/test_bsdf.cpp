@@ -16,7 +16,9 @@ namespace {
 constexpr uint32_t kSamples = 400'000;
 constexpr double kSignificance = 1e-3;
 
-float u(uint32_t seed, uint32_t i, uint32_t dim) { return sample_1d(seed, i, 0, dim); }
+float u(uint32_t seed, uint32_t i, uint32_t dim) {
+    return sample_1d(seed, i, 0, dim);
+}
 
 struct Case {
     const char* name;
@@ -97,7 +99,8 @@ TEST(Bsdf, DensityIntegratesToTheSamplingProbability) {
         for (uint32_t i = 0; i < n; ++i)
             valid += bsdf_sample(c.b, c.wo, u(10, i, 0), u(10, i, 1), u(10, i, 2)).valid;
         double p = double(valid) / n, se_p = std::sqrt(p * (1 - p) / n);
-        std::printf("integral %-18s %.5f +- %.5f, sampling probability %.5f\n", c.name, mean, se, p);
+        std::printf("integral %-18s %.5f +- %.5f, sampling probability %.5f\n", c.name, mean, se,
+                    p);
         EXPECT_NEAR(mean, p, 4 * se + 4 * se_p + 1e-9) << c.name;
         if (c.b.kind != MaterialKind::Metal) {
             EXPECT_EQ(valid, n) << c.name;
@@ -154,7 +157,9 @@ TEST(Bsdf, FresnelLimits) {
 TEST(Bsdf, ChiSquareDetectsAWrongDensity) {
     // The test itself must be able to fail: cosine samples judged against a uniform density.
     auto result = chi2::test(
-        [&](uint32_t i) -> std::optional<Vec3> { return sample_cosine_hemisphere(u(3, i, 0), u(3, i, 1)); },
+        [&](uint32_t i) -> std::optional<Vec3> {
+            return sample_cosine_hemisphere(u(3, i, 0), u(3, i, 1));
+        },
         [&](Vec3 w) { return w.z > 0 ? 0.5 / 3.14159265358979 : 0.0; }, 100'000);
     EXPECT_LT(result.p_value, 1e-6) << result.summary();
 }

@@ -26,8 +26,12 @@ Scene mixed_scene(int n) {
     for (int i = 0; i < n; ++i) {
         Point3 c{100 * u(i, 0), 100 * u(i, 1), 100 * u(i, 2)};
         switch (i % 3) {
-            case 0: s.add_sphere({c, 0.5f + 2 * u(i, 3), mat, kNone}); break;
-            case 1: s.add_quad({c, {3 * u(i, 4) + 0.1f, 0, 0}, {0, 1, 3 * u(i, 5)}, mat, kNone}); break;
+            case 0:
+                s.add_sphere({c, 0.5f + 2 * u(i, 3), mat, kNone});
+                break;
+            case 1:
+                s.add_quad({c, {3 * u(i, 4) + 0.1f, 0, 0}, {0, 1, 3 * u(i, 5)}, mat, kNone});
+                break;
             case 2:
                 for (int k = 0; k < 3; ++k) {
                     pos.push_back(c + Vec3{4 * u(i, 6 + k), 4 * u(i, 9 + k), 4 * u(i, 12 + k)});
@@ -36,7 +40,8 @@ Scene mixed_scene(int n) {
                 break;
         }
     }
-    for (int i = 0; i < 20; ++i) s.add_sphere({{50, 50, 50}, 1.0f + i, mat, kNone});  // same centroid
+    for (int i = 0; i < 20; ++i)
+        s.add_sphere({{50, 50, 50}, 1.0f + i, mat, kNone});  // same centroid
     s.add_mesh({}, pos, {}, {}, idx);
     return s;
 }
@@ -116,7 +121,8 @@ TEST(Bvh, ClosestHitMatchesBruteForce) {
         for (const Triangle& t : scene.triangles) {
             PrimHit ph;
             test(intersect_triangle(ray, scene.positions[t.v[0]], scene.positions[t.v[1]],
-                                    scene.positions[t.v[2]], &ph), ph);
+                                    scene.positions[t.v[2]], &ph),
+                 ph);
         }
         for (const Quad& q : scene.quads) {
             PrimHit ph;

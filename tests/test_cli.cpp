@@ -21,7 +21,8 @@ struct CliResult {
 
 CliResult run(const TempDir& dir, const std::string& args) {
     std::string cmd = "'" + cli_path().string() + "' " + args + " > '" +
-                      (dir.path() / "stdout").string() + "' 2> '" + (dir.path() / "stderr").string() + "'";
+                      (dir.path() / "stdout").string() + "' 2> '" +
+                      (dir.path() / "stderr").string() + "'";
     int status = std::system(cmd.c_str());
     auto slurp = [](const std::filesystem::path& p) {
         std::stringstream s;
@@ -32,15 +33,17 @@ CliResult run(const TempDir& dir, const std::string& args) {
             slurp(dir.path() / "stderr")};
 }
 
-std::string scene(const char* name) { return "'" + scene_path(name).string() + "'"; }
+std::string scene(const char* name) {
+    return "'" + scene_path(name).string() + "'";
+}
 
 }  // namespace
 
 TEST(Cli, RendersNormalAovOfTheDragon) {
     TempDir dir;
     auto out = dir.path() / "n.png";
-    CliResult r = run(dir, "render " + scene("dragon") + " --aov normal --width 64 --height 48 -o '" +
-                         out.string() + "'");
+    CliResult r = run(dir, "render " + scene("dragon") +
+                               " --aov normal --width 64 --height 48 -o '" + out.string() + "'");
     EXPECT_EQ(r.code, 0) << r.err;
     ImageData img = read_image(out);
     EXPECT_EQ(img.width, 64);
@@ -52,8 +55,8 @@ TEST(Cli, InfoDescribesTheScene) {
     TempDir dir;
     CliResult r = run(dir, "info " + scene("everything"));
     EXPECT_EQ(r.code, 0) << r.err;
-    for (const char* field : {"primitives   3408", "1007 spheres", "lights       1", "bounds", "bvh",
-                              "SAH cost", "memory"})
+    for (const char* field : {"primitives   3408", "1007 spheres", "lights       1", "bounds",
+                              "bvh", "SAH cost", "memory"})
         EXPECT_NE(r.out.find(field), std::string::npos) << field << "\n" << r.out;
 }
 
@@ -76,7 +79,8 @@ TEST(Cli, BadOptionsExitTwoAndWriteNothing) {
     auto out = dir.path() / "x.png";
     std::string o = " -o '" + out.string() + "'";
     EXPECT_EQ(run(dir, "render " + scene("cornell") + " --aov albedo --width 100000" + o).code, 2);
-    CliResult huge = run(dir, "render " + scene("cornell") + " --aov albedo --width 30000 --height 30000" + o);
+    CliResult huge =
+        run(dir, "render " + scene("cornell") + " --aov albedo --width 30000 --height 30000" + o);
     EXPECT_EQ(huge.code, 2);
     EXPECT_NE(huge.err.find("exceeds the limit"), std::string::npos) << huge.err;
     EXPECT_EQ(run(dir, "render " + scene("cornell") + " --aov albedo --spp 0x" + o).code, 2);
@@ -85,11 +89,13 @@ TEST(Cli, BadOptionsExitTwoAndWriteNothing) {
     EXPECT_EQ(run(dir, "render " + scene("cornell") + " --strategy best" + o).code, 2);
     EXPECT_EQ(run(dir, "render " + scene("cornell") + " --max-depth 0x" + o).code, 2);
     EXPECT_EQ(run(dir, "render " + scene("cornell") + " --max-depth 5000" + o).code, 2);
-    CliResult missing = run(dir, "render '" + (dir.path() / "none.json").string() + "' --aov albedo" + o);
+    CliResult missing =
+        run(dir, "render '" + (dir.path() / "none.json").string() + "' --aov albedo" + o);
     EXPECT_EQ(missing.code, 2);
-    EXPECT_NE(missing.err.find("none.json: cannot open scene file"), std::string::npos) << missing.err;
+    EXPECT_NE(missing.err.find("none.json: cannot open scene file"), std::string::npos)
+        << missing.err;
     CliResult ext = run(dir, "render " + scene("cornell") + " --aov albedo -o '" +
-                           (dir.path() / "x.gif").string() + "'");
+                                 (dir.path() / "x.gif").string() + "'");
     EXPECT_EQ(ext.code, 2);
     EXPECT_NE(ext.err.find("unsupported output format"), std::string::npos) << ext.err;
     EXPECT_FALSE(std::filesystem::exists(out));
@@ -99,11 +105,14 @@ TEST(Cli, BadOptionsExitTwoAndWriteNothing) {
 TEST(Cli, ColorRenderRecordsItsSettingsInTheExr) {
     TempDir dir;
     auto out = dir.path() / "c.exr";
-    CliResult r = run(dir, "render " + scene("cornell-smoke") +
-                               " --strategy nee --mis-heuristic balance --spp 3 --seed 9 --max-depth 7"
-                               " --width 20 --height 10 -o '" + out.string() + "'");
+    CliResult r =
+        run(dir, "render " + scene("cornell-smoke") +
+                     " --strategy nee --mis-heuristic balance --spp 3 --seed 9 --max-depth 7"
+                     " --width 20 --height 10 -o '" +
+                     out.string() + "'");
     ASSERT_EQ(r.code, 0) << r.err;
-    EXPECT_NE(r.err.find("wavefront nee 20x10 3 spp"), std::string::npos) << r.err;  // the default engine
+    EXPECT_NE(r.err.find("wavefront nee 20x10 3 spp"), std::string::npos)
+        << r.err;  // the default engine
     EXPECT_NE(r.err.find("Mpaths/s"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("0 invalid samples"), std::string::npos) << r.err;
     auto in = OIIO::ImageInput::open(out.string());
@@ -115,7 +124,8 @@ TEST(Cli, ColorRenderRecordsItsSettingsInTheExr) {
     EXPECT_EQ(spec.get_string_attribute("wavetrace:spp"), "3");
     EXPECT_EQ(spec.get_string_attribute("wavetrace:seed"), "9");
     EXPECT_EQ(spec.get_string_attribute("wavetrace:max_depth"), "7");
-    EXPECT_NE(spec.get_string_attribute("wavetrace:scene").find("cornell-smoke.json"), std::string::npos);
+    EXPECT_NE(spec.get_string_attribute("wavetrace:scene").find("cornell-smoke.json"),
+              std::string::npos);
     EXPECT_FALSE(spec.get_string_attribute("wavetrace:render_seconds").empty());
 }
 
@@ -138,9 +148,11 @@ TEST(Cli, OutputDoesNotDependOnThreadCount) {
 TEST(Cli, WavefrontMemoryDoesNotGrowWithSamples) {
     TempDir dir;
     auto peak = [&](int spp) {
-        CliResult r = run(dir, "render " + scene("cornell") + " --engine wavefront --max-depth 1 --width 3840"
-                               " --height 2160 --spp " + std::to_string(spp) + " -o '" +
-                               (dir.path() / "big.pfm").string() + "'");
+        CliResult r =
+            run(dir, "render " + scene("cornell") +
+                         " --engine wavefront --max-depth 1 --width 3840"
+                         " --height 2160 --spp " +
+                         std::to_string(spp) + " -o '" + (dir.path() / "big.pfm").string() + "'");
         EXPECT_EQ(r.code, 0) << r.err;
         auto at = r.err.find("peak memory ");
         EXPECT_NE(at, std::string::npos) << r.err;

@@ -21,8 +21,8 @@ using namespace wavetrace;
 
 namespace {
 
-constexpr int kCameraSide = 512;             // 262,144 camera rays
-constexpr uint32_t kSurfaceRays = 786'432;   // + surface rays = 1,048,576 rays per scene
+constexpr int kCameraSide = 512;            // 262,144 camera rays
+constexpr uint32_t kSurfaceRays = 786'432;  // + surface rays = 1,048,576 rays per scene
 constexpr float kRelTolerance = 1e-4f;
 
 // Ray i: the first kCameraSide^2 are camera rays through jittered pixel positions; the rest
@@ -41,7 +41,8 @@ Ray make_ray(const Scene& scene, const CameraRays& camera, uint32_t i) {
     float a = u(5), b = u(6);
     if (flat < tri) {
         const Triangle& t = scene.triangles[flat];
-        Point3 p0 = scene.positions[t.v[0]], p1 = scene.positions[t.v[1]], p2 = scene.positions[t.v[2]];
+        Point3 p0 = scene.positions[t.v[0]], p1 = scene.positions[t.v[1]],
+               p2 = scene.positions[t.v[2]];
         float s = std::sqrt(a);  // uniform on the triangle
         p = (1 - s) * p0 + s * (1 - b) * p1 + s * b * p2;
         normal = normalize(cross(p1 - p0, p2 - p0));
@@ -101,10 +102,14 @@ void compare_scene(const char* name) {
                 Hit ours = bvh.intersect(ray), ref = embree.intersect(ray);
                 ++acc.rays;
                 if (!ours.found() || !ref.found()) {
-                    if (ours.found()) ++acc.only_ours;
-                    else if (ref.found()) ++acc.only_embree;
-                    else ++acc.both_miss;
-                    if (ours.found() != ref.found() && acc.examples.size() < 3) acc.examples.push_back(i);
+                    if (ours.found())
+                        ++acc.only_ours;
+                    else if (ref.found())
+                        ++acc.only_embree;
+                    else
+                        ++acc.both_miss;
+                    if (ours.found() != ref.found() && acc.examples.size() < 3)
+                        acc.examples.push_back(i);
                     continue;
                 }
                 ++acc.both_hit;
@@ -114,11 +119,15 @@ void compare_scene(const char* name) {
                 // for rays that start a hair away from another surface).
                 Point3 p = ray.at(ref.t);
                 double ulp_floor = std::ldexp(double(max_component(abs(p))), -23) / length(ray.d);
-                bool t_agrees = std::fabs(double(ours.t) - ref.t) <= kRelTolerance * ref.t + ulp_floor;
+                bool t_agrees =
+                    std::fabs(double(ours.t) - ref.t) <= kRelTolerance * ref.t + ulp_floor;
                 // A tie: two primitives hit at the same distance (a shared edge, coplanar faces).
-                if (ours.prim == ref.prim && t_agrees) ++acc.same;
-                else if (t_agrees) ++acc.ties;
-                else ++acc.different;
+                if (ours.prim == ref.prim && t_agrees)
+                    ++acc.same;
+                else if (t_agrees)
+                    ++acc.ties;
+                else
+                    ++acc.different;
                 if (!t_agrees && acc.examples.size() < 3) acc.examples.push_back(i);
                 if (ours.prim == ref.prim) acc.max_rel_t = std::max(acc.max_rel_t, rel);
             }
@@ -130,23 +139,29 @@ void compare_scene(const char* name) {
     double hit_match = t.both_hit ? double(t.same + t.ties) / double(t.both_hit) : 1.0;
     char line[512];
     std::snprintf(line, sizeof line,
-        "embree-agreement %-10s rays %zu | hit/miss agree %.5f%% (both hit %zu, both miss %zu, only "
-        "ours %zu, only embree %zu) | both hit: same prim+t %zu, ties %zu, differ %zu (%.5f%% agree) "
-        "| max rel t diff (same prim) %.2e\n",
-        name, t.rays, 100 * hit_agreement, t.both_hit, t.both_miss, t.only_ours, t.only_embree,
-        t.same, t.ties, t.different, 100 * hit_match, t.max_rel_t);
+                  "embree-agreement %-10s rays %zu | hit/miss agree %.5f%% (both hit %zu, both "
+                  "miss %zu, only "
+                  "ours %zu, only embree %zu) | both hit: same prim+t %zu, ties %zu, differ %zu "
+                  "(%.5f%% agree) "
+                  "| max rel t diff (same prim) %.2e\n",
+                  name, t.rays, 100 * hit_agreement, t.both_hit, t.both_miss, t.only_ours,
+                  t.only_embree, t.same, t.ties, t.different, 100 * hit_match, t.max_rel_t);
     std::fputs(line, stdout);
     // Also into the build's report folder, which `make test` prints after the suite: ctest
     // shows a passing test's output only when asked to be verbose.
     std::filesystem::create_directories(WAVETRACE_REPORT_DIR);
-    std::ofstream(std::filesystem::path(WAVETRACE_REPORT_DIR) / ("embree-agreement-" + std::string(name) + ".txt")) << line;
+    std::ofstream(std::filesystem::path(WAVETRACE_REPORT_DIR) /
+                  ("embree-agreement-" + std::string(name) + ".txt"))
+        << line;
     for (size_t k = 0; k < std::min<size_t>(t.examples.size(), 8); ++k) {
         Ray ray = make_ray(scene, camera, t.examples[k]);
         Hit ours = bvh.intersect(ray), ref = embree.intersect(ray);
-        std::printf("  ray %u o (%g %g %g) d (%g %g %g): ours kind %u prim %u t %.7g | embree kind %u prim %u t %.7g\n",
-                    t.examples[k], ray.o.x, ray.o.y, ray.o.z, ray.d.x, ray.d.y, ray.d.z,
-                    static_cast<unsigned>(ours.prim.kind()), ours.prim.index(), ours.t,
-                    static_cast<unsigned>(ref.prim.kind()), ref.prim.index(), ref.t);
+        std::printf(
+            "  ray %u o (%g %g %g) d (%g %g %g): ours kind %u prim %u t %.7g | embree kind %u prim "
+            "%u t %.7g\n",
+            t.examples[k], ray.o.x, ray.o.y, ray.o.z, ray.d.x, ray.d.y, ray.d.z,
+            static_cast<unsigned>(ours.prim.kind()), ours.prim.index(), ours.t,
+            static_cast<unsigned>(ref.prim.kind()), ref.prim.index(), ref.t);
     }
     EXPECT_GE(t.rays, 1'000'000u);
     EXPECT_GE(hit_agreement, 0.9999) << name;
@@ -156,7 +171,15 @@ void compare_scene(const char* name) {
 
 }  // namespace
 
-TEST(EmbreeAgreement, Cornell) { compare_scene("cornell"); }
-TEST(EmbreeAgreement, Bunny) { compare_scene("bunny"); }
-TEST(EmbreeAgreement, Dragon) { compare_scene("dragon"); }
-TEST(EmbreeAgreement, Everything) { compare_scene("everything"); }
+TEST(EmbreeAgreement, Cornell) {
+    compare_scene("cornell");
+}
+TEST(EmbreeAgreement, Bunny) {
+    compare_scene("bunny");
+}
+TEST(EmbreeAgreement, Dragon) {
+    compare_scene("dragon");
+}
+TEST(EmbreeAgreement, Everything) {
+    compare_scene("everything");
+}

@@ -23,7 +23,7 @@ TEST(Sphere, HitFromOutsideGivesNearRoot) {
 TEST(Sphere, Miss) {
     PrimHit h;
     EXPECT_FALSE(intersect_sphere({{0, 1.01f, -5}, {0, 0, 1}}, {0, 0, 0}, 1, &h));
-    EXPECT_FALSE(intersect_sphere({{0, 0, -5}, {0, 0, -1}}, {0, 0, 0}, 1, &h));  // behind
+    EXPECT_FALSE(intersect_sphere({{0, 0, -5}, {0, 0, -1}}, {0, 0, 0}, 1, &h));          // behind
     EXPECT_FALSE(intersect_sphere({{0, 0, -5}, {0, 0, 1}, 0, 3.9f}, {0, 0, 0}, 1, &h));  // tmax
 }
 
@@ -53,7 +53,8 @@ TEST(Sphere, FarAwayRayIsPrecise) {
 
 TEST(Quad, HitInsideWithParameters) {
     PrimHit h;
-    ASSERT_TRUE(intersect_quad({{0.25f, 0.75f, -1}, {0, 0, 1}}, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, &h));
+    ASSERT_TRUE(
+        intersect_quad({{0.25f, 0.75f, -1}, {0, 0, 1}}, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, &h));
     EXPECT_FLOAT_EQ(h.t, 1.0f);
     EXPECT_FLOAT_EQ(h.u, 0.25f);
     EXPECT_FLOAT_EQ(h.v, 0.75f);
@@ -64,9 +65,12 @@ TEST(Quad, HitInsideWithParameters) {
 
 TEST(Quad, MissOutsideParallelAndBehind) {
     PrimHit h;
-    EXPECT_FALSE(intersect_quad({{1.5f, 0.5f, -1}, {0, 0, 1}}, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, &h));
-    EXPECT_FALSE(intersect_quad({{0.5f, 0.5f, -1}, {1, 0, 0}}, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, &h));
-    EXPECT_FALSE(intersect_quad({{0.5f, 0.5f, -1}, {0, 0, -1}}, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, &h));
+    EXPECT_FALSE(
+        intersect_quad({{1.5f, 0.5f, -1}, {0, 0, 1}}, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, &h));
+    EXPECT_FALSE(
+        intersect_quad({{0.5f, 0.5f, -1}, {1, 0, 0}}, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, &h));
+    EXPECT_FALSE(
+        intersect_quad({{0.5f, 0.5f, -1}, {0, 0, -1}}, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, &h));
 }
 
 TEST(Quad, EdgesAreInclusive) {
@@ -82,7 +86,8 @@ TEST(Quad, GrazingRayInItsPlaneMisses) {
 
 TEST(Triangle, HitGivesBarycentrics) {
     PrimHit h;
-    ASSERT_TRUE(intersect_triangle({{0.2f, 0.3f, -1}, {0, 0, 1}}, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, &h));
+    ASSERT_TRUE(
+        intersect_triangle({{0.2f, 0.3f, -1}, {0, 0, 1}}, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, &h));
     EXPECT_FLOAT_EQ(h.t, 1.0f);
     EXPECT_NEAR(h.u, 0.2f, 1e-6f);
     EXPECT_NEAR(h.v, 0.3f, 1e-6f);
@@ -90,18 +95,23 @@ TEST(Triangle, HitGivesBarycentrics) {
 
 TEST(Triangle, MissAndBackfaceAndInside) {
     PrimHit h;
-    EXPECT_FALSE(intersect_triangle({{0.6f, 0.6f, -1}, {0, 0, 1}}, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, &h));
+    EXPECT_FALSE(
+        intersect_triangle({{0.6f, 0.6f, -1}, {0, 0, 1}}, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, &h));
     // Both faces are hit (culling is the shading's business).
-    EXPECT_TRUE(intersect_triangle({{0.2f, 0.2f, 1}, {0, 0, -1}}, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, &h));
+    EXPECT_TRUE(
+        intersect_triangle({{0.2f, 0.2f, 1}, {0, 0, -1}}, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, &h));
     // A ray starting on the triangle does not hit it again.
-    EXPECT_FALSE(intersect_triangle({{0.2f, 0.2f, 0}, {0, 0.3f, 1}}, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, &h));
+    EXPECT_FALSE(
+        intersect_triangle({{0.2f, 0.2f, 0}, {0, 0.3f, 1}}, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, &h));
     // Degenerate triangles are never hit.
-    EXPECT_FALSE(intersect_triangle({{0.5f, 0, -1}, {0, 0, 1}}, {0, 0, 0}, {1, 0, 0}, {2, 0, 0}, &h));
+    EXPECT_FALSE(
+        intersect_triangle({{0.5f, 0, -1}, {0, 0, 1}}, {0, 0, 0}, {1, 0, 0}, {2, 0, 0}, &h));
 }
 
 TEST(Triangle, GrazingInPlaneMisses) {
     PrimHit h;
-    EXPECT_FALSE(intersect_triangle({{-1, 0.2f, 0}, {1, 0, 0}}, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, &h));
+    EXPECT_FALSE(
+        intersect_triangle({{-1, 0.2f, 0}, {1, 0, 0}}, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, &h));
 }
 
 namespace {
@@ -109,11 +119,12 @@ namespace {
 // A closed, consistently wound icosphere subdivided `levels` times, centred at c.
 void add_icosphere(Scene& scene, Point3 c, float r, int levels) {
     const float t = (1.0f + std::sqrt(5.0f)) / 2.0f;
-    std::vector<Point3> v = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-                             {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
-    std::vector<uint32_t> f = {0, 11, 5, 0, 5, 1, 0, 1, 7, 0, 7, 10, 0, 10, 11, 1, 5, 9, 5, 11, 4,
-                               11, 10, 2, 10, 7, 6, 7, 1, 8, 3, 9, 4, 3, 4, 2, 3, 2, 6, 3, 6, 8,
-                               3, 8, 9, 4, 9, 5, 2, 4, 11, 6, 2, 10, 8, 6, 7, 9, 8, 1};
+    std::vector<Point3> v = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0},
+                             {0, -1, t}, {0, 1, t}, {0, -1, -t}, {0, 1, -t},
+                             {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+    std::vector<uint32_t> f = {0, 11, 5,  0, 5,  1, 0, 1, 7, 0, 7,  10, 0, 10, 11, 1, 5, 9, 5, 11,
+                               4, 11, 10, 2, 10, 7, 6, 7, 1, 8, 3,  9,  4, 3,  4,  2, 3, 2, 6, 3,
+                               6, 8,  3,  8, 9,  4, 9, 5, 2, 4, 11, 6,  2, 10, 8,  6, 7, 9, 8, 1};
     for (int l = 0; l < levels; ++l) {
         std::vector<uint32_t> g;
         for (size_t i = 0; i < f.size(); i += 3) {

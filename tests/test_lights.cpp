@@ -19,7 +19,9 @@ namespace {
 constexpr uint32_t kSamples = 300'000;
 constexpr double kSignificance = 1e-3;
 
-float u(uint32_t seed, uint32_t i, uint32_t dim) { return sample_1d(seed, i, 0, dim); }
+float u(uint32_t seed, uint32_t i, uint32_t dim) {
+    return sample_1d(seed, i, 0, dim);
+}
 
 MaterialId add_light(Scene& s, bool two_sided = false) {
     Material m;
@@ -39,12 +41,14 @@ std::vector<LightCase> cases(const TempDir& dir) {
     std::vector<LightCase> out;
     {
         LightCase c{"quad", {}, {0.2f, -0.3f, 2.0f}};  // in front (the normal is about +z)
-        c.scene.add_quad({{-1, -0.5f, 1}, {2, 0, 0.3f}, {0, 1.5f, 0.2f}, add_light(c.scene), kNone});
+        c.scene.add_quad(
+            {{-1, -0.5f, 1}, {2, 0, 0.3f}, {0, 1.5f, 0.2f}, add_light(c.scene), kNone});
         out.push_back(std::move(c));
     }
     {
         LightCase c{"quad-behind", {}, {0.2f, -0.3f, 0.1f}};  // sees the back: radiance 0
-        c.scene.add_quad({{-1, -0.5f, 1}, {2, 0, 0.3f}, {0, 1.5f, 0.2f}, add_light(c.scene), kNone});
+        c.scene.add_quad(
+            {{-1, -0.5f, 1}, {2, 0, 0.3f}, {0, 1.5f, 0.2f}, add_light(c.scene), kNone});
         out.push_back(std::move(c));
     }
     {
@@ -110,7 +114,8 @@ TEST(Lights, SamplingMatchesDensityChiSquare) {
         ++seed;
         auto result = chi2::test(
             [&](uint32_t i) -> std::optional<Vec3> {
-                LightSample ls = lights.sample(c.scene, c.ref, u(seed, i, 0), u(seed, i, 1), u(seed, i, 2));
+                LightSample ls =
+                    lights.sample(c.scene, c.ref, u(seed, i, 0), u(seed, i, 1), u(seed, i, 2));
                 if (!ls.valid) return std::nullopt;
                 return ls.wi;
             },

@@ -15,7 +15,8 @@ using namespace wavetrace;
 TEST(Mis, HeuristicsAndGuards) {
     EXPECT_FLOAT_EQ(mis_weight(MisHeuristic::Balance, 1, 3), 0.25f);
     EXPECT_FLOAT_EQ(mis_weight(MisHeuristic::Power, 1, 3), 0.1f);
-    EXPECT_FLOAT_EQ(mis_weight(MisHeuristic::Power, 3, 1) + mis_weight(MisHeuristic::Power, 1, 3), 1.0f);
+    EXPECT_FLOAT_EQ(mis_weight(MisHeuristic::Power, 3, 1) + mis_weight(MisHeuristic::Power, 1, 3),
+                    1.0f);
     EXPECT_EQ(mis_weight(MisHeuristic::Power, INFINITY, 5), 1.0f);
     EXPECT_EQ(mis_weight(MisHeuristic::Power, 5, INFINITY), 0.0f);
     EXPECT_EQ(mis_weight(MisHeuristic::Balance, 0, 0), 0.0f);

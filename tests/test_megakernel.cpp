@@ -20,7 +20,12 @@ namespace {
 const Strategy kStrategies[] = {Strategy::Bsdf, Strategy::Light, Strategy::Mixture, Strategy::Nee,
                                 Strategy::Mis};
 
-Film render(const Scene& scene, Strategy strategy, int w, int h, int spp, uint64_t seed = 1,
+Film render(const Scene& scene,
+            Strategy strategy,
+            int w,
+            int h,
+            int spp,
+            uint64_t seed = 1,
             int max_depth = 50) {
     Bvh bvh = Bvh::build(scene);
     RenderConfig c;
@@ -124,8 +129,8 @@ TEST(Megakernel, IrradianceUnderAParallelSquare) {
     for (Strategy st : kStrategies) {
         Film film = render(s, st, 1, 1, 40000, 3, 2);
         Estimate e = region(film, 0, 0, 1, 1);
-        std::printf("irradiance %-8s %.5f +- %.5f (closed form %.5f)\n", to_string(st), e.mean, e.se,
-                    expected);
+        std::printf("irradiance %-8s %.5f +- %.5f (closed form %.5f)\n", to_string(st), e.mean,
+                    e.se, expected);
         EXPECT_NEAR(e.mean, expected, 4 * e.se) << to_string(st);
     }
 }
@@ -141,8 +146,9 @@ TEST(Megakernel, StrategiesAgree) {
     // scene is about: the lights' highlights in the plates. Its longer paths include glossy
     // caustics on the floor (floor -> near-mirror plate -> light) that the single strategies
     // find so rarely that no affordable sample count gives them a trustworthy variance.
-    for (const Case& c : {Case{"cornell", 48, 48, 192, 8}, Case{"cornell-glass", 48, 48, 192, 8},
-                          Case{"cornell-smoke", 48, 48, 192, 8}, Case{"veach-mis", 32, 24, 1024, 2}}) {
+    for (const Case& c :
+         {Case{"cornell", 48, 48, 192, 8}, Case{"cornell-glass", 48, 48, 192, 8},
+          Case{"cornell-smoke", 48, 48, 192, 8}, Case{"veach-mis", 32, 24, 1024, 2}}) {
         Scene scene = load_scene(scene_path(c.scene));
         std::vector<Film> films;
         for (Strategy st : kStrategies)
@@ -160,14 +166,15 @@ TEST(Megakernel, StrategiesAgree) {
                     ++tests;
                     if (z > 4) {
                         ++outliers;
-                        std::printf("  %s block (%d,%d) %s %.4f vs mis %.4f: z %.1f\n", c.scene, bx, by,
-                                    to_string(kStrategies[k]), e.mean, ref.mean, z);
+                        std::printf("  %s block (%d,%d) %s %.4f vs mis %.4f: z %.1f\n", c.scene, bx,
+                                    by, to_string(kStrategies[k]), e.mean, ref.mean, z);
                     }
                 }
             }
         int allowed = allowed_outliers(tests);
-        std::printf("agreement %-14s %d block comparisons, %d beyond 4 sigma (allowed %d), worst z %.2f\n",
-                    c.scene, tests, outliers, allowed, worst);
+        std::printf(
+            "agreement %-14s %d block comparisons, %d beyond 4 sigma (allowed %d), worst z %.2f\n",
+            c.scene, tests, outliers, allowed, worst);
         EXPECT_LE(outliers, allowed) << c.scene;
         for (const Film& f : films) EXPECT_EQ(f.invalid_samples(), 0u) << c.scene;
     }

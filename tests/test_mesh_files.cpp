@@ -22,7 +22,8 @@ const int kFaces[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
 std::string obj_text() {
     std::string s = "mtllib cube.mtl\no cube\n";
     for (const Point3& p : kCube)
-        s += "v " + std::to_string(p.x) + " " + std::to_string(p.y) + " " + std::to_string(p.z) + "\n";
+        s += "v " + std::to_string(p.x) + " " + std::to_string(p.y) + " " + std::to_string(p.z) +
+             "\n";
     s += "usemtl grey\n";
     for (const auto& f : kFaces)  // negative (relative) indices: -8 is the first vertex
         s += "f " + std::to_string(f[0] - 8) + " " + std::to_string(f[1] - 8) + " " +
@@ -60,7 +61,8 @@ std::string ply_binary_text() {
 std::vector<std::array<float, 9>> triangles_of(const TempDir& dir, const std::string& file) {
     auto p = dir.write("s.json", R"({"camera": {"look_from": [0, 0, -5], "look_at": [0, 0, 0]},
         "materials": {"m": {"type": "lambertian", "albedo": 0.5}},
-        "objects": [{"type": "mesh", "file": ")" + file + R"(", "material": "m"}]})");
+        "objects": [{"type": "mesh", "file": ")" +
+                                     file + R"(", "material": "m"}]})");
     Scene s = load_scene(p);
     std::vector<std::array<float, 9>> out;
     for (const Triangle& t : s.triangles) {

@@ -13,7 +13,8 @@ using namespace wavetrace;
 namespace {
 
 const char* kCamera = R"("camera": {"look_from": [0, 0, -5], "look_at": [0, 0, 0]})";
-const char* kMaterials = R"("materials": {"white": {"type": "lambertian", "albedo": [0.5, 0.5, 0.5]}})";
+const char* kMaterials =
+    R"("materials": {"white": {"type": "lambertian", "albedo": [0.5, 0.5, 0.5]}})";
 
 std::string scene_with_objects(const std::string& objects, const std::string& extra = "") {
     return std::string("{") + kCamera + ", " + kMaterials + (extra.empty() ? "" : ", " + extra) +
@@ -93,34 +94,51 @@ TEST(SceneLoader, SyntaxErrorGivesLineAndColumn) {
 
 TEST(SceneLoader, UnknownKeyIsAnErrorWithASuggestion) {
     TempDir dir;
-    EXPECT_EQ(load_error(dir, scene_with_objects(
-                                  R"({"type": "sphere", "center": [0, 0, 0], "radus": 1, "material": "white"})")),
-              ": /objects/0: missing required key \"radius\" (is \"radus\" a typo?)");
-    EXPECT_EQ(load_error(dir, scene_with_objects(
-                                  R"({"type": "sphere", "center": [0, 0, 0], "radius": 1, "radus": 1, "material": "white"})")),
-              ": /objects/0/radus: unknown key (did you mean \"radius\"?)");
+    EXPECT_EQ(
+        load_error(
+            dir,
+            scene_with_objects(
+                R"({"type": "sphere", "center": [0, 0, 0], "radus": 1, "material": "white"})")),
+        ": /objects/0: missing required key \"radius\" (is \"radus\" a typo?)");
+    EXPECT_EQ(
+        load_error(
+            dir,
+            scene_with_objects(
+                R"({"type": "sphere", "center": [0, 0, 0], "radius": 1, "radus": 1, "material": "white"})")),
+        ": /objects/0/radus: unknown key (did you mean \"radius\"?)");
     std::string err = load_error(dir, std::string("{") + kCamera + ", \"objets\": []}");
     EXPECT_EQ(err, ": /objets: unknown key (did you mean \"objects\"?)");
     // Inside objects, a missing key is reported with its likely misspelling.
-    EXPECT_EQ(load_error(dir, std::string("{\"camera\": {\"look_from\": [0, 0, 1], \"lok_at\": [0, 0, 0]}}")),
-              ": /camera: missing required key \"look_at\" (is \"lok_at\" a typo?)");
+    EXPECT_EQ(
+        load_error(dir,
+                   std::string("{\"camera\": {\"look_from\": [0, 0, 1], \"lok_at\": [0, 0, 0]}}")),
+        ": /camera: missing required key \"look_at\" (is \"lok_at\" a typo?)");
     err = load_error(dir, std::string("{") + kCamera + ", \"objects\": [], \"materails\": {}}");
     EXPECT_EQ(err, ": /materails: unknown key (did you mean \"materials\"?)");
 }
 
 TEST(SceneLoader, WrongTypesAreNamed) {
     TempDir dir;
-    EXPECT_EQ(load_error(dir, scene_with_objects(
-                                  R"({"type": "sphere", "center": [0, 0], "radius": 1, "material": "white"})")),
-              ": /objects/0/center: expected an array of 3 numbers, got [0,0]");
-    EXPECT_EQ(load_error(dir, scene_with_objects(
-                                  R"({"type": "sphere", "center": [0, 0, 0], "radius": "big", "material": "white"})")),
-              ": /objects/0/radius: expected a positive number, got \"big\"");
+    EXPECT_EQ(
+        load_error(
+            dir, scene_with_objects(
+                     R"({"type": "sphere", "center": [0, 0], "radius": 1, "material": "white"})")),
+        ": /objects/0/center: expected an array of 3 numbers, got [0,0]");
+    EXPECT_EQ(
+        load_error(
+            dir,
+            scene_with_objects(
+                R"({"type": "sphere", "center": [0, 0, 0], "radius": "big", "material": "white"})")),
+        ": /objects/0/radius: expected a positive number, got \"big\"");
     EXPECT_EQ(load_error(dir, scene_with_objects(R"({"type": "cone", "material": "white"})")),
-              ": /objects/0/type: unknown object type \"cone\" (expected sphere, quad, box, mesh or group)");
-    EXPECT_EQ(load_error(dir, scene_with_objects(
-                                  R"({"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "chalk"})")),
-              ": /objects/0/material: no material named \"chalk\" in /materials");
+              ": /objects/0/type: unknown object type \"cone\" (expected sphere, quad, box, mesh "
+              "or group)");
+    EXPECT_EQ(
+        load_error(
+            dir,
+            scene_with_objects(
+                R"({"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "chalk"})")),
+        ": /objects/0/material: no material named \"chalk\" in /materials");
     EXPECT_EQ(load_error(dir, std::string("{") + kCamera + ", \"objects\": {}}"),
               ": /objects: expected an array, got {}");
 }
@@ -128,60 +146,100 @@ TEST(SceneLoader, WrongTypesAreNamed) {
 TEST(SceneLoader, NonFiniteNumbersAreRejected) {
     TempDir dir;
     // NaN is not JSON at all; an overflowing literal parses to infinity or fails to parse.
-    EXPECT_NE(load_error(dir, scene_with_objects(
-                                  R"({"type": "sphere", "center": [0, 0, NaN], "radius": 1, "material": "white"})"))
-                  .find("invalid JSON"),
-              std::string::npos);
-    std::string err = load_error(dir, scene_with_objects(
-                                          R"({"type": "sphere", "center": [0, 0, 1e999], "radius": 1, "material": "white"})"));
+    EXPECT_NE(
+        load_error(
+            dir,
+            scene_with_objects(
+                R"({"type": "sphere", "center": [0, 0, NaN], "radius": 1, "material": "white"})"))
+            .find("invalid JSON"),
+        std::string::npos);
+    std::string err = load_error(
+        dir,
+        scene_with_objects(
+            R"({"type": "sphere", "center": [0, 0, 1e999], "radius": 1, "material": "white"})"));
     EXPECT_EQ(err, ": invalid JSON: number overflow parsing '1e999'");
-    EXPECT_EQ(load_error(dir, scene_with_objects(
-                                  R"({"type": "sphere", "center": [0, 0, 1e39], "radius": 1, "material": "white"})")),
-              ": /objects/0/center/2: expected a finite number, got 1e+39");
+    EXPECT_EQ(
+        load_error(
+            dir,
+            scene_with_objects(
+                R"({"type": "sphere", "center": [0, 0, 1e39], "radius": 1, "material": "white"})")),
+        ": /objects/0/center/2: expected a finite number, got 1e+39");
 }
 
 TEST(SceneLoader, NegativeAndZeroSizesAreRejected) {
     TempDir dir;
-    EXPECT_EQ(load_error(dir, scene_with_objects(
-                                  R"({"type": "sphere", "center": [0, 0, 0], "radius": -1, "material": "white"})")),
-              ": /objects/0/radius: expected a positive number, got -1");
-    EXPECT_EQ(load_error(dir, scene_with_objects(
-                                  R"({"type": "sphere", "center": [0, 0, 0], "radius": 0, "material": "white"})")),
-              ": /objects/0/radius: expected a positive number, got 0");
-    EXPECT_EQ(load_error(dir, scene_with_objects(
-                                  R"({"type": "box", "min": [0, 0, 0], "max": [1, 0, 1], "material": "white"})")),
-              ": /objects/0/max: expected max > min in every axis, got [1,0,1]");
-    EXPECT_EQ(load_error(dir, scene_with_objects(
-                                  R"({"type": "quad", "q": [0, 0, 0], "u": [1, 0, 0], "v": [2, 0, 0], "material": "white"})")),
-              ": /objects/0/v: u and v must not be parallel");
-    EXPECT_EQ(load_error(dir, scene_with_objects(
-                                  R"({"type": "box", "min": [0, 0, 0], "max": [1, 1, 1], "material": "white",
+    EXPECT_EQ(
+        load_error(
+            dir,
+            scene_with_objects(
+                R"({"type": "sphere", "center": [0, 0, 0], "radius": -1, "material": "white"})")),
+        ": /objects/0/radius: expected a positive number, got -1");
+    EXPECT_EQ(
+        load_error(
+            dir,
+            scene_with_objects(
+                R"({"type": "sphere", "center": [0, 0, 0], "radius": 0, "material": "white"})")),
+        ": /objects/0/radius: expected a positive number, got 0");
+    EXPECT_EQ(
+        load_error(
+            dir,
+            scene_with_objects(
+                R"({"type": "box", "min": [0, 0, 0], "max": [1, 0, 1], "material": "white"})")),
+        ": /objects/0/max: expected max > min in every axis, got [1,0,1]");
+    EXPECT_EQ(
+        load_error(
+            dir,
+            scene_with_objects(
+                R"({"type": "quad", "q": [0, 0, 0], "u": [1, 0, 0], "v": [2, 0, 0], "material": "white"})")),
+        ": /objects/0/v: u and v must not be parallel");
+    EXPECT_EQ(
+        load_error(dir,
+                   scene_with_objects(
+                       R"({"type": "box", "min": [0, 0, 0], "max": [1, 1, 1], "material": "white",
                                       "transform": [{"scale": [1, 0, 1]}]})")),
-              ": /objects/0/transform/0/scale: expected a non-zero scale within [1e-7, 1e7], got [1,0,1]");
-    EXPECT_EQ(load_error(dir, scene_with_objects(
-                                  R"({"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "white",
+        ": /objects/0/transform/0/scale: expected a non-zero scale within [1e-7, 1e7], got "
+        "[1,0,1]");
+    EXPECT_EQ(
+        load_error(dir,
+                   scene_with_objects(
+                       R"({"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "white",
                                       "transform": [{"scale": [1, 2, 1]}]})")),
-              ": /objects/0: a sphere's transform must not scale non-uniformly");
-    std::string bad_render = std::string("{") + kCamera + R"(, "render": {"width": -5}, "objects": []})";
-    EXPECT_EQ(load_error(dir, bad_render), ": /render/width: expected an integer in [1, 32768], got -5");
-    std::string huge = std::string("{") + kCamera + R"(, "render": {"width": 32768, "height": 32768}, "objects": []})";
+        ": /objects/0: a sphere's transform must not scale non-uniformly");
+    std::string bad_render =
+        std::string("{") + kCamera + R"(, "render": {"width": -5}, "objects": []})";
+    EXPECT_EQ(load_error(dir, bad_render),
+              ": /render/width: expected an integer in [1, 32768], got -5");
+    std::string huge = std::string("{") + kCamera +
+                       R"(, "render": {"width": 32768, "height": 32768}, "objects": []})";
     EXPECT_NE(load_error(dir, huge).find("/render: width x height = 1073741824 pixels exceeds"),
               std::string::npos);
-    std::string bad_medium = std::string("{") + kCamera + R"(, "media": {"fog": {"density": -0.1, "albedo": 1}}, "objects": []})";
-    EXPECT_EQ(load_error(dir, bad_medium), ": /media/fog/density: expected a positive number, got -0.1");
-    std::string bad_albedo = std::string("{") + kCamera +
-                             R"(, "materials": {"m": {"type": "lambertian", "albedo": [1, -1, 1]}}, "objects": []})";
-    EXPECT_EQ(load_error(dir, bad_albedo), ": /materials/m/albedo/1: expected a non-negative number, got -1");
+    std::string bad_medium =
+        std::string("{") + kCamera +
+        R"(, "media": {"fog": {"density": -0.1, "albedo": 1}}, "objects": []})";
+    EXPECT_EQ(load_error(dir, bad_medium),
+              ": /media/fog/density: expected a positive number, got -0.1");
+    std::string bad_albedo =
+        std::string("{") + kCamera +
+        R"(, "materials": {"m": {"type": "lambertian", "albedo": [1, -1, 1]}}, "objects": []})";
+    EXPECT_EQ(load_error(dir, bad_albedo),
+              ": /materials/m/albedo/1: expected a non-negative number, got -1");
 }
 
 TEST(SceneLoader, CameraMustBeWellPosed) {
     TempDir dir;
-    EXPECT_EQ(load_error(dir, R"({"camera": {"look_from": [0, 0, 0], "look_at": [0, 0, 0]}, "objects": []})"),
-              ": /camera/look_at: look_at must differ from look_from");
-    EXPECT_EQ(load_error(dir, R"({"camera": {"look_from": [0, 0, 0], "look_at": [0, 1, 0]}, "objects": []})"),
-              ": /camera: the viewing direction is parallel to the default up [0, 1, 0]; set \"up\"");
-    EXPECT_EQ(load_error(dir, R"({"camera": {"look_from": [0, 0, 0], "look_at": [1, 0, 0], "up": [-2, 0, 0]}, "objects": []})"),
-              ": /camera/up: up must not be parallel to the viewing direction");
+    EXPECT_EQ(
+        load_error(dir,
+                   R"({"camera": {"look_from": [0, 0, 0], "look_at": [0, 0, 0]}, "objects": []})"),
+        ": /camera/look_at: look_at must differ from look_from");
+    EXPECT_EQ(
+        load_error(dir,
+                   R"({"camera": {"look_from": [0, 0, 0], "look_at": [0, 1, 0]}, "objects": []})"),
+        ": /camera: the viewing direction is parallel to the default up [0, 1, 0]; set \"up\"");
+    EXPECT_EQ(
+        load_error(
+            dir,
+            R"({"camera": {"look_from": [0, 0, 0], "look_at": [1, 0, 0], "up": [-2, 0, 0]}, "objects": []})"),
+        ": /camera/up: up must not be parallel to the viewing direction");
     EXPECT_EQ(load_error(dir, R"({"objects": []})"), ": /: missing required key \"camera\"");
 }
 
@@ -191,31 +249,39 @@ TEST(SceneLoader, MissingAndUnreadableFilesAreNamed) {
         load_scene(dir.path() / "nope.json");
         FAIL();
     } catch (const SceneError& e) {
-        EXPECT_NE(std::string(e.what()).find("nope.json: cannot open scene file"), std::string::npos);
+        EXPECT_NE(std::string(e.what()).find("nope.json: cannot open scene file"),
+                  std::string::npos);
     }
-    std::string err = load_error(dir, scene_with_objects(
-                                          R"({"type": "mesh", "file": "meshes/nope.obj", "material": "white"})"));
+    std::string err = load_error(
+        dir,
+        scene_with_objects(R"({"type": "mesh", "file": "meshes/nope.obj", "material": "white"})"));
     EXPECT_NE(err.find(": /objects/0/file: cannot read mesh '"), std::string::npos) << err;
     EXPECT_NE(err.find("nope.obj': no such file"), std::string::npos) << err;
     std::filesystem::create_directories(dir.path() / "adir.obj");
-    err = load_error(dir, scene_with_objects(R"({"type": "mesh", "file": "adir.obj", "material": "white"})"));
+    err = load_error(
+        dir, scene_with_objects(R"({"type": "mesh", "file": "adir.obj", "material": "white"})"));
     EXPECT_NE(err.find("is a directory"), std::string::npos) << err;
-    err = load_error(dir, scene_with_objects("", R"("background": {"type": "environment", "file": "sky.hdr"})"));
+    err = load_error(
+        dir, scene_with_objects("", R"("background": {"type": "environment", "file": "sky.hdr"})"));
     EXPECT_NE(err.find(": /background/file: cannot open image '"), std::string::npos) << err;
 }
 
 TEST(SceneLoader, UnsupportedFormatsAreNamed) {
     TempDir dir;
     dir.write("mesh.xyz", "1 2 3\n");
-    std::string err = load_error(dir, scene_with_objects(R"({"type": "mesh", "file": "mesh.xyz", "material": "white"})"));
+    std::string err = load_error(
+        dir, scene_with_objects(R"({"type": "mesh", "file": "mesh.xyz", "material": "white"})"));
     EXPECT_NE(err.find("unsupported mesh format '.xyz'"), std::string::npos) << err;
     dir.write("tex.png", "this is not a png");
-    err = load_error(dir, std::string("{") + kCamera +
-                              R"(, "materials": {"m": {"type": "lambertian", "albedo": {"type": "image", "file": "tex.png"}}}, "objects": []})");
+    err = load_error(
+        dir,
+        std::string("{") + kCamera +
+            R"(, "materials": {"m": {"type": "lambertian", "albedo": {"type": "image", "file": "tex.png"}}}, "objects": []})");
     EXPECT_NE(err.find(": /materials/m/albedo/file: "), std::string::npos) << err;
     EXPECT_NE(err.find("cannot read image"), std::string::npos) << err;
     dir.write("broken.obj", "v 0 0 0\nv 1 0 0\nf 1 2 7\n");
-    err = load_error(dir, scene_with_objects(R"({"type": "mesh", "file": "broken.obj", "material": "white"})"));
+    err = load_error(
+        dir, scene_with_objects(R"({"type": "mesh", "file": "broken.obj", "material": "white"})"));
     EXPECT_NE(err.find(": /objects/0/file: cannot read mesh"), std::string::npos) << err;
 }
 
@@ -226,8 +292,8 @@ TEST(SceneLoader, DegenerateTrianglesAreSkippedAndCounted) {
     dir.write("m.obj",
               "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nv 1 1 1\n"
               "f 1 2 3\nf 1 2 4\nf 1 1 3\nf 2 5 3\n");
-    std::filesystem::path p =
-        dir.write("x.json", scene_with_objects(R"({"type": "mesh", "file": "m.obj", "material": "white"})"));
+    std::filesystem::path p = dir.write(
+        "x.json", scene_with_objects(R"({"type": "mesh", "file": "m.obj", "material": "white"})"));
     static std::string warning;
     warning.clear();
     LoadOptions options;
@@ -255,19 +321,23 @@ TEST(SceneLoader, MirroringTransformsKeepOutsidesOutside) {
     }
     // Mirrored in z, the triangle's front must now face -z.
     const Triangle& t = s.triangles.at(0);
-    Vec3 n = cross(s.positions[t.v[1]] - s.positions[t.v[0]], s.positions[t.v[2]] - s.positions[t.v[0]]);
+    Vec3 n =
+        cross(s.positions[t.v[1]] - s.positions[t.v[0]], s.positions[t.v[2]] - s.positions[t.v[0]]);
     EXPECT_LT(n.z, 0.0f);
 }
 
 TEST(SceneLoader, ReflectancesAboveOneAndFarGeometryAreRejected) {
     TempDir dir;
-    std::string glowing = std::string("{") + kCamera +
-                          R"(, "materials": {"m": {"type": "lambertian", "albedo": [1.2, 0.5, 0.5]}}, "objects": []})";
+    std::string glowing =
+        std::string("{") + kCamera +
+        R"(, "materials": {"m": {"type": "lambertian", "albedo": [1.2, 0.5, 0.5]}}, "objects": []})";
     EXPECT_EQ(load_error(dir, glowing),
-              ": /materials/m/albedo: expected a reflectance with components in [0, 1], got [1.2,0.5,0.5]");
-    EXPECT_EQ(load_error(dir, scene_with_objects(R"({"type": "sphere", "center": [0, 0, 0], "radius": 1,
+              ": /materials/m/albedo: expected a reflectance with components in [0, 1], got "
+              "[1.2,0.5,0.5]");
+    EXPECT_EQ(
+        load_error(dir, scene_with_objects(R"({"type": "sphere", "center": [0, 0, 0], "radius": 1,
         "material": "white", "transform": [{"translate": [9e6, 0, 0]}, {"translate": [9e6, 0, 0]}]})")),
-              ": /objects/0: after its transform the object reaches beyond +-1e7");
+        ": /objects/0: after its transform the object reaches beyond +-1e7");
     // A misspelt top-level key is reported as such, before the errors it would cause.
     std::string typo = std::string("{") + kCamera +
                        R"(, "materals": {"white": {"type": "lambertian", "albedo": 0.5}},

@@ -36,7 +36,8 @@ TEST(Wavefront, EqualsTheMegakernel) {
                              "everything", "bunny", "dragon", "veach-mis"}) {
         Scene scene = load_scene(scene_path(name));
         Bvh bvh = Bvh::build(scene);
-        for (Strategy st : {Strategy::Bsdf, Strategy::Light, Strategy::Mixture, Strategy::Nee, Strategy::Mis}) {
+        for (Strategy st :
+             {Strategy::Bsdf, Strategy::Light, Strategy::Mixture, Strategy::Nee, Strategy::Mis}) {
             RenderConfig c = config(st, 40, 40, 4);
             WavefrontConfig wf;
             wf.wave_size = 700;  // several waves, the last one partial
@@ -60,9 +61,10 @@ TEST(Wavefront, EqualsTheMegakernel) {
                     }
                 }
             double mean_rel = std::fabs(sum_mk - sum_wv) / std::max(sum_mk, 1e-30);
-            std::printf("wavefront-vs-megakernel %-14s %-8s outside bound %zu/%zu, worst relative %.2e "
-                        "(pixel %d), image means %.2e relative\n",
-                        name, to_string(st), outside, values, worst, worst_pixel, mean_rel);
+            std::printf(
+                "wavefront-vs-megakernel %-14s %-8s outside bound %zu/%zu, worst relative %.2e "
+                "(pixel %d), image means %.2e relative\n",
+                name, to_string(st), outside, values, worst, worst_pixel, mean_rel);
             EXPECT_LE(outside, values / 1000) << name << " " << to_string(st);
             EXPECT_LE(mean_rel, 1e-5) << name << " " << to_string(st);
         }
@@ -80,12 +82,14 @@ TEST(Wavefront, BitIdenticalForAnyThreadCountAndWaveSize) {
         return render_wavefront(scene, bvh, c, wf).mean();
     };
     Image ref = render(1, 851);
-    for (auto [threads, wave] : {std::pair{2, size_t(851)}, std::pair{7, size_t(851)},
-                                 std::pair{2, size_t(256)}, std::pair{7, size_t(300)},  // 300 divides nothing
-                                 std::pair{1, size_t(64)}}) {
+    for (auto [threads, wave] :
+         {std::pair{2, size_t(851)}, std::pair{7, size_t(851)}, std::pair{2, size_t(256)},
+          std::pair{7, size_t(300)},  // 300 divides nothing
+          std::pair{1, size_t(64)}}) {
         Image img = render(threads, wave);
         for (size_t i = 0; i < ref.pixels.size(); ++i)
-            ASSERT_EQ(ref.pixels[i], img.pixels[i]) << "threads " << threads << " wave " << wave << " pixel " << i;
+            ASSERT_EQ(ref.pixels[i], img.pixels[i])
+                << "threads " << threads << " wave " << wave << " pixel " << i;
     }
 }
 
@@ -105,9 +109,15 @@ void check_compact(const std::vector<uint8_t>& keep) {
 }
 }  // namespace
 
-TEST(Compaction, EmptyInput) { check_compact({}); }
-TEST(Compaction, AllAlive) { check_compact(std::vector<uint8_t>(3 * kCompactChunk + 5, 1)); }
-TEST(Compaction, AllDead) { check_compact(std::vector<uint8_t>(2 * kCompactChunk + 1, 0)); }
+TEST(Compaction, EmptyInput) {
+    check_compact({});
+}
+TEST(Compaction, AllAlive) {
+    check_compact(std::vector<uint8_t>(3 * kCompactChunk + 5, 1));
+}
+TEST(Compaction, AllDead) {
+    check_compact(std::vector<uint8_t>(2 * kCompactChunk + 1, 0));
+}
 TEST(Compaction, StableForSizesNotAMultipleOfTheChunk) {
     for (size_t n : {size_t(1), size_t(7), kCompactChunk - 1, kCompactChunk, kCompactChunk + 1,
                      5 * kCompactChunk + 333}) {

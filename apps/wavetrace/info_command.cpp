@@ -17,7 +17,9 @@ void add_info_command(CLI::App& app, InfoOptions& o) {
 
 namespace {
 
-std::string mib(size_t bytes) { return fmt::format("{:.2f} MiB", bytes / (1024.0 * 1024.0)); }
+std::string mib(size_t bytes) {
+    return fmt::format("{:.2f} MiB", bytes / (1024.0 * 1024.0));
+}
 
 template <class T>
 size_t bytes_of(const std::vector<T>& v) {
@@ -67,14 +69,15 @@ int run_info(const InfoOptions& o) {
                scene.camera.look_from.x, scene.camera.look_from.y, scene.camera.look_from.z,
                scene.camera.look_at.x, scene.camera.look_at.y, scene.camera.look_at.z,
                scene.camera.vfov, scene.render.width, scene.render.height);
-    fmt::print("bvh          {} nodes ({} leaves, {} B each), depth {}, SAH cost {:.2f}, "
-               "build {:.1f} ms\n",
-               st.nodes, st.leaves, sizeof(BvhNode), st.depth, st.sah_cost, st.build_ms);
+    fmt::print(
+        "bvh          {} nodes ({} leaves, {} B each), depth {}, SAH cost {:.2f}, "
+        "build {:.1f} ms\n",
+        st.nodes, st.leaves, sizeof(BvhNode), st.depth, st.sah_cost, st.build_ms);
     fmt::print("memory       geometry {}, bvh {}, textures {}\n", mib(geometry), mib(st.bytes),
                mib(texels));
     const size_t per_path = wavefront_bytes_per_path(), wave = WavefrontConfig{}.wave_size;
-    fmt::print("wavefront    {} B of queues per path in flight; {} paths per wave: {}\n", per_path, wave,
-               mib(per_path * wave));
+    fmt::print("wavefront    {} B of queues per path in flight; {} paths per wave: {}\n", per_path,
+               wave, mib(per_path * wave));
     return kExitOk;
 }
 

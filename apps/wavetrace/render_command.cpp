@@ -1,13 +1,13 @@
 #include <fmt/core.h>
+#include <sys/resource.h>
 #include <tbb/global_control.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <cmath>
 #include <iostream>
-#include <optional>
 #include <mutex>
-#include <sys/resource.h>
-#include <unistd.h>
+#include <optional>
 
 #include "commands.h"
 #include "wavetrace/wavetrace.h"
@@ -40,7 +40,8 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
     cmd->add_option("--mis-heuristic", o.heuristic, "MIS weighting heuristic")
         ->check(CLI::IsMember({"balance", "power"}))
         ->capture_default_str();
-    cmd->add_option("--max-depth", o.max_depth, "most ray segments per path (default: the scene's)");
+    cmd->add_option("--max-depth", o.max_depth,
+                    "most ray segments per path (default: the scene's)");
     cmd->add_option("--wave-size", o.wave_size,
                     "wavefront: paths in flight per wave (default 65536, at most the pixel count)");
 }
@@ -68,7 +69,7 @@ void map_aov_to_display(Aov aov, Image& image) {
 
 // A progress line on stderr, only when stderr is a terminal: percent, elapsed, ETA, Mpaths/s.
 class Progress {
-public:
+  public:
     explicit Progress(const RenderConfig& c)
         : enabled_(::isatty(2)),
           paths_(double(c.width) * c.height * c.spp),
@@ -84,14 +85,15 @@ public:
             double elapsed = std::chrono::duration<double>(now - start_).count();
             double eta = fraction > 0 ? elapsed * (1 - fraction) / fraction : 0;
             std::fprintf(stderr, "\r%5.1f%%  elapsed %6.1f s  ETA %6.1f s  %6.2f Mpaths/s   ",
-                         100 * fraction, elapsed, eta, paths_ * fraction / std::max(elapsed, 1e-9) * 1e-6);
+                         100 * fraction, elapsed, eta,
+                         paths_ * fraction / std::max(elapsed, 1e-9) * 1e-6);
         };
     }
     void finish() {
         if (enabled_) std::fprintf(stderr, "\r%70s\r", "");
     }
 
-private:
+  private:
     bool enabled_;
     double paths_;
     std::chrono::steady_clock::time_point start_, last_{};
@@ -110,7 +112,8 @@ std::optional<std::string> check_options(const RenderOptions& o, const RenderSet
         return fmt::format("--wave-size: expected 1..{}, got {}", size_t(1) << 26, o.wave_size);
     if (o.max_depth < 0 || o.max_depth > kMaxDepth)
         return fmt::format("--max-depth: expected 1..{}, got {}", kMaxDepth, o.max_depth);
-    if (o.threads < 0) return fmt::format("--threads: expected a positive count, got {}", o.threads);
+    if (o.threads < 0)
+        return fmt::format("--threads: expected a positive count, got {}", o.threads);
     if (!std::isfinite(o.exposure) || std::fabs(o.exposure) > 64)
         return fmt::format("--exposure: expected a number in [-64, 64], got {}", o.exposure);
     long long w = o.width ? o.width : r.width, h = o.height ? o.height : r.height;
@@ -126,8 +129,8 @@ int run_render(const RenderOptions& o) {
     std::optional<tbb::global_control> threads;
     if (o.threads > 0) threads.emplace(tbb::global_control::max_allowed_parallelism, o.threads);
 
-    fs::path output =
-        o.output.empty() ? fs::path(fs::path(o.scene).stem().string() + ".png") : fs::path(o.output);
+    fs::path output = o.output.empty() ? fs::path(fs::path(o.scene).stem().string() + ".png")
+                                       : fs::path(o.output);
     Scene scene;
     try {
         check_output_path(output);
@@ -163,9 +166,10 @@ int run_render(const RenderOptions& o) {
         Progress progress(config);
         WavefrontConfig wavefront;
         if (o.wave_size > 0) wavefront.wave_size = o.wave_size;
-        Film film = o.engine == "megakernel"
-                        ? render_megakernel(scene, bvh, config, &stats, progress.callback())
-                        : render_wavefront(scene, bvh, config, wavefront, &stats, progress.callback());
+        Film film =
+            o.engine == "megakernel"
+                ? render_megakernel(scene, bvh, config, &stats, progress.callback())
+                : render_wavefront(scene, bvh, config, wavefront, &stats, progress.callback());
         progress.finish();
         image = film.mean();
         write.metadata.insert(write.metadata.end(),
@@ -175,11 +179,12 @@ int run_render(const RenderOptions& o) {
                                {"wavetrace:spp", std::to_string(config.spp)},
                                {"wavetrace:max_depth", std::to_string(config.max_depth)},
                                {"wavetrace:render_seconds", fmt::format("{:.3f}", stats.seconds)}});
-        summary = fmt::format("{} {} {}x{} {} spp: {:.2f} s, {:.2f} Mpaths/s, {:.2f} Mrays/s, "
-                              "{} invalid samples, peak memory {:.1f} MiB",
-                              o.engine, o.strategy, width, height, config.spp, stats.seconds,
-                              stats.paths / stats.seconds * 1e-6, stats.rays / stats.seconds * 1e-6,
-                              film.invalid_samples(), peak_rss_mib());
+        summary = fmt::format(
+            "{} {} {}x{} {} spp: {:.2f} s, {:.2f} Mpaths/s, {:.2f} Mrays/s, "
+            "{} invalid samples, peak memory {:.1f} MiB",
+            o.engine, o.strategy, width, height, config.spp, stats.seconds,
+            stats.paths / stats.seconds * 1e-6, stats.rays / stats.seconds * 1e-6,
+            film.invalid_samples(), peak_rss_mib());
     } else {
         AovSettings settings{width, height, o.spp ? o.spp : 1, o.seed};
         Aov aov = o.aov == "albedo" ? Aov::Albedo : o.aov == "normal" ? Aov::Normal : Aov::Depth;

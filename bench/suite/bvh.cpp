@@ -55,7 +55,9 @@ Batches capture(const Scene& scene, const Bvh& bvh, int side) {
 }
 
 // Mrays/s of `trace` over all rays, median of three runs; `threads` 1 runs serially.
-double mrays(const std::vector<Ray>& rays, int threads, size_t step,
+double mrays(const std::vector<Ray>& rays,
+             int threads,
+             size_t step,
              const std::function<void(size_t)>& trace) {
     std::vector<double> rates;
     for (int run = 0; run < 3; ++run) {
@@ -94,23 +96,32 @@ void bench_bvh(const Options& o, Results& r) {
         Batches b = capture(scene, bvh, o.quick ? 32 : 512);
         for (int threads : {1, all_threads}) {
             tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
-            auto row = [&](const char* batch, const std::vector<Ray>& rays, bool shadow, bool packets) {
+            auto row = [&](const char* batch, const std::vector<Ray>& rays, bool shadow,
+                           bool packets) {
                 double ours = mrays(rays, threads, 1, [&](size_t i) {
-                    if (shadow) (void)bvh.occluded(rays[i]);
-                    else (void)bvh.intersect(rays[i]);
+                    if (shadow)
+                        (void)bvh.occluded(rays[i]);
+                    else
+                        (void)bvh.intersect(rays[i]);
                 });
                 double ref = mrays(rays, threads, 1, [&](size_t i) {
-                    if (shadow) (void)embree.occluded(rays[i]);
-                    else (void)embree.intersect(rays[i]);
+                    if (shadow)
+                        (void)embree.occluded(rays[i]);
+                    else
+                        (void)embree.intersect(rays[i]);
                 });
                 nlohmann::json p8 = nullptr, p16 = nullptr;
                 if (packets) {
-                    p8 = mrays(rays, threads, 8, [&](size_t i) { embree.intersect_packet(&rays[i], 8); });
-                    p16 = mrays(rays, threads, 16, [&](size_t i) { embree.intersect_packet(&rays[i], 16); });
+                    p8 = mrays(rays, threads, 8,
+                               [&](size_t i) { embree.intersect_packet(&rays[i], 8); });
+                    p16 = mrays(rays, threads, 16,
+                                [&](size_t i) { embree.intersect_packet(&rays[i], 16); });
                 }
                 r.row("bvh", {name, batch, threads, rays.size(), ours, ref, ours / ref, p8, p16});
-                std::printf("bvh %-10s %-8s %d thread(s): ours %7.2f Mrays/s, embree %7.2f, ours/embree %.2f\n",
-                            name, batch, threads, ours, ref, ours / ref);
+                std::printf(
+                    "bvh %-10s %-8s %d thread(s): ours %7.2f Mrays/s, embree %7.2f, ours/embree "
+                    "%.2f\n",
+                    name, batch, threads, ours, ref, ours / ref);
                 std::fflush(stdout);
             };
             row("primary", b.primary, false, true);
@@ -118,8 +129,10 @@ void bench_bvh(const Options& o, Results& r) {
             row("shadow", b.shadow, true, false);
         }
         double ours = median_ms([&] { return Bvh::build(scene).stats().build_ms; });
-        double medium = median_ms([&] { return EmbreeMirror(scene, RTC_BUILD_QUALITY_MEDIUM, false).build_ms(); });
-        double high = median_ms([&] { return EmbreeMirror(scene, RTC_BUILD_QUALITY_HIGH, false).build_ms(); });
+        double medium = median_ms(
+            [&] { return EmbreeMirror(scene, RTC_BUILD_QUALITY_MEDIUM, false).build_ms(); });
+        double high = median_ms(
+            [&] { return EmbreeMirror(scene, RTC_BUILD_QUALITY_HIGH, false).build_ms(); });
         r.row("bvh_build", {name, scene.primitive_count(), ours, medium, high});
     }
 }

@@ -25,7 +25,8 @@ void bench_convergence(const Options& o, Results& r) {
         cfg.seed = 12345;  // the reference uses other random numbers than the renders it judges
         Image ref = render_wavefront(scene, bvh, cfg).mean();
         cfg.seed = 1;
-        for (Strategy st : {Strategy::Bsdf, Strategy::Light, Strategy::Mixture, Strategy::Nee, Strategy::Mis})
+        for (Strategy st :
+             {Strategy::Bsdf, Strategy::Light, Strategy::Mixture, Strategy::Nee, Strategy::Mis})
             for (int spp : {1, 4, 16, 64, 256}) {
                 if (o.quick && spp > 4) break;
                 cfg.strategy = st;

@@ -19,16 +19,18 @@ double relative_mse(const Image& a, const Image& ref) {
 }  // namespace
 
 void bench_engines(const Options& o, Results& r) {
-    r.table("engines", {"scene", "width", "height", "spp", "megakernel_mpaths", "wavefront_mpaths",
-                        "megakernel_mrays", "wavefront_mrays", "ratio_min", "ratio_median",
-                        "ratio_max", "rel_mse_between", "wavefront_queue_mib", "film_mib",
-                        "peak_rss_mib"});
+    r.table("engines",
+            {"scene", "width", "height", "spp", "megakernel_mpaths", "wavefront_mpaths",
+             "megakernel_mrays", "wavefront_mrays", "ratio_min", "ratio_median", "ratio_max",
+             "rel_mse_between", "wavefront_queue_mib", "film_mib", "peak_rss_mib"});
     struct Case {
         const char* scene;
         int w, h, spp;
     };
-    const Case full[] = {{"cornell", 320, 320, 16}, {"everything", 320, 320, 16},
-                         {"bunny", 320, 320, 16},   {"dragon", 320, 320, 16},
+    const Case full[] = {{"cornell", 320, 320, 16},
+                         {"everything", 320, 320, 16},
+                         {"bunny", 320, 320, 16},
+                         {"dragon", 320, 320, 16},
                          {"veach-mis", 384, 288, 16}};
     const int reps = o.quick ? 1 : 3;
     for (const Case& c : full) {
@@ -58,13 +60,14 @@ void bench_engines(const Options& o, Results& r) {
         const double queue_mib = double(wavefront_bytes_per_path()) *
                                  std::min<double>(double(wf_cfg.wave_size), pixels) / (1 << 20);
         const double film_mib = pixels * (6 * sizeof(double) + sizeof(uint32_t)) / (1 << 20);
-        r.row("engines", {c.scene, cfg.width, cfg.height, cfg.spp, spread(mk_paths).median,
-                          spread(wf_paths).median, spread(mk_rays).median, spread(wf_rays).median,
-                          s.min, s.median, s.max, relative_mse(wf_img, mk_img), queue_mib, film_mib,
-                          peak_rss_mib()});
-        std::printf("engines %-10s megakernel %6.3f Mpaths/s  wavefront %6.3f Mpaths/s  "
-                    "wavefront/megakernel %.2f [%.2f, %.2f]\n",
-                    c.scene, spread(mk_paths).median, spread(wf_paths).median, s.median, s.min, s.max);
+        r.row("engines",
+              {c.scene, cfg.width, cfg.height, cfg.spp, spread(mk_paths).median,
+               spread(wf_paths).median, spread(mk_rays).median, spread(wf_rays).median, s.min,
+               s.median, s.max, relative_mse(wf_img, mk_img), queue_mib, film_mib, peak_rss_mib()});
+        std::printf(
+            "engines %-10s megakernel %6.3f Mpaths/s  wavefront %6.3f Mpaths/s  "
+            "wavefront/megakernel %.2f [%.2f, %.2f]\n",
+            c.scene, spread(mk_paths).median, spread(wf_paths).median, s.median, s.min, s.max);
         std::fflush(stdout);
     }
 }

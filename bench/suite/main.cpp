@@ -1,8 +1,8 @@
 // wavetrace_bench: the benchmark suite. Runs each section side by side in this one process and
 // writes results/ (JSON, one CSV per table). `--quick` runs tiny settings, for the test suite.
-#include <CLI/CLI.hpp>
 #include <tbb/task_arena.h>
 
+#include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
 #include <fstream>
@@ -21,7 +21,8 @@ int main(int argc, char** argv) {
     app.add_option("--scenes", scenes, "scenes folder")->capture_default_str();
     app.add_option("--sections", sections, "sections to run")
         ->check(CLI::IsMember({"engines", "bvh", "scaling", "convergence"}));
-    app.add_option("--max-threads", o.max_threads, "scaling: up to this many threads (default: all)");
+    app.add_option("--max-threads", o.max_threads,
+                   "scaling: up to this many threads (default: all)");
     CLI11_PARSE(app, argc, argv);
     o.scenes = scenes;
 
@@ -46,7 +47,8 @@ int main(int argc, char** argv) {
         if (s == "scaling") bench_scaling(o, r);
         if (s == "convergence") bench_convergence(o, r);
     }
-    r.note("seconds", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    r.note("seconds",
+           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     r.save(out);
     std::printf("results written to %s/\n", out.c_str());
     return 0;

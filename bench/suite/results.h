@@ -1,16 +1,15 @@
 // Benchmark results: named tables, saved as one CSV per table and all together as JSON.
 #pragma once
 
-#include <nlohmann/json.hpp>
-
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 namespace wavetrace::bench {
 
 class Results {
-public:
+  public:
     // Starts a table; each later row() call adds values in the columns' order.
     void table(const std::string& name, std::vector<std::string> columns);
     void row(const std::string& name, std::vector<nlohmann::json> values);
@@ -18,7 +17,7 @@ public:
     // Writes DIR/NAME.csv per table and DIR/results.json.
     void save(const std::filesystem::path& dir) const;
 
-private:
+  private:
     struct Table {
         std::string name;
         std::vector<std::string> columns;

@@ -11,7 +11,8 @@ namespace wavetrace::bench {
 
 void bench_scaling(const Options& o, Results& r) {
     r.table("scaling", {"scene", "engine", "threads", "seconds", "speedup", "efficiency"});
-    const int max_threads = o.max_threads > 0 ? o.max_threads : tbb::this_task_arena::max_concurrency();
+    const int max_threads =
+        o.max_threads > 0 ? o.max_threads : tbb::this_task_arena::max_concurrency();
     for (const char* name : {"cornell", "dragon"}) {
         Scene scene = load_scene(o.scenes / (std::string(name) + ".json"));
         Bvh bvh = Bvh::build(scene);

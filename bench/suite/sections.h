@@ -9,8 +9,8 @@
 namespace wavetrace::bench {
 
 struct Options {
-    bool quick = false;        // tiny settings: checks the harness, measures nothing useful
-    int max_threads = 0;       // scaling goes 1 .. this (0: all hardware threads)
+    bool quick = false;   // tiny settings: checks the harness, measures nothing useful
+    int max_threads = 0;  // scaling goes 1 .. this (0: all hardware threads)
     std::filesystem::path scenes;
 };
 

@@ -31,19 +31,29 @@ struct PathContext {
 
 // Radiance arriving along `ray` (the seed's ray_color). `bounce` numbers the vertex the ray
 // will reach: 0 for camera rays. `beta` is the path throughput so far, for Russian roulette.
-Color ray_color(PathContext& ctx, Ray ray, int bounce, MediumStack media,
-                const PreviousVertex& prev, Color beta) {
+Color ray_color(PathContext& ctx,
+                Ray ray,
+                int bounce,
+                MediumStack media,
+                const PreviousVertex& prev,
+                Color beta) {
     const RenderConfig& cfg = ctx.config;
     float flight = segment_flight(cfg.seed, ctx.pixel, ctx.sample, bounce);
     for (int crossing = 0; crossing < kMaxBoundaryCrossings; ++crossing) {
         ++ctx.rays;
         Hit hit = ctx.bvh.intersect(ray);
-        SegmentResult seg = resolve_segment(ctx.scene, ctx.lights, cfg, ray, hit, media, flight, prev);
+        SegmentResult seg =
+            resolve_segment(ctx.scene, ctx.lights, cfg, ray, hit, media, flight, prev);
         switch (seg.event) {
-            case SegmentEvent::Cross: ray = seg.next; continue;
-            case SegmentEvent::Emission: return seg.emission;
-            case SegmentEvent::End: return {};
-            case SegmentEvent::Scatter: break;
+            case SegmentEvent::Cross:
+                ray = seg.next;
+                continue;
+            case SegmentEvent::Emission:
+                return seg.emission;
+            case SegmentEvent::End:
+                return {};
+            case SegmentEvent::Scatter:
+                break;
         }
         if (!may_scatter(cfg, bounce)) return {};
         const Vertex& v = seg.vertex;
@@ -55,9 +65,11 @@ Color ray_color(PathContext& ctx, Ray ray, int bounce, MediumStack media,
             can_sample_lights(v, ctx.lights)) {
             DirectSample d = sample_direct(ctx.scene, ctx.lights, v, seg.wo, u.light_select,
                                            u.light_u, u.light_v);
-            float w = d.valid ? direct_weight(cfg.strategy, cfg.heuristic, d.pdf_light, d.pdf_bsdf) : 0;
+            float w =
+                d.valid ? direct_weight(cfg.strategy, cfg.heuristic, d.pdf_light, d.pdf_bsdf) : 0;
             if (w > 0.0f)
-                radiance += d.value * (w * transmittance(ctx.scene, ctx.bvh, d.shadow, media, &ctx.rays));
+                radiance +=
+                    d.value * (w * transmittance(ctx.scene, ctx.bvh, d.shadow, media, &ctx.rays));
         }
 
         // The continuation, recursively.
@@ -72,8 +84,11 @@ Color ray_color(PathContext& ctx, Ray ray, int bounce, MediumStack media,
 
 }  // namespace
 
-Film render_megakernel(const Scene& scene, const Bvh& bvh, const RenderConfig& config,
-                       RenderStats* stats, const ProgressCallback& progress) {
+Film render_megakernel(const Scene& scene,
+                       const Bvh& bvh,
+                       const RenderConfig& config,
+                       RenderStats* stats,
+                       const ProgressCallback& progress) {
     auto start = std::chrono::steady_clock::now();
     Film film(config.width, config.height);
     LightSet lights(scene);
@@ -84,30 +99,33 @@ Film render_megakernel(const Scene& scene, const Bvh& bvh, const RenderConfig& c
     std::atomic<uint64_t> rays{0};
     std::atomic<int> tiles_done{0};
 
-    tbb::parallel_for(tbb::blocked_range<int>(0, tiles_x * tiles_y), [&](const tbb::blocked_range<int>& r) {
-        for (int tile = r.begin(); tile < r.end(); ++tile) {
-            const int x0 = (tile % tiles_x) * kTile, y0 = (tile / tiles_x) * kTile;
-            uint64_t tile_rays = 0;
-            for (int y = y0; y < std::min(y0 + kTile, config.height); ++y)
-                for (int x = x0; x < std::min(x0 + kTile, config.width); ++x) {
-                    const uint32_t pixel = static_cast<uint32_t>(y) * config.width + x;
-                    for (int i = 0; i < config.spp; ++i) {
-                        PathContext ctx{scene, bvh, lights, config, pixel, static_cast<uint32_t>(i)};
-                        Ray ray = generate_camera_ray(camera, config.seed, pixel, i, x, y);
-                        Color c = ray_color(ctx, ray, 0, camera_media, PreviousVertex{ray.o},
-                                            Color(1.0f));
-                        film.add(static_cast<int>(pixel), c);
-                        tile_rays += ctx.rays;
+    tbb::parallel_for(
+        tbb::blocked_range<int>(0, tiles_x * tiles_y), [&](const tbb::blocked_range<int>& r) {
+            for (int tile = r.begin(); tile < r.end(); ++tile) {
+                const int x0 = (tile % tiles_x) * kTile, y0 = (tile / tiles_x) * kTile;
+                uint64_t tile_rays = 0;
+                for (int y = y0; y < std::min(y0 + kTile, config.height); ++y)
+                    for (int x = x0; x < std::min(x0 + kTile, config.width); ++x) {
+                        const uint32_t pixel = static_cast<uint32_t>(y) * config.width + x;
+                        for (int i = 0; i < config.spp; ++i) {
+                            PathContext ctx{scene,  bvh,   lights,
+                                            config, pixel, static_cast<uint32_t>(i)};
+                            Ray ray = generate_camera_ray(camera, config.seed, pixel, i, x, y);
+                            Color c = ray_color(ctx, ray, 0, camera_media, PreviousVertex{ray.o},
+                                                Color(1.0f));
+                            film.add(static_cast<int>(pixel), c);
+                            tile_rays += ctx.rays;
+                        }
                     }
-                }
-            rays.fetch_add(tile_rays, std::memory_order_relaxed);
-            int done = tiles_done.fetch_add(1) + 1;
-            if (progress) progress(double(done) / (tiles_x * tiles_y));
-        }
-    });
+                rays.fetch_add(tile_rays, std::memory_order_relaxed);
+                int done = tiles_done.fetch_add(1) + 1;
+                if (progress) progress(double(done) / (tiles_x * tiles_y));
+            }
+        });
 
     if (stats) {
-        stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        stats->seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         stats->paths = static_cast<uint64_t>(config.width) * config.height * config.spp;
         stats->rays = rays.load();
     }
@@ -116,17 +134,23 @@ Film render_megakernel(const Scene& scene, const Bvh& bvh, const RenderConfig& c
 
 const char* to_string(Strategy s) {
     switch (s) {
-        case Strategy::Bsdf: return "bsdf";
-        case Strategy::Light: return "light";
-        case Strategy::Mixture: return "mixture";
-        case Strategy::Nee: return "nee";
-        case Strategy::Mis: return "mis";
+        case Strategy::Bsdf:
+            return "bsdf";
+        case Strategy::Light:
+            return "light";
+        case Strategy::Mixture:
+            return "mixture";
+        case Strategy::Nee:
+            return "nee";
+        case Strategy::Mis:
+            return "mis";
     }
     return "?";
 }
 
 std::optional<Strategy> parse_strategy(const std::string& name) {
-    for (Strategy s : {Strategy::Bsdf, Strategy::Light, Strategy::Mixture, Strategy::Nee, Strategy::Mis})
+    for (Strategy s :
+         {Strategy::Bsdf, Strategy::Light, Strategy::Mixture, Strategy::Nee, Strategy::Mis})
         if (name == to_string(s)) return s;
     return std::nullopt;
 }

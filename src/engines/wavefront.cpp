@@ -27,7 +27,9 @@ void launch(size_t n, Kernel&& kernel) {
 
 // Copies the kept entries of `from` to the front of `to`, in order; returns their count.
 template <class Queue>
-size_t compact_into(const Queue& from, Queue& to, std::span<const uint8_t> keep,
+size_t compact_into(const Queue& from,
+                    Queue& to,
+                    std::span<const uint8_t> keep,
                     std::vector<uint32_t>& indices) {
     size_t n = stable_compact(keep, indices);
     launch(n, [&](size_t b, size_t e) {
@@ -38,16 +40,22 @@ size_t compact_into(const Queue& from, Queue& to, std::span<const uint8_t> keep,
 
 }  // namespace
 
-size_t wavefront_bytes_per_path() { return WaveQueues::bytes_per_path(); }
+size_t wavefront_bytes_per_path() {
+    return WaveQueues::bytes_per_path();
+}
 
-Film render_wavefront(const Scene& scene, const Bvh& bvh, const RenderConfig& config,
-                      const WavefrontConfig& wavefront, RenderStats* stats,
+Film render_wavefront(const Scene& scene,
+                      const Bvh& bvh,
+                      const RenderConfig& config,
+                      const WavefrontConfig& wavefront,
+                      RenderStats* stats,
                       const ProgressCallback& progress) {
     auto start = std::chrono::steady_clock::now();
     Film film(config.width, config.height);
     const LightSet lights(scene);
     const CameraRays camera(scene.camera, config.width, config.height);
-    const WaveInputs in{scene, bvh, lights, config, camera, media_at(scene, bvh, scene.camera.look_from)};
+    const WaveInputs in{scene,  bvh,    lights,
+                        config, camera, media_at(scene, bvh, scene.camera.look_from)};
     const uint64_t pixels = static_cast<uint64_t>(config.width) * config.height;
     const uint64_t total = pixels * static_cast<uint64_t>(config.spp);
     const size_t wave_size = std::max<size_t>(1, std::min<uint64_t>(wavefront.wave_size, pixels));
@@ -82,7 +90,8 @@ Film render_wavefront(const Scene& scene, const Bvh& bvh, const RenderConfig& co
     }
 
     if (stats) {
-        stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        stats->seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         stats->paths = total;
         stats->rays = rays;
     }

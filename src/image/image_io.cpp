@@ -4,9 +4,9 @@
 #include <algorithm>
 #include <bit>
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 #include <fstream>
-#include <cmath>
 #include <system_error>
 
 #include "wavetrace/image/image.h"
@@ -17,7 +17,8 @@ namespace {
 
 std::string lower_extension(const fs::path& path) {
     std::string ext = path.extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return std::tolower(c); });
     return ext;
 }
 
@@ -61,7 +62,8 @@ void write_image(const fs::path& path, const Image& image, const WriteOptions& o
     const bool ldr = is_ldr_path(path);
     const size_t n = static_cast<size_t>(image.width) * image.height;
 
-    OIIO::ImageSpec spec(image.width, image.height, 3, ldr ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT);
+    OIIO::ImageSpec spec(image.width, image.height, 3,
+                         ldr ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT);
     for (const auto& [key, value] : options.metadata) spec.attribute(key, value);
     std::vector<uint8_t> bytes;
     if (ldr) {
@@ -111,7 +113,8 @@ ImageData read_image(const fs::path& path) {
     auto in = OIIO::ImageInput::open(path.string());
     if (!in) {
         std::string err = OIIO::geterror();
-        throw ImageError(path.string() + ": cannot read image: " + (err.empty() ? "unknown error" : err));
+        throw ImageError(path.string() +
+                         ": cannot read image: " + (err.empty() ? "unknown error" : err));
     }
     const OIIO::ImageSpec& spec = in->spec();
     if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)

@@ -15,9 +15,10 @@ void bucket_by_material(const WaveInputs& in, WaveQueues& q, size_t n) {
     std::array<uint32_t, kKinds + 1> start{};
     for (size_t i = 0; i < n; ++i) {
         PrimRef prim = q.hits.prim[i];
-        key[i] = prim.valid()
-                     ? 1 + static_cast<uint32_t>(in.scene.materials[in.scene.prim_material(prim)].kind)
-                     : 0;
+        key[i] =
+            prim.valid()
+                ? 1 + static_cast<uint32_t>(in.scene.materials[in.scene.prim_material(prim)].kind)
+                : 0;
         ++start[key[i] + 1];
     }
     for (int k = 0; k < kKinds; ++k) start[k + 1] += start[k];

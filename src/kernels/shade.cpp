@@ -17,7 +17,8 @@ void shade(const WaveInputs& in, WaveQueues& q, size_t begin, size_t end) {
         const Hit hit{q.hits.t[i], q.hits.prim[i], q.hits.u[i], q.hits.v[i]};
         MediumStack media = ps.media[p];
         float flight = ps.flight[p];
-        SegmentResult seg = resolve_segment(in.scene, in.lights, cfg, ray, hit, media, flight, ps.prev[p]);
+        SegmentResult seg =
+            resolve_segment(in.scene, in.lights, cfg, ray, hit, media, flight, ps.prev[p]);
         if (seg.event == SegmentEvent::Cross) {
             if (++ps.crossings[p] >= kMaxBoundaryCrossings) continue;
             ps.media[p] = media;
@@ -45,8 +46,8 @@ void shade(const WaveInputs& in, WaveQueues& q, size_t begin, size_t end) {
             q.scatter.media[i] = media;
             q.scatter.light_u[i] = Vec3{u.light_select, u.light_u, u.light_v};
         }
-        PathStep step = continue_path(in.scene, in.lights, cfg, seg.vertex, seg.wo, bounce, ps.beta[p],
-                                      media, u.continuation, u.roulette);
+        PathStep step = continue_path(in.scene, in.lights, cfg, seg.vertex, seg.wo, bounce,
+                                      ps.beta[p], media, u.continuation, u.roulette);
         if (!step.alive) continue;
         ps.beta[p] *= step.weight;
         ps.prev[p] = step.prev;

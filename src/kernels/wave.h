@@ -29,13 +29,13 @@ struct WaveInputs {
 };
 
 struct WaveQueues {
-    PathState paths;       // per path slot
-    RayQueue rays;         // the current bounce's rays, compacted
-    RayQueue next_rays;    // compaction target (swapped with `rays` after each bounce)
-    HitQueue hits;         // rays' closest hits, entry for entry
-    ScatterQueue scatter;  // vertices to light-sample, entry for entry
-    ShadowQueue shadow_candidates;  // entry for entry; `shadow_keep` marks the real ones
-    ShadowQueue shadow;             // compacted shadow rays
+    PathState paths;                   // per path slot
+    RayQueue rays;                     // the current bounce's rays, compacted
+    RayQueue next_rays;                // compaction target (swapped with `rays` after each bounce)
+    HitQueue hits;                     // rays' closest hits, entry for entry
+    ScatterQueue scatter;              // vertices to light-sample, entry for entry
+    ShadowQueue shadow_candidates;     // entry for entry; `shadow_keep` marks the real ones
+    ShadowQueue shadow;                // compacted shadow rays
     std::vector<uint8_t> keep;         // 1: the ray entry's path goes on
     std::vector<uint8_t> shadow_keep;  // 1: the entry made a shadow ray
     std::vector<uint32_t> order;       // ray entries bucketed by material kind

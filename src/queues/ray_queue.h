@@ -10,10 +10,10 @@
 
 namespace wavetrace {
 
-#define WAVETRACE_RAY_QUEUE_FIELDS(F)                       \
-    F(Point3, origin, "ray origin")                         \
-    F(Vec3, dir, "ray direction (not necessarily unit)")    \
-    F(float, tmin, "start of the valid interval")           \
+#define WAVETRACE_RAY_QUEUE_FIELDS(F)                    \
+    F(Point3, origin, "ray origin")                      \
+    F(Vec3, dir, "ray direction (not necessarily unit)") \
+    F(float, tmin, "start of the valid interval")        \
     F(uint32_t, path, "path slot in the wave")
 
 WAVETRACE_SOA(RayQueue, WAVETRACE_RAY_QUEUE_FIELDS);

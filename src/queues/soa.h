@@ -12,16 +12,14 @@
 #define WAVETRACE_SOA_BYTES_(type, name, comment) +sizeof(type)
 #define WAVETRACE_SOA_COPY_(type, name, comment) name[to] = src.name[from];
 
-#define WAVETRACE_SOA(Name, FIELDS)                                              \
-    struct Name {                                                                \
-        FIELDS(WAVETRACE_SOA_MEMBER_)                                            \
-        size_t capacity = 0;                                                     \
-        void resize(size_t n) {                                                  \
-            FIELDS(WAVETRACE_SOA_RESIZE_)                                        \
-            capacity = n;                                                        \
-        }                                                                        \
-        static constexpr size_t kBytesPerEntry = 0 FIELDS(WAVETRACE_SOA_BYTES_); \
-        void copy_from(size_t to, const Name& src, size_t from) {                \
-            FIELDS(WAVETRACE_SOA_COPY_)                                          \
-        }                                                                        \
+#define WAVETRACE_SOA(Name, FIELDS)                                                             \
+    struct Name {                                                                               \
+        FIELDS(WAVETRACE_SOA_MEMBER_)                                                           \
+        size_t capacity = 0;                                                                    \
+        void resize(size_t n) {                                                                 \
+            FIELDS(WAVETRACE_SOA_RESIZE_)                                                       \
+            capacity = n;                                                                       \
+        }                                                                                       \
+        static constexpr size_t kBytesPerEntry = 0 FIELDS(WAVETRACE_SOA_BYTES_);                \
+        void copy_from(size_t to, const Name& src, size_t from) { FIELDS(WAVETRACE_SOA_COPY_) } \
     }

@@ -29,10 +29,12 @@ EmbreeMirror::EmbreeMirror(const Scene& s, RTCBuildQuality quality, bool robust)
     if (!s.triangles.empty()) {
         RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
         rtcSetGeometryBuildQuality(g, quality);
-        auto* v = buffer<float>(g, RTC_BUFFER_TYPE_VERTEX, RTC_FORMAT_FLOAT3, 12, s.positions.size());
+        auto* v =
+            buffer<float>(g, RTC_BUFFER_TYPE_VERTEX, RTC_FORMAT_FLOAT3, 12, s.positions.size());
         for (size_t i = 0; i < s.positions.size(); ++i)
             for (int k = 0; k < 3; ++k) v[3 * i + k] = s.positions[i][k];
-        auto* idx = buffer<uint32_t>(g, RTC_BUFFER_TYPE_INDEX, RTC_FORMAT_UINT3, 12, s.triangles.size());
+        auto* idx =
+            buffer<uint32_t>(g, RTC_BUFFER_TYPE_INDEX, RTC_FORMAT_UINT3, 12, s.triangles.size());
         for (size_t i = 0; i < s.triangles.size(); ++i)
             for (int k = 0; k < 3; ++k) idx[3 * i + k] = s.triangles[i].v[k];
         attach(scene_, g, PrimKind::Triangle);
@@ -40,8 +42,10 @@ EmbreeMirror::EmbreeMirror(const Scene& s, RTCBuildQuality quality, bool robust)
     if (!s.quads.empty()) {
         RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_QUAD);
         rtcSetGeometryBuildQuality(g, quality);
-        auto* v = buffer<float>(g, RTC_BUFFER_TYPE_VERTEX, RTC_FORMAT_FLOAT3, 12, 4 * s.quads.size());
-        auto* idx = buffer<uint32_t>(g, RTC_BUFFER_TYPE_INDEX, RTC_FORMAT_UINT4, 16, s.quads.size());
+        auto* v =
+            buffer<float>(g, RTC_BUFFER_TYPE_VERTEX, RTC_FORMAT_FLOAT3, 12, 4 * s.quads.size());
+        auto* idx =
+            buffer<uint32_t>(g, RTC_BUFFER_TYPE_INDEX, RTC_FORMAT_UINT4, 16, s.quads.size());
         for (size_t i = 0; i < s.quads.size(); ++i) {
             const Quad& q = s.quads[i];
             const Point3 corners[4] = {q.q, q.q + q.u, q.q + q.u + q.v, q.q + q.v};
@@ -63,7 +67,8 @@ EmbreeMirror::EmbreeMirror(const Scene& s, RTCBuildQuality quality, bool robust)
         attach(scene_, g, PrimKind::Sphere);
     }
     rtcCommitScene(scene_);
-    build_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    build_ms_ =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
 EmbreeMirror::~EmbreeMirror() {
@@ -153,8 +158,10 @@ void trace_packet(RTCScene scene, const Ray* rays, Hit* hits) {
 }  // namespace
 
 void EmbreeMirror::intersect_packet(const Ray* rays, int width, Hit* hits) const {
-    if (width == 8) trace_packet<8>(scene_, rays, hits);
-    else trace_packet<16>(scene_, rays, hits);
+    if (width == 8)
+        trace_packet<8>(scene_, rays, hits);
+    else
+        trace_packet<16>(scene_, rays, hits);
 }
 
 }  // namespace wavetrace

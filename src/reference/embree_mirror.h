@@ -14,9 +14,10 @@ namespace wavetrace {
 struct Scene;
 
 class EmbreeMirror {
-public:
+  public:
     // quality: RTC_BUILD_QUALITY_MEDIUM (Embree's default) or RTC_BUILD_QUALITY_HIGH.
-    explicit EmbreeMirror(const Scene& scene, RTCBuildQuality quality = RTC_BUILD_QUALITY_MEDIUM,
+    explicit EmbreeMirror(const Scene& scene,
+                          RTCBuildQuality quality = RTC_BUILD_QUALITY_MEDIUM,
                           bool robust = true);
     ~EmbreeMirror();
     EmbreeMirror(const EmbreeMirror&) = delete;
@@ -30,7 +31,7 @@ public:
     RTCScene scene() const { return scene_; }
     double build_ms() const { return build_ms_; }
 
-private:
+  private:
     RTCDevice device_;
     RTCScene scene_;
     double build_ms_ = 0;

@@ -21,14 +21,17 @@ Color albedo_of(const Scene& scene, const SurfaceHit& s) {
         case MaterialKind::Lambertian:
         case MaterialKind::Metal:
         case MaterialKind::Mirror:
-        case MaterialKind::Isotropic: return eval_texture(scene, m.albedo, s.uv, s.p);
-        case MaterialKind::Dielectric: return Color(1.0f);
+        case MaterialKind::Isotropic:
+            return eval_texture(scene, m.albedo, s.uv, s.p);
+        case MaterialKind::Dielectric:
+            return Color(1.0f);
         case MaterialKind::DiffuseLight: {
             Color e = eval_texture(scene, m.emission, s.uv, s.p);
             float peak = max_component(e);
             return peak > 0 ? e / peak : e;
         }
-        case MaterialKind::Interface: break;
+        case MaterialKind::Interface:
+            break;
     }
     return {};
 }
@@ -45,9 +48,12 @@ Color trace_aov(const Scene& scene, const Bvh& bvh, Aov aov, Ray ray) {
             continue;
         }
         switch (aov) {
-            case Aov::Albedo: return albedo_of(scene, s);
-            case Aov::Normal: return s.front_face ? s.ns : -s.ns;
-            case Aov::Depth: return Color(hit.t * length(ray.d));
+            case Aov::Albedo:
+                return albedo_of(scene, s);
+            case Aov::Normal:
+                return s.front_face ? s.ns : -s.ns;
+            case Aov::Depth:
+                return Color(hit.t * length(ray.d));
         }
     }
     return {};
@@ -59,22 +65,25 @@ Image render_aov(const Scene& scene, const Bvh& bvh, Aov aov, const AovSettings&
     Image image(settings.width, settings.height);
     CameraRays camera(scene.camera, settings.width, settings.height);
     const int spp = std::max(1, settings.spp);
-    tbb::parallel_for(tbb::blocked_range<int>(0, settings.height), [&](const tbb::blocked_range<int>& rows) {
-        for (int y = rows.begin(); y < rows.end(); ++y)
-            for (int x = 0; x < settings.width; ++x) {
-                uint32_t pixel = static_cast<uint32_t>(y) * settings.width + x;
-                Color sum{};
-                for (int i = 0; i < spp; ++i) {
-                    auto u = [&](uint32_t dim) { return sample_1d(settings.seed, pixel, i, dim); };
-                    // One sample: the pixel centre; more: jittered over the pixel's square.
-                    float jx = spp == 1 ? 0.5f : u(kDimPixelX);
-                    float jy = spp == 1 ? 0.5f : u(kDimPixelY);
-                    Ray ray = camera.generate(x + jx, y + jy, u(kDimLensU), u(kDimLensV));
-                    sum += trace_aov(scene, bvh, aov, ray);
+    tbb::parallel_for(
+        tbb::blocked_range<int>(0, settings.height), [&](const tbb::blocked_range<int>& rows) {
+            for (int y = rows.begin(); y < rows.end(); ++y)
+                for (int x = 0; x < settings.width; ++x) {
+                    uint32_t pixel = static_cast<uint32_t>(y) * settings.width + x;
+                    Color sum{};
+                    for (int i = 0; i < spp; ++i) {
+                        auto u = [&](uint32_t dim) {
+                            return sample_1d(settings.seed, pixel, i, dim);
+                        };
+                        // One sample: the pixel centre; more: jittered over the pixel's square.
+                        float jx = spp == 1 ? 0.5f : u(kDimPixelX);
+                        float jy = spp == 1 ? 0.5f : u(kDimPixelY);
+                        Ray ray = camera.generate(x + jx, y + jy, u(kDimLensU), u(kDimLensV));
+                        sum += trace_aov(scene, bvh, aov, ray);
+                    }
+                    image.at(x, y) = sum / static_cast<float>(spp);
                 }
-                image.at(x, y) = sum / static_cast<float>(spp);
-            }
-    });
+        });
     return image;
 }
 

@@ -27,7 +27,8 @@ Image Film::mean() const {
     Image img(width_, height_);
     for (size_t i = 0; i < counts_.size(); ++i) {
         double n = std::max<uint32_t>(1, counts_[i]);
-        img.pixels[i] = {float(sum_[3 * i] / n), float(sum_[3 * i + 1] / n), float(sum_[3 * i + 2] / n)};
+        img.pixels[i] = {float(sum_[3 * i] / n), float(sum_[3 * i + 1] / n),
+                         float(sum_[3 * i + 2] / n)};
     }
     return img;
 }

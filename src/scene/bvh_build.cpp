@@ -56,7 +56,7 @@ struct Split {
 };
 
 class Builder {
-public:
+  public:
     Builder(std::vector<BuildPrim>& prims, const BvhBuildConfig& config)
         : prims_(prims), config_(config) {}
 
@@ -115,7 +115,7 @@ public:
         return node;
     }
 
-private:
+  private:
     Bins bin(const Binner& binner, uint32_t begin, uint32_t end) const {
         auto bin_range = [&](uint32_t b, uint32_t e, Bins bins) {
             for (uint32_t i = b; i < e; ++i)

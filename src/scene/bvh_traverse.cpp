@@ -7,21 +7,29 @@
 namespace wavetrace {
 namespace {
 
-inline bool intersect_prim(const BvhPrim& p, const Ray& ray, const TriangleRay& tri_ray,
+inline bool intersect_prim(const BvhPrim& p,
+                           const Ray& ray,
+                           const TriangleRay& tri_ray,
                            PrimHit* hit) {
     switch (p.ref.kind()) {
         case PrimKind::Triangle:
             return intersect_triangle(tri_ray, ray.tmin, ray.tmax, p.a, p.b, p.c, hit);
-        case PrimKind::Quad: return intersect_quad(ray, p.a, p.b, p.c, hit);
-        case PrimKind::Sphere: return intersect_sphere(ray, p.a, p.b.x, hit);
+        case PrimKind::Quad:
+            return intersect_quad(ray, p.a, p.b, p.c, hit);
+        case PrimKind::Sphere:
+            return intersect_sphere(ray, p.a, p.b.x, hit);
     }
     return false;
 }
 
 // Branch-free min/max that compile to minss/maxss (std::fmin is a libm call without
 // -ffast-math). Inputs are never NaN: see safe_inverse().
-inline float min2(float a, float b) { return a < b ? a : b; }
-inline float max2(float a, float b) { return a > b ? a : b; }
+inline float min2(float a, float b) {
+    return a < b ? a : b;
+}
+inline float max2(float a, float b) {
+    return a > b ? a : b;
+}
 
 // 1/d with zero components replaced by a huge finite value of the same sign: the slab
 // distances (lo - o) / d then stay finite (a ray inside a slab's boundary plane gives 0, not
@@ -32,14 +40,14 @@ inline float safe_inverse(float d) {
 
 // Slab test; the exit distance is widened by 1 + 2 gamma(3) so that rounding never culls a
 // box the ray really touches (Ize, "Robust BVH Ray Traversal", JCGT 2(2), 2013).
-inline bool hit_box(const BvhNode& node, Vec3 o, Vec3 inv_d, float tmin, float tmax,
-                    float* t_entry) {
+inline bool hit_box(
+    const BvhNode& node, Vec3 o, Vec3 inv_d, float tmin, float tmax, float* t_entry) {
     float tx0 = (node.lo.x - o.x) * inv_d.x, tx1 = (node.hi.x - o.x) * inv_d.x;
     float ty0 = (node.lo.y - o.y) * inv_d.y, ty1 = (node.hi.y - o.y) * inv_d.y;
     float tz0 = (node.lo.z - o.z) * inv_d.z, tz1 = (node.hi.z - o.z) * inv_d.z;
     float t_near = max2(max2(min2(tx0, tx1), min2(ty0, ty1)), max2(min2(tz0, tz1), tmin));
-    float t_far = min2(min2(max2(tx0, tx1), max2(ty0, ty1)), max2(tz0, tz1)) *
-                  (1.0f + 2.0f * gamma(3));
+    float t_far =
+        min2(min2(max2(tx0, tx1), max2(ty0, ty1)), max2(tz0, tz1)) * (1.0f + 2.0f * gamma(3));
     *t_entry = t_near;
     return t_near <= min2(t_far, tmax);
 }

@@ -15,8 +15,8 @@ CameraRays::CameraRays(const Camera& camera, int width, int height) {
     float view_w = view_h * (static_cast<float>(width) / static_cast<float>(height));
 
     Vec3 w = normalize(camera.look_from - camera.look_at);  // backwards
-    Vec3 u = normalize(cross(camera.up, w));                 // right
-    Vec3 v = cross(w, u);                                    // up
+    Vec3 u = normalize(cross(camera.up, w));                // right
+    Vec3 v = cross(w, u);                                   // up
 
     origin_ = camera.look_from;
     du_ = u * (view_w / static_cast<float>(width));

@@ -49,7 +49,9 @@ bool intersect_quad(const Ray& ray, Point3 q, Vec3 u, Vec3 v, PrimHit* hit) {
 
 namespace {
 
-inline Vec3 permute(Vec3 v, int x, int y, int z) { return {v[x], v[y], v[z]}; }
+inline Vec3 permute(Vec3 v, int x, int y, int z) {
+    return {v[x], v[y], v[z]};
+}
 
 }  // namespace
 
@@ -67,8 +69,8 @@ bool intersect_triangle(const Ray& ray, Point3 p0, Point3 p1, Point3 p2, PrimHit
     return intersect_triangle(TriangleRay(ray), ray.tmin, ray.tmax, p0, p1, p2, hit);
 }
 
-bool intersect_triangle(const TriangleRay& r, float tmin, float tmax, Point3 p0, Point3 p1,
-                        Point3 p2, PrimHit* hit) {
+bool intersect_triangle(
+    const TriangleRay& r, float tmin, float tmax, Point3 p0, Point3 p1, Point3 p2, PrimHit* hit) {
     // Translate to the ray origin, permute so that the ray's largest direction component is z,
     // then shear so that the ray runs along +z: the test becomes a 2-D edge-function test at
     // the origin, evaluated identically for the two triangles sharing an edge.

@@ -13,9 +13,12 @@ namespace {
 std::string escape(const std::string& key) {
     std::string out;
     for (char c : key) {
-        if (c == '~') out += "~0";
-        else if (c == '/') out += "~1";
-        else out += c;
+        if (c == '~')
+            out += "~0";
+        else if (c == '/')
+            out += "~1";
+        else
+            out += c;
     }
     return out;
 }
@@ -86,9 +89,10 @@ int Value::integer(int lo, int hi) const {
                "], got " + describe();
     };
     if (!j_->is_number_integer()) fail(range());
-    long long x = j_->is_number_unsigned() ? static_cast<long long>(std::min<uint64_t>(
-                                                 j_->get<uint64_t>(), uint64_t(1) << 62))
-                                           : j_->get<long long>();
+    long long x =
+        j_->is_number_unsigned()
+            ? static_cast<long long>(std::min<uint64_t>(j_->get<uint64_t>(), uint64_t(1) << 62))
+            : j_->get<long long>();
     if (x < lo || x > hi) fail(range());
     return static_cast<int>(x);
 }
@@ -113,7 +117,8 @@ Value Value::operator[](size_t i) const {
 }
 
 Vec3 Value::vec3() const {
-    if (!j_->is_array() || j_->size() != 3) fail("expected an array of 3 numbers, got " + describe());
+    if (!j_->is_array() || j_->size() != 3)
+        fail("expected an array of 3 numbers, got " + describe());
     return {(*this)[0].number(), (*this)[1].number(), (*this)[2].number()};
 }
 
@@ -207,8 +212,8 @@ json parse(const std::string& text, const std::string& file) {
         // E.g. a number too large for a double ("1e999"); nlohmann gives no position here.
         std::string what = e.what();
         auto pos = what.find("] ");
-        throw SceneError(file + ": invalid JSON: " +
-                         (pos == std::string::npos ? what : what.substr(pos + 2)));
+        throw SceneError(
+            file + ": invalid JSON: " + (pos == std::string::npos ? what : what.substr(pos + 2)));
     }
 }
 

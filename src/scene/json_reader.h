@@ -3,10 +3,9 @@
 // object checks that no key was left unread (typos are errors, not silently ignored).
 #pragma once
 
-#include <nlohmann/json.hpp>
-
 #include <filesystem>
 #include <initializer_list>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -18,7 +17,7 @@ namespace wavetrace::json_reader {
 using nlohmann::json;
 
 class Value {
-public:
+  public:
     Value(const json& j, const std::string& file, std::string pointer)
         : j_(&j), file_(&file), pointer_(std::move(pointer)) {}
 
@@ -33,22 +32,22 @@ public:
     bool is_array() const { return j_->is_array(); }
     bool is_object() const { return j_->is_object(); }
 
-    float number() const;        // any finite number
-    float positive() const;      // finite, > 0
-    float non_negative() const;  // finite, >= 0
+    float number() const;                      // any finite number
+    float positive() const;                    // finite, > 0
+    float non_negative() const;                // finite, >= 0
     float in_range(float lo, float hi) const;  // finite, lo <= x <= hi
     int integer(int lo, int hi) const;
     bool boolean() const;
     std::string string() const;
-    Vec3 vec3() const;           // [x, y, z], finite
-    Vec3 color() const;          // [r, g, b] or a number, each finite and >= 0
-    Vec3 reflectance() const;    // a color() with every component <= 1
-    Vec3 nonzero_vec3() const;   // finite and not all zero
+    Vec3 vec3() const;          // [x, y, z], finite
+    Vec3 color() const;         // [r, g, b] or a number, each finite and >= 0
+    Vec3 reflectance() const;   // a color() with every component <= 1
+    Vec3 nonzero_vec3() const;  // finite and not all zero
 
     size_t size() const;  // array length; fails if not an array
     Value operator[](size_t i) const;
 
-private:
+  private:
     const json* j_;
     const std::string* file_;
     std::string pointer_;
@@ -56,7 +55,7 @@ private:
 
 // A JSON object whose keys are read one by one; finish() rejects the keys nobody read.
 class Object {
-public:
+  public:
     explicit Object(const Value& v);
 
     std::optional<Value> optional(const std::string& key);
@@ -68,7 +67,7 @@ public:
     void only(std::initializer_list<const char*> known) const;
     void finish() const;
 
-private:
+  private:
     Value v_;
     std::vector<std::string> read_;
 };

@@ -1,9 +1,9 @@
 #include "mesh_file.h"
 
-#include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <assimp/Importer.hpp>
 #include <stdexcept>
 
 namespace wavetrace {
@@ -19,7 +19,8 @@ MeshFile read_mesh_file(const std::filesystem::path& path) {
                                  "' (Assimp reads e.g. .obj, .ply, .gltf, .glb, .stl)");
     // Keep only triangles. Assimp's OBJ reader un-indexes faces; joining identical vertices
     // restores the shared indexing (and the memory) of the file.
-    importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+    importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE,
+                                aiPrimitiveType_POINT | aiPrimitiveType_LINE);
     const aiScene* scene = importer.ReadFile(
         path.string(), aiProcess_Triangulate | aiProcess_PreTransformVertices |
                            aiProcess_SortByPType | aiProcess_JoinIdenticalVertices);

@@ -11,8 +11,8 @@ namespace wavetrace {
 // A triangle mesh as read from a file: every mesh in the file merged, node transforms applied.
 struct MeshFile {
     std::vector<Point3> positions;
-    std::vector<Normal3> normals;  // empty, or one per position
-    std::vector<Vec2> uvs;         // empty, or one per position
+    std::vector<Normal3> normals;   // empty, or one per position
+    std::vector<Vec2> uvs;          // empty, or one per position
     std::vector<uint32_t> indices;  // three per triangle
 };
 

@@ -6,13 +6,20 @@ namespace wavetrace {
 
 const char* to_string(MaterialKind kind) {
     switch (kind) {
-        case MaterialKind::Lambertian: return "lambertian";
-        case MaterialKind::Metal: return "metal";
-        case MaterialKind::Mirror: return "mirror";
-        case MaterialKind::Dielectric: return "dielectric";
-        case MaterialKind::DiffuseLight: return "diffuse_light";
-        case MaterialKind::Isotropic: return "isotropic";
-        case MaterialKind::Interface: return "interface";
+        case MaterialKind::Lambertian:
+            return "lambertian";
+        case MaterialKind::Metal:
+            return "metal";
+        case MaterialKind::Mirror:
+            return "mirror";
+        case MaterialKind::Dielectric:
+            return "dielectric";
+        case MaterialKind::DiffuseLight:
+            return "diffuse_light";
+        case MaterialKind::Isotropic:
+            return "isotropic";
+        case MaterialKind::Interface:
+            return "interface";
     }
     return "?";
 }
@@ -76,8 +83,8 @@ void Scene::add_quad(Quad quad, const Transform& to_world) {
     quads.push_back(quad);
 }
 
-void Scene::add_box(Point3 lo, Point3 hi, MaterialId material, MediumId interior,
-                    const Transform& to_world) {
+void Scene::add_box(
+    Point3 lo, Point3 hi, MaterialId material, MediumId interior, const Transform& to_world) {
     Vec3 dx{hi.x - lo.x, 0, 0}, dy{0, hi.y - lo.y, 0}, dz{0, 0, hi.z - lo.z};
     // Each face's u x v points out of the box.
     const Quad faces[6] = {
@@ -91,8 +98,11 @@ void Scene::add_box(Point3 lo, Point3 hi, MaterialId material, MediumId interior
     for (const Quad& f : faces) add_quad(f, to_world);
 }
 
-size_t Scene::add_mesh(Mesh mesh, const std::vector<Point3>& pos, const std::vector<Normal3>& nrm,
-                       const std::vector<Vec2>& uv, const std::vector<uint32_t>& indices,
+size_t Scene::add_mesh(Mesh mesh,
+                       const std::vector<Point3>& pos,
+                       const std::vector<Normal3>& nrm,
+                       const std::vector<Vec2>& uv,
+                       const std::vector<uint32_t>& indices,
                        const Transform& to_world) {
     mesh.first_vertex = static_cast<uint32_t>(positions.size());
     mesh.vertex_count = static_cast<uint32_t>(pos.size());
@@ -114,8 +124,8 @@ size_t Scene::add_mesh(Mesh mesh, const std::vector<Point3>& pos, const std::vec
     for (size_t i = 0; i + 2 < indices.size(); i += 3) {
         uint32_t a = indices[i], b = indices[i + 1], c = indices[i + 2];
         if (flip) std::swap(b, c);
-        bool bad = a >= pos.size() || b >= pos.size() || c >= pos.size() || a == b || b == c ||
-                   a == c;
+        bool bad =
+            a >= pos.size() || b >= pos.size() || c >= pos.size() || a == b || b == c || a == c;
         if (!bad) {
             Point3 p0 = positions[base + a], p1 = positions[base + b], p2 = positions[base + c];
             float area2 = length_squared(cross(p1 - p0, p2 - p0));
@@ -169,18 +179,24 @@ Aabb Scene::bounds() const {
 
 MaterialId Scene::prim_material(PrimRef prim) const {
     switch (prim.kind()) {
-        case PrimKind::Triangle: return meshes[triangles[prim.index()].mesh].material;
-        case PrimKind::Quad: return quads[prim.index()].material;
-        case PrimKind::Sphere: return spheres[prim.index()].material;
+        case PrimKind::Triangle:
+            return meshes[triangles[prim.index()].mesh].material;
+        case PrimKind::Quad:
+            return quads[prim.index()].material;
+        case PrimKind::Sphere:
+            return spheres[prim.index()].material;
     }
     return kNone;
 }
 
 MediumId Scene::prim_interior(PrimRef prim) const {
     switch (prim.kind()) {
-        case PrimKind::Triangle: return meshes[triangles[prim.index()].mesh].interior;
-        case PrimKind::Quad: return quads[prim.index()].interior;
-        case PrimKind::Sphere: return spheres[prim.index()].interior;
+        case PrimKind::Triangle:
+            return meshes[triangles[prim.index()].mesh].interior;
+        case PrimKind::Quad:
+            return quads[prim.index()].interior;
+        case PrimKind::Sphere:
+            return spheres[prim.index()].interior;
     }
     return kNone;
 }
@@ -193,8 +209,10 @@ float Scene::prim_area(PrimRef prim) const {
             Point3 p0 = positions[t.v[0]], p1 = positions[t.v[1]], p2 = positions[t.v[2]];
             return 0.5f * length(cross(p1 - p0, p2 - p0));
         }
-        case PrimKind::Quad: return length(cross(quads[i].u, quads[i].v));
-        case PrimKind::Sphere: return 4.0f * kPi * spheres[i].radius * spheres[i].radius;
+        case PrimKind::Quad:
+            return length(cross(quads[i].u, quads[i].v));
+        case PrimKind::Sphere:
+            return 4.0f * kPi * spheres[i].radius * spheres[i].radius;
     }
     return 0.0f;
 }

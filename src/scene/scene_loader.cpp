@@ -22,21 +22,23 @@ namespace {
 constexpr float kMaxCoordinate = 1e7f;  // beyond this float spacing exceeds ~1 unit
 
 class Loader {
-public:
+  public:
     Loader(const fs::path& path, const LoadOptions& options)
         : path_(path), file_(path.string()), options_(options) {}
 
     Scene load() {
         std::ifstream in(path_, std::ios::binary);
         std::error_code ec;
-        if (fs::is_directory(path_, ec)) throw SceneError(file_ + ": is a directory, not a scene file");
+        if (fs::is_directory(path_, ec))
+            throw SceneError(file_ + ": is a directory, not a scene file");
         if (!in) throw SceneError(file_ + ": cannot open scene file: " + std::strerror(errno));
         std::stringstream text;
         text << in.rdbuf();
         json_ = json_reader::parse(text.str(), file_);
 
         Object root(Value(json_, file_, ""));
-        root.only({"description", "render", "camera", "background", "materials", "media", "objects"});
+        root.only(
+            {"description", "render", "camera", "background", "materials", "media", "objects"});
         scene_.name = path_.stem().string();
         if (auto v = root.optional("description")) v->string();
         if (auto v = root.optional("render")) read_render(*v);
@@ -47,16 +49,18 @@ public:
         Value objects = root.required("objects");
         for (size_t i = 0; i < objects.size(); ++i) read_object(objects[i], Transform{});
         root.finish();
-        if (skipped_triangles_ > 0) warn(std::to_string(skipped_triangles_) +
-                                         " degenerate triangles skipped");
+        if (skipped_triangles_ > 0)
+            warn(std::to_string(skipped_triangles_) + " degenerate triangles skipped");
         return std::move(scene_);
     }
 
-private:
+  private:
     void warn(const std::string& message) const {
         std::string full = file_ + ": warning: " + message;
-        if (options_.warn) options_.warn(full);
-        else std::cerr << full << "\n";
+        if (options_.warn)
+            options_.warn(full);
+        else
+            std::cerr << full << "\n";
     }
 
     // A path in the scene file, relative to the scene file's folder.
@@ -75,8 +79,9 @@ private:
         if (auto x = o.optional("max_depth")) r.max_depth = x->integer(1, kMaxDepth);
         o.finish();
         if (static_cast<long long>(r.width) * r.height > kMaxPixels)
-            v.fail("width x height = " + std::to_string(static_cast<long long>(r.width) * r.height) +
-                   " pixels exceeds the limit of " + std::to_string(kMaxPixels));
+            v.fail(
+                "width x height = " + std::to_string(static_cast<long long>(r.width) * r.height) +
+                " pixels exceeds the limit of " + std::to_string(kMaxPixels));
     }
 
     Vec3 point(const Value& v) const {
@@ -374,7 +379,9 @@ private:
     struct Counts {
         size_t triangles, quads, spheres;
     };
-    Counts counts() const { return {scene_.triangles.size(), scene_.quads.size(), scene_.spheres.size()}; }
+    Counts counts() const {
+        return {scene_.triangles.size(), scene_.quads.size(), scene_.spheres.size()};
+    }
 
     // The object's primitives, once transformed, must stay in the range where float
     // coordinates are precise, and each kind must stay addressable by a PrimRef.
@@ -385,7 +392,8 @@ private:
             v.fail("too many primitives of one kind (the limit is 2^30 - 1)");
         Aabb box;
         for (size_t i = before.triangles; i < now.triangles; ++i)
-            box.grow(scene_.prim_bounds(PrimRef::make(PrimKind::Triangle, static_cast<uint32_t>(i))));
+            box.grow(
+                scene_.prim_bounds(PrimRef::make(PrimKind::Triangle, static_cast<uint32_t>(i))));
         for (size_t i = before.quads; i < now.quads; ++i)
             box.grow(scene_.prim_bounds(PrimRef::make(PrimKind::Quad, static_cast<uint32_t>(i))));
         for (size_t i = before.spheres; i < now.spheres; ++i)

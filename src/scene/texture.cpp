@@ -12,8 +12,9 @@ Color ImageData::bilinear(float u, float v, bool wrap_v) const {
     // Texel centres sit at half-integer coordinates.
     v = wrap_v ? v - std::floor(v) : std::clamp(v, 0.0f, 1.0f);
     float x = (u - std::floor(u)) * static_cast<float>(width) - 0.5f;
-    float y = std::clamp((1.0f - v) * static_cast<float>(height) - 0.5f, wrap_v ? -0.5f : 0.0f,
-                         wrap_v ? static_cast<float>(height) - 0.5f : static_cast<float>(height - 1));
+    float y =
+        std::clamp((1.0f - v) * static_cast<float>(height) - 0.5f, wrap_v ? -0.5f : 0.0f,
+                   wrap_v ? static_cast<float>(height) - 0.5f : static_cast<float>(height - 1));
     float fx = std::floor(x), fy = std::floor(y);
     float tx = x - fx, ty = y - fy;
     auto wrap = [](int i, int n) { return ((i % n) + n) % n; };
@@ -29,7 +30,7 @@ namespace {
 // the seed builds it (RTNW §5). Tables come from a fixed splitmix64 stream, so the noise is
 // the same on every platform.
 class Perlin {
-public:
+  public:
     Perlin() {
         uint64_t state = 0x5eed5eedULL;
         auto next = [&state] {
@@ -60,8 +61,8 @@ public:
         for (int di = 0; di < 2; ++di)
             for (int dj = 0; dj < 2; ++dj)
                 for (int dk = 0; dk < 2; ++dk) {
-                    const Vec3& g = gradients_[perm_[0][(i + di) & 255] ^
-                                               perm_[1][(j + dj) & 255] ^ perm_[2][(k + dk) & 255]];
+                    const Vec3& g = gradients_[perm_[0][(i + di) & 255] ^ perm_[1][(j + dj) & 255] ^
+                                               perm_[2][(k + dk) & 255]];
                     Vec3 weight{u - di, v - dj, w - dk};
                     accum += (di * uu + (1 - di) * (1 - uu)) * (dj * vv + (1 - dj) * (1 - vv)) *
                              (dk * ww + (1 - dk) * (1 - ww)) * dot(g, weight);
@@ -69,7 +70,7 @@ public:
         return accum;
     }
 
-private:
+  private:
     static constexpr int kCount = 256;
     std::array<Vec3, kCount> gradients_;
     std::array<std::array<int, kCount>, 3> perm_;
@@ -82,7 +83,9 @@ const Perlin& perlin() {
 
 }  // namespace
 
-float perlin_noise(Point3 p) { return perlin().noise(p); }
+float perlin_noise(Point3 p) {
+    return perlin().noise(p);
+}
 
 float perlin_turbulence(Point3 p, int octaves) {
     float accum = 0, weight = 1;
@@ -98,7 +101,8 @@ Color eval_texture(const Scene& scene, TextureId id, Vec2 uv, Point3 p) {
     for (;;) {
         const Texture& t = scene.textures[id];
         switch (t.kind) {
-            case TextureKind::Solid: return t.color;
+            case TextureKind::Solid:
+                return t.color;
             case TextureKind::Checker: {
                 // Cells of side `scale`: the parity of the sum of the cell indices.
                 float inv = 1.0f / t.scale;
@@ -109,9 +113,10 @@ Color eval_texture(const Scene& scene, TextureId id, Vec2 uv, Point3 p) {
                 continue;
             }
             case TextureKind::Noise:
-                return t.color * (0.5f * (1.0f + std::sin(t.scale * p.z +
-                                                          10.0f * perlin_turbulence(p))));
-            case TextureKind::Image: return scene.images[t.image].bilinear(uv.x, uv.y);
+                return t.color *
+                       (0.5f * (1.0f + std::sin(t.scale * p.z + 10.0f * perlin_turbulence(p))));
+            case TextureKind::Image:
+                return scene.images[t.image].bilinear(uv.x, uv.y);
         }
         return {};
     }

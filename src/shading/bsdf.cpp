@@ -11,8 +11,12 @@ namespace {
 
 // Reflective lobes work on wo's side of the surface: mirror both directions into the upper
 // hemisphere when wo is below (two-sided shading, as the seed's front_face flip).
-inline Vec3 upper(Vec3 w, float side) { return {w.x, w.y, w.z * side}; }
-inline float side_of(Vec3 wo) { return wo.z < 0.0f ? -1.0f : 1.0f; }
+inline Vec3 upper(Vec3 w, float side) {
+    return {w.x, w.y, w.z * side};
+}
+inline float side_of(Vec3 wo) {
+    return wo.z < 0.0f ? -1.0f : 1.0f;
+}
 
 // Schlick's approximation with the albedo as the reflectance at normal incidence: the
 // seed's metal tint, made angle-dependent (Schlick 1994).
@@ -44,7 +48,9 @@ float ggx_d(Vec3 h, float alpha) {
     return a2 / (kPi * t * t);
 }
 
-float ggx_g1(Vec3 w, float alpha) { return 1.0f / (1.0f + ggx_lambda(w, alpha)); }
+float ggx_g1(Vec3 w, float alpha) {
+    return 1.0f / (1.0f + ggx_lambda(w, alpha));
+}
 
 Vec3 ggx_sample_visible_normal(Vec3 wo, float alpha, float u1, float u2) {
     // Stretch to the hemisphere configuration, sample the projected half-disk, unstretch.
@@ -83,8 +89,10 @@ Color bsdf_eval(const BsdfParams& b, Vec3 wo, Vec3 wi) {
             float g2 = 1.0f / (1.0f + ggx_lambda(o, b.alpha) + ggx_lambda(i, b.alpha));
             return schlick(b.albedo, dot(i, h)) * (ggx_d(h, b.alpha) * g2 / (4.0f * o.z));
         }
-        case MaterialKind::Isotropic: return b.albedo * (0.25f * kInvPi);
-        default: return {};  // delta lobes, emitters and interfaces do not scatter smoothly
+        case MaterialKind::Isotropic:
+            return b.albedo * (0.25f * kInvPi);
+        default:
+            return {};  // delta lobes, emitters and interfaces do not scatter smoothly
     }
 }
 
@@ -101,8 +109,10 @@ float bsdf_pdf(const BsdfParams& b, Vec3 wo, Vec3 wi) {
             // Jacobian 1 / (4 o.h).
             return ggx_g1(o, b.alpha) * ggx_d(h, b.alpha) / (4.0f * o.z);
         }
-        case MaterialKind::Isotropic: return uniform_sphere_pdf();
-        default: return 0.0f;
+        case MaterialKind::Isotropic:
+            return uniform_sphere_pdf();
+        default:
+            return 0.0f;
     }
 }
 
@@ -172,7 +182,8 @@ BsdfSample bsdf_sample(const BsdfParams& b, Vec3 wo, float u_lobe, float u1, flo
             s.weight = b.albedo;
             s.valid = true;
             return s;
-        default: return s;
+        default:
+            return s;
     }
 }
 

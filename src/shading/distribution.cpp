@@ -35,7 +35,8 @@ size_t Distribution1D::sample_discrete(float u, float* prob, float* remapped) co
     double width = cdf_[i + 1] - cdf_[i];
     if (prob) *prob = probability(i);
     if (remapped)
-        *remapped = width > 0 ? std::min(0.99999994f, static_cast<float>((u - cdf_[i]) / width)) : 0.0f;
+        *remapped =
+            width > 0 ? std::min(0.99999994f, static_cast<float>((u - cdf_[i]) / width)) : 0.0f;
     return i;
 }
 

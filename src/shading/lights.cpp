@@ -78,8 +78,8 @@ float LightSet::background_selection_probability() const {
     return background_ ? select_.probability(count_ - 1) : 0.0f;
 }
 
-LightSample LightSet::sample(const Scene& scene, Point3 ref, float u_select, float u1,
-                             float u2) const {
+LightSample LightSet::sample(
+    const Scene& scene, Point3 ref, float u_select, float u1, float u2) const {
     LightSample ls;
     if (count_ == 0) return ls;
     float select_prob;
@@ -134,7 +134,8 @@ LightSample LightSet::sample(const Scene& scene, Point3 ref, float u_select, flo
                 // then the nearest point of the sphere along that direction.
                 Vec3 axis = normalize(s.center - ref);
                 float cos_t = 1.0f - u1 * cone.one_minus_cos;
-                float sin_t = std::sqrt(std::max(0.0f, u1 * cone.one_minus_cos * (2.0f - u1 * cone.one_minus_cos)));
+                float sin_t = std::sqrt(
+                    std::max(0.0f, u1 * cone.one_minus_cos * (2.0f - u1 * cone.one_minus_cos)));
                 float phi = 2.0f * kPi * u2;
                 Vec3 w = Frame::from_normal(axis).to_world(
                     {sin_t * std::cos(phi), sin_t * std::sin(phi), cos_t});
@@ -169,8 +170,8 @@ LightSample LightSet::sample(const Scene& scene, Point3 ref, float u_select, flo
     return ls;
 }
 
-float LightSet::prim_pdf_given_selection(const Scene& scene, Point3 ref, PrimRef prim, Vec3 wi,
-                                         float dist) const {
+float LightSet::prim_pdf_given_selection(
+    const Scene& scene, Point3 ref, PrimRef prim, Vec3 wi, float dist) const {
     if (prim.kind() == PrimKind::Sphere) {
         SphereCone cone = sphere_cone(scene.spheres[prim.index()], ref);
         if (cone.outside) return 1.0f / (2.0f * kPi * cone.one_minus_cos);
@@ -178,14 +179,18 @@ float LightSet::prim_pdf_given_selection(const Scene& scene, Point3 ref, PrimRef
     Point3 p = ref + dist * wi;
     Normal3 n;
     switch (prim.kind()) {
-        case PrimKind::Quad: n = cross(scene.quads[prim.index()].u, scene.quads[prim.index()].v); break;
+        case PrimKind::Quad:
+            n = cross(scene.quads[prim.index()].u, scene.quads[prim.index()].v);
+            break;
         case PrimKind::Triangle: {
             const Triangle& t = scene.triangles[prim.index()];
             n = cross(scene.positions[t.v[1]] - scene.positions[t.v[0]],
                       scene.positions[t.v[2]] - scene.positions[t.v[0]]);
             break;
         }
-        case PrimKind::Sphere: n = p - scene.spheres[prim.index()].center; break;
+        case PrimKind::Sphere:
+            n = p - scene.spheres[prim.index()].center;
+            break;
     }
     float cos_l = std::fabs(dot(normalize(n), wi));
     if (cos_l <= 0.0f) return 0.0f;

@@ -62,8 +62,13 @@ Color eval_world(const Vertex& v, Vec3 wo, Vec3 wi, float* pdf) {
 
 }  // namespace
 
-DirectSample sample_direct(const Scene& scene, const LightSet& lights, const Vertex& v, Vec3 wo,
-                           float u_select, float u1, float u2) {
+DirectSample sample_direct(const Scene& scene,
+                           const LightSet& lights,
+                           const Vertex& v,
+                           Vec3 wo,
+                           float u_select,
+                           float u1,
+                           float u2) {
     DirectSample d;
     LightSample ls = lights.sample(scene, v.p, u_select, u1, u2);
     if (!ls.valid || max_component(ls.radiance) <= 0.0f) return d;
@@ -79,7 +84,8 @@ DirectSample sample_direct(const Scene& scene, const LightSet& lights, const Ver
     return d;
 }
 
-float transmittance(const Scene& scene, const Bvh& bvh, Ray ray, MediumStack media, uint64_t* rays) {
+float transmittance(
+    const Scene& scene, const Bvh& bvh, Ray ray, MediumStack media, uint64_t* rays) {
     if (scene.media.empty()) {
         ++*rays;
         return bvh.occluded(ray) ? 0.0f : 1.0f;
@@ -107,8 +113,12 @@ float transmittance(const Scene& scene, const Bvh& bvh, Ray ray, MediumStack med
     return 0.0f;
 }
 
-Continuation sample_continuation(Strategy strategy, const Scene& scene, const LightSet& lights,
-                                 const Vertex& v, Vec3 wo, const ContinuationSamples& u) {
+Continuation sample_continuation(Strategy strategy,
+                                 const Scene& scene,
+                                 const LightSet& lights,
+                                 const Vertex& v,
+                                 Vec3 wo,
+                                 const ContinuationSamples& u) {
     Continuation c;
     const bool lights_ok = can_sample_lights(v, lights);
     const bool one_sample =
@@ -160,14 +170,17 @@ Continuation sample_continuation(Strategy strategy, const Scene& scene, const Li
     return c;
 }
 
-float emission_weight(Strategy strategy, MisHeuristic heuristic, bool counts_fully,
-                      float pdf_bsdf, float pdf_light) {
+float emission_weight(
+    Strategy strategy, MisHeuristic heuristic, bool counts_fully, float pdf_bsdf, float pdf_light) {
     switch (strategy) {
         case Strategy::Bsdf:
         case Strategy::Light:
-        case Strategy::Mixture: return 1.0f;
-        case Strategy::Nee: return counts_fully ? 1.0f : 0.0f;
-        case Strategy::Mis: return counts_fully ? 1.0f : mis_weight(heuristic, pdf_bsdf, pdf_light);
+        case Strategy::Mixture:
+            return 1.0f;
+        case Strategy::Nee:
+            return counts_fully ? 1.0f : 0.0f;
+        case Strategy::Mis:
+            return counts_fully ? 1.0f : mis_weight(heuristic, pdf_bsdf, pdf_light);
     }
     return 0.0f;
 }
@@ -176,8 +189,13 @@ float direct_weight(Strategy strategy, MisHeuristic heuristic, float pdf_light, 
     return strategy == Strategy::Mis ? mis_weight(heuristic, pdf_light, pdf_bsdf) : 1.0f;
 }
 
-SegmentResult resolve_segment(const Scene& scene, const LightSet& lights, const RenderConfig& config,
-                              const Ray& ray, const Hit& hit, MediumStack& media, float& flight,
+SegmentResult resolve_segment(const Scene& scene,
+                              const LightSet& lights,
+                              const RenderConfig& config,
+                              const Ray& ray,
+                              const Hit& hit,
+                              MediumStack& media,
+                              float& flight,
                               const PreviousVertex& prev) {
     SegmentResult r;
     const float dir_length = length(ray.d);
@@ -207,7 +225,8 @@ SegmentResult resolve_segment(const Scene& scene, const LightSet& lights, const 
                                           prev.pdf_bsdf, pdf_light);
     };
     if (!hit.found()) {
-        if (!scene.background.is_black()) weighted(eval_background(scene, dir), PrimRef{}, kInfinity);
+        if (!scene.background.is_black())
+            weighted(eval_background(scene, dir), PrimRef{}, kInfinity);
         return r;
     }
     SurfaceHit s = surface_at(scene, ray, hit);
@@ -229,9 +248,16 @@ SegmentResult resolve_segment(const Scene& scene, const LightSet& lights, const 
     return r;
 }
 
-PathStep continue_path(const Scene& scene, const LightSet& lights, const RenderConfig& config,
-                       const Vertex& v, Vec3 wo, int bounce, Color beta, MediumStack& media,
-                       const ContinuationSamples& u, float u_roulette) {
+PathStep continue_path(const Scene& scene,
+                       const LightSet& lights,
+                       const RenderConfig& config,
+                       const Vertex& v,
+                       Vec3 wo,
+                       int bounce,
+                       Color beta,
+                       MediumStack& media,
+                       const ContinuationSamples& u,
+                       float u_roulette) {
     PathStep step;
     Continuation c = sample_continuation(config.strategy, scene, lights, v, wo, u);
     if (!c.valid) return step;
@@ -258,8 +284,8 @@ VertexSamples vertex_samples(uint64_t seed, uint32_t pixel, uint32_t sample, int
             u(kDimRoulette)};
 }
 
-Ray generate_camera_ray(const CameraRays& camera, uint64_t seed, uint32_t pixel, uint32_t sample,
-                        int x, int y) {
+Ray generate_camera_ray(
+    const CameraRays& camera, uint64_t seed, uint32_t pixel, uint32_t sample, int x, int y) {
     auto u = [&](uint32_t dim) { return sample_1d(seed, pixel, sample, dim); };
     return camera.generate(x + u(kDimPixelX), y + u(kDimPixelY), u(kDimLensU), u(kDimLensV));
 }
@@ -268,9 +294,13 @@ float segment_flight(uint64_t seed, uint32_t pixel, uint32_t sample, int bounce)
     return -std::log1p(-sample_1d(seed, pixel, sample, bounce_dim(bounce, kDimMediumDistance)));
 }
 
-float survival_probability(Color beta) { return std::clamp(max_component(beta), 0.05f, 0.95f); }
+float survival_probability(Color beta) {
+    return std::clamp(max_component(beta), 0.05f, 0.95f);
+}
 
-float sample_free_flight(float density, float u) { return -std::log1p(-u) / density; }
+float sample_free_flight(float density, float u) {
+    return -std::log1p(-u) / density;
+}
 
 MediumStack media_at(const Scene& scene, const Bvh& bvh, Point3 p) {
     MediumStack outside_in;  // boundaries we are inside of, innermost first

@@ -23,7 +23,7 @@ struct Image {
 };
 
 class ImageError : public std::runtime_error {
-public:
+  public:
     using std::runtime_error::runtime_error;
 };
 
@@ -42,7 +42,8 @@ void check_output_path(const std::filesystem::path& path);
 // Writes by extension: .png/.jpg/.jpeg as 8-bit sRGB (clamped), .exr (32-bit float),
 // .hdr, .pfm as linear float. The file appears atomically: it is written to a temporary file
 // in the same folder and renamed, so a failed write leaves no partial image.
-void write_image(const std::filesystem::path& path, const Image& image,
+void write_image(const std::filesystem::path& path,
+                 const Image& image,
                  const WriteOptions& options = {});
 
 // Reads any image OpenImageIO can, as linear RGB: 8- and 16-bit integer files are taken as

@@ -11,8 +11,14 @@ struct Aabb {
     Vec3 lo{kInfinity};
     Vec3 hi{-kInfinity};
 
-    constexpr void grow(Vec3 p) { lo = min(lo, p); hi = max(hi, p); }
-    constexpr void grow(const Aabb& b) { lo = min(lo, b.lo); hi = max(hi, b.hi); }
+    constexpr void grow(Vec3 p) {
+        lo = min(lo, p);
+        hi = max(hi, p);
+    }
+    constexpr void grow(const Aabb& b) {
+        lo = min(lo, b.lo);
+        hi = max(hi, b.hi);
+    }
     constexpr bool empty() const { return lo.x > hi.x || lo.y > hi.y || lo.z > hi.z; }
     constexpr Vec3 extent() const { return hi - lo; }
     constexpr Vec3 center() const { return 0.5f * (lo + hi); }
@@ -27,6 +33,9 @@ struct Aabb {
     }
 };
 
-constexpr Aabb merge(Aabb a, const Aabb& b) { a.grow(b); return a; }
+constexpr Aabb merge(Aabb a, const Aabb& b) {
+    a.grow(b);
+    return a;
+}
 
 }  // namespace wavetrace

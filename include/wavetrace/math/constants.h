@@ -15,6 +15,8 @@ constexpr float gamma(int n) {
     return (n * u) / (1 - n * u);
 }
 
-constexpr float radians(float degrees) { return degrees * (kPi / 180.0f); }
+constexpr float radians(float degrees) {
+    return degrees * (kPi / 180.0f);
+}
 
 }  // namespace wavetrace

@@ -7,7 +7,7 @@ namespace wavetrace {
 // Affine transform as a row-major 4x4 matrix with its inverse kept alongside, so that
 // normals transform by the inverse transpose without a second inversion.
 class Transform {
-public:
+  public:
     constexpr Transform() = default;
 
     static Transform translate(Vec3 t);
@@ -30,7 +30,7 @@ public:
     bool preserves_shape(float* uniform_scale) const;
     Transform inverse() const { return Transform(inv_, m_); }
 
-private:
+  private:
     using Mat4 = float[4][4];
     Transform(const Mat4& m, const Mat4& inv);
 

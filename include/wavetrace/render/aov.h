@@ -21,7 +21,7 @@ enum class Aov {
 struct AovSettings {
     int width = 0;
     int height = 0;
-    int spp = 1;        // jittered samples averaged per pixel
+    int spp = 1;  // jittered samples averaged per pixel
     uint64_t seed = 0;
 };
 

@@ -11,7 +11,7 @@
 namespace wavetrace {
 
 class Film {
-public:
+  public:
     Film() = default;
     Film(int width, int height);
     Film(Film&& other) noexcept { *this = std::move(other); }
@@ -40,7 +40,7 @@ public:
     uint32_t samples(int pixel) const { return counts_[pixel]; }
     uint64_t invalid_samples() const { return invalid_.load(); }
 
-private:
+  private:
     int width_ = 0, height_ = 0;
     std::vector<double> sum_, sum_sq_;  // 3 per pixel
     std::vector<uint32_t> counts_;

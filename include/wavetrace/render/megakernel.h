@@ -21,7 +21,10 @@ struct RenderStats {
 // Called now and then from worker threads with the fraction of pixels finished.
 using ProgressCallback = std::function<void(double fraction)>;
 
-Film render_megakernel(const Scene& scene, const Bvh& bvh, const RenderConfig& config,
-                       RenderStats* stats = nullptr, const ProgressCallback& progress = {});
+Film render_megakernel(const Scene& scene,
+                       const Bvh& bvh,
+                       const RenderConfig& config,
+                       RenderStats* stats = nullptr,
+                       const ProgressCallback& progress = {});
 
 }  // namespace wavetrace

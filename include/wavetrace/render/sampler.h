@@ -13,7 +13,7 @@ namespace wavetrace {
 enum SampleDim : uint32_t {
     kDimPixelX = 0,  // jitter inside the pixel
     kDimPixelY = 1,
-    kDimLensU = 2,   // point on the thin lens
+    kDimLensU = 2,  // point on the thin lens
     kDimLensV = 3,
     kCameraDims = 4,
 };
@@ -23,14 +23,14 @@ enum BounceDim : uint32_t {
     kDimLightSelect = 1,     // next-event estimation: which light ...
     kDimLightU = 2,          // ... and where on it
     kDimLightV = 3,
-    kDimTechnique = 4,       // one-sample strategies: which technique picks the direction
-    kDimDirectionU = 5,      // a light- or uniformly-sampled continuation direction
+    kDimTechnique = 4,   // one-sample strategies: which technique picks the direction
+    kDimDirectionU = 5,  // a light- or uniformly-sampled continuation direction
     kDimDirectionV = 6,
     kDimDirectionSelect = 7,  // ... its light choice
-    kDimBsdfLobe = 8,        // BSDF sampling: lobe choice (dielectric reflect / refract) ...
-    kDimBsdfU = 9,           // ... and direction
+    kDimBsdfLobe = 8,         // BSDF sampling: lobe choice (dielectric reflect / refract) ...
+    kDimBsdfU = 9,            // ... and direction
     kDimBsdfV = 10,
-    kDimRoulette = 11,       // Russian roulette
+    kDimRoulette = 11,  // Russian roulette
     kBounceDims = 12,
 };
 

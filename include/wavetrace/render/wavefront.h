@@ -20,8 +20,11 @@ struct WavefrontConfig {
     size_t wave_size = 1 << 16;
 };
 
-Film render_wavefront(const Scene& scene, const Bvh& bvh, const RenderConfig& config,
-                      const WavefrontConfig& wavefront = {}, RenderStats* stats = nullptr,
+Film render_wavefront(const Scene& scene,
+                      const Bvh& bvh,
+                      const RenderConfig& config,
+                      const WavefrontConfig& wavefront = {},
+                      RenderStats* stats = nullptr,
                       const ProgressCallback& progress = {});
 
 // Queue memory per path in flight, from the queue declarations.

@@ -38,20 +38,21 @@ struct BvhPrim {
 static_assert(sizeof(BvhPrim) == 40);
 
 struct BvhBuildConfig {
-    int bins = 32;                   // SAH bins per axis
-    int max_leaf_size = 8;           // leaves never hold more primitives than this
-    float traversal_cost = 1.0f;     // SAH cost of visiting a node ...
-    float intersection_cost = 1.0f;  // ... relative to testing one primitive
+    int bins = 32;                     // SAH bins per axis
+    int max_leaf_size = 8;             // leaves never hold more primitives than this
+    float traversal_cost = 1.0f;       // SAH cost of visiting a node ...
+    float intersection_cost = 1.0f;    // ... relative to testing one primitive
     size_t parallel_threshold = 4096;  // subtrees larger than this are built in parallel
 };
 
 struct BvhStats {
     size_t nodes = 0;
     size_t leaves = 0;
-    int depth = 0;        // of the deepest leaf, the root at depth 1
-    float sah_cost = 0;   // expected cost of a random ray hitting the root box, in the config's units
+    int depth = 0;  // of the deepest leaf, the root at depth 1
+    float sah_cost =
+        0;  // expected cost of a random ray hitting the root box, in the config's units
     double build_ms = 0;
-    size_t bytes = 0;     // nodes, primitive references and leaf-ordered primitive data
+    size_t bytes = 0;  // nodes, primitive references and leaf-ordered primitive data
 };
 
 // The closest hit found along a ray; prim is invalid for a miss.
@@ -64,7 +65,7 @@ struct Hit {
 };
 
 class Bvh {
-public:
+  public:
     Bvh() = default;
     // Builds over every primitive of `scene`, which must outlive the BVH and not change.
     // The result does not depend on the number of threads.
@@ -82,7 +83,7 @@ public:
 
     static constexpr int kStackSize = 64;  // the build caps the depth below this
 
-private:
+  private:
     template <bool AnyHit>
     bool traverse(const Ray& ray, Hit* hit) const;
 

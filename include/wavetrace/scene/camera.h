@@ -10,14 +10,14 @@ struct Camera {
     Point3 look_from{0.0f, 0.0f, 0.0f};
     Point3 look_at{0.0f, 0.0f, -1.0f};
     Vec3 up{0.0f, 1.0f, 0.0f};
-    float vfov = 40.0f;            // vertical field of view, degrees
-    float aperture = 0.0f;         // lens diameter, world units
-    float focus_distance = 0.0f;   // 0: the distance from look_from to look_at
+    float vfov = 40.0f;           // vertical field of view, degrees
+    float aperture = 0.0f;        // lens diameter, world units
+    float focus_distance = 0.0f;  // 0: the distance from look_from to look_at
 };
 
 // A camera set up for one film size: maps film positions to rays.
 class CameraRays {
-public:
+  public:
     CameraRays(const Camera& camera, int width, int height);
 
     // Ray through film position (x, y) in pixels (0,0 is the top-left corner of the image,
@@ -25,10 +25,10 @@ public:
     // The direction is not normalized.
     Ray generate(float x, float y, float lens_u, float lens_v) const;
 
-private:
+  private:
     Point3 origin_;
-    Point3 pixel00_;  // the top-left corner of the film on the focus plane
-    Vec3 du_, dv_;    // one pixel to the right / down, on the focus plane
+    Point3 pixel00_;        // the top-left corner of the film on the focus plane
+    Vec3 du_, dv_;          // one pixel to the right / down, on the focus plane
     Vec3 lens_u_, lens_v_;  // lens radius times the camera's right / up axes
 };
 

@@ -38,7 +38,7 @@ struct TriangleRay {
     explicit TriangleRay(const Ray& ray);
 };
 // The same test with the per-ray part precomputed; hits lie in [tmin, tmax].
-bool intersect_triangle(const TriangleRay& r, float tmin, float tmax, Point3 p0, Point3 p1,
-                        Point3 p2, PrimHit* hit);
+bool intersect_triangle(
+    const TriangleRay& r, float tmin, float tmax, Point3 p0, Point3 p1, Point3 p2, PrimHit* hit);
 
 }  // namespace wavetrace

@@ -66,14 +66,20 @@ struct Scene {
     void add_sphere(Sphere sphere, const Transform& to_world = {});
     void add_quad(Quad quad, const Transform& to_world = {});
     // Six outward-facing quads spanning [lo, hi].
-    void add_box(Point3 lo, Point3 hi, MaterialId material, MediumId interior,
+    void add_box(Point3 lo,
+                 Point3 hi,
+                 MaterialId material,
+                 MediumId interior,
                  const Transform& to_world = {});
     // Appends a mesh; normals and uvs may be empty (else one per position). Indices are
     // relative to this mesh's positions. Degenerate triangles (zero area, repeated or
     // out-of-range indices, non-finite vertices) are skipped; returns how many were.
-    size_t add_mesh(Mesh mesh, const std::vector<Point3>& positions,
-                    const std::vector<Normal3>& normals, const std::vector<Vec2>& uvs,
-                    const std::vector<uint32_t>& indices, const Transform& to_world = {});
+    size_t add_mesh(Mesh mesh,
+                    const std::vector<Point3>& positions,
+                    const std::vector<Normal3>& normals,
+                    const std::vector<Vec2>& uvs,
+                    const std::vector<uint32_t>& indices,
+                    const Transform& to_world = {});
 
     // ---- queries ----
     size_t primitive_count() const { return spheres.size() + quads.size() + triangles.size(); }
@@ -90,7 +96,7 @@ std::vector<PrimRef> collect_emitters(const Scene& scene);
 // Bad scene input: the message names the file and the place in it
 // ("scenes/x.json: /objects/3/radius: expected a positive number, got -1").
 class SceneError : public std::runtime_error {
-public:
+  public:
     using std::runtime_error::runtime_error;
 };
 

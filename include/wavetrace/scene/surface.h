@@ -11,9 +11,9 @@ struct Scene;
 // Everything shading needs about a ray's hit point.
 struct SurfaceHit {
     Point3 p;
-    Normal3 ng;   // geometric normal, unit, on the shape's outside (front)
-    Normal3 ns;   // shading normal, unit, on the same side as ng
-    Vec2 uv;      // texture coordinates
+    Normal3 ng;              // geometric normal, unit, on the shape's outside (front)
+    Normal3 ns;              // shading normal, unit, on the same side as ng
+    Vec2 uv;                 // texture coordinates
     bool front_face = true;  // the ray arrived from the side ng points to
     MaterialId material = kNone;
     MediumId interior = kNone;

@@ -10,7 +10,7 @@
 namespace wavetrace {
 
 class Distribution1D {
-public:
+  public:
     Distribution1D() = default;
     // Weights must be >= 0 and not all zero.
     explicit Distribution1D(std::span<const float> weights);
@@ -26,16 +26,16 @@ public:
     float sample_continuous(float u, float* pdf, size_t* index = nullptr) const;
     float pdf_continuous(float x) const;
 
-private:
+  private:
     size_t find(float u) const;
-    std::vector<float> pdf_;  // density on [0, 1) per entry: n w_i / sum w
+    std::vector<float> pdf_;   // density on [0, 1) per entry: n w_i / sum w
     std::vector<double> cdf_;  // n + 1 entries, cdf_[0] = 0, cdf_[n] = 1
     float total_ = 0;
 };
 
 // Density over [0,1)^2 proportional to a grid of weights (row-major, rows = v).
 class Distribution2D {
-public:
+  public:
     Distribution2D() = default;
     Distribution2D(std::span<const float> weights, int nu, int nv);
     // Samples (u, v) in [0,1)^2 and returns its density on the unit square.
@@ -43,7 +43,7 @@ public:
     float pdf(float u, float v) const;
     bool empty() const { return rows_.empty(); }
 
-private:
+  private:
     std::vector<Distribution1D> rows_;  // conditional p(u | v)
     Distribution1D marginal_;           // p(v)
 };

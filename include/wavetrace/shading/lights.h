@@ -29,7 +29,7 @@ struct LightSample {
 };
 
 class LightSet {
-public:
+  public:
     LightSet() = default;
     explicit LightSet(const Scene& scene);
 
@@ -51,13 +51,13 @@ public:
     // density a "pick a light, then a point" sampler assigns to wi. O(number of emitters).
     float pdf_direction(const Scene& scene, Point3 ref, Vec3 wi) const;
 
-private:
-    float prim_pdf_given_selection(const Scene& scene, Point3 ref, PrimRef prim, Vec3 wi,
-                                   float dist) const;
+  private:
+    float prim_pdf_given_selection(
+        const Scene& scene, Point3 ref, PrimRef prim, Vec3 wi, float dist) const;
 
-    std::vector<PrimRef> emitters_;                  // light i < emitters_.size()
-    std::unordered_map<uint32_t, uint32_t> index_;   // PrimRef bits -> light index
-    bool background_ = false;                        // the last light, if present
+    std::vector<PrimRef> emitters_;                 // light i < emitters_.size()
+    std::unordered_map<uint32_t, uint32_t> index_;  // PrimRef bits -> light index
+    bool background_ = false;                       // the last light, if present
     size_t count_ = 0;
     Distribution1D select_;
     Distribution2D environment_;  // over the environment image's texels, luminance x sin(theta)

@@ -16,16 +16,20 @@ struct MediumStack {
 
     MediumId current() const { return size > 0 ? entries[size - 1] : kNone; }
     void push(MediumId m) {
-        if (size < kMaxNesting) entries[size++] = m;
-        else entries[kMaxNesting - 1] = m;
+        if (size < kMaxNesting)
+            entries[size++] = m;
+        else
+            entries[kMaxNesting - 1] = m;
     }
     void pop() {
         if (size > 0) --size;
     }
     // Crossing a surface with interior `m`: entering from its front pushes, leaving pops.
     void cross(MediumId m, bool entering) {
-        if (entering) push(m);
-        else pop();
+        if (entering)
+            push(m);
+        else
+            pop();
     }
 };
 

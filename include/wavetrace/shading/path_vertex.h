@@ -23,8 +23,8 @@ struct Scene;
 // A point where a path scatters: on a surface, or inside a medium (ng = 0).
 struct Vertex {
     Point3 p;
-    Frame frame;        // local z = shading normal (surfaces) or any axis (media)
-    Normal3 ng{0.0f};   // geometric normal, outward; zero inside a medium
+    Frame frame;       // local z = shading normal (surfaces) or any axis (media)
+    Normal3 ng{0.0f};  // geometric normal, outward; zero inside a medium
     BsdfParams bsdf;
     MediumId interior = kNone;  // the surface's inside medium, for transmission
     bool on_surface() const { return ng.x != 0 || ng.y != 0 || ng.z != 0; }
@@ -38,7 +38,9 @@ bool can_sample_lights(const Vertex& v, const LightSet& lights);
 
 // How far a new ray starts from the surface point p it leaves: relative to p's magnitude
 // (about 170 float ulps), so that it clears the rounding error of p itself at any scale.
-inline float origin_offset(Point3 p) { return 2e-5f * (1.0f + max_component(abs(p))); }
+inline float origin_offset(Point3 p) {
+    return 2e-5f * (1.0f + max_component(abs(p)));
+}
 // A ray origin just off the surface on the side `w` leaves towards, so that the new ray does
 // not hit the surface it starts on.
 Point3 offset_origin(const Vertex& v, Vec3 w);
@@ -58,14 +60,19 @@ struct DirectSample {
     Ray shadow;  // unit direction, tmax just short of the light
     bool valid = false;
 };
-DirectSample sample_direct(const Scene& scene, const LightSet& lights, const Vertex& v, Vec3 wo,
-                           float u_select, float u1, float u2);
+DirectSample sample_direct(const Scene& scene,
+                           const LightSet& lights,
+                           const Vertex& v,
+                           Vec3 wo,
+                           float u_select,
+                           float u1,
+                           float u2);
 
 // Fraction of light that gets through along a shadow ray: 0 if a surface blocks it, else the
 // product of exp(-density * length) over the media it crosses (boundaries without a surface
 // let it through). `media` is the stack at the ray's origin. Counts the rays it traces.
-float transmittance(const Scene& scene, const Bvh& bvh, Ray shadow, MediumStack media,
-                    uint64_t* rays);
+float transmittance(
+    const Scene& scene, const Bvh& bvh, Ray shadow, MediumStack media, uint64_t* rays);
 
 // --- continuation -------------------------------------------------------------------------
 struct Continuation {
@@ -81,14 +88,18 @@ struct ContinuationSamples {
     float technique, select, u1, u2;  // one-sample strategies' light/uniform direction
     float lobe, bsdf_u1, bsdf_u2;     // BSDF sampling
 };
-Continuation sample_continuation(Strategy strategy, const Scene& scene, const LightSet& lights,
-                                 const Vertex& v, Vec3 wo, const ContinuationSamples& u);
+Continuation sample_continuation(Strategy strategy,
+                                 const Scene& scene,
+                                 const LightSet& lights,
+                                 const Vertex& v,
+                                 Vec3 wo,
+                                 const ContinuationSamples& u);
 
 // Weight of emission Le found by a ray whose previous vertex chose it with BSDF density
 // pdf_bsdf, when a light sample from that vertex would have had density pdf_light.
 // `counts_fully`: a camera ray, or the previous vertex could not sample lights (delta lobes).
-float emission_weight(Strategy strategy, MisHeuristic heuristic, bool counts_fully,
-                      float pdf_bsdf, float pdf_light);
+float emission_weight(
+    Strategy strategy, MisHeuristic heuristic, bool counts_fully, float pdf_bsdf, float pdf_light);
 // Weight of a next-event (shadow ray) contribution: 1 for NEE, w(p_l, p_b) for MIS.
 float direct_weight(Strategy strategy, MisHeuristic heuristic, float pdf_light, float pdf_bsdf);
 
@@ -110,16 +121,21 @@ enum class SegmentEvent : uint8_t {
 struct SegmentResult {
     SegmentEvent event = SegmentEvent::End;
     Vertex vertex;
-    Vec3 wo;                 // Scatter: unit direction back along the segment
-    Color emission{0.0f};    // Emission: radiance times the strategy's weight
-    Ray next;                // Cross: the continuing ray
+    Vec3 wo;               // Scatter: unit direction back along the segment
+    Color emission{0.0f};  // Emission: radiance times the strategy's weight
+    Ray next;              // Cross: the continuing ray
 };
 
 // Resolves one ray segment given its closest hit: medium scattering before the hit (consuming
 // `flight`, the optical depth left, drawn once per segment), escaping, emitters, medium
 // boundaries (updating `media`), or a surface to scatter at.
-SegmentResult resolve_segment(const Scene& scene, const LightSet& lights, const RenderConfig& config,
-                              const Ray& ray, const Hit& hit, MediumStack& media, float& flight,
+SegmentResult resolve_segment(const Scene& scene,
+                              const LightSet& lights,
+                              const RenderConfig& config,
+                              const Ray& ray,
+                              const Hit& hit,
+                              MediumStack& media,
+                              float& flight,
                               const PreviousVertex& prev);
 
 // The continuation of a path at a scattering vertex, Russian roulette included: the next ray,
@@ -131,9 +147,16 @@ struct PathStep {
     Color weight{0.0f};
     PreviousVertex prev;
 };
-PathStep continue_path(const Scene& scene, const LightSet& lights, const RenderConfig& config,
-                       const Vertex& v, Vec3 wo, int bounce, Color beta, MediumStack& media,
-                       const ContinuationSamples& u, float u_roulette);
+PathStep continue_path(const Scene& scene,
+                       const LightSet& lights,
+                       const RenderConfig& config,
+                       const Vertex& v,
+                       Vec3 wo,
+                       int bounce,
+                       Color beta,
+                       MediumStack& media,
+                       const ContinuationSamples& u,
+                       float u_roulette);
 // The uniform numbers of vertex `bounce` of path (pixel, sample), from the dimension layout
 // of render/sampler.h: what both engines draw, so that they trace the same paths.
 struct VertexSamples {
@@ -146,11 +169,13 @@ VertexSamples vertex_samples(uint64_t seed, uint32_t pixel, uint32_t sample, int
 float segment_flight(uint64_t seed, uint32_t pixel, uint32_t sample, int bounce);
 
 // The camera ray of sample `sample` of pixel (x, y), jittered over the pixel and the lens.
-Ray generate_camera_ray(const CameraRays& camera, uint64_t seed, uint32_t pixel, uint32_t sample,
-                        int x, int y);
+Ray generate_camera_ray(
+    const CameraRays& camera, uint64_t seed, uint32_t pixel, uint32_t sample, int x, int y);
 
 // Whether a vertex reached by segment `bounce` may scatter: the path may still grow.
-inline bool may_scatter(const RenderConfig& config, int bounce) { return bounce + 1 < config.max_depth; }
+inline bool may_scatter(const RenderConfig& config, int bounce) {
+    return bounce + 1 < config.max_depth;
+}
 
 // Russian roulette survival probability for path throughput beta.
 float survival_probability(Color beta);

@@ -16,14 +16,18 @@ inline Vec3 sample_cosine_hemisphere(float u1, float u2) {
     float r = std::sqrt(u1), phi = 2.0f * kPi * u2;
     return {r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0f, 1.0f - u1))};
 }
-inline float cosine_hemisphere_pdf(float cos_theta) { return std::max(0.0f, cos_theta) * kInvPi; }
+inline float cosine_hemisphere_pdf(float cos_theta) {
+    return std::max(0.0f, cos_theta) * kInvPi;
+}
 
 // Uniform on the unit sphere (Archimedes: z uniform in [-1, 1]). pdf = 1 / (4 pi).
 inline Vec3 sample_uniform_sphere(float u1, float u2) {
     float z = 1.0f - 2.0f * u1, r = std::sqrt(std::max(0.0f, 1.0f - z * z)), phi = 2.0f * kPi * u2;
     return {r * std::cos(phi), r * std::sin(phi), z};
 }
-inline constexpr float uniform_sphere_pdf() { return 0.25f * kInvPi; }
+inline constexpr float uniform_sphere_pdf() {
+    return 0.25f * kInvPi;
+}
 
 // Uniform in the cone of directions within theta_max of +z. pdf = 1 / (2 pi (1 - cos_max)).
 inline Vec3 sample_uniform_cone(float u1, float u2, float cos_max) {
@@ -32,7 +36,9 @@ inline Vec3 sample_uniform_cone(float u1, float u2, float cos_max) {
     float phi = 2.0f * kPi * u2;
     return {sin_theta * std::cos(phi), sin_theta * std::sin(phi), cos_theta};
 }
-inline float uniform_cone_pdf(float cos_max) { return 1.0f / (2.0f * kPi * (1.0f - cos_max)); }
+inline float uniform_cone_pdf(float cos_max) {
+    return 1.0f / (2.0f * kPi * (1.0f - cos_max));
+}
 
 // Uniform barycentrics (b1, b2) on a triangle (the square-root warp). pdf = 1 / area.
 inline void sample_uniform_triangle(float u1, float u2, float* b1, float* b2) {
