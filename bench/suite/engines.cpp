@@ -1,6 +1,9 @@
 // Both engines at equal settings on each benchmark scene, repetitions interleaved (A B A B)
 // so that the machine's drift hits both alike.
+#include <unistd.h>
+
 #include <cstdio>
+#include <filesystem>
 
 #include "sections.h"
 #include "wavetrace/wavetrace.h"
@@ -8,6 +11,28 @@
 namespace wavetrace::bench {
 
 namespace {
+
+// Peak memory of one render by the CLI in a process of its own (its summary line reports
+// getrusage's peak): the per-engine figure that two engines in one process cannot give.
+double cli_peak_mib(const std::string& scene, const char* engine, const RenderConfig& c) {
+    const std::filesystem::path image = std::filesystem::temp_directory_path() /
+                                        ("wavetrace-bench-" + std::to_string(getpid()) + ".pfm");
+    std::string cmd = std::string("'") + WAVETRACE_CLI_PATH + "' render '" + scene + "' --engine " +
+                      engine + " --width " + std::to_string(c.width) + " --height " +
+                      std::to_string(c.height) + " --spp " + std::to_string(c.spp) + " -o '" +
+                      image.string() + "' 2>&1";
+    std::string out;
+    if (FILE* f = popen(cmd.c_str(), "r")) {
+        char buf[512];
+        while (fgets(buf, sizeof buf, f)) out += buf;
+        pclose(f);
+    }
+    std::error_code ec;
+    std::filesystem::remove(image, ec);
+    auto at = out.find("peak memory ");
+    return at == std::string::npos ? -1.0 : std::stod(out.substr(at + 12));
+}
+
 double relative_mse(const Image& a, const Image& ref) {
     double sum = 0;
     for (size_t i = 0; i < a.pixels.size(); ++i) {
@@ -19,10 +44,10 @@ double relative_mse(const Image& a, const Image& ref) {
 }  // namespace
 
 void bench_engines(const Options& o, Results& r) {
-    r.table("engines",
-            {"scene", "width", "height", "spp", "megakernel_mpaths", "wavefront_mpaths",
-             "megakernel_mrays", "wavefront_mrays", "ratio_min", "ratio_median", "ratio_max",
-             "rel_mse_between", "wavefront_queue_mib", "film_mib", "peak_rss_mib"});
+    r.table("engines", {"scene", "width", "height", "spp", "megakernel_mpaths", "wavefront_mpaths",
+                        "megakernel_mrays", "wavefront_mrays", "ratio_min", "ratio_median",
+                        "ratio_max", "rel_mse_between", "wavefront_queue_mib", "film_mib",
+                        "megakernel_peak_mib", "wavefront_peak_mib"});
     struct Case {
         const char* scene;
         int w, h, spp;
@@ -34,7 +59,8 @@ void bench_engines(const Options& o, Results& r) {
                          {"veach-mis", 384, 288, 16}};
     const int reps = o.quick ? 1 : 3;
     for (const Case& c : full) {
-        Scene scene = load_scene(o.scenes / (std::string(c.scene) + ".json"));
+        const std::string path = (o.scenes / (std::string(c.scene) + ".json")).string();
+        Scene scene = load_scene(path);
         Bvh bvh = Bvh::build(scene);
         RenderConfig cfg;
         cfg.width = o.quick ? 16 : c.w;
@@ -63,7 +89,8 @@ void bench_engines(const Options& o, Results& r) {
         r.row("engines",
               {c.scene, cfg.width, cfg.height, cfg.spp, spread(mk_paths).median,
                spread(wf_paths).median, spread(mk_rays).median, spread(wf_rays).median, s.min,
-               s.median, s.max, relative_mse(wf_img, mk_img), queue_mib, film_mib, peak_rss_mib()});
+               s.median, s.max, relative_mse(wf_img, mk_img), queue_mib, film_mib,
+               cli_peak_mib(path, "megakernel", cfg), cli_peak_mib(path, "wavefront", cfg)});
         std::printf(
             "engines %-10s megakernel %6.3f Mpaths/s  wavefront %6.3f Mpaths/s  "
             "wavefront/megakernel %.2f [%.2f, %.2f]\n",

@@ -1,9 +1,8 @@
 #include "results.h"
 
-#include <sys/resource.h>
-
 #include <algorithm>
 #include <fstream>
+#include <stdexcept>
 
 namespace wavetrace::bench {
 
@@ -13,7 +12,13 @@ void Results::table(const std::string& name, std::vector<std::string> columns) {
 
 void Results::row(const std::string& name, std::vector<nlohmann::json> values) {
     for (Table& t : tables_)
-        if (t.name == name) t.rows.push_back(std::move(values));
+        if (t.name == name) {
+            if (values.size() != t.columns.size())
+                throw std::logic_error("table " + name + ": row of " +
+                                       std::to_string(values.size()) + " values for " +
+                                       std::to_string(t.columns.size()) + " columns");
+            t.rows.push_back(std::move(values));
+        }
 }
 
 void Results::save(const std::filesystem::path& dir) const {
@@ -42,12 +47,6 @@ Spread spread(std::vector<double> v) {
     std::sort(v.begin(), v.end());
     if (v.empty()) return {0, 0, 0};
     return {v.front(), v[v.size() / 2], v.back()};
-}
-
-double peak_rss_mib() {
-    rusage usage{};
-    getrusage(RUSAGE_SELF, &usage);
-    return usage.ru_maxrss / 1024.0;
 }
 
 }  // namespace wavetrace::bench

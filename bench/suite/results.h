@@ -33,7 +33,4 @@ struct Spread {
 };
 Spread spread(std::vector<double> v);
 
-// Peak resident memory of this process so far, MiB.
-double peak_rss_mib();
-
 }  // namespace wavetrace::bench
