@@ -33,12 +33,7 @@ void bench_convergence(const Options& o, Results& r) {
                 cfg.spp = spp;
                 RenderStats stats;
                 Image img = render_wavefront(scene, bvh, cfg, {}, &stats).mean();
-                double sum = 0;
-                for (size_t i = 0; i < img.pixels.size(); ++i) {
-                    double x = luminance(img.pixels[i]), y = luminance(ref.pixels[i]);
-                    sum += (x - y) * (x - y) / (y * y + 1e-3);
-                }
-                double rmse = sum / double(img.pixels.size());
+                double rmse = relative_mse(img, ref);
                 r.row("convergence", {c.scene, to_string(st), spp, stats.seconds, rmse,
                                       1.0 / (rmse * stats.seconds)});
             }

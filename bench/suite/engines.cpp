@@ -33,14 +33,6 @@ double cli_peak_mib(const std::string& scene, const char* engine, const RenderCo
     return at == std::string::npos ? -1.0 : std::stod(out.substr(at + 12));
 }
 
-double relative_mse(const Image& a, const Image& ref) {
-    double sum = 0;
-    for (size_t i = 0; i < a.pixels.size(); ++i) {
-        double x = luminance(a.pixels[i]), r = luminance(ref.pixels[i]);
-        sum += (x - r) * (x - r) / (r * r + 1e-3);
-    }
-    return sum / double(a.pixels.size());
-}
 }  // namespace
 
 void bench_engines(const Options& o, Results& r) {

@@ -43,6 +43,15 @@ void Results::save(const std::filesystem::path& dir) const {
     std::ofstream(dir / "results.json") << all.dump(2) << "\n";
 }
 
+double relative_mse(const Image& a, const Image& ref) {
+    double sum = 0;
+    for (size_t i = 0; i < a.pixels.size(); ++i) {
+        double x = luminance(a.pixels[i]), r = luminance(ref.pixels[i]);
+        sum += (x - r) * (x - r) / (r * r + 1e-3);
+    }
+    return sum / double(a.pixels.size());
+}
+
 Spread spread(std::vector<double> v) {
     std::sort(v.begin(), v.end());
     if (v.empty()) return {0, 0, 0};

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "wavetrace/image/image.h"
+
 namespace wavetrace::bench {
 
 class Results {
@@ -26,6 +28,10 @@ class Results {
     std::vector<Table> tables_;
     nlohmann::json meta_ = nlohmann::json::object();
 };
+
+// Relative MSE of an image against a reference, per pixel (x - r)^2 / (r^2 + 1e-3) on
+// luminance, averaged: the error measure of the engines and convergence sections.
+double relative_mse(const wavetrace::Image& image, const wavetrace::Image& reference);
 
 // Median, min and max of a sample.
 struct Spread {
