@@ -9,6 +9,7 @@
 #include "wavetrace/scene/bvh.h"
 #include "wavetrace/scene/scene.h"
 #include "wavetrace/scene/surface.h"
+#include "wavetrace/shading/path_vertex.h"
 
 namespace wavetrace {
 namespace {
@@ -43,8 +44,9 @@ Color trace_aov(const Scene& scene, const Bvh& bvh, Aov aov, Ray ray) {
         if (!hit.found()) return aov == Aov::Depth ? Color(kInfinity) : Color{};
         SurfaceHit s = surface_at(scene, ray, hit);
         if (scene.materials[s.material].kind == MaterialKind::Interface) {
-            // Step past the boundary: restart just beyond the hit along the same line.
-            ray.tmin = hit.t * (1.0f + 1e-5f) + 1e-6f;
+            // Step past the boundary by the engines' origin offset, along the same line (so
+            // that depth stays measured from the camera).
+            ray.tmin = hit.t + origin_offset(s.p) / length(ray.d);
             continue;
         }
         switch (aov) {

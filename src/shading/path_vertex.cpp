@@ -122,8 +122,7 @@ Continuation sample_continuation(Strategy strategy,
     Continuation c;
     const bool lights_ok = can_sample_lights(v, lights);
     const bool one_sample =
-        (strategy == Strategy::Mixture && lights_ok) ||
-        (strategy == Strategy::Light && !v.bsdf.is_delta() && can_sample_lights(v, lights));
+        lights_ok && (strategy == Strategy::Mixture || strategy == Strategy::Light);
     if (!one_sample) {
         Vec3 lo = v.frame.to_local(wo);
         BsdfSample s = bsdf_sample(v.bsdf, lo, u.lobe, u.bsdf_u1, u.bsdf_u2);
