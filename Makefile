@@ -20,7 +20,9 @@ demo: build
 	@$(BUILD_DIR)/bin/wavetrace render scenes/cornell.json --spp 32 -o out/cornell.png
 
 # Tests that measure something (e.g. agreement with Embree) leave a line in build/reports/.
+# check-deps first: every package the build used must come from tools/install-deps.sh.
 test: build
+	@tools/check-deps.sh $(BUILD_DIR)
 	@rm -rf $(BUILD_DIR)/reports
 	@cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
 	@cat $(BUILD_DIR)/reports/*.txt 2>/dev/null || true

@@ -102,6 +102,30 @@ TEST(Cli, BadOptionsExitTwoAndWriteNothing) {
     EXPECT_EQ(run(dir, "info '" + (dir.path() / "none.json").string() + "'").code, 2);
 }
 
+// A numeric option that is given must be valid: 0 or a negative value is not "the scene's".
+TEST(Cli, ZeroOrNegativeCountsAreErrorsNotDefaults) {
+    TempDir dir;
+    auto out = dir.path() / "x.png";
+    std::string o = " -o '" + out.string() + "'";
+    for (const char* option : {"--spp 0", "--spp -4", "--width 0", "--height -1", "--max-depth 0",
+                               "--wave-size 0", "--wave-size -1"}) {
+        CliResult r = run(dir, "render " + scene("cornell") + " " + option + o);
+        EXPECT_EQ(r.code, 2) << option;
+        std::string name = std::string(option).substr(0, std::string(option).find(' '));
+        EXPECT_NE(r.err.find(name + ": expected 1.."), std::string::npos) << option << r.err;
+    }
+    EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+TEST(Cli, VersionNamesTheBuildAndItsLibraries) {
+    TempDir dir;
+    CliResult r = run(dir, "--version");
+    EXPECT_EQ(r.code, 0) << r.err;
+    for (const char* field : {"wavetrace 0.", "build)", "SIMD:", "oneTBB:      20", "OpenImageIO: 2.",
+                              "Assimp:      5.", "Embree:      3."})
+        EXPECT_NE(r.out.find(field), std::string::npos) << field << "\n" << r.out;
+}
+
 TEST(Cli, ColorRenderRecordsItsSettingsInTheExr) {
     TempDir dir;
     auto out = dir.path() / "c.exr";

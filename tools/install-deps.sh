@@ -7,8 +7,10 @@ packages=(
   build-essential cmake pkg-config
   libtbb-dev            # oneTBB: parallel_for / parallel_invoke / global_control
   libopenimageio-dev    # image textures in, PNG/JPEG/EXR/HDR/PFM out
+  openimageio-tools     # Debian's OpenImageIO CMake config imports its tools (iconvert, idiff, ...) as targets
   libembree-dev         # Embree 3: the intersection reference in tests and benchmarks
   libassimp-dev         # meshes: OBJ+MTL, PLY (ASCII and binary), glTF 2.0
+  zlib1g-dev            # assimp's CMake config links libz.so, but libassimp-dev does not depend on it
   nlohmann-json3-dev    # scene files
   libcli11-dev          # command line
   libfmt-dev            # formatting
@@ -17,8 +19,18 @@ packages=(
 )
 
 # `install-deps.sh --bench` adds what `make bench` needs beyond the build: gnuplot for plots.
-if [[ "${1:-}" == "--bench" ]]; then
-  packages+=(gnuplot-nox)
+# `install-deps.sh --list` prints the packages instead of installing them (tools/check-deps.sh).
+list=0
+for arg in "$@"; do
+  case "$arg" in
+    --bench) packages+=(gnuplot-nox) ;;
+    --list) list=1 ;;
+    *) echo "usage: $0 [--bench] [--list]" >&2; exit 2 ;;
+  esac
+done
+if [[ $list -eq 1 ]]; then
+  printf '%s\n' "${packages[@]}"
+  exit 0
 fi
 
 missing=()

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <optional>
 #include <string>
 
 namespace wavetrace::cli {
@@ -14,16 +15,16 @@ inline constexpr int kExitBadInput = 2;  // bad scene, bad option: nothing was w
 struct RenderOptions {
     std::string scene;
     std::string output;
-    int width = 0, height = 0, spp = 0;  // 0: the scene file's value
+    // Not given: the scene file's value (or the engine's default, for the wave size).
+    std::optional<int> width, height, spp, max_depth;
+    std::optional<long long> wave_size;
     uint64_t seed = 0;
     int threads = 0;  // 0: all hardware threads
     std::string aov = "color";
     float exposure = 0.0f;
     std::string engine = "wavefront";
-    size_t wave_size = 0;  // 0: the engine's default
     std::string strategy = "mis";
     std::string heuristic = "power";
-    int max_depth = 0;  // 0: the scene file's value
 };
 
 struct InfoOptions {

@@ -2,10 +2,21 @@
 #include <iostream>
 
 #include "commands.h"
+#include "wavetrace/build_info.h"
 
 int main(int argc, char** argv) {
     using namespace wavetrace::cli;
+    using wavetrace::BuildInfo, wavetrace::build_info;
     CLI::App app{"wavetrace: a physically based path tracer with a wavefront engine"};
+    app.set_version_flag("--version", [] {
+        BuildInfo b = build_info();
+        return "wavetrace " + b.version + " (" + b.build_type + " build)\n" +
+               "  SIMD:        " + b.simd + "\n" +
+               "  oneTBB:      " + b.tbb + "\n" +
+               "  OpenImageIO: " + b.openimageio + "\n" +
+               "  Assimp:      " + b.assimp + "\n" +
+               "  Embree:      " + b.embree + " (reference intersector of the tests and benchmarks)";
+    });
     app.require_subcommand(1);
     RenderOptions render;
     InfoOptions info;

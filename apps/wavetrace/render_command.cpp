@@ -100,23 +100,25 @@ class Progress {
     std::mutex mutex_;
 };
 
-// Range checks shared by all numeric options: each failure names the option.
+// Range checks shared by all numeric options: each failure names the option. An option that
+// is given must be valid: 0 is an error, not a request for the scene's value.
 std::optional<std::string> check_options(const RenderOptions& o, const RenderSettings& r) {
-    if (o.width < 0 || o.width > kMaxImageSide)
-        return fmt::format("--width: expected 1..{}, got {}", kMaxImageSide, o.width);
-    if (o.height < 0 || o.height > kMaxImageSide)
-        return fmt::format("--height: expected 1..{}, got {}", kMaxImageSide, o.height);
-    if (o.spp < 0 || o.spp > kMaxSpp)
-        return fmt::format("--spp: expected 1..{}, got {}", kMaxSpp, o.spp);
-    if (o.wave_size > (size_t(1) << 26))
-        return fmt::format("--wave-size: expected 1..{}, got {}", size_t(1) << 26, o.wave_size);
-    if (o.max_depth < 0 || o.max_depth > kMaxDepth)
-        return fmt::format("--max-depth: expected 1..{}, got {}", kMaxDepth, o.max_depth);
+    auto out_of_range = [](const char* name, const auto& value, long long lo, long long hi)
+        -> std::optional<std::string> {
+        if (value && (*value < lo || *value > hi))
+            return fmt::format("{}: expected {}..{}, got {}", name, lo, hi, *value);
+        return std::nullopt;
+    };
+    if (auto e = out_of_range("--width", o.width, 1, kMaxImageSide)) return e;
+    if (auto e = out_of_range("--height", o.height, 1, kMaxImageSide)) return e;
+    if (auto e = out_of_range("--spp", o.spp, 1, kMaxSpp)) return e;
+    if (auto e = out_of_range("--max-depth", o.max_depth, 1, kMaxDepth)) return e;
+    if (auto e = out_of_range("--wave-size", o.wave_size, 1, 1LL << 26)) return e;
     if (o.threads < 0)
         return fmt::format("--threads: expected a positive count, got {}", o.threads);
     if (!std::isfinite(o.exposure) || std::fabs(o.exposure) > 64)
         return fmt::format("--exposure: expected a number in [-64, 64], got {}", o.exposure);
-    long long w = o.width ? o.width : r.width, h = o.height ? o.height : r.height;
+    long long w = o.width.value_or(r.width), h = o.height.value_or(r.height);
     if (w * h > kMaxPixels)
         return fmt::format("{} x {} = {} pixels exceeds the limit of {}", w, h, w * h, kMaxPixels);
     return std::nullopt;
@@ -145,8 +147,8 @@ int run_render(const RenderOptions& o) {
         return kExitBadInput;
     }
 
-    const int width = o.width ? o.width : scene.render.width;
-    const int height = o.height ? o.height : scene.render.height;
+    const int width = o.width.value_or(scene.render.width);
+    const int height = o.height.value_or(scene.render.height);
     Bvh bvh = Bvh::build(scene);
     WriteOptions write;
     write.exposure = o.exposure;
@@ -157,15 +159,15 @@ int run_render(const RenderOptions& o) {
         RenderConfig config;
         config.width = width;
         config.height = height;
-        config.spp = o.spp ? o.spp : scene.render.spp;
+        config.spp = o.spp.value_or(scene.render.spp);
         config.seed = o.seed;
         config.strategy = *parse_strategy(o.strategy);
         config.heuristic = o.heuristic == "balance" ? MisHeuristic::Balance : MisHeuristic::Power;
-        config.max_depth = o.max_depth ? o.max_depth : scene.render.max_depth;
+        config.max_depth = o.max_depth.value_or(scene.render.max_depth);
         RenderStats stats;
         Progress progress(config);
         WavefrontConfig wavefront;
-        if (o.wave_size > 0) wavefront.wave_size = o.wave_size;
+        if (o.wave_size) wavefront.wave_size = static_cast<size_t>(*o.wave_size);
         Film film =
             o.engine == "megakernel"
                 ? render_megakernel(scene, bvh, config, &stats, progress.callback())
@@ -186,7 +188,7 @@ int run_render(const RenderOptions& o) {
             stats.paths / stats.seconds * 1e-6, stats.rays / stats.seconds * 1e-6,
             film.invalid_samples(), peak_rss_mib());
     } else {
-        AovSettings settings{width, height, o.spp ? o.spp : 1, o.seed};
+        AovSettings settings{width, height, o.spp.value_or(1), o.seed};
         Aov aov = o.aov == "albedo" ? Aov::Albedo : o.aov == "normal" ? Aov::Normal : Aov::Depth;
         image = render_aov(scene, bvh, aov, settings);
         write.metadata.push_back({"wavetrace:aov", o.aov});

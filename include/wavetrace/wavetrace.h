@@ -1,6 +1,7 @@
 // The wavetrace library: load or build a scene, build its BVH, trace rays, write images.
 #pragma once
 
+#include "wavetrace/build_info.h"
 #include "wavetrace/image/image.h"
 #include "wavetrace/math/aabb.h"
 #include "wavetrace/math/frame.h"
