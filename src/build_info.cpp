@@ -1,4 +1,5 @@
 #include "wavetrace/build_info.h"
+#include "wavetrace/scene/bvh.h"
 
 #include <assimp/version.h>
 #include <oneapi/tbb/version.h>
@@ -11,7 +12,7 @@ BuildInfo build_info() {
     BuildInfo info;
     info.version = WAVETRACE_VERSION;
     info.build_type = WAVETRACE_BUILD_TYPE;
-    info.simd = "none (scalar kernels)";
+    info.simd = std::string(simd_target()) + " (BVH traversal; chosen at run time)";
     info.tbb = TBB_runtime_version();
     int oiio = OIIO::openimageio_version();  // 10000 major + 100 minor + patch
     info.openimageio = std::to_string(oiio / 10000) + "." + std::to_string(oiio / 100 % 100) + "." +

@@ -6,6 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config
   libtbb-dev            # oneTBB: parallel_for / parallel_invoke / global_control
+  libhwy-dev            # Google Highway: SIMD kernels for every x86/ARM target, chosen at run time
   libopenimageio-dev    # image textures in, PNG/JPEG/EXR/HDR/PFM out
   openimageio-tools     # Debian's OpenImageIO CMake config imports its tools (iconvert, idiff, ...) as targets
   libembree-dev         # Embree 3: the intersection reference in tests and benchmarks

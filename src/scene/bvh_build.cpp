@@ -9,6 +9,7 @@
 #include <chrono>
 #include <memory>
 
+#include "scene/wide_bvh.h"
 #include "wavetrace/scene/bvh.h"
 #include "wavetrace/scene/scene.h"
 
@@ -182,6 +183,25 @@ class Builder {
 
 }  // namespace
 
+Bvh::Bvh() : wide_(std::make_unique<WideBvh>()) {}
+Bvh::~Bvh() = default;
+Bvh::Bvh(Bvh&&) noexcept = default;
+Bvh& Bvh::operator=(Bvh&&) noexcept = default;
+
+Hit Bvh::intersect(const Ray& ray) const {
+    Hit hit;
+    wide_intersect(*wide_, ray, &hit);
+    return hit;
+}
+
+bool Bvh::occluded(const Ray& ray) const {
+    return wide_occluded(*wide_, ray);
+}
+
+const char* simd_target() {
+    return wide_simd_target();
+}
+
 Bvh Bvh::build(const Scene& scene, const BvhBuildConfig& config) {
     auto start = std::chrono::steady_clock::now();
     Bvh bvh;
@@ -206,32 +226,7 @@ Bvh Bvh::build(const Scene& scene, const BvhBuildConfig& config) {
 
     // Flatten depth-first; leaves' ranges are already contiguous in `prims` in this order.
     bvh.prims_.resize(prims.size());
-    bvh.prim_data_.resize(prims.size());
-    for (size_t i = 0; i < prims.size(); ++i) {
-        PrimRef ref = prims[i].ref;
-        bvh.prims_[i] = ref;
-        BvhPrim& d = bvh.prim_data_[i];
-        d.ref = ref;
-        uint32_t k = ref.index();
-        switch (ref.kind()) {
-            case PrimKind::Triangle: {
-                const Triangle& t = scene.triangles[k];
-                d.a = scene.positions[t.v[0]];
-                d.b = scene.positions[t.v[1]];
-                d.c = scene.positions[t.v[2]];
-                break;
-            }
-            case PrimKind::Quad:
-                d.a = scene.quads[k].q;
-                d.b = scene.quads[k].u;
-                d.c = scene.quads[k].v;
-                break;
-            case PrimKind::Sphere:
-                d.a = scene.spheres[k].center;
-                d.b = Vec3{scene.spheres[k].radius, 0, 0};
-                break;
-        }
-    }
+    for (size_t i = 0; i < prims.size(); ++i) bvh.prims_[i] = prims[i].ref;
     float root_area = std::max(root->box.half_area(), 1e-30f);
     BvhStats& stats = bvh.stats_;
     auto flatten = [&](auto&& self, const BuildNode& n, int depth) -> uint32_t {
@@ -256,9 +251,12 @@ Bvh Bvh::build(const Scene& scene, const BvhBuildConfig& config) {
     flatten(flatten, *root, 1);
     bvh.nodes_.shrink_to_fit();
 
+    *bvh.wide_ = collapse_to_wide(scene, bvh.nodes_, bvh.prims_);
+
     stats.nodes = bvh.nodes_.size();
-    stats.bytes = bvh.nodes_.size() * sizeof(BvhNode) + bvh.prims_.size() * sizeof(PrimRef) +
-                  bvh.prim_data_.size() * sizeof(BvhPrim);
+    stats.bytes = bvh.nodes_.size() * sizeof(BvhNode) + bvh.prims_.size() * sizeof(PrimRef);
+    stats.wide_nodes = bvh.wide_->nodes.size();
+    stats.wide_bytes = bvh.wide_->bytes();
     stats.build_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return bvh;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -13,6 +14,7 @@
 namespace wavetrace {
 
 struct Scene;
+struct WideBvh;
 
 // 32 bytes, two per cache line. Nodes are stored depth-first: an interior node's first child
 // is the next node and `offset` indexes its second child; a leaf's primitives are
@@ -28,15 +30,6 @@ struct BvhNode {
 };
 static_assert(sizeof(BvhNode) == 32);
 
-// A primitive's geometry copied into leaf order, so that a leaf's primitives are read from one
-// contiguous block without indirection. Triangle: a, b, c are the vertices. Quad: a = q,
-// b = u, c = v. Sphere: a = centre, b.x = radius.
-struct BvhPrim {
-    Vec3 a, b, c;
-    PrimRef ref;
-};
-static_assert(sizeof(BvhPrim) == 40);
-
 struct BvhBuildConfig {
     int bins = 32;                     // SAH bins per axis
     int max_leaf_size = 8;             // leaves never hold more primitives than this
@@ -51,8 +44,10 @@ struct BvhStats {
     int depth = 0;  // of the deepest leaf, the root at depth 1
     float sah_cost =
         0;  // expected cost of a random ray hitting the root box, in the config's units
-    double build_ms = 0;
-    size_t bytes = 0;  // nodes, primitive references and leaf-ordered primitive data
+    double build_ms = 0;    // binary build and collapse
+    size_t bytes = 0;       // binary nodes and primitive references
+    size_t wide_nodes = 0;  // nodes of the traversal layout
+    size_t wide_bytes = 0;  // its nodes and leaf blocks
 };
 
 // The closest hit found along a ray; prim is invalid for a miss.
@@ -64,9 +59,15 @@ struct Hit {
     bool found() const { return prim.valid(); }
 };
 
+// The binary SAH tree is built first and kept as the source of truth (nodes(), prims());
+// rays walk a wide layout collapsed from it, with SIMD box and primitive tests (see
+// docs/architecture.md).
 class Bvh {
   public:
-    Bvh() = default;
+    Bvh();
+    ~Bvh();
+    Bvh(Bvh&&) noexcept;
+    Bvh& operator=(Bvh&&) noexcept;
     // Builds over every primitive of `scene`, which must outlive the BVH and not change.
     // The result does not depend on the number of threads.
     static Bvh build(const Scene& scene, const BvhBuildConfig& config = {});
@@ -78,20 +79,21 @@ class Bvh {
 
     std::span<const BvhNode> nodes() const { return nodes_; }
     std::span<const PrimRef> prims() const { return prims_; }  // in leaf order
+    const WideBvh& wide() const { return *wide_; }
     const BvhStats& stats() const { return stats_; }
     const Scene* scene() const { return scene_; }
 
     static constexpr int kStackSize = 64;  // the build caps the depth below this
 
   private:
-    template <bool AnyHit>
-    bool traverse(const Ray& ray, Hit* hit) const;
-
     const Scene* scene_ = nullptr;
     std::vector<BvhNode> nodes_;
     std::vector<PrimRef> prims_;
-    std::vector<BvhPrim> prim_data_;  // prims_' geometry, same order
+    std::unique_ptr<WideBvh> wide_;
     BvhStats stats_;
 };
+
+// The SIMD target the traversal runs on this CPU (Highway's name, e.g. "AVX2", "AVX3").
+const char* simd_target();
 
 }  // namespace wavetrace

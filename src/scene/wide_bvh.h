@@ -1,0 +1,86 @@
+// The traversal layout of the BVH: the binary SAH tree collapsed into nodes of kWideNodeWidth
+// children whose boxes are stored as SoA float lanes, and leaves whose primitives are gathered
+// into blocks of kLeafBlockWidth primitives of one kind, tested all at once. The binary tree
+// stays the source of truth (bvh_build.cpp); this is what rays walk (wide_bvh_traverse.cpp).
+// The layout follows Embree's BVH8 (Wald et al., "Embree: A Kernel Framework for Efficient CPU
+// Ray Tracing", SIGGRAPH 2014) and Wald, Benthin and Boulos, "Getting Rid of Packets" (2008).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "wavetrace/math/ray.h"
+#include "wavetrace/scene/bvh.h"
+
+namespace wavetrace {
+
+inline constexpr int kWideNodeWidth = 8;
+inline constexpr int kLeafBlockWidth = 8;
+
+// Child codes: a node index, a leaf (kLeafChild | block count << kLeafCountShift | first block),
+// or kEmptyChild for an unused slot.
+inline constexpr uint32_t kLeafChild = 0x80000000u;
+inline constexpr int kLeafCountShift = 27;
+inline constexpr uint32_t kLeafFirstMask = (1u << kLeafCountShift) - 1;
+inline constexpr uint32_t kMaxLeafBlocks = 15;
+inline constexpr uint32_t kEmptyChild = 0xffffffffu;
+
+// An empty slot's box is inverted (lo = +inf, hi = -inf): its entry distance is +inf for every
+// ray, so the box test culls it without a separate check.
+struct alignas(64) WideNode {
+    float bounds[6][kWideNodeWidth];  // lo_x, hi_x, lo_y, hi_y, lo_z, hi_z of each child
+    uint32_t child[kWideNodeWidth];
+};
+static_assert(sizeof(WideNode) == 256);
+
+// Unused lanes of a block repeat lane 0, so that every lane holds ordinary numbers; `count`
+// says which lanes are real.
+struct alignas(32) TriangleBlock {
+    float p[3][3][kLeafBlockWidth];  // vertex, axis, lane
+    PrimRef ref[kLeafBlockWidth];
+};
+// q, u, v as in the scene; n = cross(u, v) and w = n / dot(n, n) precomputed, with the same
+// float operations intersect_quad() performs, so the block test gives the same bits.
+struct alignas(32) QuadBlock {
+    float q[3][kLeafBlockWidth], u[3][kLeafBlockWidth], v[3][kLeafBlockWidth];
+    float n[3][kLeafBlockWidth], w[3][kLeafBlockWidth];
+    PrimRef ref[kLeafBlockWidth];
+};
+struct alignas(32) SphereBlock {
+    float c[3][kLeafBlockWidth], r[kLeafBlockWidth];
+    PrimRef ref[kLeafBlockWidth];
+};
+
+struct LeafBlock {
+    PrimKind kind;
+    uint32_t count;  // 1..kLeafBlockWidth
+    uint32_t index;  // into the kind's block array
+};
+
+struct WideBvh {
+    std::vector<WideNode> nodes;  // nodes[0] is the root
+    std::vector<LeafBlock> leaf_blocks;
+    std::vector<TriangleBlock> triangles;
+    std::vector<QuadBlock> quads;
+    std::vector<SphereBlock> spheres;
+
+    size_t bytes() const {
+        return nodes.size() * sizeof(WideNode) + leaf_blocks.size() * sizeof(LeafBlock) +
+               triangles.size() * sizeof(TriangleBlock) + quads.size() * sizeof(QuadBlock) +
+               spheres.size() * sizeof(SphereBlock);
+    }
+};
+
+// Collapses a built binary tree (nodes in depth-first order, leaves indexing `prims`).
+WideBvh collapse_to_wide(const Scene& scene,
+                         std::span<const BvhNode> nodes,
+                         std::span<const PrimRef> prims);
+
+// Closest hit in [ray.tmin, ray.tmax] / whether anything is hit there. One traversal serves
+// both; it runs on the best SIMD target this CPU supports (Highway's dynamic dispatch).
+bool wide_intersect(const WideBvh& bvh, const Ray& ray, Hit* hit);
+bool wide_occluded(const WideBvh& bvh, const Ray& ray);
+// The name of the SIMD target the traversal dispatches to on this CPU, e.g. "AVX2".
+const char* wide_simd_target();
+
+}  // namespace wavetrace
