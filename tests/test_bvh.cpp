@@ -5,6 +5,7 @@
 #include <cstring>
 #include <vector>
 
+#include "scene/wide_bvh.h"
 #include "test_paths.h"
 #include "wavetrace/render/sampler.h"
 #include "wavetrace/scene/bvh.h"
@@ -104,43 +105,156 @@ TEST(Bvh, EachPrimitiveInExactlyOneLeafAndBoundsNest) {
     }
 }
 
-TEST(Bvh, ClosestHitMatchesBruteForce) {
-    Scene scene = mixed_scene(3000);
-    Bvh bvh = Bvh::build(scene);
-    int hits = 0;
-    for (uint32_t i = 0; i < 20000; ++i) {
-        auto u = [&](int d) { return sample_1d(11, i, 0, d); };
-        Point3 o{-20 + 140 * u(0), -20 + 140 * u(1), -20 + 140 * u(2)};
-        Vec3 d{u(3) - 0.5f, u(4) - 0.5f, u(5) - 0.5f};
-        Ray ray{o, d};
-        // Brute force over every primitive.
-        float best = kInfinity;
-        auto test = [&](bool h, const PrimHit& ph) {
-            if (h && ph.t < best) best = ph.t;
-        };
-        for (const Triangle& t : scene.triangles) {
-            PrimHit ph;
-            test(intersect_triangle(ray, scene.positions[t.v[0]], scene.positions[t.v[1]],
-                                    scene.positions[t.v[2]], &ph),
-                 ph);
-        }
-        for (const Quad& q : scene.quads) {
-            PrimHit ph;
-            test(intersect_quad(ray, q.q, q.u, q.v, &ph), ph);
-        }
-        for (const Sphere& s : scene.spheres) {
-            PrimHit ph;
-            test(intersect_sphere(ray, s.center, s.radius, &ph), ph);
-        }
-        Hit hit = bvh.intersect(ray);
-        ASSERT_EQ(hit.found(), best < kInfinity) << "ray " << i;
-        ASSERT_EQ(bvh.occluded(ray), best < kInfinity) << "ray " << i;
-        if (hit.found()) {
-            ++hits;
-            ASSERT_EQ(hit.t, best) << "ray " << i;
+// The wide layout walked from its root: every primitive sits in exactly one lane of one leaf
+// block, unused lanes and slots are marked, and every child box contains what lies below it.
+struct WideChecker {
+    const WideBvh& wide;
+    const Scene& scene;
+    std::vector<int> seen;  // per flat primitive index
+    int max_depth = 0;
+
+    size_t flat(PrimRef p) const {
+        size_t tri = scene.triangles.size(), quad = scene.quads.size();
+        return p.kind() == PrimKind::Triangle ? p.index()
+               : p.kind() == PrimKind::Quad   ? tri + p.index()
+                                              : tri + quad + p.index();
+    }
+
+    void visit_node(uint32_t index, int depth) {
+        ASSERT_LT(index, wide.nodes.size());
+        max_depth = std::max(max_depth, depth);
+        const WideNode& node = wide.nodes[index];
+        for (int c = 0; c < kWideNodeWidth; ++c) {
+            Aabb box{{node.bounds[0][c], node.bounds[2][c], node.bounds[4][c]},
+                     {node.bounds[1][c], node.bounds[3][c], node.bounds[5][c]}};
+            uint32_t code = node.child[c];
+            if (code == kEmptyChild) {
+                for (int a = 0; a < 3; ++a) EXPECT_GT(box.lo[a], box.hi[a]) << "empty slot";
+                continue;
+            }
+            if (code & kLeafChild) {
+                visit_leaf(code, box);
+                continue;
+            }
+            ASSERT_GT(code, index) << "children follow their parent";
+            const WideNode& child = wide.nodes[code];
+            for (int k = 0; k < kWideNodeWidth; ++k) {
+                if (child.child[k] == kEmptyChild) continue;
+                Aabb inner{{child.bounds[0][k], child.bounds[2][k], child.bounds[4][k]},
+                           {child.bounds[1][k], child.bounds[3][k], child.bounds[5][k]}};
+                EXPECT_TRUE(box.contains(inner));
+            }
+            visit_node(code, depth + 1);
         }
     }
-    EXPECT_GT(hits, 1000);
+
+    void visit_leaf(uint32_t code, const Aabb& box) {
+        uint32_t first = code & kLeafFirstMask, count = (code & ~kLeafChild) >> kLeafCountShift;
+        ASSERT_GE(count, 1u);
+        ASSERT_LE(first + count, wide.leaf_blocks.size());
+        for (uint32_t k = first; k < first + count; ++k) {
+            const LeafBlock& b = wide.leaf_blocks[k];
+            ASSERT_GE(b.count, 1u);
+            ASSERT_LE(b.count, uint32_t(kLeafBlockWidth));
+            const PrimRef* refs = b.kind == PrimKind::Triangle ? wide.triangles[b.index].ref
+                                  : b.kind == PrimKind::Quad   ? wide.quads[b.index].ref
+                                                               : wide.spheres[b.index].ref;
+            for (uint32_t l = 0; l < uint32_t(kLeafBlockWidth); ++l) {
+                if (l >= b.count) {
+                    EXPECT_FALSE(refs[l].valid()) << "unused lane";
+                    continue;
+                }
+                ASSERT_EQ(refs[l].kind(), b.kind);
+                EXPECT_TRUE(box.contains(scene.prim_bounds(refs[l])));
+                ++seen[flat(refs[l])];
+            }
+        }
+    }
+};
+
+TEST(Bvh, WideLayoutHoldsEachPrimitiveOnceAndBoundsNest) {
+    for (int n : {1, 7, 6000}) {
+        Scene scene = mixed_scene(n);
+        Bvh bvh = Bvh::build(scene);
+        WideChecker check{bvh.wide(), scene, std::vector<int>(scene.primitive_count(), 0)};
+        check.visit_node(0, 1);
+        for (int count : check.seen) ASSERT_EQ(count, 1) << n << " primitives";
+        EXPECT_LE(check.max_depth, bvh.stats().depth);
+        EXPECT_EQ(bvh.stats().wide_nodes, bvh.wide().nodes.size());
+    }
+}
+
+// The wide traversal against a scalar loop over every primitive with the scalar tests of
+// intersect.cpp, on every SIMD target this CPU runs: the same nearest t, the same primitive
+// (ties aside) and the same barycentrics, bit for bit, so images do not depend on the CPU.
+TEST(Bvh, ClosestHitMatchesBruteForceOnEverySimdTarget) {
+    Scene scene = mixed_scene(3000);
+    Bvh bvh = Bvh::build(scene);
+    std::vector<int64_t> targets = wide_simd_targets();
+    ASSERT_FALSE(targets.empty());
+    for (int64_t target : targets) {
+        use_wide_simd_target(target);
+        SCOPED_TRACE(wide_simd_target());
+        int hits = 0, ties = 0;
+        for (uint32_t i = 0; i < 20000; ++i) {
+            auto u = [&](int d) { return sample_1d(11, i, 0, d); };
+            Point3 o{-20 + 140 * u(0), -20 + 140 * u(1), -20 + 140 * u(2)};
+            Vec3 d{u(3) - 0.5f, u(4) - 0.5f, u(5) - 0.5f};
+            Ray ray{o, d};
+            // Brute force over every primitive.
+            float best = kInfinity;
+            PrimHit best_hit{};
+            PrimRef best_ref;
+            int at_best = 0;
+            auto test = [&](bool h, const PrimHit& ph, PrimRef ref) {
+                if (!h) return;
+                if (ph.t < best) {
+                    best = ph.t;
+                    best_hit = ph;
+                    best_ref = ref;
+                    at_best = 1;
+                } else if (ph.t == best) {
+                    ++at_best;
+                }
+            };
+            for (uint32_t k = 0; k < scene.triangles.size(); ++k) {
+                const Triangle& t = scene.triangles[k];
+                PrimHit ph;
+                test(intersect_triangle(ray, scene.positions[t.v[0]], scene.positions[t.v[1]],
+                                        scene.positions[t.v[2]], &ph),
+                     ph, PrimRef::make(PrimKind::Triangle, k));
+            }
+            for (uint32_t k = 0; k < scene.quads.size(); ++k) {
+                const Quad& q = scene.quads[k];
+                PrimHit ph;
+                test(intersect_quad(ray, q.q, q.u, q.v, &ph), ph, PrimRef::make(PrimKind::Quad, k));
+            }
+            for (uint32_t k = 0; k < scene.spheres.size(); ++k) {
+                const Sphere& s = scene.spheres[k];
+                PrimHit ph;
+                test(intersect_sphere(ray, s.center, s.radius, &ph), ph,
+                     PrimRef::make(PrimKind::Sphere, k));
+            }
+            Hit hit = bvh.intersect(ray);
+            ASSERT_EQ(hit.found(), best < kInfinity) << "ray " << i;
+            ASSERT_EQ(bvh.occluded(ray), best < kInfinity) << "ray " << i;
+            if (!hit.found()) continue;
+            ++hits;
+            ASSERT_EQ(hit.t, best) << "ray " << i;
+            if (at_best > 1) {
+                ++ties;
+                continue;
+            }
+            ASSERT_EQ(hit.prim, best_ref) << "ray " << i;
+            ASSERT_EQ(hit.u, best_hit.u) << "ray " << i;
+            ASSERT_EQ(hit.v, best_hit.v) << "ray " << i;
+        }
+        std::printf("%-6s %d hits, %d ties: equal to the scalar tests\n", wide_simd_target(), hits,
+                    ties);
+        EXPECT_GT(hits, 1000);
+        EXPECT_LT(ties, hits / 100);
+    }
+    use_wide_simd_target(0);
 }
 
 TEST(Bvh, BuildDoesNotDependOnThreadCount) {

@@ -14,6 +14,8 @@
 
 namespace wavetrace {
 
+// 8 wide beat 4 wide on nodes and on blocks (docs/benchmarks.md, "Wide BVH"): on AVX2 and
+// AVX-512 an 8-lane test costs what a 4-lane one does, and halves the depth.
 inline constexpr int kWideNodeWidth = 8;
 inline constexpr int kLeafBlockWidth = 8;
 
@@ -82,5 +84,9 @@ bool wide_intersect(const WideBvh& bvh, const Ray& ray, Hit* hit);
 bool wide_occluded(const WideBvh& bvh, const Ray& ray);
 // The name of the SIMD target the traversal dispatches to on this CPU, e.g. "AVX2".
 const char* wide_simd_target();
+// For tests: the targets compiled in and supported by this CPU (Highway's HWY_* bits), and
+// a way to run on one of them (0: back to the best).
+std::vector<int64_t> wide_simd_targets();
+void use_wide_simd_target(int64_t target);
 
 }  // namespace wavetrace

@@ -19,8 +19,10 @@ namespace wavetrace {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-// Up to 8 float lanes: one vector per node or block on AVX2 and AVX-512, two on SSE4/NEON.
-using D = hn::CappedTag<float, 8>;
+// Up to a node's or a block's width in float lanes: one vector per node or block on AVX2 and
+// AVX-512, two on SSE4 and NEON.
+using DNode = hn::CappedTag<float, kWideNodeWidth>;
+using D = hn::CappedTag<float, kLeafBlockWidth>;
 using V = hn::Vec<D>;
 using M = hn::Mask<D>;
 
@@ -48,22 +50,24 @@ struct RayLanes {
 // JCGT 2(2), 2013).
 HWY_INLINE uint32_t BoxTest(const WideNode& node, const RayLanes& r, float tmax,
                             float* t_entry) {
-    const D d;
+    const DNode d;
+    using VN = hn::Vec<DNode>;
+    using MN = hn::Mask<DNode>;
     const size_t N = hn::Lanes(d);
     uint32_t bits = 0;
-    const V widen = hn::Set(d, 1.0f + 2.0f * gamma(3));
-    const V tmin_v = hn::Set(d, r.ray.tmin), tmax_v = hn::Set(d, tmax);
+    const VN widen = hn::Set(d, 1.0f + 2.0f * gamma(3));
+    const VN tmin_v = hn::Set(d, r.ray.tmin), tmax_v = hn::Set(d, tmax);
     for (size_t i = 0; i < size_t(kWideNodeWidth); i += N) {
-        V t_near = tmin_v, t_far = hn::Set(d, kInfinity);
+        VN t_near = tmin_v, t_far = hn::Set(d, kInfinity);
         for (int a = 0; a < 3; ++a) {
-            const V o = hn::Set(d, r.ray.o[a]), inv = hn::Set(d, r.inv_d[a]);
-            const V near = hn::Load(d, node.bounds[2 * a + r.near_lo[a]] + i);
-            const V far = hn::Load(d, node.bounds[2 * a + 1 - r.near_lo[a]] + i);
+            const VN o = hn::Set(d, r.ray.o[a]), inv = hn::Set(d, r.inv_d[a]);
+            const VN near = hn::Load(d, node.bounds[2 * a + r.near_lo[a]] + i);
+            const VN far = hn::Load(d, node.bounds[2 * a + 1 - r.near_lo[a]] + i);
             t_near = hn::Max(t_near, hn::Mul(hn::Sub(near, o), inv));
             t_far = hn::Min(t_far, hn::Mul(hn::Sub(far, o), inv));
         }
         t_far = hn::Mul(t_far, widen);
-        const M hit = hn::Le(t_near, hn::Min(t_far, tmax_v));
+        const MN hit = hn::Le(t_near, hn::Min(t_far, tmax_v));
         hn::Store(t_near, d, t_entry + i);
         uint8_t mask_bytes[8] = {};
         hn::StoreMaskBits(d, hit, mask_bytes);
@@ -410,6 +414,15 @@ bool wide_occluded(const WideBvh& bvh, const Ray& ray) {
 
 const char* wide_simd_target() {
     return HWY_DYNAMIC_DISPATCH(TargetName)();
+}
+
+std::vector<int64_t> wide_simd_targets() {
+    return hwy::SupportedAndGeneratedTargets();
+}
+
+void use_wide_simd_target(int64_t target) {
+    hwy::SetSupportedTargetsForTest(target);
+    hwy::GetChosenTarget().Update(hwy::SupportedTargets());
 }
 
 }  // namespace wavetrace
