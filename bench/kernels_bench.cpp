@@ -39,12 +39,12 @@ struct Captured {
         config.spp = 1;
         config.seed = 1;
         camera = std::make_unique<CameraRays>(scene.camera, config.width, config.height);
-        in = std::make_unique<WaveInputs>(WaveInputs{scene, bvh, *lights, config, *camera,
+        in = std::make_unique<WaveInputs>(WaveInputs{scene, *lights, config, *camera,
                                                      media_at(scene, bvh, scene.camera.look_from)});
         n = kWave;
         q.resize(n);
         generate(*in, q, 0, 0, n);
-        intersect(*in, q, 0, n);
+        intersect(bvh, q, 0, n);
         bucket_by_material(*in, q, n);
         shaded = q;
         shade(*in, shaded, 0, n);
@@ -52,7 +52,7 @@ struct Captured {
         shadows = stable_compact(std::span(shaded.shadow_keep.data(), n), shaded.compacted);
         for (size_t k = 0; k < shadows; ++k)
             shaded.shadow.copy_from(k, shaded.shadow_candidates, shaded.compacted[k]);
-        intersect_shadow(*in, shaded, 0, shadows);
+        intersect_shadow(bvh, *in, shaded, 0, shadows);
     }
 };
 
@@ -73,7 +73,7 @@ void BM_Generate(benchmark::State& st, const char* name) {
 void BM_IntersectClosest(benchmark::State& st, const char* name) {
     Captured& c = scene(name);
     WaveQueues q = c.q;
-    for (auto _ : st) intersect(*c.in, q, 0, c.n);
+    for (auto _ : st) intersect(c.bvh, q, 0, c.n);
     st.SetItemsProcessed(st.iterations() * c.n);
 }
 
@@ -121,7 +121,7 @@ void BM_LightSample(benchmark::State& st, const char* name) {
 void BM_IntersectShadow(benchmark::State& st, const char* name) {
     Captured& c = scene(name);
     WaveQueues q = c.shaded;
-    for (auto _ : st) benchmark::DoNotOptimize(intersect_shadow(*c.in, q, 0, c.shadows));
+    for (auto _ : st) benchmark::DoNotOptimize(intersect_shadow(c.bvh, *c.in, q, 0, c.shadows));
     st.SetItemsProcessed(st.iterations() * c.shadows);
 }
 

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <vector>
 
+#include "reference/embree_engines.h"
 #include "reference/embree_mirror.h"
 #include "test_paths.h"
 #include "wavetrace/math/constants.h"
@@ -203,4 +204,64 @@ TEST(EmbreeAgreement, Dragon) {
 }
 TEST(EmbreeAgreement, Everything) {
     compare_scene("everything");
+}
+
+namespace {
+
+// Per-channel comparison of two images: how many values differ by more than `rel` (relative,
+// with a 1e-6 absolute floor), and the relative difference of the image means.
+struct ImageDiff {
+    size_t outside = 0, values = 0;
+    double mean_rel = 0;
+};
+ImageDiff diff_images(const Image& a, const Image& b, double rel) {
+    ImageDiff d;
+    double sum_a = 0, sum_b = 0;
+    for (size_t i = 0; i < a.pixels.size(); ++i)
+        for (int k = 0; k < 3; ++k) {
+            double x = a.pixels[i][k], y = b.pixels[i][k];
+            sum_a += x;
+            sum_b += y;
+            ++d.values;
+            double diff = std::fabs(x - y);
+            if (diff > 1e-6 && diff > rel * std::fabs(x)) ++d.outside;
+        }
+    d.mean_rel = std::fabs(sum_a - sum_b) / std::max(sum_a, 1e-30);
+    return d;
+}
+
+}  // namespace
+
+// Each engine with Embree as its intersector: the wavefront equals the megakernel exactly as
+// with our BVH (same paths), and both give our BVH's image except where the intersectors
+// round a hit point differently, which moves a path by a few ulps.
+TEST(EmbreeEngines, SameImagesAsWithOurBvh) {
+    for (const char* name : {"cornell", "cornell-smoke", "bunny", "everything"}) {
+        Scene scene = load_scene(scene_path(name));
+        Bvh bvh = Bvh::build(scene);
+        EmbreeMirror embree(scene);
+        RenderConfig c;
+        c.width = 40;
+        c.height = 40;
+        c.spp = 4;
+        c.seed = 5;
+        c.max_depth = scene.render.max_depth;
+        WavefrontConfig wf;
+        wf.wave_size = 700;
+        Image mk_ours = render_megakernel(scene, bvh, c).mean();
+        Image mk_embree = render_megakernel(scene, embree, c).mean();
+        Image wf_embree = render_wavefront(scene, embree, c, wf).mean();
+        ImageDiff engines = diff_images(mk_embree, wf_embree, 1e-4);
+        ImageDiff intersectors = diff_images(mk_ours, mk_embree, 1e-3);
+        std::printf(
+            "embree-engines %-13s wavefront vs megakernel (both Embree): %zu/%zu values beyond "
+            "1e-4, means %.1e | Embree vs our BVH (megakernel): %zu/%zu beyond 1e-3, means "
+            "%.1e\n",
+            name, engines.outside, engines.values, engines.mean_rel, intersectors.outside,
+            intersectors.values, intersectors.mean_rel);
+        EXPECT_LE(engines.outside, engines.values / 1000) << name;
+        EXPECT_LE(engines.mean_rel, 1e-5) << name;
+        EXPECT_LE(intersectors.outside, intersectors.values / 50) << name;
+        EXPECT_LE(intersectors.mean_rel, 1e-4) << name;
+    }
 }

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "shading/trace.h"
 #include "wavetrace/render/sampler.h"
 #include "wavetrace/scene/bvh.h"
 #include "wavetrace/scene/scene.h"

@@ -1,10 +1,12 @@
-// Both engines at equal settings on each benchmark scene, repetitions interleaved (A B A B)
-// so that the machine's drift hits both alike.
+// Both engines at equal settings on each benchmark scene, each with our BVH and with Embree as
+// its intersector (the megakernel with Embree is a plain Embree path tracer: the in-house
+// anchor), repetitions interleaved (A B C D A B C D) so that the machine's drift hits all alike.
 #include <unistd.h>
 
 #include <cstdio>
 #include <filesystem>
 
+#include "reference/embree_engines.h"
 #include "sections.h"
 #include "wavetrace/wavetrace.h"
 
@@ -39,7 +41,9 @@ void bench_engines(const Options& o, Results& r) {
     r.table("engines", {"scene", "width", "height", "spp", "megakernel_mpaths", "wavefront_mpaths",
                         "megakernel_mrays", "wavefront_mrays", "ratio_min", "ratio_median",
                         "ratio_max", "rel_mse_between", "wavefront_queue_mib", "film_mib",
-                        "megakernel_peak_mib", "wavefront_peak_mib"});
+                        "megakernel_peak_mib", "wavefront_peak_mib", "megakernel_embree_mpaths",
+                        "wavefront_embree_mpaths", "megakernel_ours_over_embree",
+                        "wavefront_ours_over_embree"});
     struct Case {
         const char* scene;
         int w, h, spp;
@@ -54,19 +58,28 @@ void bench_engines(const Options& o, Results& r) {
         const std::string path = (o.scenes / (std::string(c.scene) + ".json")).string();
         Scene scene = load_scene(path);
         Bvh bvh = Bvh::build(scene);
+        // As in the BVH section: Embree's default build and its fast (non-robust) traversal.
+        EmbreeMirror embree(scene, RTC_BUILD_QUALITY_MEDIUM, /*robust=*/false);
         RenderConfig cfg;
         cfg.width = o.quick ? 16 : c.w;
         cfg.height = o.quick ? 16 : c.h;
         cfg.spp = o.quick ? 1 : c.spp;
         cfg.seed = 1;
         cfg.max_depth = scene.render.max_depth;
-        std::vector<double> ratio, mk_paths, wf_paths, mk_rays, wf_rays;
+        std::vector<double> ratio, mk_paths, wf_paths, mk_rays, wf_rays, mke_paths, wfe_paths,
+            mk_vs_embree, wf_vs_embree;
         Image mk_img, wf_img;
         WavefrontConfig wf_cfg;
         for (int rep = 0; rep < reps; ++rep) {
-            RenderStats mk, wf;
+            RenderStats mk, wf, mke, wfe;
             mk_img = render_megakernel(scene, bvh, cfg, &mk).mean();
             wf_img = render_wavefront(scene, bvh, cfg, wf_cfg, &wf).mean();
+            render_megakernel(scene, embree, cfg, &mke);
+            render_wavefront(scene, embree, cfg, wf_cfg, &wfe);
+            mke_paths.push_back(mke.paths / mke.seconds * 1e-6);
+            wfe_paths.push_back(wfe.paths / wfe.seconds * 1e-6);
+            mk_vs_embree.push_back(mke.seconds / mk.seconds);  // > 1: ours is faster
+            wf_vs_embree.push_back(wfe.seconds / wf.seconds);
             ratio.push_back(mk.seconds / wf.seconds);  // > 1: the wavefront is faster
             mk_paths.push_back(mk.paths / mk.seconds * 1e-6);
             wf_paths.push_back(wf.paths / wf.seconds * 1e-6);
@@ -82,11 +95,16 @@ void bench_engines(const Options& o, Results& r) {
               {c.scene, cfg.width, cfg.height, cfg.spp, spread(mk_paths).median,
                spread(wf_paths).median, spread(mk_rays).median, spread(wf_rays).median, s.min,
                s.median, s.max, relative_mse(wf_img, mk_img), queue_mib, film_mib,
-               cli_peak_mib(path, "megakernel", cfg), cli_peak_mib(path, "wavefront", cfg)});
+               cli_peak_mib(path, "megakernel", cfg), cli_peak_mib(path, "wavefront", cfg),
+               spread(mke_paths).median, spread(wfe_paths).median, spread(mk_vs_embree).median,
+               spread(wf_vs_embree).median});
         std::printf(
             "engines %-10s megakernel %6.3f Mpaths/s  wavefront %6.3f Mpaths/s  "
-            "wavefront/megakernel %.2f [%.2f, %.2f]\n",
-            c.scene, spread(mk_paths).median, spread(wf_paths).median, s.median, s.min, s.max);
+            "wavefront/megakernel %.2f [%.2f, %.2f] | with Embree: megakernel %6.3f, wavefront "
+            "%6.3f Mpaths/s; ours/Embree: megakernel %.2f, wavefront %.2f\n",
+            c.scene, spread(mk_paths).median, spread(wf_paths).median, s.median, s.min, s.max,
+            spread(mke_paths).median, spread(wfe_paths).median, spread(mk_vs_embree).median,
+            spread(wf_vs_embree).median);
         std::fflush(stdout);
     }
 }

@@ -6,6 +6,8 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "kernels/intersect.h"         // intersect: closest hit of rays[i] into hits[i]
+#include "kernels/intersect_shadow.h"  // intersect_shadow: transmittance along shadow[i]
 #include "kernels/wave.h"
 
 namespace wavetrace {
@@ -13,9 +15,6 @@ namespace wavetrace {
 // Path slots [begin, end) start sample number first_global + slot of the render (pixel =
 // global % pixels, sample = global / pixels): camera ray into rays[slot].
 void generate(const WaveInputs& in, WaveQueues& q, uint64_t first_global, size_t begin, size_t end);
-
-// Closest hit of rays[i] into hits[i].
-void intersect(const WaveInputs& in, WaveQueues& q, size_t begin, size_t end);
 
 // Fills q.order[0, n) with the ray entries grouped by the material kind of their hit
 // (misses first), stably. Not range-split: a counting sort over the whole queue.
@@ -28,9 +27,6 @@ void shade(const WaveInputs& in, WaveQueues& q, size_t begin, size_t end);
 
 // For ray entries with a stored vertex: a light sample, as an unweighted shadow-ray candidate.
 void light_sample(const WaveInputs& in, WaveQueues& q, size_t begin, size_t end);
-
-// Transmittance along shadow[i] (0 if blocked); returns the rays traced.
-uint64_t intersect_shadow(const WaveInputs& in, WaveQueues& q, size_t begin, size_t end);
 
 // Adds each shadow ray's contribution, times its MIS weight and transmittance, to its path.
 void mis_combine(const WaveInputs& in, WaveQueues& q, size_t begin, size_t end);

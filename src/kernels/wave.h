@@ -12,16 +12,16 @@
 #include "queues/shadow_queue.h"
 #include "wavetrace/render/film.h"
 #include "wavetrace/render/render.h"
-#include "wavetrace/scene/bvh.h"
 #include "wavetrace/scene/camera.h"
 #include "wavetrace/scene/scene.h"
 #include "wavetrace/shading/lights.h"
 
 namespace wavetrace {
 
+// The intersector is not among them: the kernels that trace rays take it as a template
+// parameter (kernels/intersect.h, kernels/intersect_shadow.h).
 struct WaveInputs {
     const Scene& scene;
-    const Bvh& bvh;
     const LightSet& lights;
     const RenderConfig& config;
     const CameraRays& camera;

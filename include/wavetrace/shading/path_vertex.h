@@ -68,12 +68,6 @@ DirectSample sample_direct(const Scene& scene,
                            float u1,
                            float u2);
 
-// Fraction of light that gets through along a shadow ray: 0 if a surface blocks it, else the
-// product of exp(-density * length) over the media it crosses (boundaries without a surface
-// let it through). `media` is the stack at the ray's origin. Counts the rays it traces.
-float transmittance(
-    const Scene& scene, const Bvh& bvh, Ray shadow, MediumStack media, uint64_t* rays);
-
 // --- continuation -------------------------------------------------------------------------
 struct Continuation {
     Vec3 wi;
@@ -184,8 +178,5 @@ float survival_probability(Color beta);
 // Free-flight distance (world units) in a homogeneous medium of extinction `density`,
 // sampled proportional to density * exp(-density * s): -ln(1 - u) / density.
 float sample_free_flight(float density, float u);
-// The media containing point p, found by walking a ray out of the scene and pairing the
-// boundaries it enters and leaves (convex, properly nested boundaries assumed).
-MediumStack media_at(const Scene& scene, const Bvh& bvh, Point3 p);
 
 }  // namespace wavetrace

@@ -1,0 +1,142 @@
+// The megakernel: per pixel sample, a recursive ray_color in the seed's style (depth-limited,
+// with Russian roulette). Every step of a path is a call into shading/path_vertex.h, the code
+// the wavefront kernels call too. Generic over the intersector: megakernel.cpp instantiates it
+// for our BVH, src/reference for Embree.
+#pragma once
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <atomic>
+#include <chrono>
+
+#include "shading/trace.h"
+#include "wavetrace/render/megakernel.h"
+#include "wavetrace/render/sampler.h"
+#include "wavetrace/scene/intersector.h"
+#include "wavetrace/scene/scene.h"
+#include "wavetrace/shading/path_vertex.h"
+
+namespace wavetrace {
+namespace megakernel_detail {
+
+constexpr int kTile = 16;
+
+template <Intersector Tracer>
+struct PathContext {
+    const Scene& scene;
+    const Tracer& bvh;
+    const LightSet& lights;
+    const RenderConfig& config;
+    uint32_t pixel;
+    uint32_t sample;
+    uint64_t rays = 0;
+};
+
+// Radiance arriving along `ray` (the seed's ray_color). `bounce` numbers the vertex the ray
+// will reach: 0 for camera rays. `beta` is the path throughput so far, for Russian roulette.
+template <Intersector Tracer>
+Color ray_color(PathContext<Tracer>& ctx,
+                Ray ray,
+                int bounce,
+                MediumStack media,
+                const PreviousVertex& prev,
+                Color beta) {
+    const RenderConfig& cfg = ctx.config;
+    float flight = segment_flight(cfg.seed, ctx.pixel, ctx.sample, bounce);
+    for (int crossing = 0; crossing < kMaxBoundaryCrossings; ++crossing) {
+        ++ctx.rays;
+        Hit hit = ctx.bvh.intersect(ray);
+        SegmentResult seg =
+            resolve_segment(ctx.scene, ctx.lights, cfg, ray, hit, media, flight, prev);
+        switch (seg.event) {
+            case SegmentEvent::Cross:
+                ray = seg.next;
+                continue;
+            case SegmentEvent::Emission:
+                return seg.emission;
+            case SegmentEvent::End:
+                return {};
+            case SegmentEvent::Scatter:
+                break;
+        }
+        if (!may_scatter(cfg, bounce)) return {};
+        const Vertex& v = seg.vertex;
+        VertexSamples u = vertex_samples(cfg.seed, ctx.pixel, ctx.sample, bounce);
+
+        // Next-event estimation: a shadow ray to a light sample, weighted for the strategy.
+        Color radiance{0.0f};
+        if ((cfg.strategy == Strategy::Nee || cfg.strategy == Strategy::Mis) &&
+            can_sample_lights(v, ctx.lights)) {
+            DirectSample d = sample_direct(ctx.scene, ctx.lights, v, seg.wo, u.light_select,
+                                           u.light_u, u.light_v);
+            float w =
+                d.valid ? direct_weight(cfg.strategy, cfg.heuristic, d.pdf_light, d.pdf_bsdf) : 0;
+            if (w > 0.0f)
+                radiance +=
+                    d.value * (w * transmittance(ctx.scene, ctx.bvh, d.shadow, media, &ctx.rays));
+        }
+
+        // The continuation, recursively.
+        PathStep step = continue_path(ctx.scene, ctx.lights, cfg, v, seg.wo, bounce, beta, media,
+                                      u.continuation, u.roulette);
+        if (!step.alive) return radiance;
+        return radiance + step.weight * ray_color(ctx, step.next, bounce + 1, media, step.prev,
+                                                  beta * step.weight);
+    }
+    return {};
+}
+
+}  // namespace megakernel_detail
+
+template <Intersector Tracer>
+Film megakernel(const Scene& scene,
+                const Tracer& bvh,
+                       const RenderConfig& config,
+                       RenderStats* stats,
+                       const ProgressCallback& progress) {
+    using megakernel_detail::kTile;
+    auto start = std::chrono::steady_clock::now();
+    Film film(config.width, config.height);
+    LightSet lights(scene);
+    CameraRays camera(scene.camera, config.width, config.height);
+    const MediumStack camera_media = media_at(scene, bvh, scene.camera.look_from);
+    const int tiles_x = (config.width + kTile - 1) / kTile;
+    const int tiles_y = (config.height + kTile - 1) / kTile;
+    std::atomic<uint64_t> rays{0};
+    std::atomic<int> tiles_done{0};
+
+    tbb::parallel_for(
+        tbb::blocked_range<int>(0, tiles_x * tiles_y), [&](const tbb::blocked_range<int>& r) {
+            for (int tile = r.begin(); tile < r.end(); ++tile) {
+                const int x0 = (tile % tiles_x) * kTile, y0 = (tile / tiles_x) * kTile;
+                uint64_t tile_rays = 0;
+                for (int y = y0; y < std::min(y0 + kTile, config.height); ++y)
+                    for (int x = x0; x < std::min(x0 + kTile, config.width); ++x) {
+                        const uint32_t pixel = static_cast<uint32_t>(y) * config.width + x;
+                        for (int i = 0; i < config.spp; ++i) {
+                            megakernel_detail::PathContext<Tracer> ctx{
+                                scene, bvh, lights, config, pixel, static_cast<uint32_t>(i)};
+                            Ray ray = generate_camera_ray(camera, config.seed, pixel, i, x, y);
+                            Color c = megakernel_detail::ray_color(ctx, ray, 0, camera_media, PreviousVertex{ray.o},
+                                                Color(1.0f));
+                            film.add(static_cast<int>(pixel), c);
+                            tile_rays += ctx.rays;
+                        }
+                    }
+                rays.fetch_add(tile_rays, std::memory_order_relaxed);
+                int done = tiles_done.fetch_add(1) + 1;
+                if (progress) progress(double(done) / (tiles_x * tiles_y));
+            }
+        });
+
+    if (stats) {
+        stats->seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        stats->paths = static_cast<uint64_t>(config.width) * config.height * config.spp;
+        stats->rays = rays.load();
+    }
+    return film;
+}
+
+}  // namespace wavetrace

@@ -1,0 +1,79 @@
+// The shading steps that trace rays, generic over the intersector (our BVH, or Embree in the
+// benchmarks) so that both engines call them with no virtual call per ray.
+#pragma once
+
+#include <cmath>
+
+#include "wavetrace/scene/intersector.h"
+#include "wavetrace/scene/scene.h"
+#include "wavetrace/scene/surface.h"
+#include "wavetrace/shading/path_vertex.h"
+
+namespace wavetrace {
+
+// Fraction of light that gets through along a shadow ray: 0 if a surface blocks it, else the
+// product of exp(-density * length) over the media it crosses (boundaries without a surface
+// let it through). `media` is the stack at the ray's origin. Counts the rays it traces.
+template <Intersector Tracer>
+float transmittance(
+    const Scene& scene, const Tracer& bvh, Ray ray, MediumStack media, uint64_t* rays) {
+    if (scene.media.empty()) {
+        ++*rays;
+        return bvh.occluded(ray) ? 0.0f : 1.0f;
+    }
+    float tr = 1.0f;
+    for (int crossing = 0; crossing < kMaxBoundaryCrossings; ++crossing) {
+        ++*rays;
+        Hit hit = bvh.intersect(ray);
+        float end = hit.found() ? hit.t : ray.tmax;
+        MediumId m = media.current();
+        if (m != kNone) {
+            if (std::isinf(end)) return 0.0f;  // an unbounded medium absorbs everything
+            tr *= std::exp(-scene.media[m].density * (end - ray.tmin) * length(ray.d));
+        }
+        if (!hit.found()) return tr;
+        SurfaceHit s = surface_at(scene, ray, hit);
+        if (scene.materials[s.material].kind != MaterialKind::Interface) return 0.0f;
+        media.cross(s.interior, s.front_face);
+        ray.tmin = hit.t;
+        // Step over the boundary: restart just past it along the same line.
+        ray.o = ray.at(hit.t) + origin_offset(s.p) * normalize(ray.d);
+        ray.tmax = std::isinf(ray.tmax) ? ray.tmax : ray.tmax - hit.t;
+        ray.tmin = 0.0f;
+    }
+    return 0.0f;
+}
+
+// The media containing point p, found by walking a ray out of the scene and pairing the
+// boundaries it enters and leaves (convex, properly nested boundaries assumed).
+template <Intersector Tracer>
+MediumStack media_at(const Scene& scene, const Tracer& bvh, Point3 p) {
+    MediumStack outside_in;  // boundaries we are inside of, innermost first
+    if (scene.media.empty()) return outside_in;
+    // An arbitrary fixed direction, unlikely to graze axis-aligned geometry.
+    Ray ray{p, normalize(Vec3{0.3141f, 0.2718f, 0.9093f})};
+    int n_entered = 0;  // shapes entered on the way out, not yet left
+    MediumId found[MediumStack::kMaxNesting];
+    int n_found = 0;
+    for (int i = 0; i < 256; ++i) {
+        Hit hit = bvh.intersect(ray);
+        if (!hit.found()) break;
+        SurfaceHit s = surface_at(scene, ray, hit);
+        const MaterialKind kind = scene.materials[s.material].kind;
+        if (kind == MaterialKind::Interface || kind == MaterialKind::Dielectric) {
+            if (s.front_face) {
+                ++n_entered;
+            } else if (n_entered > 0) {
+                --n_entered;  // leaving a shape entered on the way
+            } else if (n_found < MediumStack::kMaxNesting) {
+                found[n_found++] = s.interior;  // leaving a shape p is inside of
+            }
+        }
+        ray.o = ray.at(hit.t) + origin_offset(s.p) * ray.d;
+        ray.tmin = 0.0f;
+    }
+    for (int i = n_found - 1; i >= 0; --i) outside_in.push(found[i]);
+    return outside_in;
+}
+
+}  // namespace wavetrace
