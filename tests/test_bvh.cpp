@@ -3,12 +3,14 @@
 #include <tbb/global_control.h>
 
 #include <cstring>
+#include <memory>
 #include <vector>
 
 #include "scene/wide_bvh.h"
 #include "test_paths.h"
 #include "wavetrace/render/sampler.h"
 #include "wavetrace/scene/bvh.h"
+#include "wavetrace/scene/camera.h"
 #include "wavetrace/scene/intersect.h"
 #include "wavetrace/scene/scene.h"
 
@@ -255,6 +257,71 @@ TEST(Bvh, ClosestHitMatchesBruteForceOnEverySimdTarget) {
         EXPECT_LT(ties, hits / 100);
     }
     use_wide_simd_target(0);
+}
+
+// Packets against single rays on the same rays, on every SIMD target: camera rays in 4 x 2
+// pixel tiles (coherent, one Woop permutation per packet), random rays (incoherent, mixed
+// permutations), and shadow rays from a tile's hits towards one point.
+TEST(Bvh, PacketsGiveTheSingleRayResultsOnEverySimdTarget) {
+    for (const char* name : {"cornell", "everything", "bunny"}) {
+        Scene scene = load_scene(scene_path(name));
+        Bvh bvh = Bvh::build(scene);
+        const int side = 64;
+        CameraRays camera(scene.camera, side, side);
+        std::vector<Ray> rays;
+        for (int ty = 0; ty < side; ty += 2)
+            for (int tx = 0; tx < side; tx += 4)
+                for (int y = ty; y < ty + 2; ++y)
+                    for (int x = tx; x < tx + 4; ++x)
+                        rays.push_back(camera.generate(x + 0.5f, y + 0.5f, 0.5f, 0.5f));
+        const size_t camera_rays = rays.size();
+        Aabb box = scene.bounds();
+        for (uint32_t i = 0; i < 4096; ++i) {
+            auto u = [&](int dim) { return sample_1d(3, i, 0, dim); };
+            Point3 o = box.lo + Vec3{u(0), u(1), u(2)} * box.extent();
+            rays.push_back(Ray{o, Vec3{u(3) - 0.5f, u(4) - 0.5f, u(5) - 0.5f}});
+        }
+        // Shadow rays: from each camera hit towards the scene's top centre, stopping short.
+        Point3 light = box.center() + Vec3{0, 0.45f * box.extent().y, 0};
+        std::vector<Ray> shadows;
+        for (size_t i = 0; i < camera_rays; ++i) {
+            Hit h = bvh.intersect(rays[i]);
+            Point3 p = h.found() ? rays[i].at(h.t * 0.999f) : rays[i].o;
+            shadows.push_back(Ray{p, light - p, 1e-4f, 0.999f});
+        }
+        for (int64_t target : wide_simd_targets()) {
+            use_wide_simd_target(target);
+            SCOPED_TRACE(std::string(name) + " " + wide_simd_target());
+            std::vector<Hit> packet(rays.size());
+            bvh.intersect_packet(rays, packet);
+            size_t hits = 0, ties = 0;
+            for (size_t i = 0; i < rays.size(); ++i) {
+                Hit one = bvh.intersect(rays[i]);
+                ASSERT_EQ(packet[i].found(), one.found()) << "ray " << i;
+                if (!one.found()) continue;
+                ++hits;
+                ASSERT_EQ(packet[i].t, one.t) << "ray " << i;
+                if (packet[i].prim != one.prim) {
+                    ++ties;  // two primitives at exactly the same t
+                    continue;
+                }
+                ASSERT_EQ(packet[i].u, one.u) << "ray " << i;
+                ASSERT_EQ(packet[i].v, one.v) << "ray " << i;
+            }
+            EXPECT_GT(hits, rays.size() / 4);
+            EXPECT_LE(ties, hits / 100);
+            std::unique_ptr<bool[]> blocked(new bool[shadows.size()]);
+            bvh.occluded_packet(shadows, std::span<bool>(blocked.get(), shadows.size()));
+            size_t occluded = 0;
+            for (size_t i = 0; i < shadows.size(); ++i) {
+                ASSERT_EQ(blocked[i], bvh.occluded(shadows[i])) << "shadow ray " << i;
+                occluded += blocked[i];
+            }
+            EXPECT_GT(occluded, 0u);
+            EXPECT_LT(occluded, shadows.size());
+        }
+        use_wide_simd_target(0);
+    }
 }
 
 TEST(Bvh, BuildDoesNotDependOnThreadCount) {

@@ -86,7 +86,8 @@ double median_ms(const std::function<double()>& build) {
 
 void bench_bvh(const Options& o, Results& r) {
     r.table("bvh", {"scene", "batch", "threads", "rays", "ours_mrays", "embree_mrays",
-                    "ours_over_embree", "embree_packet8_mrays", "embree_packet16_mrays"});
+                    "ours_over_embree", "embree_packet8_mrays", "embree_packet16_mrays",
+                    "ours_packet_mrays", "ours_packet_over_embree_packet16"});
     r.table("bvh_build", {"scene", "primitives", "ours_ms", "embree_medium_ms", "embree_high_ms"});
     const int all_threads = tbb::this_task_arena::max_concurrency();
     for (const char* name : {"cornell", "everything", "dragon"}) {
@@ -110,14 +111,27 @@ void bench_bvh(const Options& o, Results& r) {
                     else
                         (void)embree.intersect(rays[i]);
                 });
-                nlohmann::json p8 = nullptr, p16 = nullptr;
+                nlohmann::json p8 = nullptr, p16 = nullptr, ours_p = nullptr, ratio_p = nullptr;
                 if (packets) {
+                    // Our packets: 8 rays, a 4 x 2 pixel tile (4 rays each on SSE4/NEON).
+                    std::vector<Hit> hits(rays.size());
+                    double ours_packet = mrays(rays, threads, 8, [&](size_t i) {
+                        bvh.intersect_packet(std::span(&rays[i], 8), std::span(&hits[i], 8));
+                    });
+                    ours_p = ours_packet;
                     p8 = mrays(rays, threads, 8,
                                [&](size_t i) { embree.intersect_packet(&rays[i], 8); });
-                    p16 = mrays(rays, threads, 16,
-                                [&](size_t i) { embree.intersect_packet(&rays[i], 16); });
+                    double embree16 = mrays(rays, threads, 16, [&](size_t i) {
+                        embree.intersect_packet(&rays[i], 16);
+                    });
+                    p16 = embree16;
+                    ratio_p = ours_packet / embree16;
+                    std::printf("bvh %-10s packets  %d thread(s): ours %7.2f Mrays/s, embree "
+                                "16-wide %7.2f, ours/embree %.2f\n",
+                                name, threads, ours_packet, embree16, ours_packet / embree16);
                 }
-                r.row("bvh", {name, batch, threads, rays.size(), ours, ref, ours / ref, p8, p16});
+                r.row("bvh", {name, batch, threads, rays.size(), ours, ref, ours / ref, p8, p16,
+                              ours_p, ratio_p});
                 std::printf(
                     "bvh %-10s %-8s %d thread(s): ours %7.2f Mrays/s, embree %7.2f, ours/embree "
                     "%.2f\n",

@@ -207,6 +207,15 @@ bool Bvh::occluded(const Ray& ray) const {
     return wide_occluded(*wide_, ray);
 }
 
+void Bvh::intersect_packet(std::span<const Ray> rays, std::span<Hit> hits) const {
+    wide_intersect_packet(*wide_, rays.data(), std::min(rays.size(), hits.size()), hits.data());
+}
+
+void Bvh::occluded_packet(std::span<const Ray> rays, std::span<bool> occluded) const {
+    wide_occluded_packet(*wide_, rays.data(), std::min(rays.size(), occluded.size()),
+                         occluded.data());
+}
+
 const char* simd_target() {
     return wide_simd_target();
 }

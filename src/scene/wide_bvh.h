@@ -82,6 +82,11 @@ WideBvh collapse_to_wide(const Scene& scene,
 // both; it runs on the best SIMD target this CPU supports (Highway's dynamic dispatch).
 bool wide_intersect(const WideBvh& bvh, const Ray& ray, Hit* hit);
 bool wide_occluded(const WideBvh& bvh, const Ray& ray);
+// The same for n rays, traversed as packets of up to 8 (a vector's worth of rays: 8 on AVX2 and
+// AVX-512, 4 on SSE4 and NEON). For coherent rays, such as a pixel tile's camera rays or its
+// shadow rays towards one light.
+void wide_intersect_packet(const WideBvh& bvh, const Ray* rays, size_t n, Hit* hits);
+void wide_occluded_packet(const WideBvh& bvh, const Ray* rays, size_t n, bool* occluded);
 // The name of the SIMD target the traversal dispatches to on this CPU, e.g. "AVX2".
 const char* wide_simd_target();
 // For tests: the targets compiled in and supported by this CPU (Highway's HWY_* bits), and

@@ -11,6 +11,8 @@
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/highway.h>
 
+#include <algorithm>
+
 #include "scene/wide_bvh.h"
 #include "wavetrace/scene/intersect.h"
 
@@ -33,6 +35,7 @@ struct RayLanes {
     int near_lo[3];  // per axis: bounds row of the near plane (lo for inv_d >= 0, else hi)
     TriangleRay tri;
 
+    RayLanes() : RayLanes(Ray{{0, 0, 0}, {0, 0, 1}}) {}
     explicit RayLanes(const Ray& r) : ray(r), tri(r) {
         for (int a = 0; a < 3; ++a) {
             // 1/d with zero components replaced by a huge finite value of the same sign: the
@@ -95,192 +98,227 @@ HWY_INLINE V Abs3Max(V a, V b, V c) {
     return hn::Max(hn::Max(hn::Abs(a), hn::Abs(b)), hn::Abs(c));
 }
 
-// Woop, Benthin and Wald's watertight test (see intersect_triangle) on a block's lanes.
+// ---- the three primitive tests, one lane per (ray, primitive) pair ----------------------
+// Each is written once over vectors: a single ray against a block of primitives passes the
+// ray's values broadcast and the primitives' in lanes; a packet of rays against one primitive
+// passes the rays in lanes and the primitive broadcast. Either way, each lane computes what
+// the scalar test of intersect.cpp computes for its pair.
+
+// Woop, Benthin and Wald's watertight test (see intersect_triangle). p*[vtx]: the vertices
+// relative to the ray origin, permuted so that the ray's major axis is z; s*: the shear.
+HWY_INLINE M TriangleLanes(D d, V px[3], V py[3], V pz[3], V sx, V sy, V sz, V tmin, V tmax,
+                           M active, V* t_out, V* u_out, V* v_out) {
+    for (int vtx = 0; vtx < 3; ++vtx) {
+        px[vtx] = hn::Add(px[vtx], hn::Mul(sx, pz[vtx]));
+        py[vtx] = hn::Add(py[vtx], hn::Mul(sy, pz[vtx]));
+    }
+    V e0 = hn::Sub(hn::Mul(px[1], py[2]), hn::Mul(py[1], px[2]));
+    V e1 = hn::Sub(hn::Mul(px[2], py[0]), hn::Mul(py[2], px[0]));
+    V e2 = hn::Sub(hn::Mul(px[0], py[1]), hn::Mul(py[0], px[1]));
+    const V zero = hn::Zero(d);
+    const M any_zero = hn::And(
+        active, hn::Or(hn::Or(hn::Eq(e0, zero), hn::Eq(e1, zero)), hn::Eq(e2, zero)));
+    if (HWY_UNLIKELY(!hn::AllFalse(d, any_zero))) {
+        // An edge function of exactly 0 is ambiguous in float; such lanes recompute all
+        // three in double, where the products of floats are exact (Woop et al. §3.3).
+        HWY_ALIGN float x[3][kLeafBlockWidth], y[3][kLeafBlockWidth], e[3][kLeafBlockWidth];
+        for (int vtx = 0; vtx < 3; ++vtx) {
+            hn::Store(px[vtx], d, x[vtx]);
+            hn::Store(py[vtx], d, y[vtx]);
+        }
+        hn::Store(e0, d, e[0]);
+        hn::Store(e1, d, e[1]);
+        hn::Store(e2, d, e[2]);
+        const uint32_t zero_bits = MaskBits(d, any_zero);
+        for (size_t l = 0; l < hn::Lanes(d); ++l) {
+            if (!(zero_bits >> l & 1)) continue;
+            e[0][l] = static_cast<float>(double(x[1][l]) * y[2][l] - double(y[1][l]) * x[2][l]);
+            e[1][l] = static_cast<float>(double(x[2][l]) * y[0][l] - double(y[2][l]) * x[0][l]);
+            e[2][l] = static_cast<float>(double(x[0][l]) * y[1][l] - double(y[0][l]) * x[1][l]);
+        }
+        e0 = hn::Load(d, e[0]);
+        e1 = hn::Load(d, e[1]);
+        e2 = hn::Load(d, e[2]);
+    }
+    const M some_neg = hn::Or(hn::Or(hn::Lt(e0, zero), hn::Lt(e1, zero)), hn::Lt(e2, zero));
+    const M some_pos = hn::Or(hn::Or(hn::Gt(e0, zero), hn::Gt(e1, zero)), hn::Gt(e2, zero));
+    const V det = hn::Add(hn::Add(e0, e1), e2);
+    M ok = hn::AndNot(hn::And(some_neg, some_pos), active);
+    ok = hn::And(ok, hn::Ne(det, zero));
+    if (hn::AllFalse(d, ok)) return ok;
+
+    for (int vtx = 0; vtx < 3; ++vtx) pz[vtx] = hn::Mul(pz[vtx], sz);
+    const V t_scaled =
+        hn::Add(hn::Add(hn::Mul(e0, pz[0]), hn::Mul(e1, pz[1])), hn::Mul(e2, pz[2]));
+    const V tmin_det = hn::Mul(tmin, det);
+    const V tmax_det = hn::Mul(tmax, det);
+    const M neg_det = hn::Lt(det, zero), pos_det = hn::Gt(det, zero);
+    const M out_neg =
+        hn::And(neg_det, hn::Or(hn::Gt(t_scaled, tmin_det), hn::Lt(t_scaled, tmax_det)));
+    const M out_pos =
+        hn::And(pos_det, hn::Or(hn::Lt(t_scaled, tmin_det), hn::Gt(t_scaled, tmax_det)));
+    ok = hn::AndNot(hn::Or(out_neg, out_pos), ok);
+    if (hn::AllFalse(d, ok)) return ok;
+
+    const V inv_det = hn::Div(hn::Set(d, 1.0f), det);
+    const V t = hn::Mul(t_scaled, inv_det);
+    // Reject t that may be <= 0 given the rounding error above (pbrt-v4, §6.8.7).
+    const V max_zt = Abs3Max(pz[0], pz[1], pz[2]);
+    const V max_xt = Abs3Max(px[0], px[1], px[2]);
+    const V max_yt = Abs3Max(py[0], py[1], py[2]);
+    const V g2 = hn::Set(d, gamma(2)), g3 = hn::Set(d, gamma(3)), g5 = hn::Set(d, gamma(5));
+    const V delta_z = hn::Mul(g3, max_zt);
+    const V delta_x = hn::Mul(g5, hn::Add(max_xt, max_zt));
+    const V delta_y = hn::Mul(g5, hn::Add(max_yt, max_zt));
+    const V delta_e = hn::Mul(
+        hn::Set(d, 2.0f),
+        hn::Add(hn::Add(hn::Mul(hn::Mul(g2, max_xt), max_yt), hn::Mul(delta_y, max_xt)),
+                hn::Mul(delta_x, max_yt)));
+    const V max_e = Abs3Max(e0, e1, e2);
+    const V delta_t = hn::Mul(
+        hn::Mul(hn::Set(d, 3.0f),
+                hn::Add(hn::Add(hn::Mul(hn::Mul(g3, max_e), max_zt), hn::Mul(delta_e, max_zt)),
+                        hn::Mul(delta_z, max_e))),
+        hn::Abs(inv_det));
+    *t_out = t;
+    *u_out = hn::Mul(e1, inv_det);
+    *v_out = hn::Mul(e2, inv_det);
+    return hn::And(ok, hn::Gt(t, delta_t));
+}
+
+// The seed's quad test (see intersect_quad), with n = cross(u, v) and w = n / dot(n, n)
+// precomputed by the same float operations.
+struct QuadLanesIn {
+    V qx, qy, qz, ux, uy, uz, vx, vy, vz, nx, ny, nz, wx, wy, wz;
+};
+HWY_INLINE M QuadLanes(D d, const QuadLanesIn& p, V ox, V oy, V oz, V dx, V dy, V dz, V tmin,
+                       V tmax, M active, V* t_out, V* u_out, V* v_out) {
+    const V zero = hn::Zero(d), one = hn::Set(d, 1.0f);
+    const V denom = hn::Add(hn::Add(hn::Mul(p.nx, dx), hn::Mul(p.ny, dy)), hn::Mul(p.nz, dz));
+    const V num = hn::Add(
+        hn::Add(hn::Mul(p.nx, hn::Sub(p.qx, ox)), hn::Mul(p.ny, hn::Sub(p.qy, oy))),
+        hn::Mul(p.nz, hn::Sub(p.qz, oz)));
+    const V t = hn::Div(num, denom);
+    M ok = hn::And(active, hn::Ne(denom, zero));
+    ok = hn::And(ok, hn::And(hn::Ge(t, tmin), hn::Le(t, tmax)));
+    if (hn::AllFalse(d, ok)) return ok;
+    // p = ray.at(t) - q, then alpha = w . (p x v), beta = w . (u x p).
+    const V px = hn::Sub(hn::Add(ox, hn::Mul(t, dx)), p.qx);
+    const V py = hn::Sub(hn::Add(oy, hn::Mul(t, dy)), p.qy);
+    const V pz = hn::Sub(hn::Add(oz, hn::Mul(t, dz)), p.qz);
+    const V pv_x = hn::Sub(hn::Mul(py, p.vz), hn::Mul(pz, p.vy));
+    const V pv_y = hn::Sub(hn::Mul(pz, p.vx), hn::Mul(px, p.vz));
+    const V pv_z = hn::Sub(hn::Mul(px, p.vy), hn::Mul(py, p.vx));
+    const V up_x = hn::Sub(hn::Mul(p.uy, pz), hn::Mul(p.uz, py));
+    const V up_y = hn::Sub(hn::Mul(p.uz, px), hn::Mul(p.ux, pz));
+    const V up_z = hn::Sub(hn::Mul(p.ux, py), hn::Mul(p.uy, px));
+    const V alpha =
+        hn::Add(hn::Add(hn::Mul(p.wx, pv_x), hn::Mul(p.wy, pv_y)), hn::Mul(p.wz, pv_z));
+    const V beta =
+        hn::Add(hn::Add(hn::Mul(p.wx, up_x), hn::Mul(p.wy, up_y)), hn::Mul(p.wz, up_z));
+    *t_out = t;
+    *u_out = alpha;
+    *v_out = beta;
+    return hn::And(ok, hn::And(hn::And(hn::Ge(alpha, zero), hn::Le(alpha, one)),
+                               hn::And(hn::Ge(beta, zero), hn::Le(beta, one))));
+}
+
+// The cancellation-free sphere test (see intersect_sphere); a = dot(d, d).
+HWY_INLINE M SphereLanes(D d, V cx, V cy, V cz, V radius, V ox, V oy, V oz, V dx, V dy, V dz,
+                         V a, V tmin, V tmax, M active, V* t_out) {
+    const V zero = hn::Zero(d);
+    const V fx = hn::Sub(ox, cx), fy = hn::Sub(oy, cy), fz = hn::Sub(oz, cz);
+    const V r2 = hn::Mul(radius, radius);
+    const V b = hn::Add(hn::Add(hn::Mul(fx, dx), hn::Mul(fy, dy)), hn::Mul(fz, dz));
+    const V c = hn::Sub(hn::Add(hn::Add(hn::Mul(fx, fx), hn::Mul(fy, fy)), hn::Mul(fz, fz)), r2);
+    const V s = hn::Div(b, a);
+    const V lx = hn::Sub(fx, hn::Mul(dx, s));
+    const V ly = hn::Sub(fy, hn::Mul(dy, s));
+    const V lz = hn::Sub(fz, hn::Mul(dz, s));
+    const V ll = hn::Add(hn::Add(hn::Mul(lx, lx), hn::Mul(ly, ly)), hn::Mul(lz, lz));
+    const V disc = hn::Mul(a, hn::Sub(r2, ll));
+    M ok = hn::And(active, hn::Not(hn::Lt(disc, zero)));
+    if (hn::AllFalse(d, ok)) return ok;
+    const V q = hn::Neg(hn::Add(b, hn::CopySign(hn::Sqrt(hn::Max(disc, zero)), b)));
+    const M q_zero = hn::Eq(q, zero);
+    // Lanes with q = 0 divide by 1 instead and take t0 = 0, as the scalar test does.
+    const V t0 =
+        hn::IfThenZeroElse(q_zero, hn::Div(c, hn::IfThenElse(q_zero, hn::Set(d, 1.0f), q)));
+    const V t1 = hn::Div(q, a);
+    const V lo = hn::Min(t0, t1), hi = hn::Max(t0, t1);
+    const M lo_in = hn::And(hn::Ge(lo, tmin), hn::Le(lo, tmax));
+    const M hi_in = hn::And(hn::Ge(hi, tmin), hn::Le(hi, tmax));
+    *t_out = hn::IfThenElse(lo_in, lo, hi);
+    return hn::And(ok, hn::Or(lo_in, hi_in));
+}
+
+// ---- a single ray against a leaf block ---------------------------------------------------
+
+HWY_INLINE void StoreHits(D d, size_t i, M ok, V t, V u, V v, BlockHits* out) {
+    hn::Store(t, d, out->t + i);
+    hn::Store(u, d, out->u + i);
+    hn::Store(v, d, out->v + i);
+    out->bits |= MaskBits(d, ok) << i;
+}
+
 HWY_INLINE void TriangleTest(const TriangleBlock& b, uint32_t count, const RayLanes& r,
                              float tmax, BlockHits* out) {
     const D d;
-    const size_t N = hn::Lanes(d);
     const TriangleRay& tr = r.tri;
     const int k[3] = {tr.kx, tr.ky, tr.kz};
     out->bits = 0;
-    for (size_t i = 0; i < size_t(kLeafBlockWidth) && i < count; i += N) {
-        // Vertices relative to the origin, permuted so that the ray's major axis is z, sheared.
+    for (size_t i = 0; i < size_t(kLeafBlockWidth) && i < count; i += hn::Lanes(d)) {
         V px[3], py[3], pz[3];
         for (int vtx = 0; vtx < 3; ++vtx) {
             px[vtx] = hn::Sub(hn::Load(d, b.p[vtx][k[0]] + i), hn::Set(d, tr.o[k[0]]));
             py[vtx] = hn::Sub(hn::Load(d, b.p[vtx][k[1]] + i), hn::Set(d, tr.o[k[1]]));
             pz[vtx] = hn::Sub(hn::Load(d, b.p[vtx][k[2]] + i), hn::Set(d, tr.o[k[2]]));
-            px[vtx] = hn::Add(px[vtx], hn::Mul(hn::Set(d, tr.sx), pz[vtx]));
-            py[vtx] = hn::Add(py[vtx], hn::Mul(hn::Set(d, tr.sy), pz[vtx]));
         }
-        V e0 = hn::Sub(hn::Mul(px[1], py[2]), hn::Mul(py[1], px[2]));
-        V e1 = hn::Sub(hn::Mul(px[2], py[0]), hn::Mul(py[2], px[0]));
-        V e2 = hn::Sub(hn::Mul(px[0], py[1]), hn::Mul(py[0], px[1]));
-        const V zero = hn::Zero(d);
-        const M active = hn::FirstN(d, count - i);
-        const M any_zero = hn::And(
-            active, hn::Or(hn::Or(hn::Eq(e0, zero), hn::Eq(e1, zero)), hn::Eq(e2, zero)));
-        if (HWY_UNLIKELY(!hn::AllFalse(d, any_zero))) {
-            // An edge function of exactly 0 is ambiguous in float; such lanes recompute all
-            // three in double, where the products of floats are exact (Woop et al. §3.3).
-            HWY_ALIGN float x[3][kLeafBlockWidth], y[3][kLeafBlockWidth], e[3][kLeafBlockWidth];
-            for (int vtx = 0; vtx < 3; ++vtx) {
-                hn::Store(px[vtx], d, x[vtx]);
-                hn::Store(py[vtx], d, y[vtx]);
-            }
-            hn::Store(e0, d, e[0]);
-            hn::Store(e1, d, e[1]);
-            hn::Store(e2, d, e[2]);
-            const uint32_t zero_bits = MaskBits(d, any_zero);
-            for (size_t l = 0; l < N; ++l) {
-                if (!(zero_bits >> l & 1)) continue;
-                e[0][l] = static_cast<float>(double(x[1][l]) * y[2][l] - double(y[1][l]) * x[2][l]);
-                e[1][l] = static_cast<float>(double(x[2][l]) * y[0][l] - double(y[2][l]) * x[0][l]);
-                e[2][l] = static_cast<float>(double(x[0][l]) * y[1][l] - double(y[0][l]) * x[1][l]);
-            }
-            e0 = hn::Load(d, e[0]);
-            e1 = hn::Load(d, e[1]);
-            e2 = hn::Load(d, e[2]);
-        }
-        const M some_neg = hn::Or(hn::Or(hn::Lt(e0, zero), hn::Lt(e1, zero)), hn::Lt(e2, zero));
-        const M some_pos = hn::Or(hn::Or(hn::Gt(e0, zero), hn::Gt(e1, zero)), hn::Gt(e2, zero));
-        const V det = hn::Add(hn::Add(e0, e1), e2);
-        M ok = hn::AndNot(hn::And(some_neg, some_pos), active);
-        ok = hn::And(ok, hn::Ne(det, zero));
-        if (hn::AllFalse(d, ok)) continue;
-
-        const V sz = hn::Set(d, tr.sz);
-        for (int vtx = 0; vtx < 3; ++vtx) pz[vtx] = hn::Mul(pz[vtx], sz);
-        const V t_scaled =
-            hn::Add(hn::Add(hn::Mul(e0, pz[0]), hn::Mul(e1, pz[1])), hn::Mul(e2, pz[2]));
-        const V tmin_det = hn::Mul(hn::Set(d, r.ray.tmin), det);
-        const V tmax_det = hn::Mul(hn::Set(d, tmax), det);
-        const M neg_det = hn::Lt(det, zero), pos_det = hn::Gt(det, zero);
-        const M out_neg =
-            hn::And(neg_det, hn::Or(hn::Gt(t_scaled, tmin_det), hn::Lt(t_scaled, tmax_det)));
-        const M out_pos =
-            hn::And(pos_det, hn::Or(hn::Lt(t_scaled, tmin_det), hn::Gt(t_scaled, tmax_det)));
-        ok = hn::AndNot(hn::Or(out_neg, out_pos), ok);
-        if (hn::AllFalse(d, ok)) continue;
-
-        const V inv_det = hn::Div(hn::Set(d, 1.0f), det);
-        const V t = hn::Mul(t_scaled, inv_det);
-        // Reject t that may be <= 0 given the rounding error above (pbrt-v4, §6.8.7).
-        const V max_zt = Abs3Max(pz[0], pz[1], pz[2]);
-        const V max_xt = Abs3Max(px[0], px[1], px[2]);
-        const V max_yt = Abs3Max(py[0], py[1], py[2]);
-        const V g2 = hn::Set(d, gamma(2)), g3 = hn::Set(d, gamma(3)), g5 = hn::Set(d, gamma(5));
-        const V delta_z = hn::Mul(g3, max_zt);
-        const V delta_x = hn::Mul(g5, hn::Add(max_xt, max_zt));
-        const V delta_y = hn::Mul(g5, hn::Add(max_yt, max_zt));
-        const V delta_e = hn::Mul(
-            hn::Set(d, 2.0f), hn::Add(hn::Add(hn::Mul(hn::Mul(g2, max_xt), max_yt),
-                                              hn::Mul(delta_y, max_xt)),
-                                      hn::Mul(delta_x, max_yt)));
-        const V max_e = Abs3Max(e0, e1, e2);
-        const V delta_t = hn::Mul(
-            hn::Mul(hn::Set(d, 3.0f),
-                    hn::Add(hn::Add(hn::Mul(hn::Mul(g3, max_e), max_zt), hn::Mul(delta_e, max_zt)),
-                            hn::Mul(delta_z, max_e))),
-            hn::Abs(inv_det));
-        ok = hn::And(ok, hn::Gt(t, delta_t));
-        hn::Store(t, d, out->t + i);
-        hn::Store(hn::Mul(e1, inv_det), d, out->u + i);
-        hn::Store(hn::Mul(e2, inv_det), d, out->v + i);
-        out->bits |= MaskBits(d, ok) << i;
+        V t = hn::Zero(d), u = t, v = t;
+        const M ok = TriangleLanes(d, px, py, pz, hn::Set(d, tr.sx), hn::Set(d, tr.sy),
+                                   hn::Set(d, tr.sz), hn::Set(d, r.ray.tmin), hn::Set(d, tmax),
+                                   hn::FirstN(d, count - i), &t, &u, &v);
+        StoreHits(d, i, ok, t, u, v, out);
     }
 }
 
-// The seed's quad test (see intersect_quad) on a block's lanes.
 HWY_INLINE void QuadTest(const QuadBlock& b, uint32_t count, const RayLanes& r, float tmax,
                          BlockHits* out) {
     const D d;
-    const size_t N = hn::Lanes(d);
-    const V ox = hn::Set(d, r.ray.o.x), oy = hn::Set(d, r.ray.o.y), oz = hn::Set(d, r.ray.o.z);
-    const V dx = hn::Set(d, r.ray.d.x), dy = hn::Set(d, r.ray.d.y), dz = hn::Set(d, r.ray.d.z);
-    const V zero = hn::Zero(d), one = hn::Set(d, 1.0f);
+    const Ray& ray = r.ray;
     out->bits = 0;
-    for (size_t i = 0; i < size_t(kLeafBlockWidth) && i < count; i += N) {
-        const V nx = hn::Load(d, b.n[0] + i), ny = hn::Load(d, b.n[1] + i),
-                nz = hn::Load(d, b.n[2] + i);
-        const V qx = hn::Load(d, b.q[0] + i), qy = hn::Load(d, b.q[1] + i),
-                qz = hn::Load(d, b.q[2] + i);
-        const V denom = hn::Add(hn::Add(hn::Mul(nx, dx), hn::Mul(ny, dy)), hn::Mul(nz, dz));
-        const V num = hn::Add(hn::Add(hn::Mul(nx, hn::Sub(qx, ox)), hn::Mul(ny, hn::Sub(qy, oy))),
-                              hn::Mul(nz, hn::Sub(qz, oz)));
-        const V t = hn::Div(num, denom);
-        M ok = hn::And(hn::FirstN(d, count - i), hn::Ne(denom, zero));
-        ok = hn::And(ok, hn::And(hn::Ge(t, hn::Set(d, r.ray.tmin)), hn::Le(t, hn::Set(d, tmax))));
-        if (hn::AllFalse(d, ok)) continue;
-        // p = ray.at(t) - q, then alpha = w . (p x v), beta = w . (u x p).
-        const V px = hn::Sub(hn::Add(ox, hn::Mul(t, dx)), qx);
-        const V py = hn::Sub(hn::Add(oy, hn::Mul(t, dy)), qy);
-        const V pz = hn::Sub(hn::Add(oz, hn::Mul(t, dz)), qz);
-        const V ux = hn::Load(d, b.u[0] + i), uy = hn::Load(d, b.u[1] + i),
-                uz = hn::Load(d, b.u[2] + i);
-        const V vx = hn::Load(d, b.v[0] + i), vy = hn::Load(d, b.v[1] + i),
-                vz = hn::Load(d, b.v[2] + i);
-        const V wx = hn::Load(d, b.w[0] + i), wy = hn::Load(d, b.w[1] + i),
-                wz = hn::Load(d, b.w[2] + i);
-        const V pv_x = hn::Sub(hn::Mul(py, vz), hn::Mul(pz, vy));
-        const V pv_y = hn::Sub(hn::Mul(pz, vx), hn::Mul(px, vz));
-        const V pv_z = hn::Sub(hn::Mul(px, vy), hn::Mul(py, vx));
-        const V up_x = hn::Sub(hn::Mul(uy, pz), hn::Mul(uz, py));
-        const V up_y = hn::Sub(hn::Mul(uz, px), hn::Mul(ux, pz));
-        const V up_z = hn::Sub(hn::Mul(ux, py), hn::Mul(uy, px));
-        const V alpha = hn::Add(hn::Add(hn::Mul(wx, pv_x), hn::Mul(wy, pv_y)), hn::Mul(wz, pv_z));
-        const V beta = hn::Add(hn::Add(hn::Mul(wx, up_x), hn::Mul(wy, up_y)), hn::Mul(wz, up_z));
-        ok = hn::And(ok, hn::And(hn::And(hn::Ge(alpha, zero), hn::Le(alpha, one)),
-                                 hn::And(hn::Ge(beta, zero), hn::Le(beta, one))));
-        hn::Store(t, d, out->t + i);
-        hn::Store(alpha, d, out->u + i);
-        hn::Store(beta, d, out->v + i);
-        out->bits |= MaskBits(d, ok) << i;
+    for (size_t i = 0; i < size_t(kLeafBlockWidth) && i < count; i += hn::Lanes(d)) {
+        const QuadLanesIn p{hn::Load(d, b.q[0] + i), hn::Load(d, b.q[1] + i),
+                            hn::Load(d, b.q[2] + i), hn::Load(d, b.u[0] + i),
+                            hn::Load(d, b.u[1] + i), hn::Load(d, b.u[2] + i),
+                            hn::Load(d, b.v[0] + i), hn::Load(d, b.v[1] + i),
+                            hn::Load(d, b.v[2] + i), hn::Load(d, b.n[0] + i),
+                            hn::Load(d, b.n[1] + i), hn::Load(d, b.n[2] + i),
+                            hn::Load(d, b.w[0] + i), hn::Load(d, b.w[1] + i),
+                            hn::Load(d, b.w[2] + i)};
+        V t = hn::Zero(d), u = t, v = t;
+        const M ok = QuadLanes(d, p, hn::Set(d, ray.o.x), hn::Set(d, ray.o.y),
+                               hn::Set(d, ray.o.z), hn::Set(d, ray.d.x), hn::Set(d, ray.d.y),
+                               hn::Set(d, ray.d.z), hn::Set(d, ray.tmin), hn::Set(d, tmax),
+                               hn::FirstN(d, count - i), &t, &u, &v);
+        StoreHits(d, i, ok, t, u, v, out);
     }
 }
 
-// The cancellation-free sphere test (see intersect_sphere) on a block's lanes.
 HWY_INLINE void SphereTest(const SphereBlock& b, uint32_t count, const RayLanes& r, float tmax,
                            BlockHits* out) {
     const D d;
-    const size_t N = hn::Lanes(d);
     const Ray& ray = r.ray;
-    const V dx = hn::Set(d, ray.d.x), dy = hn::Set(d, ray.d.y), dz = hn::Set(d, ray.d.z);
-    const float a_s = dot(ray.d, ray.d);
-    const V a = hn::Set(d, a_s);
-    const V zero = hn::Zero(d);
-    const V tmin_v = hn::Set(d, ray.tmin), tmax_v = hn::Set(d, tmax);
     out->bits = 0;
-    for (size_t i = 0; i < size_t(kLeafBlockWidth) && i < count; i += N) {
-        const V fx = hn::Sub(hn::Set(d, ray.o.x), hn::Load(d, b.c[0] + i));
-        const V fy = hn::Sub(hn::Set(d, ray.o.y), hn::Load(d, b.c[1] + i));
-        const V fz = hn::Sub(hn::Set(d, ray.o.z), hn::Load(d, b.c[2] + i));
-        const V radius = hn::Load(d, b.r + i);
-        const V r2 = hn::Mul(radius, radius);
-        const V bq = hn::Add(hn::Add(hn::Mul(fx, dx), hn::Mul(fy, dy)), hn::Mul(fz, dz));
-        const V c = hn::Sub(hn::Add(hn::Add(hn::Mul(fx, fx), hn::Mul(fy, fy)), hn::Mul(fz, fz)), r2);
-        const V s = hn::Div(bq, a);
-        const V lx = hn::Sub(fx, hn::Mul(dx, s));
-        const V ly = hn::Sub(fy, hn::Mul(dy, s));
-        const V lz = hn::Sub(fz, hn::Mul(dz, s));
-        const V ll = hn::Add(hn::Add(hn::Mul(lx, lx), hn::Mul(ly, ly)), hn::Mul(lz, lz));
-        const V disc = hn::Mul(a, hn::Sub(r2, ll));
-        M ok = hn::And(hn::FirstN(d, count - i), hn::Not(hn::Lt(disc, zero)));
-        if (hn::AllFalse(d, ok)) continue;
-        const V q = hn::Neg(hn::Add(bq, hn::CopySign(hn::Sqrt(hn::Max(disc, zero)), bq)));
-        const M q_zero = hn::Eq(q, zero);
-        // Lanes with q = 0 divide by 1 instead and take t0 = 0, as the scalar test does.
-        V t0 = hn::IfThenZeroElse(q_zero, hn::Div(c, hn::IfThenElse(q_zero, hn::Set(d, 1.0f), q)));
-        V t1 = hn::Div(q, a);
-        const V lo = hn::Min(t0, t1), hi = hn::Max(t0, t1);
-        const M lo_in = hn::And(hn::Ge(lo, tmin_v), hn::Le(lo, tmax_v));
-        const M hi_in = hn::And(hn::Ge(hi, tmin_v), hn::Le(hi, tmax_v));
-        const V t = hn::IfThenElse(lo_in, lo, hi);
-        ok = hn::And(ok, hn::Or(lo_in, hi_in));
-        hn::Store(t, d, out->t + i);
-        hn::Store(zero, d, out->u + i);
-        hn::Store(zero, d, out->v + i);
-        out->bits |= MaskBits(d, ok) << i;
+    for (size_t i = 0; i < size_t(kLeafBlockWidth) && i < count; i += hn::Lanes(d)) {
+        V t = hn::Zero(d);
+        const M ok = SphereLanes(
+            d, hn::Load(d, b.c[0] + i), hn::Load(d, b.c[1] + i), hn::Load(d, b.c[2] + i),
+            hn::Load(d, b.r + i), hn::Set(d, ray.o.x), hn::Set(d, ray.o.y), hn::Set(d, ray.o.z),
+            hn::Set(d, ray.d.x), hn::Set(d, ray.d.y), hn::Set(d, ray.d.z),
+            hn::Set(d, dot(ray.d, ray.d)), hn::Set(d, ray.tmin), hn::Set(d, tmax),
+            hn::FirstN(d, count - i), &t);
+        StoreHits(d, i, ok, t, hn::Zero(d), hn::Zero(d), out);
     }
 }
 
@@ -380,6 +418,226 @@ HWY_INLINE bool Traverse(const WideBvh& bvh, const Ray& ray, Hit* hit) {
     }
 }
 
+// ---- packets: up to Lanes(D) coherent rays walk the tree together ------------------------
+// One lane per ray (Wald, Slusallek, Benthin and Wagner, "Interactive Rendering with Coherent
+// Ray Tracing", 2001; over a wide tree as in Embree's hybrid traversal): a node's children are
+// tested one after the other against all rays at once, a child is entered when any active ray
+// enters it, nearest first by the smallest entry distance among those rays. Each primitive of a
+// leaf is tested against all rays at once with the lane functions above, so every ray gets the
+// hit the single-ray traversal gives it (ties aside). Rays whose major axes differ (Woop's
+// permutation is then not uniform over the packet) test triangle blocks one ray at a time.
+template <bool AnyHit>
+HWY_INLINE void TraversePacket(const WideBvh& bvh, const Ray* rays, size_t n, Hit* hits,
+                               bool* occluded) {
+    const D d;
+    const size_t N = hn::Lanes(d);
+    HWY_ALIGN float a[12][kLeafBlockWidth] = {};
+    RayLanes single[kLeafBlockWidth];
+    bool uniform = true;
+    for (size_t l = 0; l < N; ++l) {
+        const Ray& r = rays[l < n ? l : 0];
+        single[l] = RayLanes(r);
+        uniform = uniform && single[l].tri.kz == single[0].tri.kz;
+        for (int k = 0; k < 3; ++k) {
+            a[k][l] = r.o[k];
+            a[3 + k][l] = r.d[k];
+            a[6 + k][l] = single[l].inv_d[k];
+        }
+        a[9][l] = r.tmin;
+        a[10][l] = r.tmax;
+        a[11][l] = dot(r.d, r.d);
+    }
+    const V o[3] = {hn::Load(d, a[0]), hn::Load(d, a[1]), hn::Load(d, a[2])};
+    const V dir[3] = {hn::Load(d, a[3]), hn::Load(d, a[4]), hn::Load(d, a[5])};
+    const V inv[3] = {hn::Load(d, a[6]), hn::Load(d, a[7]), hn::Load(d, a[8])};
+    const V tmin = hn::Load(d, a[9]), dd = hn::Load(d, a[11]);
+    V tmax = hn::Load(d, a[10]);
+    V hit_u = hn::Zero(d), hit_v = hn::Zero(d);
+    PrimRef hit_prim[kLeafBlockWidth];
+    M active = hn::FirstN(d, n);
+    uint32_t found = 0;
+
+    // Woop's per-ray constants in lanes, for packets with one permutation.
+    const int kx = single[0].tri.kx, ky = single[0].tri.ky, kz = single[0].tri.kz;
+    HWY_ALIGN float shear[3][kLeafBlockWidth];
+    for (size_t l = 0; l < N; ++l) {
+        shear[0][l] = single[l].tri.sx;
+        shear[1][l] = single[l].tri.sy;
+        shear[2][l] = single[l].tri.sz;
+    }
+    const V sx = hn::Load(d, shear[0]), sy = hn::Load(d, shear[1]), sz = hn::Load(d, shear[2]);
+
+    // Records lanes `ok` as hitting primitive `ref` at t (closest hit: a later primitive at
+    // equal t wins, as in the single-ray traversal); any-hit: retires them.
+    auto record = [&](M ok, PrimRef ref, V t, V u, V v) {
+        ok = hn::And(ok, active);
+        if (hn::AllFalse(d, ok)) return;
+        const uint32_t bits = MaskBits(d, ok);
+        found |= bits;
+        if constexpr (AnyHit) {
+            active = hn::AndNot(ok, active);
+            return;
+        }
+        tmax = hn::IfThenElse(ok, t, tmax);
+        hit_u = hn::IfThenElse(ok, u, hit_u);
+        hit_v = hn::IfThenElse(ok, v, hit_v);
+        for (uint32_t b = bits; b != 0; b &= b - 1) hit_prim[__builtin_ctz(b)] = ref;
+    };
+
+    struct Entry {
+        uint32_t code;
+        float t_entry;  // the smallest entry distance among the rays that enter it
+    };
+    Entry stack[Bvh::kStackSize * (kWideNodeWidth - 1) + 1];
+    int sp = 0;
+    uint32_t code = 0;
+    const V inf = hn::Set(d, kInfinity);
+    const V widen = hn::Set(d, 1.0f + 2.0f * gamma(3));
+
+    for (;;) {
+        if (!(code & kLeafChild)) {
+            const WideNode& node = bvh.nodes[code];
+            Entry hit_children[kWideNodeWidth];
+            int count = 0;
+            for (int c = 0; c < kWideNodeWidth && node.child[c] != kEmptyChild; ++c) {
+                // The slab test per ray, as in BoxTest (min/max in place of the sign choice
+                // gives the same two distances per axis).
+                V t_near = tmin, t_far = inf;
+                for (int k = 0; k < 3; ++k) {
+                    const V t0 = hn::Mul(hn::Sub(hn::Set(d, node.bounds[2 * k][c]), o[k]), inv[k]);
+                    const V t1 =
+                        hn::Mul(hn::Sub(hn::Set(d, node.bounds[2 * k + 1][c]), o[k]), inv[k]);
+                    t_near = hn::Max(t_near, hn::Min(t0, t1));
+                    t_far = hn::Min(t_far, hn::Max(t0, t1));
+                }
+                const M enter =
+                    hn::And(active, hn::Le(t_near, hn::Min(hn::Mul(t_far, widen), tmax)));
+                if (hn::AllFalse(d, enter)) continue;
+                const float t_min = hn::GetLane(hn::MinOfLanes(d, hn::IfThenElse(enter, t_near, inf)));
+                hit_children[count++] = {node.child[c], t_min};
+            }
+            if (count > 0) {
+                // Farthest first onto the stack; take the nearest now.
+                for (int i = 1; i < count; ++i)
+                    for (int j = i; j > 0 && hit_children[j - 1].t_entry < hit_children[j].t_entry;
+                         --j)
+                        std::swap(hit_children[j - 1], hit_children[j]);
+                for (int i = 0; i < count - 1; ++i) stack[sp++] = hit_children[i];
+                code = hit_children[count - 1].code;
+                continue;
+            }
+        } else {
+            const uint32_t first = code & kLeafFirstMask;
+            const uint32_t blocks = (code & ~kLeafChild) >> kLeafCountShift;
+            for (uint32_t k = first; k < first + blocks; ++k) {
+                const LeafBlock& lb = bvh.leaf_blocks[k];
+                if (lb.kind == PrimKind::Triangle && !uniform) {
+                    // Rays with different permutations: one ray at a time against the block.
+                    const TriangleBlock& b = bvh.triangles[lb.index];
+                    HWY_ALIGN float lane_t[kLeafBlockWidth];
+                    hn::Store(tmax, d, lane_t);
+                    const uint32_t act = MaskBits(d, active);
+                    for (size_t l = 0; l < N; ++l) {
+                        if (!(act >> l & 1)) continue;
+                        BlockHits bh;
+                        TriangleTest(b, lb.count, single[l], lane_t[l], &bh);
+                        for (uint32_t bits = bh.bits; bits != 0; bits &= bits - 1) {
+                            const uint32_t j = static_cast<uint32_t>(__builtin_ctz(bits));
+                            if (bh.t[j] > lane_t[l]) continue;
+                            lane_t[l] = bh.t[j];
+                            const M lane = hn::And(hn::FirstN(d, l + 1), hn::Not(hn::FirstN(d, l)));
+                            record(lane, b.ref[j], hn::Set(d, bh.t[j]), hn::Set(d, bh.u[j]),
+                                   hn::Set(d, bh.v[j]));
+                            if (AnyHit) break;
+                        }
+                    }
+                } else {
+                    for (uint32_t j = 0; j < lb.count; ++j) {
+                        V t = hn::Zero(d), u = t, v = t;
+                        M ok;
+                        PrimRef ref;
+                        if (lb.kind == PrimKind::Triangle) {
+                            const TriangleBlock& b = bvh.triangles[lb.index];
+                            V px[3], py[3], pz[3];
+                            for (int vtx = 0; vtx < 3; ++vtx) {
+                                px[vtx] = hn::Sub(hn::Set(d, b.p[vtx][kx][j]), o[kx]);
+                                py[vtx] = hn::Sub(hn::Set(d, b.p[vtx][ky][j]), o[ky]);
+                                pz[vtx] = hn::Sub(hn::Set(d, b.p[vtx][kz][j]), o[kz]);
+                            }
+                            ok = TriangleLanes(d, px, py, pz, sx, sy, sz, tmin, tmax, active, &t,
+                                               &u, &v);
+                            ref = b.ref[j];
+                        } else if (lb.kind == PrimKind::Quad) {
+                            const QuadBlock& b = bvh.quads[lb.index];
+                            const QuadLanesIn p{
+                                hn::Set(d, b.q[0][j]), hn::Set(d, b.q[1][j]), hn::Set(d, b.q[2][j]),
+                                hn::Set(d, b.u[0][j]), hn::Set(d, b.u[1][j]), hn::Set(d, b.u[2][j]),
+                                hn::Set(d, b.v[0][j]), hn::Set(d, b.v[1][j]), hn::Set(d, b.v[2][j]),
+                                hn::Set(d, b.n[0][j]), hn::Set(d, b.n[1][j]), hn::Set(d, b.n[2][j]),
+                                hn::Set(d, b.w[0][j]), hn::Set(d, b.w[1][j]), hn::Set(d, b.w[2][j])};
+                            ok = QuadLanes(d, p, o[0], o[1], o[2], dir[0], dir[1], dir[2], tmin,
+                                           tmax, active, &t, &u, &v);
+                            ref = b.ref[j];
+                        } else {
+                            const SphereBlock& b = bvh.spheres[lb.index];
+                            ok = SphereLanes(d, hn::Set(d, b.c[0][j]), hn::Set(d, b.c[1][j]),
+                                             hn::Set(d, b.c[2][j]), hn::Set(d, b.r[j]), o[0], o[1],
+                                             o[2], dir[0], dir[1], dir[2], dd, tmin, tmax, active,
+                                             &t);
+                            ref = b.ref[j];
+                        }
+                        record(ok, ref, t, u, v);
+                    }
+                }
+                if (AnyHit && hn::AllFalse(d, active)) break;
+            }
+            if (AnyHit && hn::AllFalse(d, active)) break;
+        }
+        // Pop the next subtree that some active ray may still find a closer hit in.
+        const float tmax_all =
+            hn::GetLane(hn::MaxOfLanes(d, hn::IfThenElse(active, tmax, hn::Set(d, -kInfinity))));
+        bool more = false;
+        while (sp > 0) {
+            const Entry e = stack[--sp];
+            if (e.t_entry <= tmax_all) {
+                code = e.code;
+                more = true;
+                break;
+            }
+        }
+        if (!more) break;
+    }
+
+    HWY_ALIGN float out_t[kLeafBlockWidth], out_u[kLeafBlockWidth], out_v[kLeafBlockWidth];
+    hn::Store(tmax, d, out_t);
+    hn::Store(hit_u, d, out_u);
+    hn::Store(hit_v, d, out_v);
+    for (size_t l = 0; l < n; ++l) {
+        const bool f = found >> l & 1;
+        if (occluded) occluded[l] = f;
+        if (hits) hits[l] = f ? Hit{out_t[l], hit_prim[l], out_u[l], out_v[l]} : Hit{};
+    }
+}
+
+void IntersectPacket(const WideBvh& bvh, const Ray* rays, size_t n, Hit* hits) {
+    const size_t N = hn::Lanes(D());
+    if (bvh.nodes.empty()) {
+        for (size_t i = 0; i < n; ++i) hits[i] = Hit{};
+        return;
+    }
+    for (size_t i = 0; i < n; i += N) TraversePacket<false>(bvh, rays + i, std::min(N, n - i), hits + i, nullptr);
+}
+
+void OccludedPacket(const WideBvh& bvh, const Ray* rays, size_t n, bool* occluded) {
+    const size_t N = hn::Lanes(D());
+    if (bvh.nodes.empty()) {
+        for (size_t i = 0; i < n; ++i) occluded[i] = false;
+        return;
+    }
+    for (size_t i = 0; i < n; i += N)
+        TraversePacket<true>(bvh, rays + i, std::min(N, n - i), nullptr, occluded + i);
+}
+
 bool IntersectWide(const WideBvh& bvh, const Ray& ray, Hit* hit) {
     return Traverse<false>(bvh, ray, hit);
 }
@@ -403,6 +661,16 @@ namespace wavetrace {
 HWY_EXPORT(IntersectWide);
 HWY_EXPORT(OccludedWide);
 HWY_EXPORT(TargetName);
+HWY_EXPORT(IntersectPacket);
+HWY_EXPORT(OccludedPacket);
+
+void wide_intersect_packet(const WideBvh& bvh, const Ray* rays, size_t n, Hit* hits) {
+    HWY_DYNAMIC_DISPATCH(IntersectPacket)(bvh, rays, n, hits);
+}
+
+void wide_occluded_packet(const WideBvh& bvh, const Ray* rays, size_t n, bool* occluded) {
+    HWY_DYNAMIC_DISPATCH(OccludedPacket)(bvh, rays, n, occluded);
+}
 
 bool wide_intersect(const WideBvh& bvh, const Ray& ray, Hit* hit) {
     return HWY_DYNAMIC_DISPATCH(IntersectWide)(bvh, ray, hit);

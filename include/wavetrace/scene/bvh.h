@@ -77,6 +77,10 @@ class Bvh {
     Hit intersect(const Ray& ray) const;
     // Whether anything is hit in [ray.tmin, ray.tmax].
     bool occluded(const Ray& ray) const;
+    // The same for rays.size() rays, traversed as packets of up to 8 rays: faster for coherent
+    // rays (a pixel tile's camera rays, its shadow rays towards one light), the same results.
+    void intersect_packet(std::span<const Ray> rays, std::span<Hit> hits) const;
+    void occluded_packet(std::span<const Ray> rays, std::span<bool> occluded) const;
 
     std::span<const BvhNode> nodes() const { return nodes_; }
     std::span<const PrimRef> prims() const { return prims_; }  // in leaf order
