@@ -14,7 +14,8 @@ set style data histograms
 set style histogram clustered gap 1
 set style fill solid 0.8 border -1
 set boxwidth 0.9
-plot dir."/engines.csv" using 5:xtic(1) title "megakernel", "" using 6 title "wavefront"
+plot dir."/engines.csv" using 5:xtic(1) title "megakernel", "" using 6 title "wavefront", \
+     "" using 17 title "megakernel on Embree", "" using 18 title "wavefront on Embree"
 
 # Our BVH against Embree, single thread.
 set output dir."/bvh.svg"
@@ -22,6 +23,14 @@ set title "Single-ray traversal, one thread: ours vs Embree"
 set ylabel "Mrays/s"
 plot dir."/bvh.csv" using (column(3) == 1 ? column(5) : 1/0):xtic(strcol(1)."\n".strcol(2)) title "ours", \
      "" using (column(3) == 1 ? column(6) : 1/0) title "Embree rtcIntersect1/rtcOccluded1"
+
+# Coherent primary rays, one thread: our 8-ray packets against Embree's 16-ray packets.
+set output dir."/bvh-packets.svg"
+set title "Primary rays in packets, one thread: ours (8 rays) vs Embree (16 rays)"
+set ylabel "Mrays/s"
+plot dir."/bvh.csv" using (column(3) == 1 && strcol(2) eq "primary" ? column(10) : 1/0):xtic(1) title "ours, packets", \
+     "" using (column(3) == 1 && strcol(2) eq "primary" ? column(9) : 1/0) title "Embree rtcIntersect16", \
+     "" using (column(3) == 1 && strcol(2) eq "primary" ? column(5) : 1/0) title "ours, single rays"
 
 # Thread scaling.
 set output dir."/scaling.svg"

@@ -56,7 +56,7 @@ TEST(Cli, InfoDescribesTheScene) {
     CliResult r = run(dir, "info " + scene("everything"));
     EXPECT_EQ(r.code, 0) << r.err;
     for (const char* field : {"primitives   3408", "1007 spheres", "lights       1", "bounds",
-                              "bvh", "SAH cost", "memory"})
+                              "bvh", "SAH cost", "8-wide nodes", "simd         ", "memory"})
         EXPECT_NE(r.out.find(field), std::string::npos) << field << "\n" << r.out;
 }
 

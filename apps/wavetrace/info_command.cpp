@@ -70,10 +70,12 @@ int run_info(const InfoOptions& o) {
                scene.camera.look_at.x, scene.camera.look_at.y, scene.camera.look_at.z,
                scene.camera.vfov, scene.render.width, scene.render.height);
     fmt::print(
-        "bvh          {} nodes ({} leaves, {} B each), depth {}, SAH cost {:.2f}, "
-        "build {:.1f} ms\n",
-        st.nodes, st.leaves, sizeof(BvhNode), st.depth, st.sah_cost, st.build_ms);
-    fmt::print("memory       geometry {}, bvh {}, textures {}\n", mib(geometry), mib(st.bytes),
+        "bvh          {} binary nodes ({} leaves), depth {}, SAH cost {:.2f}; {} 8-wide nodes "
+        "for traversal; build {:.1f} ms\n",
+        st.nodes, st.leaves, st.depth, st.sah_cost, st.wide_nodes, st.build_ms);
+    fmt::print("simd         {} (chosen at run time)\n", simd_target());
+    fmt::print("memory       geometry {}, bvh {} (binary tree {}, traversal layout {}), textures {}\n",
+               mib(geometry), mib(st.bytes + st.wide_bytes), mib(st.bytes), mib(st.wide_bytes),
                mib(texels));
     const size_t per_path = wavefront_bytes_per_path(), wave = WavefrontConfig{}.wave_size;
     fmt::print("wavefront    {} B of queues per path in flight; {} paths per wave: {}\n", per_path,
