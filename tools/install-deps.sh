@@ -11,7 +11,7 @@ packages=(
   openimageio-tools     # Debian's OpenImageIO CMake config imports its tools (iconvert, idiff, ...) as targets
   libembree-dev         # Embree 3: the intersection reference in tests and benchmarks
   libassimp-dev         # meshes: OBJ+MTL, PLY (ASCII and binary), glTF 2.0
-  zlib1g-dev            # assimp's CMake config links libz.so, but libassimp-dev does not depend on it
+  zlib1g-dev            # assimp's CMake config links libz.so (libassimp-dev does not depend on it); tests
   nlohmann-json3-dev    # scene files
   libcli11-dev          # command line
   libfmt-dev            # formatting

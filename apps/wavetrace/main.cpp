@@ -1,5 +1,6 @@
 // wavetrace: render a scene, or describe it.
 #include <iostream>
+#include <new>
 
 #include "commands.h"
 #include "wavetrace/build_info.h"
@@ -28,6 +29,13 @@ int main(int argc, char** argv) {
         int code = app.exit(e);
         return code == 0 ? kExitOk : kExitBadInput;
     }
-    if (app.got_subcommand("render")) return run_render(render);
-    return run_info(info);
+    try {
+        if (app.got_subcommand("render")) return run_render(render);
+        return run_info(info);
+    } catch (const std::bad_alloc&) {
+        // The render reports what it was allocating; this catches the rest (e.g. a scene's
+        // own arrays), so that running out of memory is an error message, not SIGABRT.
+        std::cerr << "wavetrace: error: out of memory\n";
+        return kExitBadInput;
+    }
 }

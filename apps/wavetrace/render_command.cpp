@@ -124,37 +124,21 @@ std::optional<std::string> check_options(const RenderOptions& o, const RenderSet
     return std::nullopt;
 }
 
-}  // namespace
-
-int run_render(const RenderOptions& o) {
-    auto start = std::chrono::steady_clock::now();
-    std::optional<tbb::global_control> threads;
-    if (o.threads > 0) threads.emplace(tbb::global_control::max_allowed_parallelism, o.threads);
-
-    fs::path output = o.output.empty() ? fs::path(fs::path(o.scene).stem().string() + ".png")
-                                       : fs::path(o.output);
-    Scene scene;
-    try {
-        check_output_path(output);
-        fs::path dir = output.parent_path();
-        std::error_code ec;
-        if (!dir.empty() && !fs::is_directory(dir, ec))
-            throw ImageError(output.string() + ": folder '" + dir.string() + "' does not exist");
-        scene = load_scene(o.scene);
-        if (auto problem = check_options(o, scene.render)) throw SceneError(*problem);
-    } catch (const std::exception& e) {
-        std::cerr << "wavetrace: error: " << e.what() << "\n";
-        return kExitBadInput;
-    }
-
-    const int width = o.width.value_or(scene.render.width);
-    const int height = o.height.value_or(scene.render.height);
+// The render itself: BVH, engine or AOV, the image and its metadata.
+void render_to_image(const RenderOptions& o,
+                     const Scene& scene,
+                     int width,
+                     int height,
+                     const fs::path& output,
+                     WriteOptions* write_out,
+                     Image* image_out,
+                     std::string* summary_out) {
     Bvh bvh = Bvh::build(scene);
-    WriteOptions write;
+    WriteOptions& write = *write_out;
+    Image& image = *image_out;
+    std::string& summary = *summary_out;
     write.exposure = o.exposure;
     write.metadata = {{"wavetrace:scene", o.scene}, {"wavetrace:seed", std::to_string(o.seed)}};
-    Image image;
-    std::string summary;
     if (o.aov == "color") {
         RenderConfig config;
         config.width = width;
@@ -199,6 +183,47 @@ int run_render(const RenderOptions& o) {
         if (is_ldr_path(output)) map_aov_to_display(aov, image);
     }
 
+}
+
+}  // namespace
+
+int run_render(const RenderOptions& o) {
+    auto start = std::chrono::steady_clock::now();
+    std::optional<tbb::global_control> threads;
+    if (o.threads > 0) threads.emplace(tbb::global_control::max_allowed_parallelism, o.threads);
+
+    fs::path output = o.output.empty() ? fs::path(fs::path(o.scene).stem().string() + ".png")
+                                       : fs::path(o.output);
+    Scene scene;
+    try {
+        // Every check that can fail before the render does: no render is wasted on an output
+        // that cannot be written.
+        check_output_writable(output);
+        scene = load_scene(o.scene);
+        if (auto problem = check_options(o, scene.render)) throw SceneError(*problem);
+    } catch (const std::exception& e) {
+        std::cerr << "wavetrace: error: " << e.what() << "\n";
+        return kExitBadInput;
+    }
+
+    const int width = o.width.value_or(scene.render.width);
+    const int height = o.height.value_or(scene.render.height);
+    WriteOptions write;
+    Image image;
+    std::string summary;
+    try {
+        render_to_image(o, scene, width, height, output, &write, &image, &summary);
+    } catch (const std::bad_alloc&) {
+        // Name what needed the memory and what would fit, instead of dying on SIGABRT.
+        const double pixels = double(width) * height;
+        const double film_mib = pixels * Film::kBytesPerPixel / (1 << 20);
+        std::cerr << fmt::format(
+            "wavetrace: error: out of memory rendering {} x {}: the film alone takes {:.0f} MiB "
+            "({} bytes per pixel) besides the scene and the image; render fewer pixels "
+            "(--width/--height) or on a machine with more memory\n",
+            width, height, film_mib, Film::kBytesPerPixel);
+        return kExitBadInput;
+    }
     try {
         write_image(output, image, write);
     } catch (const ImageError& e) {

@@ -90,7 +90,7 @@ void bench_engines(const Options& o, Results& r) {
         const double pixels = double(cfg.width) * cfg.height;
         const double queue_mib = double(wavefront_bytes_per_path()) *
                                  std::min<double>(double(wf_cfg.wave_size), pixels) / (1 << 20);
-        const double film_mib = pixels * (6 * sizeof(double) + sizeof(uint32_t)) / (1 << 20);
+        const double film_mib = pixels * Film::kBytesPerPixel / (1 << 20);
         r.row("engines",
               {c.scene, cfg.width, cfg.height, cfg.spp, spread(mk_paths).median,
                spread(wf_paths).median, spread(mk_rays).median, spread(wf_rays).median, s.min,

@@ -1,14 +1,19 @@
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
+
+#include <csignal>
 
 #include <algorithm>
 #include <bit>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
-#include <fstream>
 #include <system_error>
 
+#include "io/input_file.h"
 #include "wavetrace/image/image.h"
 
 namespace wavetrace {
@@ -31,16 +36,78 @@ float srgb_decode(float encoded) {
 }
 
 // Portable float map: "PF", size, a negative scale for little-endian, then rows bottom to
-// top. Written here because Debian's OpenImageIO 2.4 reads PFM but has no PFM writer.
-std::string write_pfm(const fs::path& path, const Image& image) {
-    std::ofstream out(path, std::ios::binary);
-    out << "PF\n" << image.width << " " << image.height << "\n-1.0\n";
+// top. Encoded here because Debian's OpenImageIO 2.4 reads PFM but has no PFM writer.
+std::vector<unsigned char> encode_pfm(const Image& image) {
+    std::string header = "PF\n" + std::to_string(image.width) + " " +
+                         std::to_string(image.height) + "\n-1.0\n";
+    std::vector<unsigned char> out(header.begin(), header.end());
     static_assert(std::endian::native == std::endian::little);
-    for (int y = image.height - 1; y >= 0; --y)
-        out.write(reinterpret_cast<const char*>(&image.at(0, y)),
-                  static_cast<std::streamsize>(sizeof(Color)) * image.width);
-    out.close();
-    return out ? "" : std::string(std::strerror(errno));
+    const size_t row = sizeof(Color) * static_cast<size_t>(image.width);
+    out.reserve(out.size() + row * image.height);
+    for (int y = image.height - 1; y >= 0; --y) {
+        const auto* p = reinterpret_cast<const unsigned char*>(&image.at(0, y));
+        out.insert(out.end(), p, p + row);
+    }
+    return out;
+}
+
+// The temporary file being written, for the signal handler below: a signal during the write
+// removes it before the process dies, so that no temporary file is ever left behind.
+char g_temp_path[4096];
+volatile std::sig_atomic_t g_temp_active = 0;
+
+extern "C" void remove_temp_and_reraise(int sig) {
+    if (g_temp_active) ::unlink(g_temp_path);
+    std::signal(sig, SIG_DFL);
+    std::raise(sig);
+}
+
+// Registers `path` for removal on SIGINT, SIGTERM or SIGHUP while alive.
+class TempFileGuard {
+  public:
+    explicit TempFileGuard(const fs::path& path) {
+        std::string s = path.string();
+        if (s.size() >= sizeof g_temp_path) return;
+        std::memcpy(g_temp_path, s.c_str(), s.size() + 1);
+        g_temp_active = 1;
+        for (int i = 0; i < 3; ++i) old_[i] = std::signal(kSignals[i], remove_temp_and_reraise);
+    }
+    ~TempFileGuard() {
+        if (!g_temp_active) return;
+        for (int i = 0; i < 3; ++i) std::signal(kSignals[i], old_[i]);
+        g_temp_active = 0;
+    }
+    TempFileGuard(const TempFileGuard&) = delete;
+    TempFileGuard& operator=(const TempFileGuard&) = delete;
+
+  private:
+    static constexpr int kSignals[3] = {SIGINT, SIGTERM, SIGHUP};
+    void (*old_[3])(int) = {};
+};
+
+// Writes all of `bytes` to a new file at `path` and flushes it to disk; returns the error, or
+// "" on success. A short write (a full disk) is an error, never a truncated file.
+std::string write_all(const fs::path& path, const std::vector<unsigned char>& bytes) {
+    int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    if (fd < 0) return std::strerror(errno);
+    size_t done = 0;
+    while (done < bytes.size()) {
+        ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) {
+            std::string err = n < 0 ? std::strerror(errno) : "short write";
+            ::close(fd);
+            return err;
+        }
+        done += static_cast<size_t>(n);
+    }
+    if (::fsync(fd) != 0) {
+        std::string err = std::strerror(errno);
+        ::close(fd);
+        return err;
+    }
+    if (::close(fd) != 0) return std::strerror(errno);
+    return "";
 }
 
 }  // namespace
@@ -55,6 +122,24 @@ void check_output_path(const fs::path& path) {
     if (!(is_ldr_path(path) || ext == ".exr" || ext == ".hdr" || ext == ".pfm"))
         throw ImageError(path.string() + ": unsupported output format '" + ext +
                          "' (use .png, .jpg, .exr, .hdr or .pfm)");
+}
+
+void check_output_writable(const fs::path& path) {
+    check_output_path(path);
+    std::error_code ec;
+    if (fs::is_directory(path, ec))
+        throw ImageError(path.string() + ": cannot write: is a directory");
+    fs::path dir = path.parent_path().empty() ? fs::path(".") : path.parent_path();
+    if (!fs::is_directory(dir, ec))
+        throw ImageError(path.string() + ": folder '" + dir.string() + "' does not exist");
+    // Creating a file there is the one reliable test (permissions, read-only mounts, ACLs).
+    fs::path probe = dir / (".wavetrace-probe" + std::to_string(::getpid()));
+    int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+    if (fd < 0)
+        throw ImageError(path.string() + ": cannot write in folder '" + dir.string() +
+                         "': " + std::strerror(errno));
+    ::close(fd);
+    ::unlink(probe.c_str());
 }
 
 void write_image(const fs::path& path, const Image& image, const WriteOptions& options) {
@@ -80,36 +165,42 @@ void write_image(const fs::path& path, const Image& image, const WriteOptions& o
         spec.attribute("oiio:ColorSpace", "Linear");
     }
 
-    // Temporary name in the same folder, keeping the extension so that OpenImageIO picks the
-    // same format; rename() then replaces the target atomically.
-    fs::path dir = path.parent_path().empty() ? fs::path(".") : path.parent_path();
-    fs::path tmp = dir / ("." + path.stem().string() + ".tmp" + std::to_string(::getpid()) +
-                          path.extension().string());
-    std::string err;
+    // Encode in memory, then write the bytes ourselves: every write is checked (a full disk
+    // is an error, not a truncated image), and no codec can end the process mid-file (libjpeg
+    // exits on a failed write).
+    std::vector<unsigned char> encoded;
     if (lower_extension(path) == ".pfm") {
-        err = write_pfm(tmp, image);
+        encoded = encode_pfm(image);
     } else {
-        auto out = OIIO::ImageOutput::create(tmp.string());
+        auto out = OIIO::ImageOutput::create(path.string());
         if (!out) throw ImageError(path.string() + ": cannot write: " + OIIO::geterror());
-        bool ok = out->open(tmp.string(), spec) &&
+        OIIO::Filesystem::IOVecOutput proxy(encoded);
+        bool ok = out->set_ioproxy(&proxy) && out->open(path.string(), spec) &&
                   (ldr ? out->write_image(OIIO::TypeDesc::UINT8, bytes.data())
                        : out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data())) &&
                   out->close();
-        if (!ok) err = out->geterror();
+        if (!ok) throw ImageError(path.string() + ": cannot encode: " + out->geterror());
     }
-    std::error_code ec;
+
+    // A temporary name in the same folder; rename() then replaces the target atomically, so a
+    // failed write keeps the previous file.
+    fs::path dir = path.parent_path().empty() ? fs::path(".") : path.parent_path();
+    fs::path tmp = dir / ("." + path.filename().string() + ".tmp" + std::to_string(::getpid()));
+    TempFileGuard guard(tmp);
+    std::string err = write_all(tmp, encoded);
+    if (err.empty() && ::rename(tmp.c_str(), path.c_str()) != 0) err = std::strerror(errno);
     if (!err.empty()) {
-        fs::remove(tmp, ec);
+        ::unlink(tmp.c_str());
         throw ImageError(path.string() + ": cannot write: " + err);
-    }
-    fs::rename(tmp, path, ec);
-    if (ec) {
-        fs::remove(tmp, ec);
-        throw ImageError(path.string() + ": cannot write: " + ec.message());
     }
 }
 
 ImageData read_image(const fs::path& path) {
+    try {
+        check_input_file(path, kMaxImageFileBytes, "images");
+    } catch (const std::runtime_error& e) {
+        throw ImageError(path.string() + ": cannot read image: " + e.what());
+    }
     auto in = OIIO::ImageInput::open(path.string());
     if (!in) {
         std::string err = OIIO::geterror();
@@ -119,6 +210,13 @@ ImageData read_image(const fs::path& path) {
     const OIIO::ImageSpec& spec = in->spec();
     if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
         throw ImageError(path.string() + ": empty image");
+    // The header's claims, checked before anything is allocated for them.
+    const uint64_t texels = uint64_t(spec.width) * uint64_t(spec.height);
+    if (texels > kMaxImageTexels || spec.nchannels > 64)
+        throw ImageError(path.string() + ": image of " + std::to_string(spec.width) + " x " +
+                         std::to_string(spec.height) + " x " + std::to_string(spec.nchannels) +
+                         " channels exceeds the limit of " + std::to_string(kMaxImageTexels) +
+                         " texels (and 64 channels)");
     const int channels = spec.nchannels;
     std::vector<float> data(static_cast<size_t>(spec.width) * spec.height * channels);
     if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, data.data()))

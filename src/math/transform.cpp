@@ -1,5 +1,6 @@
 #include "wavetrace/math/transform.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "wavetrace/math/constants.h"
@@ -103,6 +104,21 @@ bool Transform::preserves_shape(float* uniform_scale) const {
     }
     if (uniform_scale) *uniform_scale = std::sqrt(s2);
     return true;
+}
+
+bool Transform::is_well_conditioned(float max_scale) const {
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j)
+            if (!std::isfinite(m_[i][j]) || !std::isfinite(inv_[i][j])) return false;
+    // The largest entry of the linear part bounds how far it stretches; of its inverse, how
+    // far it shrinks.
+    float stretch = 0, shrink = 0;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+            stretch = std::max(stretch, std::fabs(m_[i][j]));
+            shrink = std::max(shrink, std::fabs(inv_[i][j]));
+        }
+    return stretch <= max_scale && shrink <= max_scale;
 }
 
 }  // namespace wavetrace

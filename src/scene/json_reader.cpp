@@ -44,8 +44,33 @@ void Value::fail(const std::string& message) const {
     throw SceneError(*file_ + ": " + (pointer_.empty() ? "/" : pointer_) + ": " + message);
 }
 
+namespace {
+
+// A JSON value written out up to about `budget` characters, without ever writing out (or
+// recursing through) more of a large or deep value than that.
+void describe_into(const json& j, size_t budget, std::string& out) {
+    if (out.size() >= budget) return;
+    if (j.is_array() || j.is_object()) {
+        out += j.is_array() ? '[' : '{';
+        bool first = true;
+        for (auto it = j.begin(); it != j.end(); ++it) {
+            if (out.size() >= budget) break;
+            if (!first) out += ", ";
+            first = false;
+            if (j.is_object()) out += json(it.key()).dump() + ": ";
+            describe_into(*it, budget, out);
+        }
+        out += j.is_array() ? ']' : '}';
+        return;
+    }
+    out += j.dump();
+}
+
+}  // namespace
+
 std::string Value::describe() const {
-    std::string s = j_->dump();
+    std::string s;
+    describe_into(*j_, 40, s);
     if (s.size() > 40) s = s.substr(0, 37) + "...";
     return s;
 }
@@ -190,6 +215,36 @@ void Object::finish() const {
 }
 
 json parse(const std::string& text, const std::string& file) {
+    // Deeply nested input is refused before parsing: nothing downstream (reading, error
+    // messages, freeing) then needs more than kMaxNesting levels of anything.
+    size_t at_line = 1, at_col = 0;
+    int depth = 0;
+    bool in_string = false, escaped = false;
+    for (char c : text) {
+        if (c == '\n') {
+            ++at_line;
+            at_col = 0;
+        } else {
+            ++at_col;
+        }
+        if (in_string) {
+            if (escaped)
+                escaped = false;
+            else if (c == '\\')
+                escaped = true;
+            else if (c == '"')
+                in_string = false;
+        } else if (c == '"') {
+            in_string = true;
+        } else if (c == '[' || c == '{') {
+            if (++depth > kMaxNesting)
+                throw SceneError(file + ":" + std::to_string(at_line) + ":" + std::to_string(at_col) +
+                                 ": nested deeper than " + std::to_string(kMaxNesting) +
+                                 " levels (the limit)");
+        } else if (c == ']' || c == '}') {
+            --depth;
+        }
+    }
     try {
         return json::parse(text);
     } catch (const json::parse_error& e) {

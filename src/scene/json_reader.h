@@ -72,7 +72,11 @@ class Object {
     std::vector<std::string> read_;
 };
 
-// Parses `text` from `file`; syntax errors become SceneErrors with line and column.
+// Arrays and objects nest at most this deep in a scene file (groups, textures in textures).
+inline constexpr int kMaxNesting = 64;
+
+// Parses `text` from `file`; syntax errors and nesting beyond kMaxNesting become SceneErrors
+// with line and column.
 json parse(const std::string& text, const std::string& file);
 
 }  // namespace wavetrace::json_reader

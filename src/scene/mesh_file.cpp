@@ -1,29 +1,104 @@
 #include "mesh_file.h"
 
+#include "io/input_file.h"
+
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
 #include <assimp/Importer.hpp>
+#include <cctype>
+#include <fstream>
+#include <sstream>
 #include <stdexcept>
 
 namespace wavetrace {
+namespace {
+
+size_t ply_type_size(const std::string& t) {
+    if (t == "char" || t == "uchar" || t == "int8" || t == "uint8") return 1;
+    if (t == "short" || t == "ushort" || t == "int16" || t == "uint16") return 2;
+    if (t == "int" || t == "uint" || t == "float" || t == "int32" || t == "uint32" ||
+        t == "float32")
+        return 4;
+    if (t == "double" || t == "float64") return 8;
+    throw std::runtime_error("PLY header: unknown property type '" + t + "'");
+}
+
+// Assimp 5.2's PLY reader hangs on a file that holds only the header's first lines, and reads
+// past the end of a binary body that was cut short (a segfault). So the header is read here
+// first: it must end with end_header, and a binary body must be at least as long as the
+// element counts in the header say (faces of at least 3 indices each).
+void check_ply(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::string header, line;
+    bool ended = false;
+    while (header.size() < 65536 && std::getline(in, line)) {
+        header += line + "\n";
+        if (line == "end_header" || line == "end_header\r") {
+            ended = true;
+            break;
+        }
+    }
+    if (!ended)
+        throw std::runtime_error("PLY header has no end_header line in its first 64 KiB (truncated?)");
+    std::istringstream lines(header);
+    bool binary = false;
+    uint64_t min_body = 0, count = 0;
+    while (std::getline(lines, line)) {
+        std::istringstream words(line);
+        std::string word;
+        words >> word;
+        if (word == "format") {
+            std::string format;
+            words >> format;
+            binary = format != "ascii";
+        } else if (word == "element") {
+            std::string name;
+            words >> name >> count;
+            if (!words || count > (uint64_t(1) << 31))
+                throw std::runtime_error("PLY header: bad element line '" + line + "'");
+        } else if (word == "property") {
+            std::string type, count_type, index_type, name;
+            words >> type;
+            if (type == "list") {
+                words >> count_type >> index_type >> name;
+                bool indices = name == "vertex_indices" || name == "vertex_index";
+                min_body += count * (ply_type_size(count_type) +
+                                     (indices ? 3 * ply_type_size(index_type) : 0));
+            } else {
+                min_body += count * ply_type_size(type);
+            }
+        }
+    }
+    if (!binary) return;
+    std::error_code ec;
+    uint64_t size = std::filesystem::file_size(path, ec);
+    if (!ec && size < header.size() + min_body)
+        throw std::runtime_error("binary PLY body is " + std::to_string(size - header.size()) +
+                                 " bytes, but its header announces at least " +
+                                 std::to_string(min_body) + " (truncated?)");
+}
+
+}  // namespace
 
 MeshFile read_mesh_file(const std::filesystem::path& path) {
-    std::error_code ec;
-    if (!std::filesystem::exists(path, ec)) throw std::runtime_error("no such file");
-    if (std::filesystem::is_directory(path, ec)) throw std::runtime_error("is a directory");
+    check_input_file(path, kMaxMeshFileBytes, "meshes");
     Assimp::Importer importer;
     std::string ext = path.extension().string();
     if (ext.empty() || !importer.IsExtensionSupported(ext))
         throw std::runtime_error("unsupported mesh format '" + ext +
                                  "' (Assimp reads e.g. .obj, .ply, .gltf, .glb, .stl)");
+    std::string lower = ext;
+    for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (lower == ".ply") check_ply(path);
     // Keep only triangles. Assimp's OBJ reader un-indexes faces; joining identical vertices
     // restores the shared indexing (and the memory) of the file.
     importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE,
                                 aiPrimitiveType_POINT | aiPrimitiveType_LINE);
     const aiScene* scene = importer.ReadFile(
-        path.string(), aiProcess_Triangulate | aiProcess_PreTransformVertices |
-                           aiProcess_SortByPType | aiProcess_JoinIdenticalVertices);
+        path.string(), aiProcess_ValidateDataStructure | aiProcess_Triangulate |
+                           aiProcess_PreTransformVertices | aiProcess_SortByPType |
+                           aiProcess_JoinIdenticalVertices);
     if (!scene || (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) || !scene->mRootNode)
         throw std::runtime_error(importer.GetErrorString());
 
@@ -54,6 +129,13 @@ MeshFile read_mesh_file(const std::filesystem::path& path) {
         for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
             const aiFace& face = mesh->mFaces[f];
             if (face.mNumIndices != 3) continue;
+            // Whatever the importer checked: an index past the mesh's vertices is an error.
+            for (int k = 0; k < 3; ++k)
+                if (face.mIndices[k] >= mesh->mNumVertices)
+                    throw std::runtime_error("face " + std::to_string(f) + " of mesh " +
+                                             std::to_string(m) + " uses vertex " +
+                                             std::to_string(face.mIndices[k]) + " of " +
+                                             std::to_string(mesh->mNumVertices));
             for (int k = 0; k < 3; ++k) out.indices.push_back(base + face.mIndices[k]);
         }
     }

@@ -7,6 +7,7 @@
 #include <map>
 #include <sstream>
 
+#include "io/input_file.h"
 #include "json_reader.h"
 #include "mesh_file.h"
 #include "wavetrace/image/image.h"
@@ -27,10 +28,12 @@ class Loader {
         : path_(path), file_(path.string()), options_(options) {}
 
     Scene load() {
+        try {
+            check_input_file(path_, kMaxSceneFileBytes, "scene files");
+        } catch (const std::runtime_error& e) {
+            throw SceneError(file_ + ": cannot open scene file: " + e.what());
+        }
         std::ifstream in(path_, std::ios::binary);
-        std::error_code ec;
-        if (fs::is_directory(path_, ec))
-            throw SceneError(file_ + ": is a directory, not a scene file");
         if (!in) throw SceneError(file_ + ": cannot open scene file: " + std::strerror(errno));
         std::stringstream text;
         text << in.rdbuf();
@@ -97,7 +100,12 @@ class Loader {
         c.look_from = point(o.required("look_from"));
         Value at = o.required("look_at");
         c.look_at = point(at);
-        if (c.look_at == c.look_from) at.fail("look_at must differ from look_from");
+        // A viewing direction shorter than this cannot be normalized in float: the camera frame
+        // would be infinite or NaN.
+        const float dist = length(c.look_at - c.look_from);
+        if (!(dist > 1e-6f * std::max(1.0f, max_component(abs(c.look_from)))))
+            at.fail("look_at must differ from look_from (they are " + std::to_string(dist) +
+                    " apart)");
         auto up = o.optional("up");
         if (up) c.up = up->nonzero_vec3();
         if (length(cross(normalize(c.up), normalize(c.look_at - c.look_from))) < 1e-6f) {
@@ -268,6 +276,8 @@ class Loader {
             if (ops != 1)
                 step.fail("expected exactly one of \"translate\", \"rotate\" or \"scale\"");
             t = s * t;  // steps apply in the order listed
+            if (!t.is_well_conditioned(kMaxCoordinate))
+                step.fail("the transform up to this step scales beyond [1e-7, 1e7] or overflows");
         }
         return t;
     }
@@ -291,7 +301,13 @@ class Loader {
         Value type_value = o.required("type");
         std::string type = type_value.string();
         Transform to_world = parent;
-        if (auto x = o.optional("transform")) to_world = parent * read_transform(*x);
+        if (auto x = o.optional("transform")) {
+            to_world = parent * read_transform(*x);
+            // Each step is in range, but their product, with the groups' above, may not be.
+            if (!to_world.is_well_conditioned(kMaxCoordinate))
+                x->fail("the composed transform (with its groups') scales beyond [1e-7, 1e7] "
+                        "or overflows");
+        }
 
         if (type == "group") {
             Value children = o.required("objects");
@@ -398,9 +414,10 @@ class Loader {
             box.grow(scene_.prim_bounds(PrimRef::make(PrimKind::Quad, static_cast<uint32_t>(i))));
         for (size_t i = before.spheres; i < now.spheres; ++i)
             box.grow(scene_.prim_bounds(PrimRef::make(PrimKind::Sphere, static_cast<uint32_t>(i))));
-        if (!box.empty() && (max_component(abs(box.lo)) > kMaxCoordinate ||
-                             max_component(abs(box.hi)) > kMaxCoordinate))
-            v.fail("after its transform the object reaches beyond +-1e7");
+        // Written so that NaN coordinates fail too.
+        if (!box.empty() && !(max_component(abs(box.lo)) <= kMaxCoordinate &&
+                              max_component(abs(box.hi)) <= kMaxCoordinate))
+            v.fail("after its transform the object reaches beyond +-1e7 (or is not finite)");
     }
 
     fs::path path_;

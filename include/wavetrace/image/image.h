@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
@@ -38,13 +39,21 @@ struct WriteOptions {
 bool is_ldr_path(const std::filesystem::path& path);
 // Throws ImageError unless the extension is one write_image() handles.
 void check_output_path(const std::filesystem::path& path);
+// check_output_path(), and that a file can be created there: not a directory, in an existing
+// folder we may write in. For checking before a long render.
+void check_output_writable(const std::filesystem::path& path);
 
 // Writes by extension: .png/.jpg/.jpeg as 8-bit sRGB (clamped), .exr (32-bit float),
-// .hdr, .pfm as linear float. The file appears atomically: it is written to a temporary file
-// in the same folder and renamed, so a failed write leaves no partial image.
+// .hdr, .pfm as linear float. The file appears atomically: it is encoded in memory, written to
+// a temporary file in the same folder with every write checked, flushed and renamed, so a
+// failed write (a full disk, a signal) keeps the previous file and leaves no temporary file.
 void write_image(const std::filesystem::path& path,
                  const Image& image,
                  const WriteOptions& options = {});
+
+// The most texels read_image() accepts (the header is checked before anything is allocated):
+// 2^26, e.g. 8192 x 8192, which take 768 MiB as linear RGB floats.
+inline constexpr uint64_t kMaxImageTexels = uint64_t(1) << 26;
 
 // Reads any image OpenImageIO can, as linear RGB: 8- and 16-bit integer files are taken as
 // sRGB-encoded and decoded; float files (EXR, HDR, PFM) as linear. Grey images are expanded.

@@ -23,6 +23,10 @@ class Transform {
     Normal3 normal(Normal3 n) const;  // not renormalized
 
     bool is_identity() const;
+    // True when the matrix and its inverse hold only finite numbers and the linear part's
+    // scale stays within [1/max_scale, max_scale]: a composition of valid steps can still
+    // overflow (six scales by 1e7) or vanish.
+    bool is_well_conditioned(float max_scale) const;
     // True when the transform mirrors (its linear part has a negative determinant): shapes
     // then need their winding flipped to keep their outside outside.
     bool flips_handedness() const;

@@ -12,6 +12,9 @@ namespace wavetrace {
 
 class Film {
   public:
+    // Memory per pixel: sums and sums of squares (3 doubles each) and a sample count.
+    static constexpr size_t kBytesPerPixel = 6 * sizeof(double) + sizeof(uint32_t);
+
     Film() = default;
     Film(int width, int height);
     Film(Film&& other) noexcept { *this = std::move(other); }

@@ -1,0 +1,249 @@
+// Hostile and broken input, one test per class an audit found crashing or hanging the CLI:
+// each must exit 2 with the file (and the place) named, write no image, and finish — the
+// command runs under `timeout 20`, so a hang fails as exit 124 instead of stalling the suite.
+// And the way out: failed writes exit non-zero, keep the previous file, leave no temporary.
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <zlib.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "temp_dir.h"
+#include "test_paths.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct CliRun {
+    int code;
+    std::string err;
+};
+
+// `prefix` runs before the CLI in the same shell (e.g. ulimit), `args` after it.
+CliRun run_cli(const TempDir& dir, const std::string& args, const std::string& prefix = "") {
+    std::string cmd = prefix + " timeout 20 '" + cli_path().string() + "' " + args + " > /dev/null 2> '" +
+                      (dir.path() / "stderr").string() + "'";
+    int status = std::system(("bash -c \"" + cmd + "\"").c_str());
+    std::stringstream s;
+    s << std::ifstream(dir.path() / "stderr").rdbuf();
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, s.str()};
+}
+
+const char* kHead = R"({"camera": {"look_from": [0, 0, -5], "look_at": [0, 0, 0]},
+ "materials": {"white": {"type": "lambertian", "albedo": [0.5, 0.5, 0.5]}},
+ "render": {"width": 16, "height": 16, "spp": 1}, )";
+
+// Renders `scene` (written as x.json) and expects exit 2, the message to contain `expect`,
+// and no image.
+void expect_refused(const TempDir& dir, const std::string& scene, const std::string& expect) {
+    fs::path p = dir.write("x.json", scene);
+    fs::path out = dir.path() / "out.png";
+    CliRun r = run_cli(dir, "render '" + p.string() + "' -o '" + out.string() + "'");
+    EXPECT_EQ(r.code, 2) << r.err;
+    EXPECT_NE(r.err.find(p.string()), std::string::npos) << "names the file: " << r.err;
+    EXPECT_NE(r.err.find(expect), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(out));
+}
+
+std::string mesh_scene(const std::string& file) {
+    return std::string(kHead) + R"("objects": [{"type": "mesh", "file": ")" + file +
+           R"(", "material": "white"}]})";
+}
+
+std::string nested(const std::string& open, const std::string& inner, const std::string& close,
+                   int depth) {
+    std::string s;
+    for (int i = 0; i < depth; ++i) s += open;
+    s += inner;
+    for (int i = 0; i < depth; ++i) s += close;
+    return s;
+}
+
+}  // namespace
+
+TEST(HostileInput, DeeplyNestedArraysAreRefused) {
+    TempDir dir;
+    expect_refused(dir, std::string(kHead) + R"("objects": )" + nested("[", "", "]", 10000) + "}",
+                   "x.json:3:");  // line:column of the level past the limit
+    expect_refused(dir, std::string(kHead) + R"("objects": [)" + nested("[", "", "]", 10000) + "]}",
+                   "nested deeper than 64 levels");
+}
+
+TEST(HostileInput, TexturesInsideTexturesAreRefused) {
+    TempDir dir;
+    std::string tex = nested(R"({"type": "checker", "scale": 1, "even": [0.5, 0.5, 0.5], "odd": )",
+                             "[0.1, 0.1, 0.1]", "}", 10000);
+    std::string scene = R"({"camera": {"look_from": [0, 0, -5], "look_at": [0, 0, 0]},
+ "materials": {"white": {"type": "lambertian", "albedo": )" + tex + R"(}}, "objects": []})";
+    expect_refused(dir, scene, "nested deeper than 64 levels");
+}
+
+TEST(HostileInput, DeeplyNestedObjectsAreRefused) {
+    TempDir dir;
+    expect_refused(dir, std::string(kHead) + R"("description": )" +
+                            nested(R"({"a": )", "1", "}", 10000) + R"(, "objects": []})",
+                   "nested deeper than 64 levels");
+}
+
+TEST(HostileInput, ThousandsOfNestedGroupsAreRefused) {
+    TempDir dir;
+    std::string groups = nested(R"({"type": "group", "objects": [)",
+                                R"({"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "white"})",
+                                "]}", 6000);
+    expect_refused(dir, std::string(kHead) + R"("objects": [)" + groups + "]}",
+                   "nested deeper than 64 levels");
+}
+
+TEST(HostileInput, PlyFaceIndexBeyondTheVerticesIsRefused) {
+    TempDir dir;
+    dir.write("bad.ply",
+              "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+              "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+              "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n");
+    expect_refused(dir, mesh_scene("bad.ply"), "/objects/0/file: cannot read mesh");
+}
+
+TEST(HostileInput, PlyWithOnlyItsFirstHeaderLineIsRefused) {
+    TempDir dir;
+    dir.write("head.ply", "ply\nformat ascii 1.0\n");
+    expect_refused(dir, mesh_scene("head.ply"), "no end_header");
+}
+
+TEST(HostileInput, TruncatedBinaryPlyIsRefused) {
+    TempDir dir;
+    std::ifstream in(scene_path("bunny").parent_path() / "meshes" / "bunny.ply", std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    ASSERT_GT(bytes.size(), 10000u);
+    dir.write("cut.ply", bytes.substr(0, bytes.size() - 5000));
+    expect_refused(dir, mesh_scene("cut.ply"), "truncated");
+}
+
+TEST(HostileInput, MeshPathThatIsAFifoIsRefused) {
+    TempDir dir;
+    ASSERT_EQ(::mkfifo((dir.path() / "fifo.obj").c_str(), 0600), 0);
+    expect_refused(dir, mesh_scene("fifo.obj"), "not a regular file (a FIFO)");
+}
+
+TEST(HostileInput, TexturePathThatIsADeviceIsRefused) {
+    TempDir dir;
+    std::string scene = R"({"camera": {"look_from": [0, 0, -5], "look_at": [0, 0, 0]},
+ "materials": {"tex": {"type": "lambertian", "albedo": {"type": "image", "file": "/dev/zero"}}},
+ "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "tex"}]})";
+    expect_refused(dir, scene, "/materials/tex/albedo/file: /dev/zero: cannot read image: not a regular file (a device)");
+}
+
+TEST(HostileInput, DeviceAsTheSceneFileIsRefused) {
+    TempDir dir;
+    fs::path out = dir.path() / "out.png";
+    CliRun r = run_cli(dir, "render /dev/zero -o '" + out.string() + "'");
+    EXPECT_EQ(r.code, 2) << r.err;
+    EXPECT_NE(r.err.find("/dev/zero: cannot open scene file: not a regular file (a device)"),
+              std::string::npos)
+        << r.err;
+    EXPECT_FALSE(fs::exists(out));
+}
+
+// A valid PNG whose header claims 100000 x 100000 pixels (chunk CRCs computed with zlib).
+TEST(HostileInput, ImageClaimingEnormousDimensionsIsRefusedFromItsHeader) {
+    TempDir dir;
+    auto chunk = [](const std::string& type, const std::string& data) {
+        auto be32 = [](uint32_t v) {
+            return std::string{char(v >> 24), char(v >> 16), char(v >> 8), char(v)};
+        };
+        std::string body = type + data;
+        uint32_t crc = crc32(0, reinterpret_cast<const Bytef*>(body.data()), body.size());
+        return be32(uint32_t(data.size())) + body + be32(crc);
+    };
+    std::string ihdr = std::string("\x00\x01\x86\xa0\x00\x01\x86\xa0", 8) + std::string("\x08\x02\x00\x00\x00", 5);
+    std::string png = std::string("\x89PNG\r\n\x1a\n", 8) + chunk("IHDR", ihdr) +
+                      chunk("IDAT", std::string("\x78\x9c\x03\x00\x00\x00\x00\x01", 8)) +
+                      chunk("IEND", "");
+    dir.write("huge.png", png);
+    std::string scene = R"({"camera": {"look_from": [0, 0, -5], "look_at": [0, 0, 0]},
+ "materials": {"tex": {"type": "lambertian", "albedo": {"type": "image", "file": "huge.png"}}},
+ "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "tex"}]})";
+    expect_refused(dir, scene, "image of 100000 x 100000 x 3 channels exceeds the limit");
+}
+
+TEST(HostileInput, ScalesWhoseProductOverflowsAreRefused) {
+    TempDir dir;
+    std::string steps;
+    for (int i = 0; i < 6; ++i) steps += std::string(i ? ", " : "") + R"({"scale": 1e7})";
+    expect_refused(dir, std::string(kHead) + R"("objects": [{"type": "sphere", "center": [0, 0, 0],
+ "radius": 1, "material": "white", "transform": [)" + steps + "]}]}",
+                   "/objects/0/transform/1: the transform up to this step scales beyond");
+    // The same overflow spread over nested groups is caught where the product is formed.
+    std::string inner = R"({"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "white"})";
+    for (int i = 0; i < 6; ++i)
+        inner = R"({"type": "group", "transform": [{"scale": 1e7}], "objects": [)" + inner + "]}";
+    expect_refused(dir, std::string(kHead) + R"("objects": [)" + inner + "]}",
+                   "the composed transform (with its groups') scales beyond");
+}
+
+TEST(HostileInput, DegenerateCameraIsRefused) {
+    TempDir dir;
+    expect_refused(dir, R"({"camera": {"look_from": [0, 0, 0], "look_at": [0, 0, 1e-30]},
+ "materials": {"white": {"type": "lambertian", "albedo": [0.5, 0.5, 0.5]}}, "objects": []})",
+                   "/camera/look_at: look_at must differ from look_from");
+}
+
+// ---- the way out --------------------------------------------------------------------------
+
+TEST(HostileOutput, OutputThatIsADirectoryIsRefusedBeforeRendering) {
+    TempDir dir;
+    fs::create_directories(dir.path() / "out.png");
+    CliRun r = run_cli(dir, "render '" + scene_path("cornell").string() + "' -o '" +
+                             (dir.path() / "out.png").string() + "'");
+    EXPECT_EQ(r.code, 2) << r.err;
+    EXPECT_NE(r.err.find("out.png: cannot write: is a directory"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("spp:"), std::string::npos) << "no render ran: " << r.err;
+}
+
+TEST(HostileOutput, UnwritableFolderIsRefusedBeforeRendering) {
+    TempDir dir;
+    // /proc refuses new files even to root, so this holds whoever runs the tests.
+    CliRun r = run_cli(dir, "render '" + scene_path("cornell").string() + "' -o /proc/x.png");
+    EXPECT_EQ(r.code, 2) << r.err;
+    EXPECT_NE(r.err.find("/proc/x.png: cannot write in folder '/proc'"), std::string::npos)
+        << r.err;
+}
+
+// A full disk, injected with the file-size limit (write() then fails with EFBIG, as it fails
+// with ENOSPC on a full disk): every format must fail, keep the previous file and leave no
+// temporary file behind.
+TEST(HostileOutput, FailedWriteKeepsThePreviousFileAndLeavesNoTemporary) {
+    for (const char* ext : {"png", "jpg", "exr", "hdr", "pfm"}) {
+        TempDir dir;
+        fs::path out = dir.path() / (std::string("out.") + ext);
+        std::ofstream(out) << "previous";
+        CliRun r = run_cli(dir,
+                        "render '" + scene_path("cornell").string() +
+                            "' --width 128 --height 128 --spp 1 -o '" + out.string() + "'",
+                        "trap '' XFSZ; ulimit -f 4;");  // 4 KiB
+        EXPECT_EQ(r.code, 1) << ext << ": " << r.err;
+        EXPECT_NE(r.err.find("cannot write: File too large"), std::string::npos) << r.err;
+        std::stringstream kept;
+        kept << std::ifstream(out).rdbuf();
+        EXPECT_EQ(kept.str(), "previous") << ext;
+        size_t files = 0;
+        for (const auto& e : fs::directory_iterator(dir.path()))
+            if (e.path().filename() != "stderr") ++files;
+        EXPECT_EQ(files, 1u) << ext << ": a temporary file was left behind";
+    }
+}
+
+TEST(HostileOutput, RunningOutOfMemoryIsAnErrorNotACrash) {
+    TempDir dir;
+    fs::path out = dir.path() / "big.exr";
+    // 16384 x 8192 pixels: the film alone needs 6.5 GiB; 3 GiB of address space is not enough.
+    CliRun r = run_cli(dir,
+                    "render '" + scene_path("cornell").string() +
+                        "' --width 16384 --height 8192 --spp 1 --threads 1 -o '" + out.string() + "'",
+                    "ulimit -v 3000000;");
+    EXPECT_EQ(r.code, 2) << r.err;
+    EXPECT_NE(r.err.find("out of memory rendering 16384 x 8192"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(out));
+}
