@@ -55,9 +55,9 @@ void describe_into(const json& j, size_t budget, std::string& out) {
         bool first = true;
         for (auto it = j.begin(); it != j.end(); ++it) {
             if (out.size() >= budget) break;
-            if (!first) out += ", ";
+            if (!first) out += ",";
             first = false;
-            if (j.is_object()) out += json(it.key()).dump() + ": ";
+            if (j.is_object()) out += json(it.key()).dump() + ":";
             describe_into(*it, budget, out);
         }
         out += j.is_array() ? ']' : '}';

@@ -104,8 +104,7 @@ class Loader {
         // would be infinite or NaN.
         const float dist = length(c.look_at - c.look_from);
         if (!(dist > 1e-6f * std::max(1.0f, max_component(abs(c.look_from)))))
-            at.fail("look_at must differ from look_from (they are " + std::to_string(dist) +
-                    " apart)");
+            at.fail("look_at must differ from look_from");
         auto up = o.optional("up");
         if (up) c.up = up->nonzero_vec3();
         if (length(cross(normalize(c.up), normalize(c.look_at - c.look_from))) < 1e-6f) {
@@ -417,7 +416,7 @@ class Loader {
         // Written so that NaN coordinates fail too.
         if (!box.empty() && !(max_component(abs(box.lo)) <= kMaxCoordinate &&
                               max_component(abs(box.hi)) <= kMaxCoordinate))
-            v.fail("after its transform the object reaches beyond +-1e7 (or is not finite)");
+            v.fail("after its transform the object reaches beyond +-1e7");
     }
 
     fs::path path_;
