@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
+
+#include <csignal>
 #include <zlib.h>
 
 #include <fstream>
@@ -233,6 +235,26 @@ TEST(HostileOutput, FailedWriteKeepsThePreviousFileAndLeavesNoTemporary) {
             if (e.path().filename() != "stderr") ++files;
         EXPECT_EQ(files, 1u) << ext << ": a temporary file was left behind";
     }
+}
+
+// A signal during the write: exceeding the file-size limit raises SIGXFSZ in the middle of
+// write(), which kills the process; the temporary file must be gone and the previous file kept.
+TEST(HostileOutput, SignalDuringTheWriteLeavesNoTemporary) {
+    TempDir dir;
+    fs::path out = dir.path() / "out.png";
+    std::ofstream(out) << "previous";
+    CliRun r = run_cli(dir,
+                       "render '" + scene_path("cornell").string() +
+                           "' --width 128 --height 128 --spp 1 -o '" + out.string() + "'",
+                       "ulimit -f 4;");
+    EXPECT_EQ(r.code, 128 + SIGXFSZ) << "killed by SIGXFSZ: " << r.err;
+    std::stringstream kept;
+    kept << std::ifstream(out).rdbuf();
+    EXPECT_EQ(kept.str(), "previous");
+    size_t files = 0;
+    for (const auto& e : fs::directory_iterator(dir.path()))
+        if (e.path().filename() != "stderr") ++files;
+    EXPECT_EQ(files, 1u) << "a temporary file was left behind";
 }
 
 TEST(HostileOutput, RunningOutOfMemoryIsAnErrorNotACrash) {

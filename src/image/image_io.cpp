@@ -62,7 +62,8 @@ extern "C" void remove_temp_and_reraise(int sig) {
     std::raise(sig);
 }
 
-// Registers `path` for removal on SIGINT, SIGTERM or SIGHUP while alive.
+// Registers `path` for removal on SIGINT, SIGTERM, SIGHUP or SIGXFSZ (the file-size limit
+// exceeded mid-write) while alive.
 class TempFileGuard {
   public:
     explicit TempFileGuard(const fs::path& path) {
@@ -70,19 +71,24 @@ class TempFileGuard {
         if (s.size() >= sizeof g_temp_path) return;
         std::memcpy(g_temp_path, s.c_str(), s.size() + 1);
         g_temp_active = 1;
-        for (int i = 0; i < 3; ++i) old_[i] = std::signal(kSignals[i], remove_temp_and_reraise);
+        for (int i = 0; i < kCount; ++i) {
+            old_[i] = std::signal(kSignals[i], remove_temp_and_reraise);
+            // An ignored signal (nohup, `trap '' XFSZ`) stays ignored.
+            if (old_[i] == SIG_IGN) std::signal(kSignals[i], SIG_IGN);
+        }
     }
     ~TempFileGuard() {
         if (!g_temp_active) return;
-        for (int i = 0; i < 3; ++i) std::signal(kSignals[i], old_[i]);
+        for (int i = 0; i < kCount; ++i) std::signal(kSignals[i], old_[i]);
         g_temp_active = 0;
     }
     TempFileGuard(const TempFileGuard&) = delete;
     TempFileGuard& operator=(const TempFileGuard&) = delete;
 
   private:
-    static constexpr int kSignals[3] = {SIGINT, SIGTERM, SIGHUP};
-    void (*old_[3])(int) = {};
+    static constexpr int kCount = 4;
+    static constexpr int kSignals[kCount] = {SIGINT, SIGTERM, SIGHUP, SIGXFSZ};
+    void (*old_[kCount])(int) = {};
 };
 
 // Writes all of `bytes` to a new file at `path` and flushes it to disk; returns the error, or
