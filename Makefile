@@ -4,7 +4,7 @@
 BUILD_DIR ?= build
 JOBS ?= $(shell nproc)
 
-.PHONY: all deps build demo test bench clean
+.PHONY: all deps build demo test bench clean sanitize-build sanitize fuzz
 
 all: build
 
@@ -27,6 +27,30 @@ test: build
 	@cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
 	@cat $(BUILD_DIR)/reports/*.txt 2>/dev/null || true
 
+# The sanitized build (clang, ASan + UBSan incl. float-cast-overflow, libFuzzer) in its own
+# folder, with only what its checks need. `make sanitize` (CI runs it after `make test`): the
+# loader, CLI, BVH and engine tests under the sanitizers, then each fuzz target for a fixed
+# number of executions. `make fuzz FUZZ_SECONDS=600`: explore longer and grow the corpus.
+SAN_DIR ?= build-sanitize
+SAN_TESTS ?= SceneLoader.*:Cli.*:Hostile*:Bvh.*:Triangle.*:Sphere.*:Quad.*:MeshFiles.*:Wavefront.*:Megakernel.*
+FUZZ_RUNS ?= 20000
+FUZZ_SECONDS ?= 600
+
+sanitize-build: deps
+	@cmake -S . -B $(SAN_DIR) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
+	  -DCMAKE_AR=/usr/bin/ar -DCMAKE_RANLIB=/usr/bin/ranlib -DCMAKE_LINKER=/usr/bin/ld \
+	  -DWAVETRACE_SANITIZE=ON -DWAVETRACE_FUZZ=ON --log-level=WARNING
+	@cmake --build $(SAN_DIR) -j $(JOBS) --target wavetrace_cli wavetrace_tests fuzz_scene fuzz_mesh
+
+sanitize: sanitize-build
+	@tools/check-deps.sh $(SAN_DIR)
+	@LSAN_OPTIONS=suppressions=$(CURDIR)/tests/fuzz/lsan.supp \
+	  $(SAN_DIR)/bin/wavetrace_tests --gtest_filter='$(SAN_TESTS)' --gtest_brief=1
+	@tools/run-fuzzers.sh $(SAN_DIR) --runs $(FUZZ_RUNS)
+
+fuzz: sanitize-build
+	@tools/run-fuzzers.sh $(SAN_DIR) --seconds $(FUZZ_SECONDS)
+
 # The benchmark suite: both engines side by side, our BVH vs Embree, thread scaling,
 # convergence, kernel micro-benchmarks; results/ gets JSON, CSV and SVG plots.
 bench: build
@@ -37,4 +61,4 @@ bench: build
 	@echo "results in results/ (JSON, CSV, SVG)"
 
 clean:
-	rm -rf $(BUILD_DIR) out
+	rm -rf $(BUILD_DIR) $(SAN_DIR) out

@@ -11,7 +11,9 @@
 #   - every file that our dependencies' imported targets name (locations of libraries and
 #     tools, include directories, link items; written by cmake/ReferencedFiles.cmake),
 #   - every header the compiler read (the *.o.d depfiles),
-#   - every library on a link line (link.txt, with -lNAME resolved as the linker would),
+#   - every library on a link line (link.txt, with -lNAME resolved as the linker would), and
+#     what the compiler driver adds to the link by itself (crt files, libstdc++, sanitizer and
+#     libFuzzer runtimes; asked of the driver with -###),
 #   - every shared library the built programs load (ldd),
 #   - the tools the build and the tests run (compiler, make, cmake, ctest, and the commands
 #     the checks themselves call).
@@ -76,6 +78,20 @@ for flag in $(grep '^-l' "$tmp/link" || true); do
     printf 'link line (%s)\t%s\n' "$flag" "(not found)" >>"$refs"
   fi
 done
+
+# What the compiler driver adds to each link by itself (crt files, libstdc++, the sanitizer
+# and libFuzzer runtimes of -fsanitize=...): asked of the driver with -### and the link's flags.
+find "$build" -name link.txt -print0 | xargs -0 -r -n1 sh -c \
+  'set -- $(cat "$0"); cc=$1; shift; flags=""; for a in "$@"; do case "$a" in -f*|-m*|-static*|-shared|-pie|-no-pie) flags="$flags $a";; esac; done; echo "$cc$flags"' |
+  sort -u >"$tmp/drivers"
+: >"$tmp/empty.o"
+while read -r cc flags; do
+  case "$(basename "$cc")" in *ar|*ranlib) continue ;; esac  # static libraries: no link
+  # shellcheck disable=SC2086
+  { "$cc" $flags -### "$tmp/empty.o" -o "$tmp/a.out" 2>&1 || true; } | tail -1 |
+    tr ' ' '\n' | tr -d '"' | { grep '^/' || true; } | { grep -v "^$tmp" || true; } |
+    sed "s|^|implicit link input ($(basename "$cc"))\t|"
+done <"$tmp/drivers" >>"$refs"
 
 # Shared libraries the built programs load.
 for exe in "$build"/bin/*; do
@@ -205,7 +221,7 @@ printf 'check-deps: install-deps.sh names %d packages, whose Depends/Pre-Depends
 printf 'check-deps: Essential and required packages holds %d' "$nclosure"
 [[ ${#without[@]} -gt 0 ]] && printf ' (without %s)' "${without[*]}"
 printf '\n'
-awk -F'\t' '{ print $1 }' "$tmp/refs.ext" | sed 's/ (.*//; s/^loaded by .*/shared library loaded by a program/; s/^tool .*/tool/; s/^imported target .*/imported target file/' |
+awk -F'\t' '{ print $1 }' "$tmp/refs.ext" | sed 's/ (.*//; s/^loaded by .*/shared library loaded by a program/; s/^tool .*/tool/; s/^imported target .*/imported target file/; s/^implicit link input.*/implicit link input (compiler driver)/' |
   sort | uniq -c | sed 's/^ */check-deps:   /'
 
 status=0

@@ -17,6 +17,7 @@ packages=(
   libfmt-dev            # formatting
   libgtest-dev libgmock-dev
   libbenchmark-dev
+  clang libclang-rt-14-dev  # make sanitize / make fuzz: ASan, UBSan and libFuzzer runtimes
 )
 
 # `install-deps.sh --bench` adds what `make bench` needs beyond the build: gnuplot for plots.

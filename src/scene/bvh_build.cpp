@@ -50,10 +50,13 @@ struct Binner {
     Aabb centroids;
     int bins;
     // The bin of centroid coordinate c on `axis`; binning and partitioning must agree on it.
+    // An axis along which all centroids coincide puts everything in bin 0 (it is never split
+    // on; 0 * (bins / 0) would be NaN, whose conversion to int is undefined).
     int bin_of(float c, int axis) const {
         float lo = centroids.lo[axis], extent = centroids.hi[axis] - centroids.lo[axis];
-        int b = static_cast<int>((c - lo) * (static_cast<float>(bins) / extent));
-        return std::clamp(b, 0, bins - 1);
+        if (!(extent > 0.0f)) return 0;
+        float b = (c - lo) * (static_cast<float>(bins) / extent);
+        return std::clamp(static_cast<int>(std::min(b, static_cast<float>(bins - 1))), 0, bins - 1);
     }
 };
 

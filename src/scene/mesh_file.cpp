@@ -6,7 +6,6 @@
 #include <assimp/scene.h>
 
 #include <assimp/Importer.hpp>
-#include <cctype>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -88,19 +87,43 @@ MeshFile read_mesh_file(const std::filesystem::path& path) {
     if (ext.empty() || !importer.IsExtensionSupported(ext))
         throw std::runtime_error("unsupported mesh format '" + ext +
                                  "' (Assimp reads e.g. .obj, .ply, .gltf, .glb, .stl)");
-    std::string lower = ext;
-    for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    if (lower == ".ply") check_ply(path);
+    // Assimp picks a reader by content when the extension's reader declines, so a PLY file
+    // is recognised by its magic number, whatever its name (a .gltf holding a broken PLY hung
+    // Assimp's PLY reader; found by tests/fuzz/fuzz_mesh).
+    {
+        char magic[3] = {};
+        std::ifstream in(path, std::ios::binary);
+        in.read(magic, 3);
+        if (in.gcount() == 3 && std::string(magic, 3) == "ply") check_ply(path);
+    }
     // Keep only triangles. Assimp's OBJ reader un-indexes faces; joining identical vertices
     // restores the shared indexing (and the memory) of the file.
     importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE,
                                 aiPrimitiveType_POINT | aiPrimitiveType_LINE);
-    const aiScene* scene = importer.ReadFile(
-        path.string(), aiProcess_ValidateDataStructure | aiProcess_Triangulate |
-                           aiProcess_PreTransformVertices | aiProcess_SortByPType |
-                           aiProcess_JoinIdenticalVertices);
+    // Read and validate first, check the faces ourselves, and only then post-process:
+    // Assimp's post-processing steps assert (abort the process) on faces that its readers let
+    // through, e.g. a binary PLY face with no indices (found by tests/fuzz/fuzz_mesh).
+    const aiScene* scene = importer.ReadFile(path.string(), aiProcess_ValidateDataStructure);
     if (!scene || (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) || !scene->mRootNode)
         throw std::runtime_error(importer.GetErrorString());
+    for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
+        const aiMesh* mesh = scene->mMeshes[m];
+        for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
+            const aiFace& face = mesh->mFaces[f];
+            if (face.mNumIndices == 0 || !face.mIndices)
+                throw std::runtime_error("face " + std::to_string(f) + " of mesh " +
+                                         std::to_string(m) + " has no vertices");
+            for (unsigned k = 0; k < face.mNumIndices; ++k)
+                if (face.mIndices[k] >= mesh->mNumVertices)
+                    throw std::runtime_error("face " + std::to_string(f) + " of mesh " +
+                                             std::to_string(m) + " uses vertex " +
+                                             std::to_string(face.mIndices[k]) + " of " +
+                                             std::to_string(mesh->mNumVertices));
+        }
+    }
+    scene = importer.ApplyPostProcessing(aiProcess_Triangulate | aiProcess_PreTransformVertices |
+                                         aiProcess_SortByPType | aiProcess_JoinIdenticalVertices);
+    if (!scene || !scene->mRootNode) throw std::runtime_error(importer.GetErrorString());
 
     MeshFile out;
     bool all_normals = true, all_uvs = true;
@@ -129,14 +152,12 @@ MeshFile read_mesh_file(const std::filesystem::path& path) {
         for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
             const aiFace& face = mesh->mFaces[f];
             if (face.mNumIndices != 3) continue;
-            // Whatever the importer checked: an index past the mesh's vertices is an error.
-            for (int k = 0; k < 3; ++k)
+            // Indices were checked before post-processing; check what it made of them too.
+            for (int k = 0; k < 3; ++k) {
                 if (face.mIndices[k] >= mesh->mNumVertices)
-                    throw std::runtime_error("face " + std::to_string(f) + " of mesh " +
-                                             std::to_string(m) + " uses vertex " +
-                                             std::to_string(face.mIndices[k]) + " of " +
-                                             std::to_string(mesh->mNumVertices));
-            for (int k = 0; k < 3; ++k) out.indices.push_back(base + face.mIndices[k]);
+                    throw std::runtime_error("a face index past the vertices after processing");
+                out.indices.push_back(base + face.mIndices[k]);
+            }
         }
     }
     if (out.indices.empty()) throw std::runtime_error("the file holds no triangles");

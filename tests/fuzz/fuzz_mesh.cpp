@@ -1,0 +1,36 @@
+// libFuzzer target: a mesh file through read_mesh_file (Assimp plus our own checks). The first
+// byte picks the format (the extension Assimp dispatches on), the rest is the file.
+#include <unistd.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+#include <string>
+
+#include "scene/mesh_file.h"
+
+namespace fs = std::filesystem;
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+    if (size < 1) return 0;
+    static const char* kExtensions[] = {".ply", ".obj", ".stl", ".gltf", ".glb", ".off"};
+    static const fs::path dir = [] {
+        fs::path d =
+            fs::temp_directory_path() / ("wavetrace-fuzz-mesh-" + std::to_string(::getpid()));
+        fs::create_directories(d);
+        return d;
+    }();
+    const fs::path file = dir / (std::string("m") + kExtensions[data[0] % 6]);
+    {
+        std::ofstream out(file, std::ios::binary | std::ios::trunc);
+        out.write(reinterpret_cast<const char*>(data + 1), static_cast<std::streamsize>(size - 1));
+    }
+    try {
+        wavetrace::MeshFile mesh = wavetrace::read_mesh_file(file);
+        (void)wavetrace::smooth_normals(mesh.positions, mesh.indices);
+    } catch (const std::runtime_error&) {
+    }
+    fs::remove(file);
+    return 0;
+}

@@ -1,0 +1,54 @@
+// libFuzzer target: a scene file, through the whole loader and the BVH build. The input is
+// written as x.json into a private folder that also holds small meshes and textures under
+// the names the shipped scenes use (meshes/bunny.ply, textures/*.png, ...), so that mutated
+// scenes exercise the mesh and image paths too. Errors (SceneError, ImageError) are the
+// expected outcome of bad input; a crash, a hang, a leak or a sanitizer report is a finding.
+#include <unistd.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "wavetrace/wavetrace.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path setup() {
+    fs::path dir = fs::temp_directory_path() / ("wavetrace-fuzz-scene-" + std::to_string(::getpid()));
+    fs::create_directories(dir / "meshes");
+    fs::create_directories(dir / "textures");
+    const fs::path data = WAVETRACE_FUZZ_DATA_DIR;
+    // Small stand-ins for the shipped scenes' big meshes, and the real (small) textures.
+    for (const char* name : {"bunny.ply", "dragon_100k.obj"})
+        fs::copy_file(data / (std::string("standin") + fs::path(name).extension().string()),
+                      dir / "meshes" / name, fs::copy_options::overwrite_existing);
+    for (const auto& e : fs::directory_iterator(fs::path(WAVETRACE_SCENES_DIR) / "textures"))
+        fs::copy_file(e.path(), dir / "textures" / e.path().filename(),
+                      fs::copy_options::overwrite_existing);
+    return dir;
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+    static const fs::path dir = setup();
+    const fs::path scene_file = dir / "x.json";
+    {
+        std::ofstream out(scene_file, std::ios::binary | std::ios::trunc);
+        out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
+    }
+    wavetrace::LoadOptions options;
+    options.warn = [](const std::string&) {};
+    try {
+        wavetrace::Scene scene = wavetrace::load_scene(scene_file, options);
+        // Keep the build small: the loader's limits allow far bigger scenes than a fuzzer
+        // should spend its time on.
+        if (scene.primitive_count() <= 100000) (void)wavetrace::Bvh::build(scene);
+    } catch (const wavetrace::SceneError&) {
+    } catch (const wavetrace::ImageError&) {
+    }
+    return 0;
+}

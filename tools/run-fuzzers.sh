@@ -1,0 +1,50 @@
+#!/usr/bin/env bash
+# Runs the libFuzzer targets of a sanitized build (make sanitize, make fuzz).
+#
+#   tools/run-fuzzers.sh BUILD_DIR --runs N      what CI runs: N executions per target from a
+#                                                fixed seed, on a copy of the committed corpus
+#                                                (the same inputs every time)
+#   tools/run-fuzzers.sh BUILD_DIR --seconds S   explore for S seconds per target and merge the
+#                                                inputs that grow coverage into tests/fuzz/corpus
+#
+# Any crash, sanitizer report, leak (LSan; see tests/fuzz/lsan.supp), hang (over 10 s on one
+# input) or memory blow-up (over 4 GiB) fails the run; the input is kept in BUILD_DIR/fuzz-artifacts.
+set -euo pipefail
+[[ $# -eq 3 && ( "$2" == "--runs" || "$2" == "--seconds" ) ]] ||
+  { echo "usage: $0 BUILD_DIR --runs N | --seconds S" >&2; exit 2; }
+build=$(cd "$1" && pwd)
+mode=$2 amount=$3
+root=$(cd "$(dirname "$0")/.." && pwd)
+export LSAN_OPTIONS="suppressions=$root/tests/fuzz/lsan.supp"
+mkdir -p "$build/fuzz-artifacts"
+common=(-seed=1 -timeout=10 -rss_limit_mb=4096 -print_final_stats=1
+        "-artifact_prefix=$build/fuzz-artifacts/")
+for target in scene mesh; do
+  work=$(mktemp -d)
+  trap 'rm -rf "$work"' EXIT
+  log="$build/fuzz-$target.log"
+  if [[ "$mode" == "--runs" ]]; then
+    cp "$root/tests/fuzz/corpus/$target/"* "$work/"
+    args=("$work" -runs="$amount")
+  else
+    args=("$work" "$root/tests/fuzz/corpus/$target" -max_total_time="$amount")
+  fi
+  start=$(date +%s)
+  if ! "$build/bin/fuzz_$target" "${common[@]}" "${args[@]}" >"$log" 2>&1; then
+    echo "fuzz_$target: FAILED (log: $log); the input is in $build/fuzz-artifacts/:" >&2
+    grep -E "ERROR|SUMMARY|runtime error|assert|Test unit written" "$log" | head -20 >&2
+    exit 1
+  fi
+  runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log")
+  cov=$(grep -oE 'cov: [0-9]+' "$log" | tail -1)
+  echo "fuzz_$target: $runs executions in $(( $(date +%s) - start )) s, $cov, no crash, hang or leak"
+  if [[ "$mode" == "--seconds" ]]; then
+    # Keep only what adds coverage: merge the session's inputs into the committed corpus.
+    before=$(ls "$root/tests/fuzz/corpus/$target" | wc -l)
+    "$build/bin/fuzz_$target" -merge=1 "${common[@]}" "$root/tests/fuzz/corpus/$target" "$work" \
+      >>"$log" 2>&1
+    echo "fuzz_$target: corpus $before -> $(ls "$root/tests/fuzz/corpus/$target" | wc -l) inputs"
+  fi
+  rm -rf "$work"
+  trap - EXIT
+done
