@@ -5,7 +5,10 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <assimp/BaseImporter.h>
 #include <assimp/Importer.hpp>
+#include <assimp/importerdesc.h>
+#include <cctype>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -78,6 +81,26 @@ void check_ply(const std::filesystem::path& path) {
                                  std::to_string(min_body) + " (truncated?)");
 }
 
+// Assimp reads a file with the reader of its extension; where several readers share one
+// (.gltf: glTF 1 and glTF 2) and none recognises the content, it falls back to trying every
+// reader on the content, which handed a broken PLY named .gltf to the PLY reader, where it
+// hung (found by tests/fuzz/fuzz_mesh). Such files are refused here instead.
+void refuse_unrecognised(const Assimp::Importer& importer,
+                         const std::filesystem::path& path,
+                         const std::string& extension) {
+    std::vector<size_t> readers;
+    for (size_t i = 0; i < importer.GetImporterCount(); ++i) {
+        std::istringstream list(importer.GetImporterInfo(i)->mFileExtensions);
+        for (std::string e; list >> e;)
+            if (e == extension) readers.push_back(i);
+    }
+    if (readers.size() <= 1) return;  // one reader: Assimp uses it, with no fallback
+    for (size_t i : readers)
+        if (importer.GetImporter(i)->CanRead(path.string(), importer.GetIOHandler(), false))
+            return;
+    throw std::runtime_error("not a ." + extension + " file that its readers recognise");
+}
+
 }  // namespace
 
 MeshFile read_mesh_file(const std::filesystem::path& path) {
@@ -87,15 +110,10 @@ MeshFile read_mesh_file(const std::filesystem::path& path) {
     if (ext.empty() || !importer.IsExtensionSupported(ext))
         throw std::runtime_error("unsupported mesh format '" + ext +
                                  "' (Assimp reads e.g. .obj, .ply, .gltf, .glb, .stl)");
-    // Assimp picks a reader by content when the extension's reader declines, so a PLY file
-    // is recognised by its magic number, whatever its name (a .gltf holding a broken PLY hung
-    // Assimp's PLY reader; found by tests/fuzz/fuzz_mesh).
-    {
-        char magic[3] = {};
-        std::ifstream in(path, std::ios::binary);
-        in.read(magic, 3);
-        if (in.gcount() == 3 && std::string(magic, 3) == "ply") check_ply(path);
-    }
+    std::string lower = ext.substr(1);
+    for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (lower == "ply") check_ply(path);
+    refuse_unrecognised(importer, path, lower);
     // Keep only triangles. Assimp's OBJ reader un-indexes faces; joining identical vertices
     // restores the shared indexing (and the memory) of the file.
     importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE,
