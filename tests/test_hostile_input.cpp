@@ -130,6 +130,13 @@ TEST(HostileInput, BrokenPlyUnderAnotherExtensionIsRefused) {
     expect_refused(dir, mesh_scene("m.gltf"), "not a .gltf file that its readers recognise");
 }
 
+// Found by tests/fuzz/fuzz_mesh: Assimp's OFF reader allocates what the header asks for.
+TEST(HostileInput, OffHeaderClaimingBillionsOfVerticesIsRefused) {
+    TempDir dir;
+    dir.write("big.off", "OFF\n11111111111 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n");
+    expect_refused(dir, mesh_scene("big.off"), "OFF header announces 11111111111 elements");
+}
+
 TEST(HostileInput, PlyWithOnlyItsFirstHeaderLineIsRefused) {
     TempDir dir;
     dir.write("head.ply", "ply\nformat ascii 1.0\n");

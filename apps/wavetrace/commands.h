@@ -18,6 +18,7 @@ struct RenderOptions {
     // Not given: the scene file's value (or the engine's default, for the wave size).
     std::optional<int> width, height, spp, max_depth;
     std::optional<long long> wave_size;
+    std::optional<double> time_limit;  // seconds: start no pass after this
     uint64_t seed = 0;
     int threads = 0;  // 0: all hardware threads
     std::string aov = "color";

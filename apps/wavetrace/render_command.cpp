@@ -3,7 +3,9 @@
 #include <tbb/global_control.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <chrono>
+#include <csignal>
 #include <cmath>
 #include <iostream>
 #include <mutex>
@@ -42,11 +44,29 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
         ->capture_default_str();
     cmd->add_option("--max-depth", o.max_depth,
                     "most ray segments per path (default: the scene's)");
+    cmd->add_option("--time-limit", o.time_limit,
+                    "render whole passes (one sample per pixel) until SECONDS have passed, then "
+                    "write the image of the passes done");
     cmd->add_option("--wave-size", o.wave_size,
                     "wavefront: paths in flight per wave (default 65536, at most the pixel count)");
 }
 
 namespace {
+
+// The first SIGINT or SIGTERM asks the render to stop at the next pass boundary (the image of
+// the completed passes is then written, and the process exits 130 / 143); a second SIGINT
+// aborts at once.
+std::atomic<int> g_stop_signal{0};
+static_assert(std::atomic<int>::is_always_lock_free, "read and written in a signal handler");
+
+extern "C" void on_stop_signal(int sig) {
+    if (sig == SIGINT && g_stop_signal.load() != 0) {
+        std::signal(SIGINT, SIG_DFL);
+        std::raise(SIGINT);
+        return;
+    }
+    g_stop_signal.store(sig);
+}
 
 // The process's peak resident set so far (getrusage reports KiB on Linux).
 double peak_rss_mib() {
@@ -114,6 +134,9 @@ std::optional<std::string> check_options(const RenderOptions& o, const RenderSet
     if (auto e = out_of_range("--spp", o.spp, 1, kMaxSpp)) return e;
     if (auto e = out_of_range("--max-depth", o.max_depth, 1, kMaxDepth)) return e;
     if (auto e = out_of_range("--wave-size", o.wave_size, 1, 1LL << 26)) return e;
+    if (o.time_limit && !(*o.time_limit > 0 && *o.time_limit < 1e9))
+        return fmt::format("--time-limit: expected a positive number of seconds, got {}",
+                           *o.time_limit);
     if (o.threads < 0)
         return fmt::format("--threads: expected a positive count, got {}", o.threads);
     if (!std::isfinite(o.exposure) || std::fabs(o.exposure) > 64)
@@ -132,7 +155,8 @@ void render_to_image(const RenderOptions& o,
                      const fs::path& output,
                      WriteOptions* write_out,
                      Image* image_out,
-                     std::string* summary_out) {
+                     std::string* summary_out,
+                     int* spp_done_out) {
     Bvh bvh = Bvh::build(scene);
     WriteOptions& write = *write_out;
     Image& image = *image_out;
@@ -152,23 +176,40 @@ void render_to_image(const RenderOptions& o,
         Progress progress(config);
         WavefrontConfig wavefront;
         if (o.wave_size) wavefront.wave_size = static_cast<size_t>(*o.wave_size);
+        const auto render_start = std::chrono::steady_clock::now();
+        config.stop = [&] {
+            if (g_stop_signal.load() != 0) return true;
+            if (!o.time_limit) return false;
+            return std::chrono::duration<double>(std::chrono::steady_clock::now() - render_start)
+                       .count() >= *o.time_limit;
+        };
+        std::signal(SIGINT, on_stop_signal);
+        std::signal(SIGTERM, on_stop_signal);
         Film film =
             o.engine == "megakernel"
                 ? render_megakernel(scene, bvh, config, &stats, progress.callback())
                 : render_wavefront(scene, bvh, config, wavefront, &stats, progress.callback());
         progress.finish();
+        *spp_done_out = stats.spp_done;
         image = film.mean();
         write.metadata.insert(write.metadata.end(),
                               {{"wavetrace:engine", o.engine},
                                {"wavetrace:strategy", o.strategy},
                                {"wavetrace:mis_heuristic", o.heuristic},
-                               {"wavetrace:spp", std::to_string(config.spp)},
+                               {"wavetrace:spp", std::to_string(stats.spp_done)},
+                               {"wavetrace:spp_requested", std::to_string(config.spp)},
                                {"wavetrace:max_depth", std::to_string(config.max_depth)},
                                {"wavetrace:render_seconds", fmt::format("{:.3f}", stats.seconds)}});
+        std::string stopped;
+        if (stats.spp_done < config.spp)
+            stopped = fmt::format(" of {} requested ({})", config.spp,
+                                  g_stop_signal.load() == SIGINT    ? "interrupted"
+                                  : g_stop_signal.load() == SIGTERM ? "terminated"
+                                                                    : "time limit reached");
         summary = fmt::format(
-            "{} {} {}x{} {} spp: {:.2f} s, {:.2f} Mpaths/s, {:.2f} Mrays/s, "
+            "{} {} {}x{} {} spp{}: {:.2f} s, {:.2f} Mpaths/s, {:.2f} Mrays/s, "
             "{} invalid samples, peak memory {:.1f} MiB",
-            o.engine, o.strategy, width, height, config.spp, stats.seconds,
+            o.engine, o.strategy, width, height, stats.spp_done, stopped, stats.seconds,
             stats.paths / stats.seconds * 1e-6, stats.rays / stats.seconds * 1e-6,
             film.invalid_samples(), peak_rss_mib());
     } else {
@@ -211,8 +252,9 @@ int run_render(const RenderOptions& o) {
     WriteOptions write;
     Image image;
     std::string summary;
+    int spp_done = -1;  // -1: not a pass-based render (AOVs)
     try {
-        render_to_image(o, scene, width, height, output, &write, &image, &summary);
+        render_to_image(o, scene, width, height, output, &write, &image, &summary, &spp_done);
     } catch (const std::bad_alloc&) {
         // Name what needed the memory and what would fit, instead of dying on SIGABRT.
         const double pixels = double(width) * height;
@@ -223,6 +265,13 @@ int run_render(const RenderOptions& o) {
             "(--width/--height) or on a machine with more memory\n",
             width, height, film_mib, Film::kBytesPerPixel);
         return kExitBadInput;
+    }
+    // Stopped by a signal: exit as the shell expects of it (128 + signal), after writing
+    // the image of the completed passes, if there are any.
+    const int signal_exit = g_stop_signal.load() != 0 ? 128 + g_stop_signal.load() : 0;
+    if (spp_done == 0) {
+        std::cerr << "wavetrace: stopped before the first pass completed; no image written\n";
+        return signal_exit != 0 ? signal_exit : kExitFailure;
     }
     try {
         write_image(output, image, write);
@@ -235,7 +284,7 @@ int run_render(const RenderOptions& o) {
     std::cerr << fmt::format("wavetrace: {} -> {} ({:.2f} s in all)\n", summary, output.string(),
                              seconds);
     std::cout << output.string() << "\n";
-    return kExitOk;
+    return signal_exit != 0 ? signal_exit : kExitOk;
 }
 
 }  // namespace wavetrace::cli

@@ -10,7 +10,18 @@ Film render_megakernel(const Scene& scene,
                        const RenderConfig& config,
                        RenderStats* stats,
                        const ProgressCallback& progress) {
-    return megakernel(scene, bvh, config, stats, progress);
+    Film film(config.width, config.height);
+    megakernel(scene, bvh, config, film, stats, progress);
+    return film;
+}
+
+void render_megakernel(const Scene& scene,
+                       const Bvh& bvh,
+                       const RenderConfig& config,
+                       Film& film,
+                       RenderStats* stats,
+                       const ProgressCallback& progress) {
+    megakernel(scene, bvh, config, film, stats, progress);
 }
 
 }  // namespace wavetrace

@@ -7,6 +7,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 
@@ -90,53 +91,69 @@ Color ray_color(PathContext<Tracer>& ctx,
 }  // namespace megakernel_detail
 
 template <Intersector Tracer>
-Film megakernel(const Scene& scene,
+void megakernel(const Scene& scene,
                 const Tracer& bvh,
-                       const RenderConfig& config,
-                       RenderStats* stats,
-                       const ProgressCallback& progress) {
+                const RenderConfig& config,
+                Film& film,
+                RenderStats* stats,
+                const ProgressCallback& progress) {
     using megakernel_detail::kTile;
     auto start = std::chrono::steady_clock::now();
-    Film film(config.width, config.height);
     LightSet lights(scene);
     CameraRays camera(scene.camera, config.width, config.height);
     const MediumStack camera_media = media_at(scene, bvh, scene.camera.look_from);
     const int tiles_x = (config.width + kTile - 1) / kTile;
     const int tiles_y = (config.height + kTile - 1) / kTile;
+    const int tiles = tiles_x * tiles_y;
     std::atomic<uint64_t> rays{0};
-    std::atomic<int> tiles_done{0};
+    std::atomic<int64_t> tiles_done{0};  // tile passes, weighted by their sample counts
 
-    tbb::parallel_for(
-        tbb::blocked_range<int>(0, tiles_x * tiles_y), [&](const tbb::blocked_range<int>& r) {
+    // Passes of samples over all tiles: a stop between passes leaves every pixel with the same
+    // number of samples, and each pixel still receives its samples in order, so the image does
+    // not depend on how the samples were split. Without a stop function the render is one
+    // pass; with one, passes last about half a second: long enough that a tile keeps its
+    // samples together (its part of the BVH stays in cache), short enough to stop promptly.
+    int done = 0, chunk = 1;
+    while (done < config.spp) {
+        if (config.stop && config.stop()) break;
+        const int count = config.stop ? std::min(chunk, config.spp - done) : config.spp - done;
+        const uint32_t first = static_cast<uint32_t>(config.first_sample + done);
+        const auto pass_start = std::chrono::steady_clock::now();
+        tbb::parallel_for(tbb::blocked_range<int>(0, tiles), [&](const tbb::blocked_range<int>& r) {
             for (int tile = r.begin(); tile < r.end(); ++tile) {
                 const int x0 = (tile % tiles_x) * kTile, y0 = (tile / tiles_x) * kTile;
                 uint64_t tile_rays = 0;
                 for (int y = y0; y < std::min(y0 + kTile, config.height); ++y)
                     for (int x = x0; x < std::min(x0 + kTile, config.width); ++x) {
                         const uint32_t pixel = static_cast<uint32_t>(y) * config.width + x;
-                        for (int i = 0; i < config.spp; ++i) {
-                            megakernel_detail::PathContext<Tracer> ctx{
-                                scene, bvh, lights, config, pixel, static_cast<uint32_t>(i)};
-                            Ray ray = generate_camera_ray(camera, config.seed, pixel, i, x, y);
-                            Color c = megakernel_detail::ray_color(ctx, ray, 0, camera_media, PreviousVertex{ray.o},
-                                                Color(1.0f));
+                        for (uint32_t sample = first; sample < first + uint32_t(count); ++sample) {
+                            megakernel_detail::PathContext<Tracer> ctx{scene,  bvh,   lights,
+                                                                       config, pixel, sample};
+                            Ray ray = generate_camera_ray(camera, config.seed, pixel, sample, x, y);
+                            Color c = megakernel_detail::ray_color(
+                                ctx, ray, 0, camera_media, PreviousVertex{ray.o}, Color(1.0f));
                             film.add(static_cast<int>(pixel), c);
                             tile_rays += ctx.rays;
                         }
                     }
                 rays.fetch_add(tile_rays, std::memory_order_relaxed);
-                int done = tiles_done.fetch_add(1) + 1;
-                if (progress) progress(double(done) / (tiles_x * tiles_y));
+                const double finished = tiles_done.fetch_add(count) + count;
+                if (progress) progress(finished / (double(tiles) * config.spp));
             }
         });
+        done += count;
+        const double seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - pass_start).count();
+        chunk = static_cast<int>(std::clamp(count * 0.5 / std::max(seconds, 1e-3), 1.0, 65536.0));
+    }
 
     if (stats) {
         stats->seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        stats->paths = static_cast<uint64_t>(config.width) * config.height * config.spp;
+        stats->paths = static_cast<uint64_t>(config.width) * config.height * done;
         stats->rays = rays.load();
+        stats->spp_done = done;
     }
-    return film;
 }
 
 }  // namespace wavetrace

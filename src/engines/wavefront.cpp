@@ -15,7 +15,19 @@ Film render_wavefront(const Scene& scene,
                       const WavefrontConfig& wavefront_config,
                       RenderStats* stats,
                       const ProgressCallback& progress) {
-    return wavefront(scene, bvh, config, wavefront_config, stats, progress);
+    Film film(config.width, config.height);
+    wavefront(scene, bvh, config, film, wavefront_config, stats, progress);
+    return film;
+}
+
+void render_wavefront(const Scene& scene,
+                      const Bvh& bvh,
+                      const RenderConfig& config,
+                      Film& film,
+                      const WavefrontConfig& wavefront_config,
+                      RenderStats* stats,
+                      const ProgressCallback& progress) {
+    wavefront(scene, bvh, config, film, wavefront_config, stats, progress);
 }
 
 }  // namespace wavetrace

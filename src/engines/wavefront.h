@@ -44,15 +44,15 @@ size_t compact_into(const Queue& from,
 }  // namespace wavefront_detail
 
 template <Intersector Tracer>
-Film wavefront(const Scene& scene,
+void wavefront(const Scene& scene,
                const Tracer& bvh,
-                      const RenderConfig& config,
-                      const WavefrontConfig& wavefront,
-                      RenderStats* stats,
-                      const ProgressCallback& progress) {
+               const RenderConfig& config,
+               Film& film,
+               const WavefrontConfig& wavefront,
+               RenderStats* stats,
+               const ProgressCallback& progress) {
     using wavefront_detail::compact_into, wavefront_detail::kGrain, wavefront_detail::launch;
     auto start = std::chrono::steady_clock::now();
-    Film film(config.width, config.height);
     const LightSet lights(scene);
     const CameraRays camera(scene.camera, config.width, config.height);
     const WaveInputs in{scene, lights, config, camera, media_at(scene, bvh, scene.camera.look_from)};
@@ -63,8 +63,17 @@ Film wavefront(const Scene& scene,
     q.resize(wave_size);
     uint64_t rays = 0;
 
-    for (uint64_t first = 0; first < total; first += wave_size) {
-        const size_t slots = static_cast<size_t>(std::min<uint64_t>(wave_size, total - first));
+    // Waves run in sample order and never straddle two passes (one sample of every pixel), so
+    // a stop between passes leaves every pixel with the same number of samples.
+    int pass = 0;
+    uint64_t first = 0;
+    while (first < total) {
+        if (first % pixels == 0) {
+            if (config.stop && config.stop()) break;
+            pass = static_cast<int>(first / pixels);
+        }
+        const uint64_t pass_end = (first / pixels + 1) * pixels;
+        const size_t slots = static_cast<size_t>(std::min<uint64_t>(wave_size, pass_end - first));
         launch(slots, [&](size_t b, size_t e) { generate(in, q, first, b, e); });
         size_t n = slots;
         while (n > 0) {
@@ -86,16 +95,18 @@ Film wavefront(const Scene& scene,
             std::swap(q.rays, q.next_rays);
         }
         accumulate_film(q, film, slots);
-        if (progress) progress(double(first + slots) / double(total));
+        first += slots;
+        if (first % pixels == 0) pass = static_cast<int>(first / pixels);
+        if (progress) progress(double(first) / double(total));
     }
 
     if (stats) {
         stats->seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        stats->paths = total;
+        stats->paths = pixels * static_cast<uint64_t>(pass);
         stats->rays = rays;
+        stats->spp_done = pass;
     }
-    return film;
 }
 
 }  // namespace wavetrace

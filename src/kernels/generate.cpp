@@ -10,7 +10,7 @@ void generate(
     for (size_t slot = begin; slot < end; ++slot) {
         const uint64_t global = first_global + slot;
         const uint32_t pixel = static_cast<uint32_t>(global % pixels);
-        const uint32_t sample = static_cast<uint32_t>(global / pixels);
+        const uint32_t sample = static_cast<uint32_t>(in.config.first_sample + global / pixels);
         const int x = static_cast<int>(pixel % in.config.width),
                   y = static_cast<int>(pixel / in.config.width);
         Ray ray = generate_camera_ray(in.camera, in.config.seed, pixel, sample, x, y);

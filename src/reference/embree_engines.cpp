@@ -12,7 +12,9 @@ Film render_megakernel(const Scene& scene,
                        const RenderConfig& config,
                        RenderStats* stats,
                        const ProgressCallback& progress) {
-    return megakernel(scene, embree, config, stats, progress);
+    Film film(config.width, config.height);
+    megakernel(scene, embree, config, film, stats, progress);
+    return film;
 }
 
 Film render_wavefront(const Scene& scene,
@@ -21,7 +23,9 @@ Film render_wavefront(const Scene& scene,
                       const WavefrontConfig& wavefront_config,
                       RenderStats* stats,
                       const ProgressCallback& progress) {
-    return wavefront(scene, embree, config, wavefront_config, stats, progress);
+    Film film(config.width, config.height);
+    wavefront(scene, embree, config, film, wavefront_config, stats, progress);
+    return film;
 }
 
 }  // namespace wavetrace

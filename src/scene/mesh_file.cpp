@@ -9,6 +9,7 @@
 #include <assimp/Importer.hpp>
 #include <assimp/importerdesc.h>
 #include <cctype>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -81,6 +82,38 @@ void check_ply(const std::filesystem::path& path) {
                                  std::to_string(min_body) + " (truncated?)");
 }
 
+// Assimp 5.2's OFF reader allocates what the header's vertex and face counts ask for before
+// reading any of them, so a short file claiming 10^10 vertices allocates tens of GiB (found
+// by tests/fuzz/fuzz_mesh). Every vertex and face takes at least two bytes of text, which
+// bounds the counts a file of its size can hold.
+void check_off(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::string word;
+    std::vector<double> counts;
+    bool magic = false;
+    while (counts.size() < 2 && in >> word) {
+        if (word[0] == '#') {
+            std::getline(in, word);
+            continue;
+        }
+        if (!magic) {
+            magic = true;
+            if (word.size() >= 3 && word.compare(word.size() - 3, 3, "OFF") == 0) continue;
+        }
+        char* end = nullptr;
+        double v = std::strtod(word.c_str(), &end);
+        if (*end != '\0' || !(v >= 0)) throw std::runtime_error("OFF header: bad count '" + word + "'");
+        counts.push_back(v);
+    }
+    std::error_code ec;
+    const double size = double(std::filesystem::file_size(path, ec));
+    for (double c : counts)
+        if (c > size / 2)
+            throw std::runtime_error("OFF header announces " + std::to_string(uint64_t(c)) +
+                                     " elements, more than a file of " +
+                                     std::to_string(uint64_t(size)) + " bytes can hold");
+}
+
 // Assimp reads a file with the reader of its extension; where several readers share one
 // (.gltf: glTF 1 and glTF 2) and none recognises the content, it falls back to trying every
 // reader on the content, which handed a broken PLY named .gltf to the PLY reader, where it
@@ -113,6 +146,7 @@ MeshFile read_mesh_file(const std::filesystem::path& path) {
     std::string lower = ext.substr(1);
     for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     if (lower == "ply") check_ply(path);
+    if (lower == "off") check_off(path);
     refuse_unrecognised(importer, path, lower);
     // Keep only triangles. Assimp's OBJ reader un-indexes faces; joining identical vertices
     // restores the shared indexing (and the memory) of the file.

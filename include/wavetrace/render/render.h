@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -30,6 +31,13 @@ struct RenderConfig {
     MisHeuristic heuristic = MisHeuristic::Power;
     int max_depth = 50;  // the most ray segments a path may have (the seed's max_depth)
     int rr_depth = 3;    // Russian roulette from this many scattering vertices on
+    // The samples rendered are [first_sample, first_sample + spp) of each pixel's sequence:
+    // rendering [0, k) and then [k, n) into one film gives the film of [0, n), bit for bit.
+    int first_sample = 0;
+    // Both engines render in passes, one sample of every pixel each, and call this before
+    // each pass: returning true stops the render there, so that every pixel holds the same
+    // number of samples (RenderStats::spp_done). For interrupts and time limits.
+    std::function<bool()> stop;
 };
 
 }  // namespace wavetrace

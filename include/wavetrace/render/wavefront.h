@@ -26,6 +26,14 @@ Film render_wavefront(const Scene& scene,
                       const WavefrontConfig& wavefront = {},
                       RenderStats* stats = nullptr,
                       const ProgressCallback& progress = {});
+// The same, adding the samples to `film` (of the config's size) after those it holds.
+void render_wavefront(const Scene& scene,
+                      const Bvh& bvh,
+                      const RenderConfig& config,
+                      Film& film,
+                      const WavefrontConfig& wavefront = {},
+                      RenderStats* stats = nullptr,
+                      const ProgressCallback& progress = {});
 
 // Queue memory per path in flight, from the queue declarations.
 size_t wavefront_bytes_per_path();

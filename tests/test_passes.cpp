@@ -1,0 +1,168 @@
+// Renders in passes: a stop between passes leaves every pixel with the same sample count and
+// the image of those samples, bit for bit; sample ranges add up to the whole; and the CLI
+// turns SIGINT, SIGTERM and --time-limit into the image of the completed passes.
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include "temp_dir.h"
+#include "test_paths.h"
+#include "wavetrace/render/megakernel.h"
+#include "wavetrace/render/wavefront.h"
+#include "wavetrace/scene/bvh.h"
+#include "wavetrace/scene/scene.h"
+
+using namespace wavetrace;
+
+namespace {
+
+RenderConfig small_config(int spp) {
+    RenderConfig c;
+    c.width = 37;  // not a multiple of the wave size below
+    c.height = 23;
+    c.spp = spp;
+    c.seed = 3;
+    return c;
+}
+
+void expect_same_film(const Film& a, const Film& b, int samples) {
+    Image ia = a.mean(), ib = b.mean();
+    ASSERT_EQ(ia.pixels.size(), ib.pixels.size());
+    for (size_t i = 0; i < ia.pixels.size(); ++i) {
+        ASSERT_EQ(a.samples(int(i)), uint32_t(samples));
+        ASSERT_EQ(b.samples(int(i)), uint32_t(samples));
+        ASSERT_EQ(0, std::memcmp(&ia.pixels[i], &ib.pixels[i], sizeof(Color))) << "pixel " << i;
+    }
+}
+
+}  // namespace
+
+TEST(Passes, StoppingBetweenPassesGivesTheImageOfTheSamplesDone) {
+    Scene scene = load_scene(scene_path("cornell-smoke"));
+    Bvh bvh = Bvh::build(scene);
+    WavefrontConfig wf;
+    wf.wave_size = 300;
+    // The wavefront checks before each pass of one sample: stop at the fourth check.
+    int calls = 0;
+    RenderConfig stopped = small_config(10);
+    stopped.stop = [&] { return ++calls > 3; };
+    RenderStats stats;
+    Film wave = render_wavefront(scene, bvh, stopped, wf, &stats);
+    EXPECT_EQ(stats.spp_done, 3);
+    expect_same_film(wave, render_wavefront(scene, bvh, small_config(3), wf), 3);
+    // The megakernel's first pass is one sample; stop at the second check.
+    calls = 0;
+    stopped.stop = [&] { return ++calls > 1; };
+    Film mega = render_megakernel(scene, bvh, stopped, &stats);
+    EXPECT_EQ(stats.spp_done, 1);
+    expect_same_film(mega, render_megakernel(scene, bvh, small_config(1)), 1);
+}
+
+TEST(Passes, SampleRangesAddUpToTheWholeRender) {
+    Scene scene = load_scene(scene_path("cornell"));
+    Bvh bvh = Bvh::build(scene);
+    WavefrontConfig wf;
+    wf.wave_size = 300;
+    RenderConfig first = small_config(3), second = small_config(4);
+    second.first_sample = 3;
+    Film mega(first.width, first.height), wave(first.width, first.height);
+    render_megakernel(scene, bvh, first, mega);
+    render_megakernel(scene, bvh, second, mega);
+    render_wavefront(scene, bvh, first, wave, wf);
+    render_wavefront(scene, bvh, second, wave, wf);
+    expect_same_film(mega, render_megakernel(scene, bvh, small_config(7)), 7);
+    expect_same_film(wave, render_wavefront(scene, bvh, small_config(7), wf), 7);
+}
+
+namespace {
+
+struct Stopped {
+    int status;  // as from waitpid
+    std::string err;
+};
+
+// Starts a long render, sends `signals` (e.g. "INT") after `delay` seconds, 0.05 s apart,
+// and waits for it.
+Stopped render_and_signal(const TempDir& dir, const std::string& args, const std::string& delay,
+                          const std::vector<std::string>& signals) {
+    // Run by std::system's sh; a guard kills the render after 60 s, so that one that ignored
+    // the signal fails the test instead of running on.
+    std::string script = "'" + cli_path().string() + "' render " + args + " 2> '" +
+                         (dir.path() / "err").string() + "' > /dev/null & p=$!; " +
+                         "(sleep 60; kill -9 $p) & guard=$!; sleep " + delay + ";";
+    for (const std::string& s : signals) script += " kill -" + s + " $p; sleep 0.05;";
+    script += " wait $p; status=$?; kill $guard 2> /dev/null; exit $status";
+    int status = std::system(script.c_str());
+    std::stringstream err;
+    err << std::ifstream(dir.path() / "err").rdbuf();
+    return {status, err.str()};
+}
+
+int spp_in_header(const std::filesystem::path& exr) {
+    auto in = OIIO::ImageInput::open(exr.string());
+    if (!in) return -1;
+    return std::stoi(in->spec().get_string_attribute("wavetrace:spp", "-1"));
+}
+
+}  // namespace
+
+TEST(Passes, SigintWritesTheCompletedPassesAndExits130) {
+    for (const char* engine : {"wavefront", "megakernel"}) {
+        TempDir dir;
+        auto out = dir.path() / "x.exr";
+        Stopped r = render_and_signal(
+            dir, "'" + scene_path("cornell").string() + "' --engine " + engine +
+                     " --width 128 --height 128 --spp 1000000 -o '" + out.string() + "'",
+            "2", {"INT"});
+        ASSERT_TRUE(WIFEXITED(r.status)) << engine << r.err;
+        EXPECT_EQ(WEXITSTATUS(r.status), 130) << engine << r.err;
+        EXPECT_NE(r.err.find("of 1000000 requested (interrupted)"), std::string::npos) << r.err;
+        int spp = spp_in_header(out);
+        EXPECT_GE(spp, 1) << engine;
+        EXPECT_LT(spp, 1000000) << engine;
+        size_t files = 0;
+        for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir.path()))
+            ++files;
+        EXPECT_EQ(files, 2u) << "the image and the captured stderr, nothing else";
+    }
+}
+
+TEST(Passes, SigtermExits143AndSecondSigintAbortsAtOnce) {
+    TempDir dir;
+    auto out = dir.path() / "x.exr";
+    std::string args = "'" + scene_path("cornell").string() +
+                       "' --width 128 --height 128 --spp 1000000 -o '" + out.string() + "'";
+    Stopped term = render_and_signal(dir, args, "2", {"TERM"});
+    ASSERT_TRUE(WIFEXITED(term.status)) << term.err;
+    EXPECT_EQ(WEXITSTATUS(term.status), 143) << term.err;
+    EXPECT_GE(spp_in_header(out), 1);
+    std::filesystem::remove(out);
+    // Two Ctrl-C in a row: the second ends the process without waiting for the pass.
+    Stopped twice = render_and_signal(dir, "'" + scene_path("dragon").string() +
+                                               "' --spp 1000000 -o '" + out.string() + "'",
+                                      "3", {"INT", "INT"});
+    EXPECT_EQ(WEXITSTATUS(twice.status), 128 + SIGINT) << "bash reports death by SIGINT: " << twice.err;
+    EXPECT_EQ(twice.err.find("requested (interrupted)"), std::string::npos) << twice.err;
+}
+
+TEST(Passes, TimeLimitRendersWholePassesThenWrites) {
+    TempDir dir;
+    auto out = dir.path() / "x.exr";
+    int status = std::system(("'" + cli_path().string() + "' render '" +
+                              scene_path("cornell").string() +
+                              "' --width 128 --height 128 --spp 1000000 --time-limit 1 -o '" +
+                              out.string() + "' 2> '" + (dir.path() / "err").string() + "'")
+                                 .c_str());
+    std::stringstream err;
+    err << std::ifstream(dir.path() / "err").rdbuf();
+    EXPECT_EQ(WEXITSTATUS(status), 0) << err.str();
+    EXPECT_NE(err.str().find("of 1000000 requested (time limit reached)"), std::string::npos)
+        << err.str();
+    int spp = spp_in_header(out);
+    EXPECT_GE(spp, 1);
+    EXPECT_LT(spp, 1000000);
+}
