@@ -89,7 +89,7 @@ void check_ply(const std::filesystem::path& path) {
 void check_off(const std::filesystem::path& path) {
     std::ifstream in(path, std::ios::binary);
     std::string word;
-    std::vector<double> counts;
+    std::vector<std::pair<double, std::string>> counts;  // value, as written
     bool magic = false;
     while (counts.size() < 2 && in >> word) {
         if (word[0] == '#') {
@@ -103,13 +103,13 @@ void check_off(const std::filesystem::path& path) {
         char* end = nullptr;
         double v = std::strtod(word.c_str(), &end);
         if (*end != '\0' || !(v >= 0)) throw std::runtime_error("OFF header: bad count '" + word + "'");
-        counts.push_back(v);
+        counts.push_back({v, word});
     }
     std::error_code ec;
     const double size = double(std::filesystem::file_size(path, ec));
-    for (double c : counts)
-        if (c > size / 2)
-            throw std::runtime_error("OFF header announces " + std::to_string(uint64_t(c)) +
+    for (const auto& [count, text] : counts)
+        if (count > size / 2)
+            throw std::runtime_error("OFF header announces " + text +
                                      " elements, more than a file of " +
                                      std::to_string(uint64_t(size)) + " bytes can hold");
 }
