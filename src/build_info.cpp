@@ -1,10 +1,10 @@
 #include "wavetrace/build_info.h"
-#include "wavetrace/scene/bvh.h"
 
+#include <OpenImageIO/imageio.h>
 #include <assimp/version.h>
 #include <oneapi/tbb/version.h>
 
-#include <OpenImageIO/imageio.h>
+#include "wavetrace/scene/bvh.h"
 
 namespace wavetrace {
 

@@ -121,8 +121,8 @@ TEST(Cli, VersionNamesTheBuildAndItsLibraries) {
     TempDir dir;
     CliResult r = run(dir, "--version");
     EXPECT_EQ(r.code, 0) << r.err;
-    for (const char* field : {"wavetrace 0.", "build)", "SIMD:", "oneTBB:      20", "OpenImageIO: 2.",
-                              "Assimp:      5.", "Embree:      3."})
+    for (const char* field : {"wavetrace 0.", "build)", "SIMD:", "oneTBB:      20",
+                              "OpenImageIO: 2.", "Assimp:      5.", "Embree:      3."})
         EXPECT_NE(r.out.find(field), std::string::npos) << field << "\n" << r.out;
 }
 

@@ -139,11 +139,12 @@ void compare_scene(const char* name) {
                 else
                     ++acc.different;
                 if (!t_agrees && acc.examples.size() < 3) acc.examples.push_back(i);
-                if (ours.prim == ref.prim && within_rel) acc.max_rel_t = std::max(acc.max_rel_t, rel);
+                if (ours.prim == ref.prim && within_rel)
+                    acc.max_rel_t = std::max(acc.max_rel_t, rel);
                 if (ours.prim == ref.prim && !within_rel && t_agrees) {
                     ++acc.floor_rays;
-                    acc.floor_max_t = std::max(acc.floor_max_t, double(ref.t) * length(ray.d) /
-                                                                    scene_size);
+                    acc.floor_max_t =
+                        std::max(acc.floor_max_t, double(ref.t) * length(ray.d) / scene_size);
                     acc.floor_max_rel = std::max(acc.floor_max_rel, rel);
                 }
             }
@@ -154,15 +155,16 @@ void compare_scene(const char* name) {
     double hit_agreement = double(t.both_hit + t.both_miss) / double(t.rays);
     double hit_match = t.both_hit ? double(t.same + t.ties) / double(t.both_hit) : 1.0;
     char line[1024];
-    std::snprintf(line, sizeof line,
-                  "embree-agreement %-10s rays %zu | hit/miss agree %.5f%% (both hit %zu, both "
-                  "miss %zu, only ours %zu, only embree %zu) | both hit: same prim+t %zu, ties "
-                  "%zu, differ %zu (%.5f%% agree) | same prim: max rel t diff %.2e; %zu rays "
-                  "beyond 1e-4 relative but within it plus one float ulp of the hit point (rel diff up "
-                  "to %.1e, all at t < %.1e x scene size: origins a hair from another surface)\n",
-                  name, t.rays, 100 * hit_agreement, t.both_hit, t.both_miss, t.only_ours,
-                  t.only_embree, t.same, t.ties, t.different, 100 * hit_match, t.max_rel_t,
-                  t.floor_rays, t.floor_max_rel, t.floor_max_t);
+    std::snprintf(
+        line, sizeof line,
+        "embree-agreement %-10s rays %zu | hit/miss agree %.5f%% (both hit %zu, both "
+        "miss %zu, only ours %zu, only embree %zu) | both hit: same prim+t %zu, ties "
+        "%zu, differ %zu (%.5f%% agree) | same prim: max rel t diff %.2e; %zu rays "
+        "beyond 1e-4 relative but within it plus one float ulp of the hit point (rel diff up "
+        "to %.1e, all at t < %.1e x scene size: origins a hair from another surface)\n",
+        name, t.rays, 100 * hit_agreement, t.both_hit, t.both_miss, t.only_ours, t.only_embree,
+        t.same, t.ties, t.different, 100 * hit_match, t.max_rel_t, t.floor_rays, t.floor_max_rel,
+        t.floor_max_t);
     std::fputs(line, stdout);
     // Also into the build's report folder, which `make test` prints after the suite: ctest
     // shows a passing test's output only when asked to be verbose.

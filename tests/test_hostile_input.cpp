@@ -5,10 +5,9 @@
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
-
-#include <csignal>
 #include <zlib.h>
 
+#include <csignal>
 #include <fstream>
 #include <sstream>
 
@@ -26,8 +25,8 @@ struct CliRun {
 
 // `prefix` runs before the CLI in the same shell (e.g. ulimit), `args` after it.
 CliRun run_cli(const TempDir& dir, const std::string& args, const std::string& prefix = "") {
-    std::string cmd = prefix + " timeout 20 '" + cli_path().string() + "' " + args + " > /dev/null 2> '" +
-                      (dir.path() / "stderr").string() + "'";
+    std::string cmd = prefix + " timeout 20 '" + cli_path().string() + "' " + args +
+                      " > /dev/null 2> '" + (dir.path() / "stderr").string() + "'";
     int status = std::system(("bash -c \"" + cmd + "\"").c_str());
     std::stringstream s;
     s << std::ifstream(dir.path() / "stderr").rdbuf();
@@ -55,7 +54,9 @@ std::string mesh_scene(const std::string& file) {
            R"(", "material": "white"}]})";
 }
 
-std::string nested(const std::string& open, const std::string& inner, const std::string& close,
+std::string nested(const std::string& open,
+                   const std::string& inner,
+                   const std::string& close,
                    int depth) {
     std::string s;
     for (int i = 0; i < depth; ++i) s += open;
@@ -79,22 +80,24 @@ TEST(HostileInput, TexturesInsideTexturesAreRefused) {
     std::string tex = nested(R"({"type": "checker", "scale": 1, "even": [0.5, 0.5, 0.5], "odd": )",
                              "[0.1, 0.1, 0.1]", "}", 10000);
     std::string scene = R"({"camera": {"look_from": [0, 0, -5], "look_at": [0, 0, 0]},
- "materials": {"white": {"type": "lambertian", "albedo": )" + tex + R"(}}, "objects": []})";
+ "materials": {"white": {"type": "lambertian", "albedo": )" +
+                        tex + R"(}}, "objects": []})";
     expect_refused(dir, scene, "nested deeper than 64 levels");
 }
 
 TEST(HostileInput, DeeplyNestedObjectsAreRefused) {
     TempDir dir;
-    expect_refused(dir, std::string(kHead) + R"("description": )" +
-                            nested(R"({"a": )", "1", "}", 10000) + R"(, "objects": []})",
+    expect_refused(dir,
+                   std::string(kHead) + R"("description": )" +
+                       nested(R"({"a": )", "1", "}", 10000) + R"(, "objects": []})",
                    "nested deeper than 64 levels");
 }
 
 TEST(HostileInput, ThousandsOfNestedGroupsAreRefused) {
     TempDir dir;
-    std::string groups = nested(R"({"type": "group", "objects": [)",
-                                R"({"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "white"})",
-                                "]}", 6000);
+    std::string groups = nested(
+        R"({"type": "group", "objects": [)",
+        R"({"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "white"})", "]}", 6000);
     expect_refused(dir, std::string(kHead) + R"("objects": [)" + groups + "]}",
                    "nested deeper than 64 levels");
 }
@@ -117,7 +120,7 @@ TEST(HostileInput, PlyFaceWithoutIndicesIsRefused) {
         "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\n"
         "property float y\nproperty float z\nelement face 2\n"
         "property list uchar int vertex_indices\nend_header\n";
-    ply += std::string(36, '\0');                         // three vertices at the origin
+    ply += std::string(36, '\0');  // three vertices at the origin
     ply += std::string("\x03\x00\x00\x00\x00\x01\x00\x00\x00\x02\x00\x00\x00", 13);
     ply += std::string("\x00", 1) + std::string(12, '\0');  // a face of 0 indices, then padding
     dir.write("empty-face.ply", ply);
@@ -163,7 +166,9 @@ TEST(HostileInput, TexturePathThatIsADeviceIsRefused) {
     std::string scene = R"({"camera": {"look_from": [0, 0, -5], "look_at": [0, 0, 0]},
  "materials": {"tex": {"type": "lambertian", "albedo": {"type": "image", "file": "/dev/zero"}}},
  "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "tex"}]})";
-    expect_refused(dir, scene, "/materials/tex/albedo/file: /dev/zero: cannot read image: not a regular file (a device)");
+    expect_refused(
+        dir, scene,
+        "/materials/tex/albedo/file: /dev/zero: cannot read image: not a regular file (a device)");
 }
 
 TEST(HostileInput, DeviceAsTheSceneFileIsRefused) {
@@ -188,7 +193,8 @@ TEST(HostileInput, ImageClaimingEnormousDimensionsIsRefusedFromItsHeader) {
         uint32_t crc = crc32(0, reinterpret_cast<const Bytef*>(body.data()), body.size());
         return be32(uint32_t(data.size())) + body + be32(crc);
     };
-    std::string ihdr = std::string("\x00\x01\x86\xa0\x00\x01\x86\xa0", 8) + std::string("\x08\x02\x00\x00\x00", 5);
+    std::string ihdr =
+        std::string("\x00\x01\x86\xa0\x00\x01\x86\xa0", 8) + std::string("\x08\x02\x00\x00\x00", 5);
     std::string png = std::string("\x89PNG\r\n\x1a\n", 8) + chunk("IHDR", ihdr) +
                       chunk("IDAT", std::string("\x78\x9c\x03\x00\x00\x00\x00\x01", 8)) +
                       chunk("IEND", "");
@@ -203,11 +209,14 @@ TEST(HostileInput, ScalesWhoseProductOverflowsAreRefused) {
     TempDir dir;
     std::string steps;
     for (int i = 0; i < 6; ++i) steps += std::string(i ? ", " : "") + R"({"scale": 1e7})";
-    expect_refused(dir, std::string(kHead) + R"("objects": [{"type": "sphere", "center": [0, 0, 0],
- "radius": 1, "material": "white", "transform": [)" + steps + "]}]}",
+    expect_refused(dir,
+                   std::string(kHead) + R"("objects": [{"type": "sphere", "center": [0, 0, 0],
+ "radius": 1, "material": "white", "transform": [)" +
+                       steps + "]}]}",
                    "/objects/0/transform/1: the transform up to this step scales beyond");
     // The same overflow spread over nested groups is caught where the product is formed.
-    std::string inner = R"({"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "white"})";
+    std::string inner =
+        R"({"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "white"})";
     for (int i = 0; i < 6; ++i)
         inner = R"({"type": "group", "transform": [{"scale": 1e7}], "objects": [)" + inner + "]}";
     expect_refused(dir, std::string(kHead) + R"("objects": [)" + inner + "]}",
@@ -227,7 +236,7 @@ TEST(HostileOutput, OutputThatIsADirectoryIsRefusedBeforeRendering) {
     TempDir dir;
     fs::create_directories(dir.path() / "out.png");
     CliRun r = run_cli(dir, "render '" + scene_path("cornell").string() + "' -o '" +
-                             (dir.path() / "out.png").string() + "'");
+                                (dir.path() / "out.png").string() + "'");
     EXPECT_EQ(r.code, 2) << r.err;
     EXPECT_NE(r.err.find("out.png: cannot write: is a directory"), std::string::npos) << r.err;
     EXPECT_EQ(r.err.find("spp:"), std::string::npos) << "no render ran: " << r.err;
@@ -251,9 +260,9 @@ TEST(HostileOutput, FailedWriteKeepsThePreviousFileAndLeavesNoTemporary) {
         fs::path out = dir.path() / (std::string("out.") + ext);
         std::ofstream(out) << "previous";
         CliRun r = run_cli(dir,
-                        "render '" + scene_path("cornell").string() +
-                            "' --width 128 --height 128 --spp 1 -o '" + out.string() + "'",
-                        "trap '' XFSZ; ulimit -f 4;");  // 4 KiB
+                           "render '" + scene_path("cornell").string() +
+                               "' --width 128 --height 128 --spp 1 -o '" + out.string() + "'",
+                           "trap '' XFSZ; ulimit -f 4;");  // 4 KiB
         EXPECT_EQ(r.code, 1) << ext << ": " << r.err;
         EXPECT_NE(r.err.find("cannot write: File too large"), std::string::npos) << r.err;
         std::stringstream kept;
@@ -297,10 +306,11 @@ TEST(HostileOutput, RunningOutOfMemoryIsAnErrorNotACrash) {
     TempDir dir;
     fs::path out = dir.path() / "big.exr";
     // 16384 x 8192 pixels: the film alone needs 6.5 GiB; 3 GiB of address space is not enough.
-    CliRun r = run_cli(dir,
-                    "render '" + scene_path("cornell").string() +
-                        "' --width 16384 --height 8192 --spp 1 --threads 1 -o '" + out.string() + "'",
-                    "ulimit -v 3000000;");
+    CliRun r =
+        run_cli(dir,
+                "render '" + scene_path("cornell").string() +
+                    "' --width 16384 --height 8192 --spp 1 --threads 1 -o '" + out.string() + "'",
+                "ulimit -v 3000000;");
     EXPECT_EQ(r.code, 2) << r.err;
     EXPECT_NE(r.err.find("out of memory rendering 16384 x 8192"), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(out));

@@ -87,7 +87,9 @@ struct Stopped {
 
 // Starts a long render, sends `signals` (e.g. "INT") after `delay` seconds, 0.05 s apart,
 // and waits for it.
-Stopped render_and_signal(const TempDir& dir, const std::string& args, const std::string& delay,
+Stopped render_and_signal(const TempDir& dir,
+                          const std::string& args,
+                          const std::string& delay,
                           const std::vector<std::string>& signals) {
     // Run by std::system's sh; a guard kills the render after 60 s, so that one that ignored
     // the signal fails the test instead of running on.
@@ -114,10 +116,11 @@ TEST(Passes, SigintWritesTheCompletedPassesAndExits130) {
     for (const char* engine : {"wavefront", "megakernel"}) {
         TempDir dir;
         auto out = dir.path() / "x.exr";
-        Stopped r = render_and_signal(
-            dir, "'" + scene_path("cornell").string() + "' --engine " + engine +
-                     " --width 128 --height 128 --spp 1000000 -o '" + out.string() + "'",
-            "2", {"INT"});
+        Stopped r = render_and_signal(dir,
+                                      "'" + scene_path("cornell").string() + "' --engine " +
+                                          engine + " --width 128 --height 128 --spp 1000000 -o '" +
+                                          out.string() + "'",
+                                      "2", {"INT"});
         ASSERT_TRUE(WIFEXITED(r.status)) << engine << r.err;
         EXPECT_EQ(WEXITSTATUS(r.status), 130) << engine << r.err;
         EXPECT_NE(r.err.find("of 1000000 requested (interrupted)"), std::string::npos) << r.err;
@@ -142,21 +145,22 @@ TEST(Passes, SigtermExits143AndSecondSigintAbortsAtOnce) {
     EXPECT_GE(spp_in_header(out), 1);
     std::filesystem::remove(out);
     // Two Ctrl-C in a row: the second ends the process without waiting for the pass.
-    Stopped twice = render_and_signal(dir, "'" + scene_path("dragon").string() +
-                                               "' --spp 1000000 -o '" + out.string() + "'",
-                                      "3", {"INT", "INT"});
-    EXPECT_EQ(WEXITSTATUS(twice.status), 128 + SIGINT) << "bash reports death by SIGINT: " << twice.err;
+    Stopped twice = render_and_signal(
+        dir, "'" + scene_path("dragon").string() + "' --spp 1000000 -o '" + out.string() + "'", "3",
+        {"INT", "INT"});
+    EXPECT_EQ(WEXITSTATUS(twice.status), 128 + SIGINT)
+        << "bash reports death by SIGINT: " << twice.err;
     EXPECT_EQ(twice.err.find("requested (interrupted)"), std::string::npos) << twice.err;
 }
 
 TEST(Passes, TimeLimitRendersWholePassesThenWrites) {
     TempDir dir;
     auto out = dir.path() / "x.exr";
-    int status = std::system(("'" + cli_path().string() + "' render '" +
-                              scene_path("cornell").string() +
-                              "' --width 128 --height 128 --spp 1000000 --time-limit 1 -o '" +
-                              out.string() + "' 2> '" + (dir.path() / "err").string() + "'")
-                                 .c_str());
+    int status =
+        std::system(("'" + cli_path().string() + "' render '" + scene_path("cornell").string() +
+                     "' --width 128 --height 128 --spp 1000000 --time-limit 1 -o '" + out.string() +
+                     "' 2> '" + (dir.path() / "err").string() + "'")
+                        .c_str());
     std::stringstream err;
     err << std::ifstream(dir.path() / "err").rdbuf();
     EXPECT_EQ(WEXITSTATUS(status), 0) << err.str();

@@ -74,9 +74,10 @@ int run_info(const InfoOptions& o) {
         "for traversal; build {:.1f} ms\n",
         st.nodes, st.leaves, st.depth, st.sah_cost, st.wide_nodes, st.build_ms);
     fmt::print("simd         {} (chosen at run time)\n", simd_target());
-    fmt::print("memory       geometry {}, bvh {} (binary tree {}, traversal layout {}), textures {}\n",
-               mib(geometry), mib(st.bytes + st.wide_bytes), mib(st.bytes), mib(st.wide_bytes),
-               mib(texels));
+    fmt::print(
+        "memory       geometry {}, bvh {} (binary tree {}, traversal layout {}), textures {}\n",
+        mib(geometry), mib(st.bytes + st.wide_bytes), mib(st.bytes), mib(st.wide_bytes),
+        mib(texels));
     const size_t per_path = wavefront_bytes_per_path(), wave = WavefrontConfig{}.wave_size;
     fmt::print("wavefront    {} B of queues per path in flight; {} paths per wave: {}\n", per_path,
                wave, mib(per_path * wave));

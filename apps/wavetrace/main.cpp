@@ -12,11 +12,10 @@ int main(int argc, char** argv) {
     app.set_version_flag("--version", [] {
         BuildInfo b = build_info();
         return "wavetrace " + b.version + " (" + b.build_type + " build)\n" +
-               "  SIMD:        " + b.simd + "\n" +
-               "  oneTBB:      " + b.tbb + "\n" +
-               "  OpenImageIO: " + b.openimageio + "\n" +
-               "  Assimp:      " + b.assimp + "\n" +
-               "  Embree:      " + b.embree + " (reference intersector of the tests and benchmarks)";
+               "  SIMD:        " + b.simd + "\n" + "  oneTBB:      " + b.tbb + "\n" +
+               "  OpenImageIO: " + b.openimageio + "\n" + "  Assimp:      " + b.assimp + "\n" +
+               "  Embree:      " + b.embree +
+               " (reference intersector of the tests and benchmarks)";
     });
     app.require_subcommand(1);
     RenderOptions render;

@@ -5,8 +5,8 @@
 
 #include <atomic>
 #include <chrono>
-#include <csignal>
 #include <cmath>
+#include <csignal>
 #include <iostream>
 #include <mutex>
 #include <optional>
@@ -123,8 +123,8 @@ class Progress {
 // Range checks shared by all numeric options: each failure names the option. An option that
 // is given must be valid: 0 is an error, not a request for the scene's value.
 std::optional<std::string> check_options(const RenderOptions& o, const RenderSettings& r) {
-    auto out_of_range = [](const char* name, const auto& value, long long lo, long long hi)
-        -> std::optional<std::string> {
+    auto out_of_range = [](const char* name, const auto& value, long long lo,
+                           long long hi) -> std::optional<std::string> {
         if (value && (*value < lo || *value > hi))
             return fmt::format("{}: expected {}..{}, got {}", name, lo, hi, *value);
         return std::nullopt;
@@ -223,7 +223,6 @@ void render_to_image(const RenderOptions& o,
         // 8-bit outputs cannot hold negative normals or unbounded depths: map them to [0, 1].
         if (is_ldr_path(output)) map_aov_to_display(aov, image);
     }
-
 }
 
 }  // namespace

@@ -126,9 +126,10 @@ void bench_bvh(const Options& o, Results& r) {
                     });
                     p16 = embree16;
                     ratio_p = ours_packet / embree16;
-                    std::printf("bvh %-10s packets  %d thread(s): ours %7.2f Mrays/s, embree "
-                                "16-wide %7.2f, ours/embree %.2f\n",
-                                name, threads, ours_packet, embree16, ours_packet / embree16);
+                    std::printf(
+                        "bvh %-10s packets  %d thread(s): ours %7.2f Mrays/s, embree "
+                        "16-wide %7.2f, ours/embree %.2f\n",
+                        name, threads, ours_packet, embree16, ours_packet / embree16);
                 }
                 r.row("bvh", {name, batch, threads, rays.size(), ours, ref, ours / ref, p8, p16,
                               ours_p, ratio_p});

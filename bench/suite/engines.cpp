@@ -38,11 +38,25 @@ double cli_peak_mib(const std::string& scene, const char* engine, const RenderCo
 }  // namespace
 
 void bench_engines(const Options& o, Results& r) {
-    r.table("engines", {"scene", "width", "height", "spp", "megakernel_mpaths", "wavefront_mpaths",
-                        "megakernel_mrays", "wavefront_mrays", "ratio_min", "ratio_median",
-                        "ratio_max", "rel_mse_between", "wavefront_queue_mib", "film_mib",
-                        "megakernel_peak_mib", "wavefront_peak_mib", "megakernel_embree_mpaths",
-                        "wavefront_embree_mpaths", "megakernel_ours_over_embree",
+    r.table("engines", {"scene",
+                        "width",
+                        "height",
+                        "spp",
+                        "megakernel_mpaths",
+                        "wavefront_mpaths",
+                        "megakernel_mrays",
+                        "wavefront_mrays",
+                        "ratio_min",
+                        "ratio_median",
+                        "ratio_max",
+                        "rel_mse_between",
+                        "wavefront_queue_mib",
+                        "film_mib",
+                        "megakernel_peak_mib",
+                        "wavefront_peak_mib",
+                        "megakernel_embree_mpaths",
+                        "wavefront_embree_mpaths",
+                        "megakernel_ours_over_embree",
                         "wavefront_ours_over_embree"});
     struct Case {
         const char* scene;
@@ -91,13 +105,26 @@ void bench_engines(const Options& o, Results& r) {
         const double queue_mib = double(wavefront_bytes_per_path()) *
                                  std::min<double>(double(wf_cfg.wave_size), pixels) / (1 << 20);
         const double film_mib = pixels * Film::kBytesPerPixel / (1 << 20);
-        r.row("engines",
-              {c.scene, cfg.width, cfg.height, cfg.spp, spread(mk_paths).median,
-               spread(wf_paths).median, spread(mk_rays).median, spread(wf_rays).median, s.min,
-               s.median, s.max, relative_mse(wf_img, mk_img), queue_mib, film_mib,
-               cli_peak_mib(path, "megakernel", cfg), cli_peak_mib(path, "wavefront", cfg),
-               spread(mke_paths).median, spread(wfe_paths).median, spread(mk_vs_embree).median,
-               spread(wf_vs_embree).median});
+        r.row("engines", {c.scene,
+                          cfg.width,
+                          cfg.height,
+                          cfg.spp,
+                          spread(mk_paths).median,
+                          spread(wf_paths).median,
+                          spread(mk_rays).median,
+                          spread(wf_rays).median,
+                          s.min,
+                          s.median,
+                          s.max,
+                          relative_mse(wf_img, mk_img),
+                          queue_mib,
+                          film_mib,
+                          cli_peak_mib(path, "megakernel", cfg),
+                          cli_peak_mib(path, "wavefront", cfg),
+                          spread(mke_paths).median,
+                          spread(wfe_paths).median,
+                          spread(mk_vs_embree).median,
+                          spread(wf_vs_embree).median});
         std::printf(
             "engines %-10s megakernel %6.3f Mpaths/s  wavefront %6.3f Mpaths/s  "
             "wavefront/megakernel %.2f [%.2f, %.2f] | with Embree: megakernel %6.3f, wavefront "

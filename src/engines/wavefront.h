@@ -55,7 +55,8 @@ void wavefront(const Scene& scene,
     auto start = std::chrono::steady_clock::now();
     const LightSet lights(scene);
     const CameraRays camera(scene.camera, config.width, config.height);
-    const WaveInputs in{scene, lights, config, camera, media_at(scene, bvh, scene.camera.look_from)};
+    const WaveInputs in{scene, lights, config, camera,
+                        media_at(scene, bvh, scene.camera.look_from)};
     const uint64_t pixels = static_cast<uint64_t>(config.width) * config.height;
     const uint64_t total = pixels * static_cast<uint64_t>(config.spp);
     const size_t wave_size = std::max<size_t>(1, std::min<uint64_t>(wavefront.wave_size, pixels));

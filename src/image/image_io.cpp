@@ -4,12 +4,11 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include <csignal>
-
 #include <algorithm>
 #include <bit>
 #include <cerrno>
 #include <cmath>
+#include <csignal>
 #include <cstring>
 #include <system_error>
 
@@ -38,8 +37,8 @@ float srgb_decode(float encoded) {
 // Portable float map: "PF", size, a negative scale for little-endian, then rows bottom to
 // top. Encoded here because Debian's OpenImageIO 2.4 reads PFM but has no PFM writer.
 std::vector<unsigned char> encode_pfm(const Image& image) {
-    std::string header = "PF\n" + std::to_string(image.width) + " " +
-                         std::to_string(image.height) + "\n-1.0\n";
+    std::string header =
+        "PF\n" + std::to_string(image.width) + " " + std::to_string(image.height) + "\n-1.0\n";
     std::vector<unsigned char> out(header.begin(), header.end());
     static_assert(std::endian::native == std::endian::little);
     const size_t row = sizeof(Color) * static_cast<size_t>(image.width);

@@ -27,7 +27,7 @@ void check_input_file(const std::filesystem::path& path, uintmax_t max_bytes, co
         throw std::runtime_error(errno == ENOENT ? "no such file" : std::strerror(errno));
     if (S_ISDIR(st.st_mode)) throw std::runtime_error("is a directory");
     if (!S_ISREG(st.st_mode)) {
-        const char* what = S_ISFIFO(st.st_mode)                        ? "a FIFO"
+        const char* what = S_ISFIFO(st.st_mode)                         ? "a FIFO"
                            : S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode) ? "a device"
                            : S_ISSOCK(st.st_mode)                       ? "a socket"
                                                                         : "not a file";

@@ -179,9 +179,9 @@ class Builder {
             for (int i = 1; i < nb; ++i) {
                 acc.grow(bins[axis][i - 1].box);
                 count += bins[axis][i - 1].count;
-                float cost = config_.traversal_cost +
-                             config_.intersection_cost * inv_area *
-                                 (acc.half_area() * blocks(count) + right_cost[i]);
+                float cost =
+                    config_.traversal_cost + config_.intersection_cost * inv_area *
+                                                 (acc.half_area() * blocks(count) + right_cost[i]);
                 bool both_sides = count > 0 && right_count[i] > 0;
                 if (both_sides && cost < best.cost) best = {axis, i, cost};
             }
@@ -259,7 +259,8 @@ Bvh Bvh::build(const Scene& scene, const BvhBuildConfig& config) {
             bvh.nodes_[index].count = n.count;
             stats.leaves++;
             stats.depth = std::max(stats.depth, depth);
-            stats.sah_cost += config.intersection_cost * blocks(n.count, config.block_width) * rel_area;
+            stats.sah_cost +=
+                config.intersection_cost * blocks(n.count, config.block_width) * rel_area;
             return index;
         }
         stats.sah_cost += config.traversal_cost * rel_area;

@@ -238,9 +238,9 @@ json parse(const std::string& text, const std::string& file) {
             in_string = true;
         } else if (c == '[' || c == '{') {
             if (++depth > kMaxNesting)
-                throw SceneError(file + ":" + std::to_string(at_line) + ":" + std::to_string(at_col) +
-                                 ": nested deeper than " + std::to_string(kMaxNesting) +
-                                 " levels (the limit)");
+                throw SceneError(file + ":" + std::to_string(at_line) + ":" +
+                                 std::to_string(at_col) + ": nested deeper than " +
+                                 std::to_string(kMaxNesting) + " levels (the limit)");
         } else if (c == ']' || c == '}') {
             --depth;
         }

@@ -1,18 +1,18 @@
 #include "mesh_file.h"
 
-#include "io/input_file.h"
-
+#include <assimp/BaseImporter.h>
+#include <assimp/importerdesc.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
-#include <assimp/BaseImporter.h>
 #include <assimp/Importer.hpp>
-#include <assimp/importerdesc.h>
 #include <cctype>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+
+#include "io/input_file.h"
 
 namespace wavetrace {
 namespace {
@@ -43,7 +43,8 @@ void check_ply(const std::filesystem::path& path) {
         }
     }
     if (!ended)
-        throw std::runtime_error("PLY header has no end_header line in its first 64 KiB (truncated?)");
+        throw std::runtime_error(
+            "PLY header has no end_header line in its first 64 KiB (truncated?)");
     std::istringstream lines(header);
     bool binary = false;
     uint64_t min_body = 0, count = 0;
@@ -102,7 +103,8 @@ void check_off(const std::filesystem::path& path) {
         }
         char* end = nullptr;
         double v = std::strtod(word.c_str(), &end);
-        if (*end != '\0' || !(v >= 0)) throw std::runtime_error("OFF header: bad count '" + word + "'");
+        if (*end != '\0' || !(v >= 0))
+            throw std::runtime_error("OFF header: bad count '" + word + "'");
         counts.push_back({v, word});
     }
     std::error_code ec;
@@ -129,8 +131,7 @@ void refuse_unrecognised(const Assimp::Importer& importer,
     }
     if (readers.size() <= 1) return;  // one reader: Assimp uses it, with no fallback
     for (size_t i : readers)
-        if (importer.GetImporter(i)->CanRead(path.string(), importer.GetIOHandler(), false))
-            return;
+        if (importer.GetImporter(i)->CanRead(path.string(), importer.GetIOHandler(), false)) return;
     throw std::runtime_error("not a ." + extension + " file that its readers recognise");
 }
 

@@ -304,8 +304,9 @@ class Loader {
             to_world = parent * read_transform(*x);
             // Each step is in range, but their product, with the groups' above, may not be.
             if (!to_world.is_well_conditioned(kMaxCoordinate))
-                x->fail("the composed transform (with its groups') scales beyond [1e-7, 1e7] "
-                        "or overflows");
+                x->fail(
+                    "the composed transform (with its groups') scales beyond [1e-7, 1e7] "
+                    "or overflows");
         }
 
         if (type == "group") {

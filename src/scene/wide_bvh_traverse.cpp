@@ -51,8 +51,7 @@ struct RayLanes {
 // whose box the ray enters within [tmin, tmax]. The exit distance is widened by 1 + 2 gamma(3)
 // so that rounding never culls a box the ray really touches (Ize, "Robust BVH Ray Traversal",
 // JCGT 2(2), 2013).
-HWY_INLINE uint32_t BoxTest(const WideNode& node, const RayLanes& r, float tmax,
-                            float* t_entry) {
+HWY_INLINE uint32_t BoxTest(const WideNode& node, const RayLanes& r, float tmax, float* t_entry) {
     const DNode d;
     using VN = hn::Vec<DNode>;
     using MN = hn::Mask<DNode>;
@@ -106,8 +105,19 @@ HWY_INLINE V Abs3Max(V a, V b, V c) {
 
 // Woop, Benthin and Wald's watertight test (see intersect_triangle). p*[vtx]: the vertices
 // relative to the ray origin, permuted so that the ray's major axis is z; s*: the shear.
-HWY_INLINE M TriangleLanes(D d, V px[3], V py[3], V pz[3], V sx, V sy, V sz, V tmin, V tmax,
-                           M active, V* t_out, V* u_out, V* v_out) {
+HWY_INLINE M TriangleLanes(D d,
+                           V px[3],
+                           V py[3],
+                           V pz[3],
+                           V sx,
+                           V sy,
+                           V sz,
+                           V tmin,
+                           V tmax,
+                           M active,
+                           V* t_out,
+                           V* u_out,
+                           V* v_out) {
     for (int vtx = 0; vtx < 3; ++vtx) {
         px[vtx] = hn::Add(px[vtx], hn::Mul(sx, pz[vtx]));
         py[vtx] = hn::Add(py[vtx], hn::Mul(sy, pz[vtx]));
@@ -116,8 +126,8 @@ HWY_INLINE M TriangleLanes(D d, V px[3], V py[3], V pz[3], V sx, V sy, V sz, V t
     V e1 = hn::Sub(hn::Mul(px[2], py[0]), hn::Mul(py[2], px[0]));
     V e2 = hn::Sub(hn::Mul(px[0], py[1]), hn::Mul(py[0], px[1]));
     const V zero = hn::Zero(d);
-    const M any_zero = hn::And(
-        active, hn::Or(hn::Or(hn::Eq(e0, zero), hn::Eq(e1, zero)), hn::Eq(e2, zero)));
+    const M any_zero =
+        hn::And(active, hn::Or(hn::Or(hn::Eq(e0, zero), hn::Eq(e1, zero)), hn::Eq(e2, zero)));
     if (HWY_UNLIKELY(!hn::AllFalse(d, any_zero))) {
         // An edge function of exactly 0 is ambiguous in float; such lanes recompute all
         // three in double, where the products of floats are exact (Woop et al. §3.3).
@@ -148,8 +158,7 @@ HWY_INLINE M TriangleLanes(D d, V px[3], V py[3], V pz[3], V sx, V sy, V sz, V t
     if (hn::AllFalse(d, ok)) return ok;
 
     for (int vtx = 0; vtx < 3; ++vtx) pz[vtx] = hn::Mul(pz[vtx], sz);
-    const V t_scaled =
-        hn::Add(hn::Add(hn::Mul(e0, pz[0]), hn::Mul(e1, pz[1])), hn::Mul(e2, pz[2]));
+    const V t_scaled = hn::Add(hn::Add(hn::Mul(e0, pz[0]), hn::Mul(e1, pz[1])), hn::Mul(e2, pz[2]));
     const V tmin_det = hn::Mul(tmin, det);
     const V tmax_det = hn::Mul(tmax, det);
     const M neg_det = hn::Lt(det, zero), pos_det = hn::Gt(det, zero);
@@ -170,10 +179,10 @@ HWY_INLINE M TriangleLanes(D d, V px[3], V py[3], V pz[3], V sx, V sy, V sz, V t
     const V delta_z = hn::Mul(g3, max_zt);
     const V delta_x = hn::Mul(g5, hn::Add(max_xt, max_zt));
     const V delta_y = hn::Mul(g5, hn::Add(max_yt, max_zt));
-    const V delta_e = hn::Mul(
-        hn::Set(d, 2.0f),
-        hn::Add(hn::Add(hn::Mul(hn::Mul(g2, max_xt), max_yt), hn::Mul(delta_y, max_xt)),
-                hn::Mul(delta_x, max_yt)));
+    const V delta_e =
+        hn::Mul(hn::Set(d, 2.0f),
+                hn::Add(hn::Add(hn::Mul(hn::Mul(g2, max_xt), max_yt), hn::Mul(delta_y, max_xt)),
+                        hn::Mul(delta_x, max_yt)));
     const V max_e = Abs3Max(e0, e1, e2);
     const V delta_t = hn::Mul(
         hn::Mul(hn::Set(d, 3.0f),
@@ -191,13 +200,25 @@ HWY_INLINE M TriangleLanes(D d, V px[3], V py[3], V pz[3], V sx, V sy, V sz, V t
 struct QuadLanesIn {
     V qx, qy, qz, ux, uy, uz, vx, vy, vz, nx, ny, nz, wx, wy, wz;
 };
-HWY_INLINE M QuadLanes(D d, const QuadLanesIn& p, V ox, V oy, V oz, V dx, V dy, V dz, V tmin,
-                       V tmax, M active, V* t_out, V* u_out, V* v_out) {
+HWY_INLINE M QuadLanes(D d,
+                       const QuadLanesIn& p,
+                       V ox,
+                       V oy,
+                       V oz,
+                       V dx,
+                       V dy,
+                       V dz,
+                       V tmin,
+                       V tmax,
+                       M active,
+                       V* t_out,
+                       V* u_out,
+                       V* v_out) {
     const V zero = hn::Zero(d), one = hn::Set(d, 1.0f);
     const V denom = hn::Add(hn::Add(hn::Mul(p.nx, dx), hn::Mul(p.ny, dy)), hn::Mul(p.nz, dz));
-    const V num = hn::Add(
-        hn::Add(hn::Mul(p.nx, hn::Sub(p.qx, ox)), hn::Mul(p.ny, hn::Sub(p.qy, oy))),
-        hn::Mul(p.nz, hn::Sub(p.qz, oz)));
+    const V num =
+        hn::Add(hn::Add(hn::Mul(p.nx, hn::Sub(p.qx, ox)), hn::Mul(p.ny, hn::Sub(p.qy, oy))),
+                hn::Mul(p.nz, hn::Sub(p.qz, oz)));
     const V t = hn::Div(num, denom);
     M ok = hn::And(active, hn::Ne(denom, zero));
     ok = hn::And(ok, hn::And(hn::Ge(t, tmin), hn::Le(t, tmax)));
@@ -212,10 +233,8 @@ HWY_INLINE M QuadLanes(D d, const QuadLanesIn& p, V ox, V oy, V oz, V dx, V dy, 
     const V up_x = hn::Sub(hn::Mul(p.uy, pz), hn::Mul(p.uz, py));
     const V up_y = hn::Sub(hn::Mul(p.uz, px), hn::Mul(p.ux, pz));
     const V up_z = hn::Sub(hn::Mul(p.ux, py), hn::Mul(p.uy, px));
-    const V alpha =
-        hn::Add(hn::Add(hn::Mul(p.wx, pv_x), hn::Mul(p.wy, pv_y)), hn::Mul(p.wz, pv_z));
-    const V beta =
-        hn::Add(hn::Add(hn::Mul(p.wx, up_x), hn::Mul(p.wy, up_y)), hn::Mul(p.wz, up_z));
+    const V alpha = hn::Add(hn::Add(hn::Mul(p.wx, pv_x), hn::Mul(p.wy, pv_y)), hn::Mul(p.wz, pv_z));
+    const V beta = hn::Add(hn::Add(hn::Mul(p.wx, up_x), hn::Mul(p.wy, up_y)), hn::Mul(p.wz, up_z));
     *t_out = t;
     *u_out = alpha;
     *v_out = beta;
@@ -224,8 +243,22 @@ HWY_INLINE M QuadLanes(D d, const QuadLanesIn& p, V ox, V oy, V oz, V dx, V dy, 
 }
 
 // The cancellation-free sphere test (see intersect_sphere); a = dot(d, d).
-HWY_INLINE M SphereLanes(D d, V cx, V cy, V cz, V radius, V ox, V oy, V oz, V dx, V dy, V dz,
-                         V a, V tmin, V tmax, M active, V* t_out) {
+HWY_INLINE M SphereLanes(D d,
+                         V cx,
+                         V cy,
+                         V cz,
+                         V radius,
+                         V ox,
+                         V oy,
+                         V oz,
+                         V dx,
+                         V dy,
+                         V dz,
+                         V a,
+                         V tmin,
+                         V tmax,
+                         M active,
+                         V* t_out) {
     const V zero = hn::Zero(d);
     const V fx = hn::Sub(ox, cx), fy = hn::Sub(oy, cy), fz = hn::Sub(oz, cz);
     const V r2 = hn::Mul(radius, radius);
@@ -261,8 +294,8 @@ HWY_INLINE void StoreHits(D d, size_t i, M ok, V t, V u, V v, BlockHits* out) {
     out->bits |= MaskBits(d, ok) << i;
 }
 
-HWY_INLINE void TriangleTest(const TriangleBlock& b, uint32_t count, const RayLanes& r,
-                             float tmax, BlockHits* out) {
+HWY_INLINE void TriangleTest(
+    const TriangleBlock& b, uint32_t count, const RayLanes& r, float tmax, BlockHits* out) {
     const D d;
     const TriangleRay& tr = r.tri;
     const int k[3] = {tr.kx, tr.ky, tr.kz};
@@ -282,42 +315,40 @@ HWY_INLINE void TriangleTest(const TriangleBlock& b, uint32_t count, const RayLa
     }
 }
 
-HWY_INLINE void QuadTest(const QuadBlock& b, uint32_t count, const RayLanes& r, float tmax,
-                         BlockHits* out) {
+HWY_INLINE void QuadTest(
+    const QuadBlock& b, uint32_t count, const RayLanes& r, float tmax, BlockHits* out) {
     const D d;
     const Ray& ray = r.ray;
     out->bits = 0;
     for (size_t i = 0; i < size_t(kLeafBlockWidth) && i < count; i += hn::Lanes(d)) {
-        const QuadLanesIn p{hn::Load(d, b.q[0] + i), hn::Load(d, b.q[1] + i),
-                            hn::Load(d, b.q[2] + i), hn::Load(d, b.u[0] + i),
-                            hn::Load(d, b.u[1] + i), hn::Load(d, b.u[2] + i),
-                            hn::Load(d, b.v[0] + i), hn::Load(d, b.v[1] + i),
-                            hn::Load(d, b.v[2] + i), hn::Load(d, b.n[0] + i),
-                            hn::Load(d, b.n[1] + i), hn::Load(d, b.n[2] + i),
-                            hn::Load(d, b.w[0] + i), hn::Load(d, b.w[1] + i),
-                            hn::Load(d, b.w[2] + i)};
+        const QuadLanesIn p{
+            hn::Load(d, b.q[0] + i), hn::Load(d, b.q[1] + i), hn::Load(d, b.q[2] + i),
+            hn::Load(d, b.u[0] + i), hn::Load(d, b.u[1] + i), hn::Load(d, b.u[2] + i),
+            hn::Load(d, b.v[0] + i), hn::Load(d, b.v[1] + i), hn::Load(d, b.v[2] + i),
+            hn::Load(d, b.n[0] + i), hn::Load(d, b.n[1] + i), hn::Load(d, b.n[2] + i),
+            hn::Load(d, b.w[0] + i), hn::Load(d, b.w[1] + i), hn::Load(d, b.w[2] + i)};
         V t = hn::Zero(d), u = t, v = t;
-        const M ok = QuadLanes(d, p, hn::Set(d, ray.o.x), hn::Set(d, ray.o.y),
-                               hn::Set(d, ray.o.z), hn::Set(d, ray.d.x), hn::Set(d, ray.d.y),
-                               hn::Set(d, ray.d.z), hn::Set(d, ray.tmin), hn::Set(d, tmax),
-                               hn::FirstN(d, count - i), &t, &u, &v);
+        const M ok =
+            QuadLanes(d, p, hn::Set(d, ray.o.x), hn::Set(d, ray.o.y), hn::Set(d, ray.o.z),
+                      hn::Set(d, ray.d.x), hn::Set(d, ray.d.y), hn::Set(d, ray.d.z),
+                      hn::Set(d, ray.tmin), hn::Set(d, tmax), hn::FirstN(d, count - i), &t, &u, &v);
         StoreHits(d, i, ok, t, u, v, out);
     }
 }
 
-HWY_INLINE void SphereTest(const SphereBlock& b, uint32_t count, const RayLanes& r, float tmax,
-                           BlockHits* out) {
+HWY_INLINE void SphereTest(
+    const SphereBlock& b, uint32_t count, const RayLanes& r, float tmax, BlockHits* out) {
     const D d;
     const Ray& ray = r.ray;
     out->bits = 0;
     for (size_t i = 0; i < size_t(kLeafBlockWidth) && i < count; i += hn::Lanes(d)) {
         V t = hn::Zero(d);
-        const M ok = SphereLanes(
-            d, hn::Load(d, b.c[0] + i), hn::Load(d, b.c[1] + i), hn::Load(d, b.c[2] + i),
-            hn::Load(d, b.r + i), hn::Set(d, ray.o.x), hn::Set(d, ray.o.y), hn::Set(d, ray.o.z),
-            hn::Set(d, ray.d.x), hn::Set(d, ray.d.y), hn::Set(d, ray.d.z),
-            hn::Set(d, dot(ray.d, ray.d)), hn::Set(d, ray.tmin), hn::Set(d, tmax),
-            hn::FirstN(d, count - i), &t);
+        const M ok =
+            SphereLanes(d, hn::Load(d, b.c[0] + i), hn::Load(d, b.c[1] + i),
+                        hn::Load(d, b.c[2] + i), hn::Load(d, b.r + i), hn::Set(d, ray.o.x),
+                        hn::Set(d, ray.o.y), hn::Set(d, ray.o.z), hn::Set(d, ray.d.x),
+                        hn::Set(d, ray.d.y), hn::Set(d, ray.d.z), hn::Set(d, dot(ray.d, ray.d)),
+                        hn::Set(d, ray.tmin), hn::Set(d, tmax), hn::FirstN(d, count - i), &t);
         StoreHits(d, i, ok, t, hn::Zero(d), hn::Zero(d), out);
     }
 }
@@ -427,8 +458,8 @@ HWY_INLINE bool Traverse(const WideBvh& bvh, const Ray& ray, Hit* hit) {
 // hit the single-ray traversal gives it (ties aside). Rays whose major axes differ (Woop's
 // permutation is then not uniform over the packet) test triangle blocks one ray at a time.
 template <bool AnyHit>
-HWY_INLINE void TraversePacket(const WideBvh& bvh, const Ray* rays, size_t n, Hit* hits,
-                               bool* occluded) {
+HWY_INLINE void TraversePacket(
+    const WideBvh& bvh, const Ray* rays, size_t n, Hit* hits, bool* occluded) {
     const D d;
     const size_t N = hn::Lanes(d);
     HWY_ALIGN float a[12][kLeafBlockWidth] = {};
@@ -513,7 +544,8 @@ HWY_INLINE void TraversePacket(const WideBvh& bvh, const Ray* rays, size_t n, Hi
                 const M enter =
                     hn::And(active, hn::Le(t_near, hn::Min(hn::Mul(t_far, widen), tmax)));
                 if (hn::AllFalse(d, enter)) continue;
-                const float t_min = hn::GetLane(hn::MinOfLanes(d, hn::IfThenElse(enter, t_near, inf)));
+                const float t_min =
+                    hn::GetLane(hn::MinOfLanes(d, hn::IfThenElse(enter, t_near, inf)));
                 hit_children[count++] = {node.child[c], t_min};
             }
             if (count > 0) {
@@ -569,12 +601,14 @@ HWY_INLINE void TraversePacket(const WideBvh& bvh, const Ray* rays, size_t n, Hi
                             ref = b.ref[j];
                         } else if (lb.kind == PrimKind::Quad) {
                             const QuadBlock& b = bvh.quads[lb.index];
-                            const QuadLanesIn p{
-                                hn::Set(d, b.q[0][j]), hn::Set(d, b.q[1][j]), hn::Set(d, b.q[2][j]),
-                                hn::Set(d, b.u[0][j]), hn::Set(d, b.u[1][j]), hn::Set(d, b.u[2][j]),
-                                hn::Set(d, b.v[0][j]), hn::Set(d, b.v[1][j]), hn::Set(d, b.v[2][j]),
-                                hn::Set(d, b.n[0][j]), hn::Set(d, b.n[1][j]), hn::Set(d, b.n[2][j]),
-                                hn::Set(d, b.w[0][j]), hn::Set(d, b.w[1][j]), hn::Set(d, b.w[2][j])};
+                            const QuadLanesIn p{hn::Set(d, b.q[0][j]), hn::Set(d, b.q[1][j]),
+                                                hn::Set(d, b.q[2][j]), hn::Set(d, b.u[0][j]),
+                                                hn::Set(d, b.u[1][j]), hn::Set(d, b.u[2][j]),
+                                                hn::Set(d, b.v[0][j]), hn::Set(d, b.v[1][j]),
+                                                hn::Set(d, b.v[2][j]), hn::Set(d, b.n[0][j]),
+                                                hn::Set(d, b.n[1][j]), hn::Set(d, b.n[2][j]),
+                                                hn::Set(d, b.w[0][j]), hn::Set(d, b.w[1][j]),
+                                                hn::Set(d, b.w[2][j])};
                             ok = QuadLanes(d, p, o[0], o[1], o[2], dir[0], dir[1], dir[2], tmin,
                                            tmax, active, &t, &u, &v);
                             ref = b.ref[j];
@@ -625,7 +659,8 @@ void IntersectPacket(const WideBvh& bvh, const Ray* rays, size_t n, Hit* hits) {
         for (size_t i = 0; i < n; ++i) hits[i] = Hit{};
         return;
     }
-    for (size_t i = 0; i < n; i += N) TraversePacket<false>(bvh, rays + i, std::min(N, n - i), hits + i, nullptr);
+    for (size_t i = 0; i < n; i += N)
+        TraversePacket<false>(bvh, rays + i, std::min(N, n - i), hits + i, nullptr);
 }
 
 void OccludedPacket(const WideBvh& bvh, const Ray* rays, size_t n, bool* occluded) {

@@ -17,7 +17,8 @@ namespace fs = std::filesystem;
 namespace {
 
 fs::path setup() {
-    fs::path dir = fs::temp_directory_path() / ("wavetrace-fuzz-scene-" + std::to_string(::getpid()));
+    fs::path dir =
+        fs::temp_directory_path() / ("wavetrace-fuzz-scene-" + std::to_string(::getpid()));
     fs::create_directories(dir / "meshes");
     fs::create_directories(dir / "textures");
     const fs::path data = WAVETRACE_FUZZ_DATA_DIR;
