@@ -6,31 +6,15 @@
 #include <fstream>
 #include <sstream>
 
-#include "temp_dir.h"
-#include "test_paths.h"
+#include "cli_run.h"
 #include "wavetrace/image/image.h"
 
 using namespace wavetrace;
 
 namespace {
 
-struct CliResult {
-    int code;
-    std::string out, err;
-};
-
 CliResult run(const TempDir& dir, const std::string& args) {
-    std::string cmd = "'" + cli_path().string() + "' " + args + " > '" +
-                      (dir.path() / "stdout").string() + "' 2> '" +
-                      (dir.path() / "stderr").string() + "'";
-    int status = std::system(cmd.c_str());
-    auto slurp = [](const std::filesystem::path& p) {
-        std::stringstream s;
-        s << std::ifstream(p).rdbuf();
-        return s.str();
-    };
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(dir.path() / "stdout"),
-            slurp(dir.path() / "stderr")};
+    return run_cli(dir, args);
 }
 
 std::string scene(const char* name) {

@@ -11,26 +11,15 @@
 #include <fstream>
 #include <sstream>
 
-#include "temp_dir.h"
-#include "test_paths.h"
+#include "cli_run.h"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-struct CliRun {
-    int code;
-    std::string err;
-};
-
-// `prefix` runs before the CLI in the same shell (e.g. ulimit), `args` after it.
-CliRun run_cli(const TempDir& dir, const std::string& args, const std::string& prefix = "") {
-    std::string cmd = prefix + " timeout 20 '" + cli_path().string() + "' " + args +
-                      " > /dev/null 2> '" + (dir.path() / "stderr").string() + "'";
-    int status = std::system(("bash -c \"" + cmd + "\"").c_str());
-    std::stringstream s;
-    s << std::ifstream(dir.path() / "stderr").rdbuf();
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, s.str()};
+// Under `timeout 20`: a hang fails as exit 124 instead of stalling the suite.
+CliResult run_guarded(const TempDir& dir, const std::string& args, const std::string& prefix = "") {
+    return run_cli(dir, args, prefix, "timeout 20");
 }
 
 const char* kHead = R"({"camera": {"look_from": [0, 0, -5], "look_at": [0, 0, 0]},
@@ -42,7 +31,7 @@ const char* kHead = R"({"camera": {"look_from": [0, 0, -5], "look_at": [0, 0, 0]
 void expect_refused(const TempDir& dir, const std::string& scene, const std::string& expect) {
     fs::path p = dir.write("x.json", scene);
     fs::path out = dir.path() / "out.png";
-    CliRun r = run_cli(dir, "render '" + p.string() + "' -o '" + out.string() + "'");
+    CliResult r = run_guarded(dir, "render '" + p.string() + "' -o '" + out.string() + "'");
     EXPECT_EQ(r.code, 2) << r.err;
     EXPECT_NE(r.err.find(p.string()), std::string::npos) << "names the file: " << r.err;
     EXPECT_NE(r.err.find(expect), std::string::npos) << r.err;
@@ -174,7 +163,7 @@ TEST(HostileInput, TexturePathThatIsADeviceIsRefused) {
 TEST(HostileInput, DeviceAsTheSceneFileIsRefused) {
     TempDir dir;
     fs::path out = dir.path() / "out.png";
-    CliRun r = run_cli(dir, "render /dev/zero -o '" + out.string() + "'");
+    CliResult r = run_guarded(dir, "render /dev/zero -o '" + out.string() + "'");
     EXPECT_EQ(r.code, 2) << r.err;
     EXPECT_NE(r.err.find("/dev/zero: cannot open scene file: not a regular file (a device)"),
               std::string::npos)
@@ -235,8 +224,8 @@ TEST(HostileInput, DegenerateCameraIsRefused) {
 TEST(HostileOutput, OutputThatIsADirectoryIsRefusedBeforeRendering) {
     TempDir dir;
     fs::create_directories(dir.path() / "out.png");
-    CliRun r = run_cli(dir, "render '" + scene_path("cornell").string() + "' -o '" +
-                                (dir.path() / "out.png").string() + "'");
+    CliResult r = run_guarded(dir, "render '" + scene_path("cornell").string() + "' -o '" +
+                                       (dir.path() / "out.png").string() + "'");
     EXPECT_EQ(r.code, 2) << r.err;
     EXPECT_NE(r.err.find("out.png: cannot write: is a directory"), std::string::npos) << r.err;
     EXPECT_EQ(r.err.find("spp:"), std::string::npos) << "no render ran: " << r.err;
@@ -245,7 +234,8 @@ TEST(HostileOutput, OutputThatIsADirectoryIsRefusedBeforeRendering) {
 TEST(HostileOutput, UnwritableFolderIsRefusedBeforeRendering) {
     TempDir dir;
     // /proc refuses new files even to root, so this holds whoever runs the tests.
-    CliRun r = run_cli(dir, "render '" + scene_path("cornell").string() + "' -o /proc/x.png");
+    CliResult r =
+        run_guarded(dir, "render '" + scene_path("cornell").string() + "' -o /proc/x.png");
     EXPECT_EQ(r.code, 2) << r.err;
     EXPECT_NE(r.err.find("/proc/x.png: cannot write in folder '/proc'"), std::string::npos)
         << r.err;
@@ -259,10 +249,11 @@ TEST(HostileOutput, FailedWriteKeepsThePreviousFileAndLeavesNoTemporary) {
         TempDir dir;
         fs::path out = dir.path() / (std::string("out.") + ext);
         std::ofstream(out) << "previous";
-        CliRun r = run_cli(dir,
-                           "render '" + scene_path("cornell").string() +
-                               "' --width 128 --height 128 --spp 1 -o '" + out.string() + "'",
-                           "trap '' XFSZ; ulimit -f 4;");  // 4 KiB
+        CliResult r =
+            run_guarded(dir,
+                        "render '" + scene_path("cornell").string() +
+                            "' --width 128 --height 128 --spp 1 -o '" + out.string() + "'",
+                        "trap '' XFSZ; ulimit -f 4;");  // 4 KiB
         EXPECT_EQ(r.code, 1) << ext << ": " << r.err;
         EXPECT_NE(r.err.find("cannot write: File too large"), std::string::npos) << r.err;
         std::stringstream kept;
@@ -270,7 +261,7 @@ TEST(HostileOutput, FailedWriteKeepsThePreviousFileAndLeavesNoTemporary) {
         EXPECT_EQ(kept.str(), "previous") << ext;
         size_t files = 0;
         for (const auto& e : fs::directory_iterator(dir.path()))
-            if (e.path().filename() != "stderr") ++files;
+            if (e.path().filename() != "stderr" && e.path().filename() != "stdout") ++files;
         EXPECT_EQ(files, 1u) << ext << ": a temporary file was left behind";
     }
 }
@@ -281,17 +272,17 @@ TEST(HostileOutput, SignalDuringTheWriteLeavesNoTemporary) {
     TempDir dir;
     fs::path out = dir.path() / "out.png";
     std::ofstream(out) << "previous";
-    CliRun r = run_cli(dir,
-                       "render '" + scene_path("cornell").string() +
-                           "' --width 128 --height 128 --spp 1 -o '" + out.string() + "'",
-                       "ulimit -f 4;");
+    CliResult r = run_guarded(dir,
+                              "render '" + scene_path("cornell").string() +
+                                  "' --width 128 --height 128 --spp 1 -o '" + out.string() + "'",
+                              "ulimit -f 4;");
     EXPECT_EQ(r.code, 128 + SIGXFSZ) << "killed by SIGXFSZ: " << r.err;
     std::stringstream kept;
     kept << std::ifstream(out).rdbuf();
     EXPECT_EQ(kept.str(), "previous");
     size_t files = 0;
     for (const auto& e : fs::directory_iterator(dir.path()))
-        if (e.path().filename() != "stderr") ++files;
+        if (e.path().filename() != "stderr" && e.path().filename() != "stdout") ++files;
     EXPECT_EQ(files, 1u) << "a temporary file was left behind";
 }
 
@@ -306,11 +297,11 @@ TEST(HostileOutput, RunningOutOfMemoryIsAnErrorNotACrash) {
     TempDir dir;
     fs::path out = dir.path() / "big.exr";
     // 16384 x 8192 pixels: the film alone needs 6.5 GiB; 3 GiB of address space is not enough.
-    CliRun r =
-        run_cli(dir,
-                "render '" + scene_path("cornell").string() +
-                    "' --width 16384 --height 8192 --spp 1 --threads 1 -o '" + out.string() + "'",
-                "ulimit -v 3000000;");
+    CliResult r = run_guarded(dir,
+                              "render '" + scene_path("cornell").string() +
+                                  "' --width 16384 --height 8192 --spp 1 --threads 1 -o '" +
+                                  out.string() + "'",
+                              "ulimit -v 3000000;");
     EXPECT_EQ(r.code, 2) << r.err;
     EXPECT_NE(r.err.find("out of memory rendering 16384 x 8192"), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(out));

@@ -205,12 +205,9 @@ MeshFile read_mesh_file(const std::filesystem::path& path) {
         for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
             const aiFace& face = mesh->mFaces[f];
             if (face.mNumIndices != 3) continue;
-            // Indices were checked before post-processing; check what it made of them too.
-            for (int k = 0; k < 3; ++k) {
-                if (face.mIndices[k] >= mesh->mNumVertices)
-                    throw std::runtime_error("a face index past the vertices after processing");
-                out.indices.push_back(base + face.mIndices[k]);
-            }
+            // Indices were checked before post-processing; Scene::add_mesh skips any triangle
+            // whose index is still out of range.
+            for (int k = 0; k < 3; ++k) out.indices.push_back(base + face.mIndices[k]);
         }
     }
     if (out.indices.empty()) throw std::runtime_error("the file holds no triangles");
