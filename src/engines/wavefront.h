@@ -65,14 +65,11 @@ void wavefront(const Scene& scene,
     uint64_t rays = 0;
 
     // Waves run in sample order and never straddle two passes (one sample of every pixel), so
-    // a stop between passes leaves every pixel with the same number of samples.
-    int pass = 0;
+    // a stop between passes leaves every pixel with the same number of samples: the loop only
+    // ends at a pass boundary, so first / pixels passes are done.
     uint64_t first = 0;
     while (first < total) {
-        if (first % pixels == 0) {
-            if (config.stop && config.stop()) break;
-            pass = static_cast<int>(first / pixels);
-        }
+        if (first % pixels == 0 && config.stop && config.stop()) break;
         const uint64_t pass_end = (first / pixels + 1) * pixels;
         const size_t slots = static_cast<size_t>(std::min<uint64_t>(wave_size, pass_end - first));
         launch(slots, [&](size_t b, size_t e) { generate(in, q, first, b, e); });
@@ -97,16 +94,15 @@ void wavefront(const Scene& scene,
         }
         accumulate_film(q, film, slots);
         first += slots;
-        if (first % pixels == 0) pass = static_cast<int>(first / pixels);
         if (progress) progress(double(first) / double(total));
     }
 
     if (stats) {
         stats->seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        stats->paths = pixels * static_cast<uint64_t>(pass);
+        stats->paths = first;
         stats->rays = rays;
-        stats->spp_done = pass;
+        stats->spp_done = static_cast<int>(first / pixels);
     }
 }
 
