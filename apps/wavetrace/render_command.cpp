@@ -147,20 +147,23 @@ std::optional<std::string> check_options(const RenderOptions& o, const RenderSet
     return std::nullopt;
 }
 
+// What a render produced: the image, its metadata and the summary line; spp_done is -1 for
+// renders that are not pass-based (AOVs).
+struct Rendered {
+    WriteOptions write;
+    Image image;
+    std::string summary;
+    int spp_done = -1;
+};
+
 // The render itself: BVH, engine or AOV, the image and its metadata.
-void render_to_image(const RenderOptions& o,
-                     const Scene& scene,
-                     int width,
-                     int height,
-                     const fs::path& output,
-                     WriteOptions* write_out,
-                     Image* image_out,
-                     std::string* summary_out,
-                     int* spp_done_out) {
+Rendered render_to_image(
+    const RenderOptions& o, const Scene& scene, int width, int height, const fs::path& output) {
     Bvh bvh = Bvh::build(scene);
-    WriteOptions& write = *write_out;
-    Image& image = *image_out;
-    std::string& summary = *summary_out;
+    Rendered r;
+    WriteOptions& write = r.write;
+    Image& image = r.image;
+    std::string& summary = r.summary;
     write.exposure = o.exposure;
     write.metadata = {{"wavetrace:scene", o.scene}, {"wavetrace:seed", std::to_string(o.seed)}};
     if (o.aov == "color") {
@@ -190,7 +193,7 @@ void render_to_image(const RenderOptions& o,
                 ? render_megakernel(scene, bvh, config, &stats, progress.callback())
                 : render_wavefront(scene, bvh, config, wavefront, &stats, progress.callback());
         progress.finish();
-        *spp_done_out = stats.spp_done;
+        r.spp_done = stats.spp_done;
         image = film.mean();
         write.metadata.insert(write.metadata.end(),
                               {{"wavetrace:engine", o.engine},
@@ -223,6 +226,7 @@ void render_to_image(const RenderOptions& o,
         // 8-bit outputs cannot hold negative normals or unbounded depths: map them to [0, 1].
         if (is_ldr_path(output)) map_aov_to_display(aov, image);
     }
+    return r;
 }
 
 }  // namespace
@@ -248,12 +252,9 @@ int run_render(const RenderOptions& o) {
 
     const int width = o.width.value_or(scene.render.width);
     const int height = o.height.value_or(scene.render.height);
-    WriteOptions write;
-    Image image;
-    std::string summary;
-    int spp_done = -1;  // -1: not a pass-based render (AOVs)
+    Rendered r;
     try {
-        render_to_image(o, scene, width, height, output, &write, &image, &summary, &spp_done);
+        r = render_to_image(o, scene, width, height, output);
     } catch (const std::bad_alloc&) {
         // Name what needed the memory and what would fit, instead of dying on SIGABRT.
         const double pixels = double(width) * height;
@@ -268,19 +269,19 @@ int run_render(const RenderOptions& o) {
     // Stopped by a signal: exit as the shell expects of it (128 + signal), after writing
     // the image of the completed passes, if there are any.
     const int signal_exit = g_stop_signal.load() != 0 ? 128 + g_stop_signal.load() : 0;
-    if (spp_done == 0) {
+    if (r.spp_done == 0) {
         std::cerr << "wavetrace: stopped before the first pass completed; no image written\n";
         return signal_exit != 0 ? signal_exit : kExitFailure;
     }
     try {
-        write_image(output, image, write);
+        write_image(output, r.image, r.write);
     } catch (const ImageError& e) {
         std::cerr << "wavetrace: error: " << e.what() << "\n";
         return kExitFailure;
     }
     double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::cerr << fmt::format("wavetrace: {} -> {} ({:.2f} s in all)\n", summary, output.string(),
+    std::cerr << fmt::format("wavetrace: {} -> {} ({:.2f} s in all)\n", r.summary, output.string(),
                              seconds);
     std::cout << output.string() << "\n";
     return signal_exit != 0 ? signal_exit : kExitOk;
