@@ -9,16 +9,15 @@
 #include <string>
 
 #include "kernels/kernels.h"
-#include "queues/compact.h"
 #include "wavetrace/wavetrace.h"
 
 using namespace wavetrace;
 
 namespace {
 
-constexpr size_t kWave = 1 << 16;
+constexpr size_t kWave = 4096;  // the default wave: one thread's share of a pass
 
-// A scene with everything a wave needs, and the wave captured after its first intersection.
+// A scene with everything a wave needs, and one wave captured after its first intersection.
 struct Captured {
     Scene scene;
     Bvh bvh;
@@ -26,8 +25,9 @@ struct Captured {
     RenderConfig config;
     std::unique_ptr<CameraRays> camera;
     std::unique_ptr<WaveInputs> in;
-    WaveQueues q;       // after generate + intersect + bucket
-    WaveQueues shaded;  // after shade + light_sample + shadow compaction + intersect_shadow
+    WaveQueues q;       // after generate + intersect + sort_by_material
+    KeyRanges ranges{};
+    WaveQueues shaded;  // after shade + intersect_shadow
     size_t n = 0, shadows = 0;
 
     explicit Captured(const std::string& name) {
@@ -43,16 +43,16 @@ struct Captured {
                                                      media_at(scene, bvh, scene.camera.look_from)});
         n = kWave;
         q.resize(n);
-        generate(*in, q, 0, 0, n);
-        intersect(bvh, q, 0, n);
-        bucket_by_material(*in, q, n);
+        // The middle rows of the image: a wave that sees the scene, not the sky above it.
+        const uint32_t first = static_cast<uint32_t>(config.width * (config.height / 2) - n / 2);
+        generate(*in, 0, first, 0, n, q.paths, q.rays);
+        intersect(bvh, q.rays, 0, n, q.hits);
+        ranges = sort_by_material(scene, n, q.key, q.paths, q.rays, q.hits);
         shaded = q;
-        shade(*in, shaded, 0, n);
-        light_sample(*in, shaded, 0, n);
-        shadows = stable_compact(std::span(shaded.shadow_keep.data(), n), shaded.compacted);
-        for (size_t k = 0; k < shadows; ++k)
-            shaded.shadow.copy_from(k, shaded.shadow_candidates, shaded.compacted[k]);
-        intersect_shadow(bvh, *in, shaded, 0, shadows);
+        shadows = shade(*in, 0, shaded.hits, 0, n, shaded.paths, shaded.rays, shaded.keep,
+                        shaded.shadows, 0);
+        intersect_shadow(bvh, *in, shaded.shadows, shaded.paths, 0, shadows,
+                         shaded.transmittance);
     }
 };
 
@@ -66,36 +66,34 @@ Captured& scene(const std::string& name) {
 void BM_Generate(benchmark::State& st, const char* name) {
     Captured& c = scene(name);
     WaveQueues q = c.q;
-    for (auto _ : st) generate(*c.in, q, 0, 0, c.n);
+    for (auto _ : st) generate(*c.in, 0, 0, 0, c.n, q.paths, q.rays);
     st.SetItemsProcessed(st.iterations() * c.n);
 }
 
 void BM_IntersectClosest(benchmark::State& st, const char* name) {
     Captured& c = scene(name);
     WaveQueues q = c.q;
-    for (auto _ : st) intersect(c.bvh, q, 0, c.n);
+    for (auto _ : st) intersect(c.bvh, q.rays, 0, c.n, q.hits);
     st.SetItemsProcessed(st.iterations() * c.n);
 }
 
-void BM_BucketByMaterial(benchmark::State& st, const char* name) {
+void BM_SortByMaterial(benchmark::State& st, const char* name) {
     Captured& c = scene(name);
     WaveQueues q = c.q;
-    for (auto _ : st) bucket_by_material(*c.in, q, c.n);
+    for (auto _ : st) {
+        st.PauseTiming();
+        q = c.shaded;  // unsorted: the order shading left, with the captured hits
+        q.hits = c.q.hits;
+        st.ResumeTiming();
+        benchmark::DoNotOptimize(sort_by_material(c.scene, c.n, q.key, q.paths, q.rays, q.hits));
+    }
     st.SetItemsProcessed(st.iterations() * c.n);
 }
 
-// Shading one material kind's bucket: the contiguous range of `order` whose hits have it.
+// Shading one sort key's range (light sampling included): contiguous after sort_by_material.
 void BM_ShadeKind(benchmark::State& st, const char* name, int kind) {
     Captured& c = scene(name);
-    size_t begin = c.n, end = 0;
-    for (size_t k = 0; k < c.n; ++k) {
-        PrimRef prim = c.q.hits.prim[c.q.order[k]];
-        int key = prim.valid() ? 1 + int(c.scene.materials[c.scene.prim_material(prim)].kind) : 0;
-        if (key == kind) {
-            begin = std::min(begin, k);
-            end = k + 1;
-        }
-    }
+    const size_t begin = c.ranges[kind], end = c.ranges[kind + 1];
     if (begin >= end) {
         st.SkipWithError("no hits of this kind in the captured wave");
         return;
@@ -106,39 +104,37 @@ void BM_ShadeKind(benchmark::State& st, const char* name, int kind) {
         q.paths = c.q.paths;  // shade consumes path state and rays: restore them
         q.rays = c.q.rays;
         st.ResumeTiming();
-        shade(*c.in, q, begin, end);
+        benchmark::DoNotOptimize(
+            shade(*c.in, 0, q.hits, begin, end, q.paths, q.rays, q.keep, q.shadows, 0));
     }
     st.SetItemsProcessed(st.iterations() * (end - begin));
-}
-
-void BM_LightSample(benchmark::State& st, const char* name) {
-    Captured& c = scene(name);
-    WaveQueues q = c.shaded;
-    for (auto _ : st) light_sample(*c.in, q, 0, c.n);
-    st.SetItemsProcessed(st.iterations() * c.n);
 }
 
 void BM_IntersectShadow(benchmark::State& st, const char* name) {
     Captured& c = scene(name);
     WaveQueues q = c.shaded;
-    for (auto _ : st) benchmark::DoNotOptimize(intersect_shadow(c.bvh, *c.in, q, 0, c.shadows));
+    for (auto _ : st)
+        benchmark::DoNotOptimize(
+            intersect_shadow(c.bvh, *c.in, q.shadows, q.paths, 0, c.shadows, q.transmittance));
     st.SetItemsProcessed(st.iterations() * c.shadows);
 }
 
 void BM_MisCombine(benchmark::State& st, const char* name) {
     Captured& c = scene(name);
     WaveQueues q = c.shaded;
-    for (auto _ : st) mis_combine(*c.in, q, 0, c.shadows);
+    for (auto _ : st) mis_combine(q.shadows, q.transmittance, 0, c.shadows, q.paths);
     st.SetItemsProcessed(st.iterations() * c.shadows);
 }
 
-void BM_CompactRays(benchmark::State& st, const char* name) {
+void BM_Compact(benchmark::State& st, const char* name) {
     Captured& c = scene(name);
     WaveQueues q = c.shaded;
     for (auto _ : st) {
-        size_t n = stable_compact(std::span(q.keep.data(), c.n), q.compacted);
-        for (size_t k = 0; k < n; ++k) q.next_rays.copy_from(k, q.rays, q.compacted[k]);
-        benchmark::DoNotOptimize(n);
+        st.PauseTiming();
+        q.paths = c.shaded.paths;
+        q.rays = c.shaded.rays;
+        st.ResumeTiming();
+        benchmark::DoNotOptimize(compact(q.keep, c.n, q.paths, q.rays));
     }
     st.SetItemsProcessed(st.iterations() * c.n);
 }
@@ -152,7 +148,7 @@ WAVETRACE_KERNEL_BENCH(BM_Generate, cornell);
 WAVETRACE_KERNEL_BENCH(BM_IntersectClosest, cornell);
 WAVETRACE_KERNEL_BENCH(BM_IntersectClosest, dragon);
 WAVETRACE_KERNEL_BENCH(BM_IntersectClosest, everything);
-WAVETRACE_KERNEL_BENCH(BM_BucketByMaterial, everything);
+WAVETRACE_KERNEL_BENCH(BM_SortByMaterial, everything);
 BENCHMARK_CAPTURE(BM_ShadeKind, cornell_lambertian, "cornell", 1 + int(MaterialKind::Lambertian))
     ->Unit(benchmark::kMicrosecond)
     ->UseRealTime();
@@ -177,11 +173,9 @@ BENCHMARK_CAPTURE(BM_ShadeKind,
 BENCHMARK_CAPTURE(BM_ShadeKind, cornell_light, "cornell", 1 + int(MaterialKind::DiffuseLight))
     ->Unit(benchmark::kMicrosecond)
     ->UseRealTime();
-WAVETRACE_KERNEL_BENCH(BM_LightSample, cornell);
-WAVETRACE_KERNEL_BENCH(BM_LightSample, dragon);
 WAVETRACE_KERNEL_BENCH(BM_IntersectShadow, cornell);
 WAVETRACE_KERNEL_BENCH(BM_IntersectShadow, dragon);
 WAVETRACE_KERNEL_BENCH(BM_MisCombine, cornell);
-WAVETRACE_KERNEL_BENCH(BM_CompactRays, cornell);
+WAVETRACE_KERNEL_BENCH(BM_Compact, cornell);
 
 BENCHMARK_MAIN();

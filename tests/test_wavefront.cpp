@@ -1,12 +1,11 @@
 // The wavefront engine against the megakernel (same estimator, same random numbers: the same
-// image up to rounding), its determinism, and stream compaction.
+// image up to rounding), and its determinism.
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
 #include <cmath>
 #include <numeric>
 
-#include "queues/compact.h"
 #include "test_paths.h"
 #include "wavetrace/render/megakernel.h"
 #include "wavetrace/render/wavefront.h"
@@ -91,54 +90,4 @@ TEST(Wavefront, BitIdenticalForAnyThreadCountAndWaveSize) {
             ASSERT_EQ(ref.pixels[i], img.pixels[i])
                 << "threads " << threads << " wave " << wave << " pixel " << i;
     }
-}
-
-namespace {
-std::vector<uint32_t> reference_compact(const std::vector<uint8_t>& keep) {
-    std::vector<uint32_t> out;
-    for (size_t i = 0; i < keep.size(); ++i)
-        if (keep[i]) out.push_back(static_cast<uint32_t>(i));
-    return out;
-}
-void check_compact(const std::vector<uint8_t>& keep) {
-    std::vector<uint32_t> out(keep.size(), 0xdeadbeef);
-    size_t n = stable_compact(keep, out);
-    std::vector<uint32_t> expect = reference_compact(keep);
-    ASSERT_EQ(n, expect.size());
-    for (size_t k = 0; k < n; ++k) ASSERT_EQ(out[k], expect[k]) << k;
-}
-}  // namespace
-
-TEST(Compaction, EmptyInput) {
-    check_compact({});
-}
-TEST(Compaction, AllAlive) {
-    check_compact(std::vector<uint8_t>(3 * kCompactChunk + 5, 1));
-}
-TEST(Compaction, AllDead) {
-    check_compact(std::vector<uint8_t>(2 * kCompactChunk + 1, 0));
-}
-TEST(Compaction, StableForSizesNotAMultipleOfTheChunk) {
-    for (size_t n : {size_t(1), size_t(7), kCompactChunk - 1, kCompactChunk, kCompactChunk + 1,
-                     5 * kCompactChunk + 333}) {
-        std::vector<uint8_t> keep(n);
-        for (size_t i = 0; i < n; ++i) keep[i] = ((i * 2654435761u) >> 7) % 3 == 0;
-        check_compact(keep);
-    }
-}
-TEST(Compaction, SameResultForAnyThreadCount) {
-    std::vector<uint8_t> keep(9 * kCompactChunk + 17);
-    for (size_t i = 0; i < keep.size(); ++i) keep[i] = (i % 5) != 2;
-    std::vector<uint32_t> a(keep.size()), b(keep.size());
-    size_t na, nb;
-    {
-        tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
-        na = stable_compact(keep, a);
-    }
-    {
-        tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 7);
-        nb = stable_compact(keep, b);
-    }
-    ASSERT_EQ(na, nb);
-    EXPECT_EQ(a, b);
 }

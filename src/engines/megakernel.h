@@ -44,7 +44,9 @@ Color ray_color(PathContext<Tracer>& ctx,
                 const PreviousVertex& prev,
                 Color beta) {
     const RenderConfig& cfg = ctx.config;
-    float flight = segment_flight(cfg.seed, ctx.pixel, ctx.sample, bounce);
+    // Without media no segment consumes its free-flight depth, so it is not drawn.
+    float flight =
+        ctx.scene.media.empty() ? 0.0f : segment_flight(cfg.seed, ctx.pixel, ctx.sample, bounce);
     for (int crossing = 0; crossing < kMaxBoundaryCrossings; ++crossing) {
         ++ctx.rays;
         Hit hit = ctx.bvh.intersect(ray);

@@ -1,44 +1,54 @@
 // The wavefront engine's outer loop: a readable script of kernel launches (pbrt-v4's
-// WavefrontPathIntegrator::Render() is the model). Each stage runs over its queue with a thin
-// oneTBB parallel_for; queues are compacted after every bounce. Generic over the intersector:
-// wavefront.cpp instantiates it for our BVH, src/reference for Embree.
+// WavefrontPathIntegrator::Render() is the model). A pass (one sample of every pixel) is cut
+// into waves of consecutive pixels; oneTBB hands the waves to the threads, and each thread
+// carries its wave through every stage, bounce after bounce, in queues it reuses from wave to
+// wave, so that a wave's queues stay in that core's cache (the per-thread queues of Áfra et
+// al., HPG 2016, and of MoonRay, rather than pbrt-v4's one global wave). Generic over the
+// intersector: wavefront.cpp instantiates it for our BVH, src/reference for Embree.
 #pragma once
 
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_reduce.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 
 #include "kernels/kernels.h"
-#include "queues/compact.h"
 #include "shading/trace.h"
 #include "wavetrace/render/wavefront.h"
 #include "wavetrace/scene/intersector.h"
 
 namespace wavetrace {
 namespace wavefront_detail {
-constexpr size_t kGrain = 256;
 
-// The thin wrapper that runs a range kernel on all threads.
-template <class Kernel>
-void launch(size_t n, Kernel&& kernel) {
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, kGrain),
-                      [&](const tbb::blocked_range<size_t>& r) { kernel(r.begin(), r.end()); });
-}
+// Waves handed out between two progress reports (on the caller's thread).
+constexpr size_t kWavesPerReport = 64;
 
-// Copies the kept entries of `from` to the front of `to`, in order; returns their count.
-template <class Queue>
-size_t compact_into(const Queue& from,
-                    Queue& to,
-                    std::span<const uint8_t> keep,
-                    std::vector<uint32_t>& indices) {
-    size_t n = stable_compact(keep, indices);
-    launch(n, [&](size_t b, size_t e) {
-        for (size_t k = b; k < e; ++k) to.copy_from(k, from, indices[k]);
-    });
-    return n;
+// Carries the wave of pixels [first_pixel, first_pixel + n) through all its bounces and adds
+// its paths to the film; returns the rays traced.
+template <Intersector Tracer>
+uint64_t run_wave(const WaveInputs& in,
+                  const Tracer& bvh,
+                  uint32_t sample,
+                  uint32_t first_pixel,
+                  size_t n,
+                  WaveQueues& q,
+                  Film& film) {
+    uint64_t rays = 0;
+    generate(in, sample, first_pixel, 0, n, q.paths, q.rays);
+    while (n > 0) {
+        intersect(bvh, q.rays, 0, n, q.hits);
+        rays += n;
+        sort_by_material(in.scene, n, q.key, q.paths, q.rays, q.hits);
+        const size_t shadows = shade(in, sample, q.hits, 0, n, q.paths, q.rays, q.keep, q.shadows, 0);
+        rays += intersect_shadow(bvh, in, q.shadows, q.paths, 0, shadows, q.transmittance);
+        mis_combine(q.shadows, q.transmittance, 0, shadows, q.paths);
+        accumulate_film(q.paths, q.keep, n, film);
+        n = compact(q.keep, n, q.paths, q.rays);
+    }
+    return rays;
 }
 
 }  // namespace wavefront_detail
@@ -51,58 +61,55 @@ void wavefront(const Scene& scene,
                const WavefrontConfig& wavefront,
                RenderStats* stats,
                const ProgressCallback& progress) {
-    using wavefront_detail::compact_into, wavefront_detail::kGrain, wavefront_detail::launch;
+    using wavefront_detail::kWavesPerReport;
     auto start = std::chrono::steady_clock::now();
     const LightSet lights(scene);
     const CameraRays camera(scene.camera, config.width, config.height);
     const WaveInputs in{scene, lights, config, camera,
                         media_at(scene, bvh, scene.camera.look_from)};
-    const uint64_t pixels = static_cast<uint64_t>(config.width) * config.height;
-    const uint64_t total = pixels * static_cast<uint64_t>(config.spp);
-    const size_t wave_size = std::max<size_t>(1, std::min<uint64_t>(wavefront.wave_size, pixels));
-    WaveQueues q;
-    q.resize(wave_size);
-    uint64_t rays = 0;
+    const size_t pixels = static_cast<size_t>(config.width) * config.height;
+    const size_t wave_size = std::max<size_t>(1, std::min(wavefront.wave_size, pixels));
+    const size_t waves = (pixels + wave_size - 1) / wave_size;
+    tbb::enumerable_thread_specific<WaveQueues> queues([&] {
+        WaveQueues q;
+        q.resize(wave_size);
+        return q;
+    });
+    std::atomic<uint64_t> rays{0};
 
-    // Waves run in sample order and never straddle two passes (one sample of every pixel), so
-    // a stop between passes leaves every pixel with the same number of samples: the loop only
-    // ends at a pass boundary, so first / pixels passes are done.
-    uint64_t first = 0;
-    while (first < total) {
-        if (first % pixels == 0 && config.stop && config.stop()) break;
-        const uint64_t pass_end = (first / pixels + 1) * pixels;
-        const size_t slots = static_cast<size_t>(std::min<uint64_t>(wave_size, pass_end - first));
-        launch(slots, [&](size_t b, size_t e) { generate(in, q, first, b, e); });
-        size_t n = slots;
-        while (n > 0) {
-            launch(n, [&](size_t b, size_t e) { intersect(bvh, q, b, e); });
-            rays += n;
-            bucket_by_material(in, q, n);
-            launch(n, [&](size_t b, size_t e) { shade(in, q, b, e); });
-            launch(n, [&](size_t b, size_t e) { light_sample(in, q, b, e); });
-            size_t shadows = compact_into(q.shadow_candidates, q.shadow,
-                                          std::span(q.shadow_keep.data(), n), q.compacted);
-            rays += tbb::parallel_reduce(
-                tbb::blocked_range<size_t>(0, shadows, kGrain), uint64_t{0},
-                [&](const tbb::blocked_range<size_t>& r, uint64_t acc) {
-                    return acc + intersect_shadow(bvh, in, q, r.begin(), r.end());
-                },
-                [](uint64_t a, uint64_t b) { return a + b; });
-            launch(shadows, [&](size_t b, size_t e) { mis_combine(in, q, b, e); });
-            n = compact_into(q.rays, q.next_rays, std::span(q.keep.data(), n), q.compacted);
-            std::swap(q.rays, q.next_rays);
+    // Passes run in order and a stop is only taken between them, so every pixel has the same
+    // number of samples, received in sample order: the image does not depend on the wave
+    // size, the thread count or which thread ran which wave.
+    int done = 0;
+    for (; done < config.spp; ++done) {
+        if (config.stop && config.stop()) break;
+        const uint32_t sample = static_cast<uint32_t>(config.first_sample + done);
+        for (size_t w0 = 0; w0 < waves; w0 += kWavesPerReport) {
+            const size_t w1 = std::min(waves, w0 + kWavesPerReport);
+            tbb::parallel_for(tbb::blocked_range<size_t>(w0, w1, 1),
+                              [&](const tbb::blocked_range<size_t>& r) {
+                                  WaveQueues& q = queues.local();
+                                  uint64_t traced = 0;
+                                  for (size_t w = r.begin(); w < r.end(); ++w) {
+                                      const size_t first = w * wave_size;
+                                      const size_t n = std::min(wave_size, pixels - first);
+                                      traced += wavefront_detail::run_wave(
+                                          in, bvh, sample, static_cast<uint32_t>(first), n, q,
+                                          film);
+                                  }
+                                  rays.fetch_add(traced, std::memory_order_relaxed);
+                              });
+            if (progress)
+                progress((double(done) * waves + double(w1)) / (double(config.spp) * waves));
         }
-        accumulate_film(q, film, slots);
-        first += slots;
-        if (progress) progress(double(first) / double(total));
     }
 
     if (stats) {
         stats->seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        stats->paths = first;
-        stats->rays = rays;
-        stats->spp_done = static_cast<int>(first / pixels);
+        stats->paths = static_cast<uint64_t>(pixels) * done;
+        stats->rays = rays.load();
+        stats->spp_done = done;
     }
 }
 

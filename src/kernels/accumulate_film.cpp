@@ -2,11 +2,12 @@
 
 namespace wavetrace {
 
-// A wave holds at most one sample per pixel, and waves run in sample order, so each pixel
-// receives its samples in the same order as in the megakernel, whatever the wave size.
-void accumulate_film(const WaveQueues& q, Film& film, size_t slots) {
-    for (size_t slot = 0; slot < slots; ++slot)
-        film.add(static_cast<int>(q.paths.pixel[slot]), q.paths.radiance[slot]);
+// A pass gives each pixel one sample, and passes run in order, so each pixel receives its
+// samples in the same order as in the megakernel, whatever the wave size or thread count.
+// Waves hold distinct pixels, so threads never add to the same pixel.
+void accumulate_film(const PathQueue& paths, std::span<const uint8_t> keep, size_t n, Film& film) {
+    for (size_t i = 0; i < n; ++i)
+        if (!keep[i]) film.add(static_cast<int>(paths.pixel[i]), paths.radiance[i]);
 }
 
 }  // namespace wavetrace

@@ -7,13 +7,14 @@ namespace wavetrace {
 
 // Closest hit of rays[i] into hits[i].
 template <Intersector Tracer>
-void intersect(const Tracer& tracer, WaveQueues& q, size_t begin, size_t end) {
+void intersect(
+    const Tracer& tracer, const RayQueue& rays, size_t begin, size_t end, HitQueue& hits) {
     for (size_t i = begin; i < end; ++i) {
-        Hit hit = tracer.intersect(Ray{q.rays.origin[i], q.rays.dir[i], q.rays.tmin[i]});
-        q.hits.t[i] = hit.t;
-        q.hits.prim[i] = hit.prim;
-        q.hits.u[i] = hit.u;
-        q.hits.v[i] = hit.v;
+        Hit hit = tracer.intersect(ray_at(rays, i));
+        hits.t[i] = hit.t;
+        hits.prim[i] = hit.prim;
+        hits.u[i] = hit.u;
+        hits.v[i] = hit.v;
     }
 }
 

@@ -1,19 +1,28 @@
 #pragma once
 
+#include <span>
+
 #include "kernels/wave.h"
 #include "shading/trace.h"
 #include "wavetrace/scene/intersector.h"
 
 namespace wavetrace {
 
-// Transmittance along shadow[i] (0 if blocked); returns the rays traced.
+// Transmittance along shadows[i] (0 if blocked), in the media of its path; returns the rays
+// traced.
 template <Intersector Tracer>
-uint64_t intersect_shadow(
-    const Tracer& tracer, const WaveInputs& in, WaveQueues& q, size_t begin, size_t end) {
+uint64_t intersect_shadow(const Tracer& tracer,
+                          const WaveInputs& in,
+                          const ShadowQueue& shadows,
+                          const PathQueue& paths,
+                          size_t begin,
+                          size_t end,
+                          std::span<float> transmittance) {
     uint64_t rays = 0;
     for (size_t i = begin; i < end; ++i)
-        q.shadow.transmittance[i] =
-            transmittance(in.scene, tracer, q.shadow.ray[i], q.shadow.media[i], &rays);
+        transmittance[i] = wavetrace::transmittance(
+            in.scene, tracer, shadow_ray_at(shadows, i), paths.media[shadows.path[i]].unpack(),
+            &rays);
     return rays;
 }
 

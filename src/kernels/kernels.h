@@ -1,37 +1,74 @@
-// The wavefront's stages, one per file, each a free function over [begin, end).
-//   generate -> intersect -> bucket_by_material -> shade -> light_sample -> (compact shadow)
-//   -> intersect_shadow -> mis_combine -> (compact rays) -> ... -> accumulate_film
+// The wavefront's stages, one per file, each a free function over entries [begin, end) of one
+// thread's wave. Per bounce:
+//   intersect -> sort_by_material -> shade (light sample appended as a shadow ray)
+//   -> intersect_shadow -> mis_combine -> accumulate_film (paths that ended) -> compact
+// after generate has filled the wave with camera rays.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
+#include <span>
 
 #include "kernels/intersect.h"         // intersect: closest hit of rays[i] into hits[i]
-#include "kernels/intersect_shadow.h"  // intersect_shadow: transmittance along shadow[i]
+#include "kernels/intersect_shadow.h"  // intersect_shadow: transmittance along shadows[i]
 #include "kernels/wave.h"
 
 namespace wavetrace {
 
-// Path slots [begin, end) start sample number first_global + slot of the render (pixel =
-// global % pixels, sample = global / pixels): camera ray into rays[slot].
-void generate(const WaveInputs& in, WaveQueues& q, uint64_t first_global, size_t begin, size_t end);
+// Entries [begin, end) start sample `sample` of pixels first_pixel + entry: the path state
+// and the camera ray.
+void generate(const WaveInputs& in,
+              uint32_t sample,
+              uint32_t first_pixel,
+              size_t begin,
+              size_t end,
+              PathQueue& paths,
+              RayQueue& rays);
 
-// Fills q.order[0, n) with the ray entries grouped by the material kind of their hit
-// (misses first), stably. Not range-split: a counting sort over the whole queue.
-void bucket_by_material(const WaveInputs& in, WaveQueues& q, size_t n);
+// Misses, then each MaterialKind of the hit's material.
+inline constexpr int kSortKeys = 8;
+// Start of each key's range after sort_by_material; entry kSortKeys is n.
+using KeyRanges = std::array<uint32_t, kSortKeys + 1>;
+int sort_key(const Scene& scene, PrimRef prim);
 
-// For q.order[k], k in [begin, end): resolve the segment (medium scattering, emission with its
-// weight, boundary crossings), store the vertex for light sampling, sample the continuation
-// with Russian roulette, update the path and write its next ray over the entry.
-void shade(const WaveInputs& in, WaveQueues& q, size_t begin, size_t end);
+// Reorders entries [0, n) of paths, rays and hits together, in place, so that each sort key's
+// entries are contiguous (an in-place counting sort, "American flag sort": McIlroy, Bostic and
+// McIlroy 1993). Moves the data, not indices, so shading reads each range contiguously.
+KeyRanges sort_by_material(const Scene& scene,
+                           size_t n,
+                           std::span<uint8_t> key,
+                           PathQueue& paths,
+                           RayQueue& rays,
+                           HitQueue& hits);
 
-// For ray entries with a stored vertex: a light sample, as an unweighted shadow-ray candidate.
-void light_sample(const WaveInputs& in, WaveQueues& q, size_t begin, size_t end);
+// Entries [begin, end): resolves the segment (medium scattering, emission with its weight,
+// boundary crossings); at a scattering vertex samples a light, appending the shadow ray and
+// its weighted, unoccluded contribution at shadows[first_shadow + k], then samples the
+// continuation with Russian roulette and writes the next ray over the entry. keep[i] = 1 if
+// the path goes on. Returns the shadow rays appended.
+size_t shade(const WaveInputs& in,
+             uint32_t sample,
+             const HitQueue& hits,
+             size_t begin,
+             size_t end,
+             PathQueue& paths,
+             RayQueue& rays,
+             std::span<uint8_t> keep,
+             ShadowQueue& shadows,
+             size_t first_shadow);
 
-// Adds each shadow ray's contribution, times its MIS weight and transmittance, to its path.
-void mis_combine(const WaveInputs& in, WaveQueues& q, size_t begin, size_t end);
+// Adds each shadow ray's contribution, times its transmittance, to its path.
+void mis_combine(const ShadowQueue& shadows,
+                 std::span<const float> transmittance,
+                 size_t begin,
+                 size_t end,
+                 PathQueue& paths);
 
-// Adds the wave's finished paths to the film, in slot order.
-void accumulate_film(const WaveQueues& q, Film& film, size_t slots);
+// Adds the radiance of the paths that ended (keep[i] == 0) among entries [0, n) to the film.
+void accumulate_film(const PathQueue& paths, std::span<const uint8_t> keep, size_t n, Film& film);
+
+// Moves the entries with keep[i] != 0 among [0, n) to the front, in order; returns their count.
+size_t compact(std::span<const uint8_t> keep, size_t n, PathQueue& paths, RayQueue& rays);
 
 }  // namespace wavetrace

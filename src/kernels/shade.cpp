@@ -3,63 +3,76 @@
 
 namespace wavetrace {
 
-void shade(const WaveInputs& in, WaveQueues& q, size_t begin, size_t end) {
+size_t shade(const WaveInputs& in,
+             uint32_t sample,
+             const HitQueue& hits,
+             size_t begin,
+             size_t end,
+             PathQueue& paths,
+             RayQueue& rays,
+             std::span<uint8_t> keep,
+             ShadowQueue& shadows,
+             size_t first_shadow) {
     const RenderConfig& cfg = in.config;
-    PathState& ps = q.paths;
-    for (size_t k = begin; k < end; ++k) {
-        const uint32_t i = q.order[k];
-        const uint32_t p = q.rays.path[i];
-        q.keep[i] = 0;
-        q.scatter.has_vertex[i] = 0;
+    const bool nee = cfg.strategy == Strategy::Nee || cfg.strategy == Strategy::Mis;
+    // Without media no segment consumes its free-flight depth, so it is not drawn.
+    const bool has_media = !in.scene.media.empty();
+    size_t s = first_shadow;
+    for (size_t i = begin; i < end; ++i) {
+        keep[i] = 0;
 
         // ---- the segment: medium, emission, boundary or surface ----
-        const Ray ray{q.rays.origin[i], q.rays.dir[i], q.rays.tmin[i]};
-        const Hit hit{q.hits.t[i], q.hits.prim[i], q.hits.u[i], q.hits.v[i]};
-        MediumStack media = ps.media[p];
-        float flight = ps.flight[p];
-        SegmentResult seg =
-            resolve_segment(in.scene, in.lights, cfg, ray, hit, media, flight, ps.prev[p]);
+        MediumStack media = paths.media[i].unpack();
+        float flight = paths.flight[i];
+        const SegmentResult seg =
+            resolve_segment(in.scene, in.lights, cfg, ray_at(rays, i), hit_at(hits, i), media,
+                            flight, previous_vertex(paths, i));
         if (seg.event == SegmentEvent::Cross) {
-            if (++ps.crossings[p] >= kMaxBoundaryCrossings) continue;
-            ps.media[p] = media;
-            ps.flight[p] = flight;
-            q.rays.origin[i] = seg.next.o;
-            q.rays.dir[i] = seg.next.d;
-            q.rays.tmin[i] = seg.next.tmin;
-            q.keep[i] = 1;
+            if (++paths.crossings[i] >= kMaxBoundaryCrossings) continue;
+            paths.media[i] = PackedMedia::pack(media);
+            paths.flight[i] = flight;
+            set_ray(rays, i, seg.next);
+            keep[i] = 1;
             continue;
         }
-        if (seg.event == SegmentEvent::Emission) ps.radiance[p] += ps.beta[p] * seg.emission;
+        if (seg.event == SegmentEvent::Emission) paths.radiance[i] += paths.beta[i] * seg.emission;
         if (seg.event != SegmentEvent::Scatter) continue;
 
-        // ---- a scattering vertex: keep it for light sampling, then continue the path ----
-        const int bounce = ps.bounce[p];
+        // ---- a scattering vertex: a light sample, then the continuation ----
+        const int bounce = paths.bounce[i];
         if (!may_scatter(cfg, bounce)) continue;
-        const uint32_t pixel = ps.pixel[p], sample = ps.sample[p];
-        VertexSamples u = vertex_samples(cfg.seed, pixel, sample, bounce);
-        if ((cfg.strategy == Strategy::Nee || cfg.strategy == Strategy::Mis) &&
-            can_sample_lights(seg.vertex, in.lights)) {
-            q.scatter.has_vertex[i] = 1;
-            q.scatter.vertex[i] = seg.vertex;
-            q.scatter.wo[i] = seg.wo;
-            q.scatter.beta[i] = ps.beta[p];
-            q.scatter.media[i] = media;
-            q.scatter.light_u[i] = Vec3{u.light_select, u.light_u, u.light_v};
+        const uint32_t pixel = paths.pixel[i];
+        const Color beta = paths.beta[i];
+        const VertexSamples u = vertex_samples(cfg.seed, pixel, sample, bounce);
+        if (nee && can_sample_lights(seg.vertex, in.lights)) {
+            const DirectSample d = sample_direct(in.scene, in.lights, seg.vertex, seg.wo,
+                                                 u.light_select, u.light_u, u.light_v);
+            const float w =
+                d.valid ? direct_weight(cfg.strategy, cfg.heuristic, d.pdf_light, d.pdf_bsdf) : 0;
+            if (w > 0.0f) {
+                shadows.origin[s] = d.shadow.o;
+                shadows.dir[s] = d.shadow.d;
+                shadows.tmax[s] = d.shadow.tmax;
+                shadows.contribution[s] = beta * (d.value * w);
+                shadows.path[s] = static_cast<uint32_t>(i);
+                ++s;
+            }
         }
-        PathStep step = continue_path(in.scene, in.lights, cfg, seg.vertex, seg.wo, bounce,
-                                      ps.beta[p], media, u.continuation, u.roulette);
+        // Vertices that sample lights never transmit, so `media` stays what the shadow ray
+        // (which reads its path's media) needs.
+        const PathStep step = continue_path(in.scene, in.lights, cfg, seg.vertex, seg.wo, bounce,
+                                            beta, media, u.continuation, u.roulette);
         if (!step.alive) continue;
-        ps.beta[p] *= step.weight;
-        ps.prev[p] = step.prev;
-        ps.media[p] = media;
-        ps.bounce[p] = bounce + 1;
-        ps.flight[p] = segment_flight(cfg.seed, pixel, sample, bounce + 1);
-        ps.crossings[p] = 0;
-        q.rays.origin[i] = step.next.o;
-        q.rays.dir[i] = step.next.d;
-        q.rays.tmin[i] = step.next.tmin;
-        q.keep[i] = 1;
+        paths.beta[i] = beta * step.weight;
+        set_previous_vertex(paths, i, step.prev);
+        paths.media[i] = PackedMedia::pack(media);
+        paths.bounce[i] = static_cast<uint16_t>(bounce + 1);
+        paths.flight[i] = has_media ? segment_flight(cfg.seed, pixel, sample, bounce + 1) : 0.0f;
+        paths.crossings[i] = 0;
+        set_ray(rays, i, step.next);
+        keep[i] = 1;
     }
+    return s - first_shadow;
 }
 
 }  // namespace wavetrace

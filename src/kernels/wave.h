@@ -1,7 +1,7 @@
-// The data a wave's kernels work on: read-only inputs and the queues. Each kernel is a free
-// function over a range of queue entries (or path slots) that reads and writes only the
-// entries in its range, so a thin parallel_for over ranges runs it on any number of threads
-// with the same result.
+// The data a wave's kernels work on: read-only inputs and one thread's queues. A wave is the
+// share of one pass (one sample of every pixel) that a thread carries through every stage
+// while it stays in that core's cache; each kernel is a free function over a range of queue
+// entries, taking the queues it reads const and the queues it writes mutable.
 #pragma once
 
 #include <cstdint>
@@ -28,23 +28,22 @@ struct WaveInputs {
     MediumStack camera_media;
 };
 
+// Entry i of paths, rays and hits belongs to one path; shadow entries name theirs.
 struct WaveQueues {
-    PathState paths;                   // per path slot
-    RayQueue rays;                     // the current bounce's rays, compacted
-    RayQueue next_rays;                // compaction target (swapped with `rays` after each bounce)
-    HitQueue hits;                     // rays' closest hits, entry for entry
-    ScatterQueue scatter;              // vertices to light-sample, entry for entry
-    ShadowQueue shadow_candidates;     // entry for entry; `shadow_keep` marks the real ones
-    ShadowQueue shadow;                // compacted shadow rays
-    std::vector<uint8_t> keep;         // 1: the ray entry's path goes on
-    std::vector<uint8_t> shadow_keep;  // 1: the entry made a shadow ray
-    std::vector<uint32_t> order;       // ray entries bucketed by material kind
-    std::vector<uint32_t> compacted;   // compaction output indices
-    std::vector<uint32_t> bucket_scratch;
+    PathQueue paths;
+    RayQueue rays;
+    HitQueue hits;
+    ShadowQueue shadows;
+    std::vector<float> transmittance;  // per shadow entry, from intersect_shadow
+    std::vector<uint8_t> keep;         // per entry: 1 if the path goes on after shading
+    std::vector<uint8_t> key;          // per entry: sort_by_material's scratch
 
     void resize(size_t wave_size);
     // Bytes of queue memory per path in flight, from the queues' field declarations.
-    static size_t bytes_per_path();
+    static constexpr size_t bytes_per_path() {
+        return PathQueue::kBytesPerEntry + RayQueue::kBytesPerEntry + HitQueue::kBytesPerEntry +
+               ShadowQueue::kBytesPerEntry + sizeof(float) + 2 * sizeof(uint8_t);
+    }
 };
 
 }  // namespace wavetrace

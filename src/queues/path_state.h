@@ -1,26 +1,38 @@
-// What survives a bounce, per path slot of a wave (slot = index in the wave).
+// What survives a bounce, per live path of a wave. Entries move with their rays (sorting by
+// material, compaction), so no index leads from a ray to its path.
 #pragma once
 
 #include <cstdint>
 
+#include "queues/packed_media.h"
 #include "queues/soa.h"
 #include "wavetrace/math/vec3.h"
-#include "wavetrace/shading/medium_stack.h"
 #include "wavetrace/shading/path_vertex.h"
 
 namespace wavetrace {
 
-#define WAVETRACE_PATH_STATE_FIELDS(F)                                                   \
-    F(uint32_t, pixel, "film pixel index")                                               \
-    F(uint32_t, sample, "sample index within the pixel")                                 \
-    F(int32_t, bounce, "index of the vertex the current ray will reach (0: camera ray)") \
-    F(Color, beta, "path throughput")                                                    \
-    F(Color, radiance, "radiance gathered so far")                                       \
-    F(PreviousVertex, prev, "previous vertex: position, BSDF pdf, counts-fully flag")    \
-    F(MediumStack, media, "media the current ray travels in")                            \
-    F(float, flight, "optical depth the current segment may still travel in media")      \
-    F(uint16_t, crossings, "medium boundaries crossed by the current segment")
+// The sample index is not here: a wave holds one pass, whose paths share it.
+#define WAVETRACE_PATH_FIELDS(F)                                                           \
+    F(uint32_t, pixel, "film pixel index")                                                 \
+    F(uint16_t, bounce, "index of the vertex the current ray will reach (0: camera ray)")  \
+    F(uint8_t, crossings, "medium boundaries crossed by the current segment")              \
+    F(uint8_t, counts_fully, "previous vertex: camera, or could not sample lights")        \
+    F(Color, beta, "path throughput")                                                      \
+    F(Color, radiance, "radiance gathered so far")                                         \
+    F(Point3, prev_p, "previous vertex: position (MIS density of emission found)")         \
+    F(float, prev_pdf, "previous vertex: BSDF density of the current ray's direction")     \
+    F(PackedMedia, media, "media the current ray travels in")                              \
+    F(float, flight, "optical depth the current segment may still travel in media")
 
-WAVETRACE_SOA(PathState, WAVETRACE_PATH_STATE_FIELDS);
+WAVETRACE_SOA(PathQueue, WAVETRACE_PATH_FIELDS);
+
+inline PreviousVertex previous_vertex(const PathQueue& q, size_t i) {
+    return {q.prev_p[i], q.prev_pdf[i], q.counts_fully[i] != 0};
+}
+inline void set_previous_vertex(PathQueue& q, size_t i, const PreviousVertex& v) {
+    q.prev_p[i] = v.p;
+    q.prev_pdf[i] = v.pdf_bsdf;
+    q.counts_fully[i] = v.counts_fully;
+}
 
 }  // namespace wavetrace

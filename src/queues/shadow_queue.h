@@ -1,36 +1,27 @@
-// Vertices where paths scatter (for light sampling), and the shadow rays light sampling makes.
+// The shadow rays that light sampling makes, appended by the shade pass in entry order.
 #pragma once
 
 #include <cstdint>
 
 #include "queues/soa.h"
 #include "wavetrace/math/ray.h"
-#include "wavetrace/shading/medium_stack.h"
-#include "wavetrace/shading/path_vertex.h"
+#include "wavetrace/math/vec3.h"
 
 namespace wavetrace {
 
-// Indexed like the ray queue entry that reached the vertex; `has_vertex` marks the entries
-// that light sampling applies to.
-#define WAVETRACE_SCATTER_QUEUE_FIELDS(F)                                    \
-    F(uint8_t, has_vertex, "1: a vertex that samples lights is stored here") \
-    F(Vertex, vertex, "the scattering vertex")                               \
-    F(Vec3, wo, "unit direction back along the incoming segment")            \
-    F(Color, beta, "path throughput at the vertex, before the continuation") \
-    F(MediumStack, media, "media at the vertex, before the continuation")    \
-    F(Vec3, light_u, "the vertex's light-sample numbers: select, u, v")
+// Shadow rays start at t = 0; their media are those of their path (a vertex that samples
+// lights never transmits, so the continuation leaves the path's media as they were).
+#define WAVETRACE_SHADOW_FIELDS(F)                                                     \
+    F(Point3, origin, "shadow ray origin, offset off the surface")                     \
+    F(Vec3, dir, "unit direction to the light sample")                                 \
+    F(float, tmax, "just short of the light")                                          \
+    F(Color, contribution, "beta f Le / p_light times the strategy's weight, unoccluded") \
+    F(uint32_t, path, "entry of the path (and ray) queue it belongs to")
 
-WAVETRACE_SOA(ScatterQueue, WAVETRACE_SCATTER_QUEUE_FIELDS);
+WAVETRACE_SOA(ShadowQueue, WAVETRACE_SHADOW_FIELDS);
 
-#define WAVETRACE_SHADOW_QUEUE_FIELDS(F)                                                       \
-    F(Ray, ray, "shadow ray (unit direction, tmax short of the light)")                        \
-    F(Color, contribution, "beta f Le / p_light: unweighted, unoccluded")                      \
-    F(float, pdf_light, "light density of the sample (solid angle, selection included)")       \
-    F(float, pdf_bsdf, "BSDF density of the same direction")                                   \
-    F(MediumStack, media, "media at the ray's origin")                                         \
-    F(float, transmittance, "written by the shadow intersection: 0 blocked, else attenuation") \
-    F(uint32_t, path, "path slot in the wave")
-
-WAVETRACE_SOA(ShadowQueue, WAVETRACE_SHADOW_QUEUE_FIELDS);
+inline Ray shadow_ray_at(const ShadowQueue& q, size_t i) {
+    return Ray{q.origin[i], q.dir[i], 0.0f, q.tmax[i]};
+}
 
 }  // namespace wavetrace

@@ -1,25 +1,41 @@
 // Structure-of-arrays queues declared once. A queue's fields are listed in one X-macro
 // (FIELDS(F) expands F(type, name, comment) per field); WAVETRACE_SOA expands that list into
-// the struct's arrays, its allocation, its per-entry byte count and the copy that compaction
-// uses, so adding a field is one edit (the habit of Cycles' state_template.h).
+// the struct's arrays, its allocation, its per-entry byte count, an Entry struct with per-entry
+// load(i) / store(i, entry), and the moves that compaction and sorting use, so adding a field
+// is one edit (the habit of Cycles' state_template.h).
 #pragma once
 
 #include <cstddef>
+#include <utility>
 #include <vector>
 
 #define WAVETRACE_SOA_MEMBER_(type, name, comment) std::vector<type> name;
+#define WAVETRACE_SOA_ENTRY_(type, name, comment) type name;
 #define WAVETRACE_SOA_RESIZE_(type, name, comment) name.resize(n);
 #define WAVETRACE_SOA_BYTES_(type, name, comment) +sizeof(type)
-#define WAVETRACE_SOA_COPY_(type, name, comment) name[to] = src.name[from];
+#define WAVETRACE_SOA_LOAD_(type, name, comment) e.name = name[i];
+#define WAVETRACE_SOA_STORE_(type, name, comment) name[i] = e.name;
+#define WAVETRACE_SOA_MOVE_(type, name, comment) name[to] = name[from];
+#define WAVETRACE_SOA_SWAP_(type, name, comment) std::swap(name[a], name[b]);
 
-#define WAVETRACE_SOA(Name, FIELDS)                                                             \
-    struct Name {                                                                               \
-        FIELDS(WAVETRACE_SOA_MEMBER_)                                                           \
-        size_t capacity = 0;                                                                    \
-        void resize(size_t n) {                                                                 \
-            FIELDS(WAVETRACE_SOA_RESIZE_)                                                       \
-            capacity = n;                                                                       \
-        }                                                                                       \
-        static constexpr size_t kBytesPerEntry = 0 FIELDS(WAVETRACE_SOA_BYTES_);                \
-        void copy_from(size_t to, const Name& src, size_t from) { FIELDS(WAVETRACE_SOA_COPY_) } \
+#define WAVETRACE_SOA(Name, FIELDS)                                              \
+    struct Name {                                                                \
+        struct Entry {                                                           \
+            FIELDS(WAVETRACE_SOA_ENTRY_)                                         \
+        };                                                                       \
+        FIELDS(WAVETRACE_SOA_MEMBER_)                                            \
+        size_t capacity = 0;                                                     \
+        void resize(size_t n) {                                                  \
+            FIELDS(WAVETRACE_SOA_RESIZE_)                                        \
+            capacity = n;                                                        \
+        }                                                                        \
+        static constexpr size_t kBytesPerEntry = 0 FIELDS(WAVETRACE_SOA_BYTES_); \
+        Entry load(size_t i) const {                                             \
+            Entry e;                                                             \
+            FIELDS(WAVETRACE_SOA_LOAD_)                                          \
+            return e;                                                            \
+        }                                                                        \
+        void store(size_t i, const Entry& e) { FIELDS(WAVETRACE_SOA_STORE_) }    \
+        void move(size_t to, size_t from) { FIELDS(WAVETRACE_SOA_MOVE_) }        \
+        void swap(size_t a, size_t b) { FIELDS(WAVETRACE_SOA_SWAP_) }            \
     }

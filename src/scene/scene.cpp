@@ -1,6 +1,8 @@
 #include "wavetrace/scene/scene.h"
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace wavetrace {
 
@@ -47,6 +49,8 @@ MaterialId Scene::add_material(Material material) {
 }
 
 MediumId Scene::add_medium(std::string medium_name, float density, TextureId albedo) {
+    if (media.size() >= kMaxMedia)
+        throw std::length_error("a scene holds at most " + std::to_string(kMaxMedia) + " media");
     Material phase;
     phase.name = medium_name + ".phase";
     phase.kind = MaterialKind::Isotropic;

@@ -235,6 +235,8 @@ class Loader {
     void read_media(const Value& v) {
         Object all(v);
         for (const auto& [name, unused] : v.raw().items()) {
+            if (scene_.media.size() >= kMaxMedia)
+                all.required(name).fail("more than " + std::to_string(kMaxMedia) + " media");
             Object o(all.required(name));
             float density = o.required("density").positive();
             TextureId albedo = read_texture(o.required("albedo"), Range::Reflectance);

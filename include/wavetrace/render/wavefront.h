@@ -15,9 +15,10 @@ struct Scene;
 class Bvh;
 
 struct WavefrontConfig {
-    // Paths in flight per wave (at most one sample per pixel, so clamped to the pixel count).
-    // 2^16 paths keep the queues near 20 MiB: within a large L3 cache.
-    size_t wave_size = 1 << 16;
+    // Paths a thread carries through the stages at once (a wave holds one sample of
+    // consecutive pixels, so it is clamped to the pixel count). 4096 paths keep a wave's
+    // queues (wavefront_bytes_per_path() each) within a core's L2 cache.
+    size_t wave_size = 4096;
 };
 
 Film render_wavefront(const Scene& scene,

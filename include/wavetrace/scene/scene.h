@@ -34,6 +34,9 @@ struct RenderSettings {
     int max_depth = 50;
 };
 
+// Most media a scene may declare: the wavefront packs medium ids into 15 bits.
+inline constexpr size_t kMaxMedia = 32000;
+
 struct Scene {
     std::string name;
     Camera camera;

@@ -1,0 +1,249 @@
+// Each wavefront kernel alone, on small hand-made queues in a small hand-made scene: a floor
+// under a square light, a metal ball, and a blocker below the floor.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <memory>
+
+#include "kernels/kernels.h"
+#include "wavetrace/render/sampler.h"
+#include "wavetrace/render/wavefront.h"
+#include "wavetrace/scene/bvh.h"
+#include "wavetrace/shading/path_vertex.h"
+
+using namespace wavetrace;
+
+namespace {
+
+struct World {
+    Scene scene;
+    Bvh bvh;
+    RenderConfig config;
+    std::unique_ptr<LightSet> lights;
+    std::unique_ptr<CameraRays> camera;
+    std::unique_ptr<WaveInputs> in;
+    WaveQueues q;
+
+    World() {
+        Material floor;
+        floor.albedo = scene.add_solid({0.5f, 0.6f, 0.7f});
+        Material light;
+        light.kind = MaterialKind::DiffuseLight;
+        light.emission = scene.add_solid({4, 3, 2});
+        Material metal;
+        metal.kind = MaterialKind::Metal;
+        metal.albedo = scene.add_solid(Color(0.9f));
+        metal.roughness = 0.3f;
+        const MaterialId f = scene.add_material(floor), l = scene.add_material(light),
+                         m = scene.add_material(metal);
+        scene.add_quad({{-1, 0, 1}, {2, 0, 0}, {0, 0, -2}, f, kNone});             // normal +y
+        scene.add_quad({{-0.25f, 1, -0.25f}, {0.5f, 0, 0}, {0, 0, 0.5f}, l, kNone});  // faces -y
+        scene.add_sphere({{3, 0.5f, 0}, 0.5f, m, kNone});
+        scene.add_quad({{-1, -1, 1}, {2, 0, 0}, {0, 0, -2}, f, kNone});  // under the floor
+        scene.camera.look_from = {0, 0.5f, 3};
+        scene.camera.look_at = {0, 0.5f, 0};
+        bvh = Bvh::build(scene);
+        config.width = 4;
+        config.height = 3;
+        config.seed = 7;
+        config.max_depth = 5;
+        config.strategy = Strategy::Nee;
+        lights = std::make_unique<LightSet>(scene);
+        camera = std::make_unique<CameraRays>(scene.camera, config.width, config.height);
+        in = std::make_unique<WaveInputs>(
+            WaveInputs{scene, *lights, config, *camera, MediumStack{}});
+        q.resize(16);
+    }
+
+    // Entry i: a fresh path (pixel 10 + i) whose ray is `ray`, traced into the hit queue.
+    void start(size_t i, Ray ray) {
+        q.paths.store(i, PathQueue::Entry{.pixel = static_cast<uint32_t>(10 + i),
+                                          .bounce = 0,
+                                          .crossings = 0,
+                                          .counts_fully = 1,
+                                          .beta = Color(1.0f),
+                                          .radiance = Color(0.0f),
+                                          .prev_p = ray.o,
+                                          .prev_pdf = 0.0f,
+                                          .media = {},
+                                          .flight = 0.0f});
+        set_ray(q.rays, i, ray);
+        intersect(bvh, q.rays, i, i + 1, q.hits);
+    }
+};
+
+}  // namespace
+
+TEST(Kernels, GenerateStartsPathsAtTheirPixelsWithCameraRays) {
+    World w;
+    generate(*w.in, 5, 2, 0, 6, w.q.paths, w.q.rays);
+    for (uint32_t i = 0; i < 6; ++i) {
+        const uint32_t pixel = 2 + i;
+        EXPECT_EQ(w.q.paths.pixel[i], pixel);
+        EXPECT_EQ(w.q.paths.bounce[i], 0);
+        EXPECT_EQ(w.q.paths.counts_fully[i], 1);
+        EXPECT_EQ(w.q.paths.beta[i], Color(1.0f));
+        EXPECT_EQ(w.q.paths.radiance[i], Color(0.0f));
+        const Ray expect = generate_camera_ray(*w.camera, w.config.seed, pixel, 5,
+                                               static_cast<int>(pixel % 4),
+                                               static_cast<int>(pixel / 4));
+        EXPECT_EQ(w.q.rays.origin[i], expect.o);
+        EXPECT_EQ(w.q.rays.dir[i], expect.d);
+        EXPECT_EQ(w.q.paths.prev_p[i], expect.o);
+    }
+}
+
+TEST(Kernels, SortByMaterialMakesKindsContiguousAndMovesWholeEntries) {
+    World w;
+    const Point3 above{0, 0.5f, 0};
+    // miss, floor, light, metal ball, floor, miss, light, floor
+    const Vec3 dirs[] = {{1, 0, 0}, {0, -1, 0}, {0, 1, 0}, {1, 0, 0}};
+    const int pattern[] = {0, 1, 2, 3, 1, 0, 2, 1};
+    const size_t n = std::size(pattern);
+    for (size_t i = 0; i < n; ++i) {
+        // The ball is along +x from a point beside it; misses go along +x from above it.
+        const Point3 o = pattern[i] == 3 ? Point3{1.5f, 0.5f, 0} : pattern[i] == 0
+                                                                      ? Point3{0, 3, 0}
+                                                                      : above;
+        w.start(i, Ray{o, dirs[pattern[i]]});
+        w.q.hits.u[i] = static_cast<float>(i);  // tags, to see that entries move whole
+        w.q.rays.origin[i].z = static_cast<float>(i);
+    }
+    std::vector<PrimRef> prim_before(w.q.hits.prim.begin(), w.q.hits.prim.begin() + n);
+    const KeyRanges ranges = sort_by_material(w.scene, n, w.q.key, w.q.paths, w.q.rays, w.q.hits);
+
+    EXPECT_EQ(ranges[kSortKeys], n);
+    std::vector<int> tags;
+    for (size_t i = 0; i < n; ++i) {
+        const int key = sort_key(w.scene, w.q.hits.prim[i]);
+        EXPECT_GE(i, ranges[key]) << i;
+        EXPECT_LT(i, ranges[key + 1]) << i;
+        if (i > 0) {
+            EXPECT_LE(sort_key(w.scene, w.q.hits.prim[i - 1]), key);
+        }
+        const int tag = static_cast<int>(w.q.hits.u[i]);
+        EXPECT_EQ(w.q.paths.pixel[i], 10u + tag);
+        EXPECT_EQ(w.q.rays.origin[i].z, float(tag));
+        EXPECT_EQ(w.q.hits.prim[i], prim_before[tag]);
+        tags.push_back(tag);
+    }
+    std::sort(tags.begin(), tags.end());
+    for (size_t i = 0; i < n; ++i) EXPECT_EQ(tags[i], int(i));
+    EXPECT_EQ(ranges[1] - ranges[0], 2u);  // the two misses
+    EXPECT_EQ(ranges[1 + int(MaterialKind::Lambertian) + 1] - ranges[1 + int(MaterialKind::Lambertian)],
+              3u);
+}
+
+TEST(Kernels, ShadeSamplesTheLightAppendsAShadowRayAndContinues) {
+    World w;
+    const Point3 o{0.1f, 0.5f, 0.05f};
+    w.start(0, Ray{o, {0, -1, 0}});  // the floor below the light
+    w.start(1, Ray{o, {0, 1, 0}});   // the light's front
+    w.start(2, Ray{{0, 3, 0}, {1, 0, 0}});  // nothing: a black background
+    const uint32_t sample = 3;
+    const size_t shadows =
+        shade(*w.in, sample, w.q.hits, 0, 3, w.q.paths, w.q.rays, w.q.keep, w.q.shadows, 0);
+
+    // The floor: one shadow ray, with exactly the megakernel's light sample (NEE weight 1).
+    ASSERT_EQ(shadows, 1u);
+    EXPECT_EQ(w.q.shadows.path[0], 0u);
+    const SurfaceHit s = surface_at(w.scene, Ray{o, {0, -1, 0}}, hit_at(w.q.hits, 0));
+    const Vertex v = surface_vertex(w.scene, s);
+    const VertexSamples u = vertex_samples(w.config.seed, 10, sample, 0);
+    const DirectSample d =
+        sample_direct(w.scene, *w.lights, v, {0, 1, 0}, u.light_select, u.light_u, u.light_v);
+    ASSERT_TRUE(d.valid);
+    EXPECT_EQ(w.q.shadows.origin[0], d.shadow.o);
+    EXPECT_EQ(w.q.shadows.dir[0], d.shadow.d);
+    EXPECT_EQ(w.q.shadows.tmax[0], d.shadow.tmax);
+    EXPECT_EQ(w.q.shadows.contribution[0], Color(1.0f) * (d.value * 1.0f));
+    // ... and it goes on upwards from the floor (no roulette before rr_depth).
+    EXPECT_EQ(w.q.keep[0], 1);
+    EXPECT_EQ(w.q.paths.bounce[0], 1);
+    EXPECT_GT(w.q.rays.dir[0].y, 0.0f);
+    EXPECT_NEAR(w.q.rays.origin[0].y, 0.0f, 1e-4f);
+    EXPECT_EQ(w.q.paths.counts_fully[0], 0);  // a Lambertian vertex samples lights
+    EXPECT_EQ(w.q.paths.radiance[0], Color(0.0f));
+
+    // The light seen by a camera-like ray: its full emission, and the path ends.
+    EXPECT_EQ(w.q.keep[1], 0);
+    EXPECT_EQ(w.q.paths.radiance[1], Color(4, 3, 2));
+    // The background is black: nothing, and the path ends.
+    EXPECT_EQ(w.q.keep[2], 0);
+    EXPECT_EQ(w.q.paths.radiance[2], Color(0.0f));
+}
+
+TEST(Kernels, IntersectShadowSeesBlockersAndCountsRays) {
+    World w;
+    // From the floor to the light: clear. From below the lower quad up to the light: blocked.
+    w.q.shadows.store(0, {{0, 1e-3f, 0}, {0, 1, 0}, 0.99f, Color(1.0f), 0});
+    w.q.shadows.store(1, {{0, -2, 0}, {0, 1, 0}, 2.99f, Color(1.0f), 1});
+    generate(*w.in, 0, 0, 0, 2, w.q.paths, w.q.rays);  // the paths' (empty) media
+    const uint64_t rays =
+        intersect_shadow(w.bvh, *w.in, w.q.shadows, w.q.paths, 0, 2, w.q.transmittance);
+    EXPECT_EQ(rays, 2u);
+    EXPECT_EQ(w.q.transmittance[0], 1.0f);
+    EXPECT_EQ(w.q.transmittance[1], 0.0f);
+}
+
+TEST(Kernels, MisCombineAddsEachContributionToItsPath) {
+    World w;
+    generate(*w.in, 0, 0, 0, 3, w.q.paths, w.q.rays);
+    w.q.paths.radiance[2] = Color(1.0f);
+    w.q.shadows.store(0, {{}, {}, 1.0f, Color(2, 4, 8), 2});
+    w.q.shadows.store(1, {{}, {}, 1.0f, Color(1, 1, 1), 0});
+    const float tr[] = {0.5f, 0.0f};
+    mis_combine(w.q.shadows, tr, 0, 2, w.q.paths);
+    EXPECT_EQ(w.q.paths.radiance[0], Color(0.0f));  // blocked
+    EXPECT_EQ(w.q.paths.radiance[1], Color(0.0f));  // no shadow ray
+    EXPECT_EQ(w.q.paths.radiance[2], Color(2, 3, 5));
+}
+
+TEST(Kernels, AccumulateFilmAddsOnlyThePathsThatEnded) {
+    World w;
+    generate(*w.in, 0, 0, 0, 4, w.q.paths, w.q.rays);
+    for (size_t i = 0; i < 4; ++i) w.q.paths.radiance[i] = Color(float(i));
+    Film film(4, 3);
+    const uint8_t keep[] = {1, 0, 0, 1};
+    accumulate_film(w.q.paths, keep, 4, film);
+    EXPECT_EQ(film.samples(0), 0u);
+    EXPECT_EQ(film.samples(1), 1u);
+    EXPECT_EQ(film.samples(2), 1u);
+    EXPECT_EQ(film.samples(3), 0u);
+    EXPECT_EQ(film.mean().at(2, 0), Color(2.0f));
+}
+
+TEST(Kernels, CompactKeepsTheLiveEntriesInOrderAndWhole) {
+    World w;
+    const size_t n = 9;
+    generate(*w.in, 0, 0, 0, n, w.q.paths, w.q.rays);
+    std::vector<uint8_t> keep = {0, 1, 1, 0, 0, 1, 0, 1, 0};
+    std::vector<Point3> origin(n);
+    for (size_t i = 0; i < n; ++i) w.q.rays.origin[i] = origin[i] = {float(i), 0, 0};
+    const size_t kept = compact(keep, n, w.q.paths, w.q.rays);
+    ASSERT_EQ(kept, 4u);
+    const uint32_t expect[] = {1, 2, 5, 7};
+    for (size_t k = 0; k < kept; ++k) {
+        EXPECT_EQ(w.q.paths.pixel[k], expect[k]);
+        EXPECT_EQ(w.q.rays.origin[k], origin[expect[k]]);
+    }
+    EXPECT_EQ(compact(std::vector<uint8_t>(n, 0), n, w.q.paths, w.q.rays), 0u);
+}
+
+TEST(Kernels, PackedMediaRoundTrip) {
+    for (int size = 0; size <= MediumStack::kMaxNesting; ++size) {
+        MediumStack s;
+        const MediumId ids[] = {0, kNone, MediumId(kMaxMedia - 1), 12345};
+        for (int k = 0; k < size; ++k) s.push(ids[k]);
+        const MediumStack back = PackedMedia::pack(s).unpack();
+        EXPECT_EQ(back.size, s.size);
+        for (int k = 0; k < MediumStack::kMaxNesting; ++k) EXPECT_EQ(back.entries[k], s.entries[k]);
+        EXPECT_EQ(back.current(), s.current());
+    }
+}
+
+// The budget: at most 160 bytes of queues per path in flight, from the declarations.
+TEST(Kernels, QueuesTakeAtMost160BytesPerPath) {
+    EXPECT_LE(wavefront_bytes_per_path(), 160u);
+    EXPECT_EQ(wavefront_bytes_per_path(), WaveQueues::bytes_per_path());
+}
