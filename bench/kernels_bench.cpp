@@ -25,7 +25,8 @@ struct Captured {
     RenderConfig config;
     std::unique_ptr<CameraRays> camera;
     std::unique_ptr<WaveInputs> in;
-    WaveQueues q;       // after generate + intersect + sort_by_material
+    WaveQueues unsorted;  // after generate + intersect
+    WaveQueues q;         // ... + sort_by_material
     KeyRanges ranges{};
     WaveQueues shaded;  // after shade + intersect_shadow
     size_t n = 0, shadows = 0;
@@ -47,6 +48,7 @@ struct Captured {
         const uint32_t first = static_cast<uint32_t>(config.width * (config.height / 2) - n / 2);
         generate(*in, 0, first, 0, n, q.paths, q.rays);
         intersect(bvh, q.rays, 0, n, q.hits);
+        unsorted = q;
         ranges = sort_by_material(scene, n, q.key, q.paths, q.rays, q.hits);
         shaded = q;
         shadows = shade(*in, 0, shaded.hits, 0, n, shaded.paths, shaded.rays, shaded.keep,
@@ -82,8 +84,7 @@ void BM_SortByMaterial(benchmark::State& st, const char* name) {
     WaveQueues q = c.q;
     for (auto _ : st) {
         st.PauseTiming();
-        q = c.shaded;  // unsorted: the order shading left, with the captured hits
-        q.hits = c.q.hits;
+        q = c.unsorted;
         st.ResumeTiming();
         benchmark::DoNotOptimize(sort_by_material(c.scene, c.n, q.key, q.paths, q.rays, q.hits));
     }
@@ -148,6 +149,7 @@ WAVETRACE_KERNEL_BENCH(BM_Generate, cornell);
 WAVETRACE_KERNEL_BENCH(BM_IntersectClosest, cornell);
 WAVETRACE_KERNEL_BENCH(BM_IntersectClosest, dragon);
 WAVETRACE_KERNEL_BENCH(BM_IntersectClosest, everything);
+WAVETRACE_KERNEL_BENCH(BM_SortByMaterial, cornell);
 WAVETRACE_KERNEL_BENCH(BM_SortByMaterial, everything);
 BENCHMARK_CAPTURE(BM_ShadeKind, cornell_lambertian, "cornell", 1 + int(MaterialKind::Lambertian))
     ->Unit(benchmark::kMicrosecond)

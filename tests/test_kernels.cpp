@@ -74,11 +74,27 @@ struct World {
 
 }  // namespace
 
+TEST(Kernels, PassOrderVisitsEveryPixelOnceInTiles) {
+    for (auto [w, h] : {std::pair{4u, 3u}, {1u, 1u}, {7u, 5u}, {320u, 240u}, {9u, 1u}, {1u, 9u}}) {
+        std::vector<int> seen(w * h, 0);
+        for (uint32_t k = 0; k < w * h; ++k) {
+            const uint32_t p = pixel_in_pass_order(k, w, h);
+            ASSERT_LT(p, w * h);
+            ++seen[p];
+        }
+        EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), int(w * h)) << w << "x" << h;
+    }
+    // A full 4x2 tile first: (0,0) (1,0) (2,0) (3,0) (0,1) (1,1) (2,1) (3,1), then the next.
+    const uint32_t first[] = {0, 1, 2, 3, 10, 11, 12, 13, 4, 5};
+    for (uint32_t k = 0; k < std::size(first); ++k)
+        EXPECT_EQ(pixel_in_pass_order(k, 10, 6), first[k]) << k;
+}
+
 TEST(Kernels, GenerateStartsPathsAtTheirPixelsWithCameraRays) {
     World w;
     generate(*w.in, 5, 2, 0, 6, w.q.paths, w.q.rays);
     for (uint32_t i = 0; i < 6; ++i) {
-        const uint32_t pixel = 2 + i;
+        const uint32_t pixel = pixel_in_pass_order(2 + i, 4, 3);
         EXPECT_EQ(w.q.paths.pixel[i], pixel);
         EXPECT_EQ(w.q.paths.bounce[i], 0);
         EXPECT_EQ(w.q.paths.counts_fully[i], 1);

@@ -26,20 +26,23 @@ namespace wavefront_detail {
 // Waves handed out between two progress reports (on the caller's thread).
 constexpr size_t kWavesPerReport = 64;
 
-// Carries the wave of pixels [first_pixel, first_pixel + n) through all its bounces and adds
-// its paths to the film; returns the rays traced.
+// Carries the wave of the pass's pixels [first, first + n) (in pass order) through all its
+// bounces and adds its paths to the film; returns the rays traced.
 template <Intersector Tracer>
 uint64_t run_wave(const WaveInputs& in,
                   const Tracer& bvh,
                   uint32_t sample,
-                  uint32_t first_pixel,
+                  uint32_t first,
                   size_t n,
                   WaveQueues& q,
                   Film& film) {
     uint64_t rays = 0;
-    generate(in, sample, first_pixel, 0, n, q.paths, q.rays);
-    while (n > 0) {
-        intersect(bvh, q.rays, 0, n, q.hits);
+    generate(in, sample, first, 0, n, q.paths, q.rays);
+    for (bool camera_rays = true; n > 0; camera_rays = false) {
+        if (camera_rays)
+            intersect_coherent(bvh, q.rays, 0, n, q.hits);
+        else
+            intersect(bvh, q.rays, 0, n, q.hits);
         rays += n;
         sort_by_material(in.scene, n, q.key, q.paths, q.rays, q.hits);
         const size_t shadows = shade(in, sample, q.hits, 0, n, q.paths, q.rays, q.keep, q.shadows, 0);

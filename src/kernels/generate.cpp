@@ -1,20 +1,35 @@
+#include <algorithm>
+
 #include "kernels/kernels.h"
 #include "wavetrace/shading/path_vertex.h"
 
 namespace wavetrace {
 
+uint32_t pixel_in_pass_order(uint32_t k, uint32_t width, uint32_t height) {
+    constexpr uint32_t kTileW = 4, kTileH = 2;
+    const uint32_t band = k / (kTileH * width), offset = k % (kTileH * width);
+    const uint32_t band_h = std::min(kTileH, height - kTileH * band);
+    // Every tile before the band's last is full, kTileW wide.
+    const uint32_t tile = offset / (kTileW * band_h), in_tile = offset % (kTileW * band_h);
+    const uint32_t tile_w = std::min(kTileW, width - kTileW * tile);
+    const uint32_t x = kTileW * tile + in_tile % tile_w, y = kTileH * band + in_tile / tile_w;
+    return y * width + x;
+}
+
 void generate(const WaveInputs& in,
               uint32_t sample,
-              uint32_t first_pixel,
+              uint32_t first_index,
               size_t begin,
               size_t end,
               PathQueue& paths,
               RayQueue& rays) {
-    const uint32_t width = static_cast<uint32_t>(in.config.width);
+    const uint32_t width = static_cast<uint32_t>(in.config.width),
+                   height = static_cast<uint32_t>(in.config.height);
     const PackedMedia media = PackedMedia::pack(in.camera_media);
     const bool has_media = !in.scene.media.empty();
     for (size_t i = begin; i < end; ++i) {
-        const uint32_t pixel = first_pixel + static_cast<uint32_t>(i);
+        const uint32_t pixel =
+            pixel_in_pass_order(first_index + static_cast<uint32_t>(i), width, height);
         const int x = static_cast<int>(pixel % width), y = static_cast<int>(pixel / width);
         const Ray ray = generate_camera_ray(in.camera, in.config.seed, pixel, sample, x, y);
         paths.pixel[i] = pixel;

@@ -1,5 +1,8 @@
 #pragma once
 
+#include <algorithm>
+#include <span>
+
 #include "kernels/wave.h"
 #include "wavetrace/scene/intersector.h"
 
@@ -9,12 +12,33 @@ namespace wavetrace {
 template <Intersector Tracer>
 void intersect(
     const Tracer& tracer, const RayQueue& rays, size_t begin, size_t end, HitQueue& hits) {
-    for (size_t i = begin; i < end; ++i) {
-        Hit hit = tracer.intersect(ray_at(rays, i));
-        hits.t[i] = hit.t;
-        hits.prim[i] = hit.prim;
-        hits.u[i] = hit.u;
-        hits.v[i] = hit.v;
+    for (size_t i = begin; i < end; ++i) set_hit(hits, i, tracer.intersect(ray_at(rays, i)));
+}
+
+// An intersector that also traces packets of rays together (our BVH: 8 rays per packet).
+template <class T>
+concept PacketIntersector =
+    Intersector<T> && requires(const T& t, std::span<const Ray> rays, std::span<Hit> hits) {
+        t.intersect_packet(rays, hits);
+    };
+
+// The same for coherent rays (a wave's camera rays, in 4x2 pixel tiles): traced as packets
+// where the intersector has them, with the same hits as one by one.
+template <Intersector Tracer>
+void intersect_coherent(
+    const Tracer& tracer, const RayQueue& rays, size_t begin, size_t end, HitQueue& hits) {
+    if constexpr (PacketIntersector<Tracer>) {
+        constexpr size_t kBatch = 64;
+        Ray batch[kBatch];
+        Hit found[kBatch];
+        for (size_t b = begin; b < end; b += kBatch) {
+            const size_t m = std::min(kBatch, end - b);
+            for (size_t k = 0; k < m; ++k) batch[k] = ray_at(rays, b + k);
+            tracer.intersect_packet(std::span<const Ray>(batch, m), std::span<Hit>(found, m));
+            for (size_t k = 0; k < m; ++k) set_hit(hits, b + k, found[k]);
+        }
+    } else {
+        intersect(tracer, rays, begin, end, hits);
     }
 }
 

@@ -10,17 +10,22 @@
 #include <cstdint>
 #include <span>
 
-#include "kernels/intersect.h"         // intersect: closest hit of rays[i] into hits[i]
+#include "kernels/intersect.h"         // intersect(_coherent): closest hit of rays[i] into hits[i]
 #include "kernels/intersect_shadow.h"  // intersect_shadow: transmittance along shadows[i]
 #include "kernels/wave.h"
 
 namespace wavetrace {
 
-// Entries [begin, end) start sample `sample` of pixels first_pixel + entry: the path state
-// and the camera ray.
+// The pixel visited k-th in a pass: the image in bands of 2 rows, each band in 4x2 tiles, so
+// that a wave's consecutive camera rays form the pixel tiles packets trace well. A bijection
+// of [0, width * height).
+uint32_t pixel_in_pass_order(uint32_t k, uint32_t width, uint32_t height);
+
+// Entries [begin, end) start sample `sample` of the pixels visited first_index + entry-th in
+// the pass: the path state and the camera ray.
 void generate(const WaveInputs& in,
               uint32_t sample,
-              uint32_t first_pixel,
+              uint32_t first_index,
               size_t begin,
               size_t end,
               PathQueue& paths,

@@ -7,6 +7,7 @@
 #include "queues/soa.h"
 #include "wavetrace/math/ray.h"
 #include "wavetrace/math/vec3.h"
+#include "wavetrace/scene/bvh.h"
 #include "wavetrace/scene/ids.h"
 
 namespace wavetrace {
@@ -35,6 +36,12 @@ WAVETRACE_SOA(HitQueue, WAVETRACE_HIT_FIELDS);
 
 inline Hit hit_at(const HitQueue& q, size_t i) {
     return Hit{q.t[i], q.prim[i], q.u[i], q.v[i]};
+}
+inline void set_hit(HitQueue& q, size_t i, const Hit& h) {
+    q.t[i] = h.t;
+    q.prim[i] = h.prim;
+    q.u[i] = h.u;
+    q.v[i] = h.v;
 }
 
 }  // namespace wavetrace
