@@ -15,7 +15,9 @@ void intersect(
     for (size_t i = begin; i < end; ++i) set_hit(hits, i, tracer.intersect(ray_at(rays, i)));
 }
 
-// An intersector that also traces packets of rays together (our BVH: 8 rays per packet).
+// An intersector that also traces packets of rays together, with the same hits as one by one
+// (our BVH: 8 rays per packet). Embree's mirror does not qualify: rtcIntersect8 rounds some hits
+// differently from rtcIntersect1, which would make the two engines trace different paths.
 template <class T>
 concept PacketIntersector =
     Intersector<T> && requires(const T& t, std::span<const Ray> rays, std::span<Hit> hits) {

@@ -1,6 +1,5 @@
 #include "reference/embree_mirror.h"
 
-#include <algorithm>
 #include <chrono>
 
 #include "wavetrace/scene/scene.h"
@@ -121,16 +120,14 @@ bool EmbreeMirror::occluded(const Ray& ray) const {
 
 namespace {
 
-// Rays [0, n) of a packet of N (n <= N) through rtcIntersect8/16; the other lanes stay idle.
 template <int N>
-void trace_packet(RTCScene scene, const Ray* rays, Hit* hits, int n = N) {
+void trace_packet(RTCScene scene, const Ray* rays, Hit* hits) {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     alignas(64) RTCRayHitNt<N> rh;
     alignas(64) int valid[N];
     for (int k = 0; k < N; ++k) {
-        valid[k] = k < n ? -1 : 0;
-        if (k >= n) continue;
+        valid[k] = -1;
         rh.ray.org_x[k] = rays[k].o.x;
         rh.ray.org_y[k] = rays[k].o.y;
         rh.ray.org_z[k] = rays[k].o.z;
@@ -149,13 +146,11 @@ void trace_packet(RTCScene scene, const Ray* rays, Hit* hits, int n = N) {
     else
         rtcIntersect16(valid, scene, &context, reinterpret_cast<RTCRayHit16*>(&rh));
     if (!hits) return;
-    for (int k = 0; k < n; ++k) {
+    for (int k = 0; k < N; ++k) {
         hits[k] = Hit{};
         if (rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID) {
             hits[k].t = rh.ray.tfar[k];
             hits[k].prim = PrimRef::make(static_cast<PrimKind>(rh.hit.geomID[k]), rh.hit.primID[k]);
-            hits[k].u = rh.hit.u[k];
-            hits[k].v = rh.hit.v[k];
         }
     }
 }
@@ -167,12 +162,6 @@ void EmbreeMirror::intersect_packet(const Ray* rays, int width, Hit* hits) const
         trace_packet<8>(scene_, rays, hits);
     else
         trace_packet<16>(scene_, rays, hits);
-}
-
-void EmbreeMirror::intersect_packet(std::span<const Ray> rays, std::span<Hit> hits) const {
-    const size_t n = std::min(rays.size(), hits.size());
-    for (size_t i = 0; i < n; i += 8)
-        trace_packet<8>(scene_, rays.data() + i, hits.data() + i, static_cast<int>(std::min<size_t>(8, n - i)));
 }
 
 }  // namespace wavetrace

@@ -6,8 +6,6 @@
 
 #include <embree3/rtcore.h>
 
-#include <span>
-
 #include "wavetrace/math/ray.h"
 #include "wavetrace/scene/bvh.h"
 
@@ -30,9 +28,6 @@ class EmbreeMirror {
     // rtcIntersect8 / rtcIntersect16 on `width` (8 or 16) rays at once; hits may be null when
     // only the tracing matters (benchmarks).
     void intersect_packet(const Ray* rays, int width, Hit* hits = nullptr) const;
-    // Closest hits of any number of rays, as packets of 8 (rtcIntersect8): what the
-    // wavefront uses for its camera rays, as it does our BVH's packets.
-    void intersect_packet(std::span<const Ray> rays, std::span<Hit> hits) const;
     RTCScene scene() const { return scene_; }
     double build_ms() const { return build_ms_; }
 
