@@ -14,8 +14,29 @@ set style data histograms
 set style histogram clustered gap 1
 set style fill solid 0.8 border -1
 set boxwidth 0.9
-plot dir."/engines.csv" using 5:xtic(1) title "megakernel", "" using 6 title "wavefront", \
-     "" using 17 title "megakernel on Embree", "" using 18 title "wavefront on Embree"
+plot dir."/engines.csv" using 6:xtic(strcol(1)."\n".strcol(2)." thr") title "megakernel", \
+     "" using 7 title "wavefront", "" using 18 title "megakernel on Embree", \
+     "" using 19 title "wavefront on Embree"
+
+# The wavefront against the megakernel (ours) and against a plain Embree path tracer.
+set output dir."/engines-ratio.svg"
+set title "Wavefront speed over megakernel speed (median; target 1.3)"
+set ylabel "ratio"
+plot dir."/engines.csv" using 11:xtic(strcol(1)."\n".strcol(2)." thr") title "wavefront / megakernel", \
+     "" using 22 title "wavefront / megakernel on Embree", 1.3 with lines dt 2 lc rgb "grey" title "target"
+
+# Wavefront speed against the wave size (paths per thread).
+set output dir."/waves.svg"
+set style data linespoints
+set logscale x 2
+set title "Wavefront / megakernel against wave size (all threads)"
+set xlabel "paths per wave (per thread)"
+set ylabel "wavefront / megakernel"
+plot dir."/waves.csv" using (strcol(1) eq "cornell" ? column(2) : 1/0):6 title "cornell", \
+     "" using (strcol(1) eq "dragon" ? column(2) : 1/0):6 title "dragon"
+unset logscale x
+unset xlabel
+set style data histograms
 
 # Our BVH against Embree, single thread.
 set output dir."/bvh.svg"

@@ -1,6 +1,8 @@
 // Both engines at equal settings on each benchmark scene, each with our BVH and with Embree as
 // its intersector (the megakernel with Embree is a plain Embree path tracer: the in-house
 // anchor), repetitions interleaved (A B C D A B C D) so that the machine's drift hits all alike.
+#include <tbb/global_control.h>
+#include <tbb/task_arena.h>
 #include <unistd.h>
 
 #include <cstdio>
@@ -39,6 +41,7 @@ double cli_peak_mib(const std::string& scene, const char* engine, const RenderCo
 
 void bench_engines(const Options& o, Results& r) {
     r.table("engines", {"scene",
+                        "threads",
                         "width",
                         "height",
                         "spp",
@@ -57,7 +60,8 @@ void bench_engines(const Options& o, Results& r) {
                         "megakernel_embree_mpaths",
                         "wavefront_embree_mpaths",
                         "megakernel_ours_over_embree",
-                        "wavefront_ours_over_embree"});
+                        "wavefront_ours_over_embree",
+                        "wavefront_over_megakernel_embree"});
     struct Case {
         const char* scene;
         int w, h, spp;
@@ -68,7 +72,12 @@ void bench_engines(const Options& o, Results& r) {
                          {"dragon", 320, 320, 16},
                          {"veach-mis", 384, 288, 16}};
     const int reps = o.quick ? 1 : 3;
-    for (const Case& c : full) {
+    const int all = tbb::this_task_arena::max_concurrency();
+    std::vector<int> thread_counts = {1};
+    if (all > 1) thread_counts.push_back(all);
+    for (const Case& c : full)
+        for (int threads : thread_counts) {
+        tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
         const std::string path = (o.scenes / (std::string(c.scene) + ".json")).string();
         Scene scene = load_scene(path);
         Bvh bvh = Bvh::build(scene);
@@ -81,7 +90,7 @@ void bench_engines(const Options& o, Results& r) {
         cfg.seed = 1;
         cfg.max_depth = scene.render.max_depth;
         std::vector<double> ratio, mk_paths, wf_paths, mk_rays, wf_rays, mke_paths, wfe_paths,
-            mk_vs_embree, wf_vs_embree;
+            mk_vs_embree, wf_vs_embree, wf_vs_mke;
         Image mk_img, wf_img;
         WavefrontConfig wf_cfg;
         for (int rep = 0; rep < reps; ++rep) {
@@ -94,6 +103,7 @@ void bench_engines(const Options& o, Results& r) {
             wfe_paths.push_back(wfe.paths / wfe.seconds * 1e-6);
             mk_vs_embree.push_back(mke.seconds / mk.seconds);  // > 1: ours is faster
             wf_vs_embree.push_back(wfe.seconds / wf.seconds);
+            wf_vs_mke.push_back(mke.seconds / wf.seconds);  // > 1: beats a plain Embree tracer
             ratio.push_back(mk.seconds / wf.seconds);  // > 1: the wavefront is faster
             mk_paths.push_back(mk.paths / mk.seconds * 1e-6);
             wf_paths.push_back(wf.paths / wf.seconds * 1e-6);
@@ -102,10 +112,13 @@ void bench_engines(const Options& o, Results& r) {
         }
         Spread s = spread(ratio);
         const double pixels = double(cfg.width) * cfg.height;
+        // Each thread carries one wave at a time.
         const double queue_mib = double(wavefront_bytes_per_path()) *
-                                 std::min<double>(double(wf_cfg.wave_size), pixels) / (1 << 20);
+                                 std::min<double>(double(wf_cfg.wave_size), pixels) * threads /
+                                 (1 << 20);
         const double film_mib = pixels * Film::kBytesPerPixel / (1 << 20);
         r.row("engines", {c.scene,
+                          threads,
                           cfg.width,
                           cfg.height,
                           cfg.spp,
@@ -124,15 +137,53 @@ void bench_engines(const Options& o, Results& r) {
                           spread(mke_paths).median,
                           spread(wfe_paths).median,
                           spread(mk_vs_embree).median,
-                          spread(wf_vs_embree).median});
+                          spread(wf_vs_embree).median,
+                          spread(wf_vs_mke).median});
         std::printf(
-            "engines %-10s megakernel %6.3f Mpaths/s  wavefront %6.3f Mpaths/s  "
+            "engines %-10s %d thr megakernel %6.3f Mpaths/s  wavefront %6.3f Mpaths/s  "
             "wavefront/megakernel %.2f [%.2f, %.2f] | with Embree: megakernel %6.3f, wavefront "
             "%6.3f Mpaths/s; ours/Embree: megakernel %.2f, wavefront %.2f\n",
-            c.scene, spread(mk_paths).median, spread(wf_paths).median, s.median, s.min, s.max,
+            c.scene, threads, spread(mk_paths).median, spread(wf_paths).median, s.median, s.min, s.max,
             spread(mke_paths).median, spread(wfe_paths).median, spread(mk_vs_embree).median,
             spread(wf_vs_embree).median);
         std::fflush(stdout);
+        }
+}
+
+// The wavefront's speed against its wave size (paths a thread carries at once), with the
+// megakernel interleaved as the yardstick; all threads.
+void bench_waves(const Options& o, Results& r) {
+    r.table("waves", {"scene", "wave_size", "queue_kib_per_thread", "wavefront_mpaths",
+                      "megakernel_mpaths", "ratio_median"});
+    const std::vector<size_t> sizes =
+        o.quick ? std::vector<size_t>{64, 256}
+                : std::vector<size_t>{256, 1024, 2048, 4096, 8192, 16384, 65536};
+    for (const char* name : {"cornell", "dragon"}) {
+        Scene scene = load_scene((o.scenes / (std::string(name) + ".json")).string());
+        Bvh bvh = Bvh::build(scene);
+        RenderConfig cfg;
+        cfg.width = o.quick ? 16 : 320;
+        cfg.height = o.quick ? 16 : 320;
+        cfg.spp = o.quick ? 1 : 8;
+        cfg.seed = 1;
+        cfg.max_depth = scene.render.max_depth;
+        for (size_t size : sizes) {
+            std::vector<double> wf_paths, mk_paths, ratio;
+            for (int rep = 0; rep < (o.quick ? 1 : 3); ++rep) {
+                RenderStats mk, wf;
+                render_megakernel(scene, bvh, cfg, &mk);
+                render_wavefront(scene, bvh, cfg, WavefrontConfig{size}, &wf);
+                wf_paths.push_back(wf.paths / wf.seconds * 1e-6);
+                mk_paths.push_back(mk.paths / mk.seconds * 1e-6);
+                ratio.push_back(mk.seconds / wf.seconds);
+            }
+            r.row("waves", {name, double(size), wavefront_bytes_per_path() * size / 1024.0,
+                            spread(wf_paths).median, spread(mk_paths).median,
+                            spread(ratio).median});
+            std::printf("waves %-8s wave %6zu: wavefront %6.3f Mpaths/s, wavefront/megakernel %.2f\n",
+                        name, size, spread(wf_paths).median, spread(ratio).median);
+            std::fflush(stdout);
+        }
     }
 }
 

@@ -15,12 +15,12 @@ int main(int argc, char** argv) {
     CLI::App app{"wavetrace benchmark suite"};
     Options o;
     std::string out = "results", scenes = WAVETRACE_SCENES_DIR;
-    std::vector<std::string> sections = {"engines", "bvh", "scaling", "convergence"};
+    std::vector<std::string> sections = {"engines", "waves", "bvh", "scaling", "convergence"};
     app.add_flag("--quick", o.quick, "tiny settings: check the harness only");
     app.add_option("--out", out, "results folder")->capture_default_str();
     app.add_option("--scenes", scenes, "scenes folder")->capture_default_str();
     app.add_option("--sections", sections, "sections to run")
-        ->check(CLI::IsMember({"engines", "bvh", "scaling", "convergence"}));
+        ->check(CLI::IsMember({"engines", "waves", "bvh", "scaling", "convergence"}));
     app.add_option("--max-threads", o.max_threads,
                    "scaling: up to this many threads (default: all)");
     CLI11_PARSE(app, argc, argv);
@@ -43,6 +43,7 @@ int main(int argc, char** argv) {
     auto start = std::chrono::steady_clock::now();
     for (const std::string& s : sections) {
         if (s == "engines") bench_engines(o, r);
+        if (s == "waves") bench_waves(o, r);
         if (s == "bvh") bench_bvh(o, r);
         if (s == "scaling") bench_scaling(o, r);
         if (s == "convergence") bench_convergence(o, r);

@@ -15,6 +15,7 @@ struct Options {
 };
 
 void bench_engines(const Options& o, Results& r);      // megakernel vs wavefront, A B A B ...
+void bench_waves(const Options& o, Results& r);        // wavefront speed vs wave size
 void bench_bvh(const Options& o, Results& r);          // our BVH vs Embree on captured rays
 void bench_scaling(const Options& o, Results& r);      // threads 1..N, both engines
 void bench_convergence(const Options& o, Results& r);  // rMSE vs time per strategy
