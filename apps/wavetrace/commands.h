@@ -9,7 +9,7 @@
 namespace wavetrace::cli {
 
 inline constexpr int kExitOk = 0;
-inline constexpr int kExitFailure = 1;   // the render or the write failed
+inline constexpr int kExitFailure = 1;   // the render or the write failed; compare: differs
 inline constexpr int kExitBadInput = 2;  // bad scene, bad option: nothing was written
 
 struct RenderOptions {
@@ -19,6 +19,7 @@ struct RenderOptions {
     std::optional<int> width, height, spp, max_depth;
     std::optional<long long> wave_size;
     std::optional<double> time_limit;  // seconds: start no pass after this
+    std::string variance;              // where to write the variance of the pixel means
     uint64_t seed = 0;
     int threads = 0;  // 0: all hardware threads
     std::string aov = "color";
@@ -28,6 +29,14 @@ struct RenderOptions {
     std::string heuristic = "power";
 };
 
+struct CompareOptions {
+    std::string ours, ref, ours_var, ref_var;
+    int block = 8;
+    double alpha = 0.01;
+    double max_mean_diff = 1e-2;
+    double max_rel_mse = 1e-2;
+};
+
 struct InfoOptions {
     std::string scene;
     int threads = 0;
@@ -35,6 +44,8 @@ struct InfoOptions {
 
 void add_render_command(CLI::App& app, RenderOptions& options);
 void add_info_command(CLI::App& app, InfoOptions& options);
+void add_compare_command(CLI::App& app, CompareOptions& options);
+int run_compare(const CompareOptions& options);
 int run_render(const RenderOptions& options);
 int run_info(const InfoOptions& options);
 

@@ -1,4 +1,4 @@
-// wavetrace: render a scene, or describe it.
+// wavetrace: render a scene, describe it, or compare a render with a reference.
 #include <iostream>
 #include <new>
 
@@ -20,8 +20,10 @@ int main(int argc, char** argv) {
     app.require_subcommand(1);
     RenderOptions render;
     InfoOptions info;
+    CompareOptions compare;
     add_render_command(app, render);
     add_info_command(app, info);
+    add_compare_command(app, compare);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -30,6 +32,7 @@ int main(int argc, char** argv) {
     }
     try {
         if (app.got_subcommand("render")) return run_render(render);
+        if (app.got_subcommand("compare")) return run_compare(compare);
         return run_info(info);
     } catch (const std::bad_alloc&) {
         // The render reports what it was allocating; this catches the rest (e.g. a scene's

@@ -48,7 +48,11 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
                     "render whole passes (one sample per pixel) until SECONDS have passed, then "
                     "write the image of the passes done");
     cmd->add_option("--wave-size", o.wave_size,
-                    "wavefront: paths in flight per wave (default 65536, at most the pixel count)");
+                    "wavefront: paths a thread carries at once (default 4096, at most the pixel "
+                    "count)");
+    cmd->add_option("--variance", o.variance,
+                    "also write the variance of each pixel's mean (per channel; .exr, .hdr or "
+                    ".pfm): for `wavetrace compare`");
 }
 
 namespace {
@@ -152,6 +156,7 @@ std::optional<std::string> check_options(const RenderOptions& o, const RenderSet
 struct Rendered {
     WriteOptions write;
     Image image;
+    Image variance;  // of the pixel means, when --variance asks for it
     std::string summary;
     int spp_done = -1;
 };
@@ -195,6 +200,7 @@ Rendered render_to_image(
         progress.finish();
         r.spp_done = stats.spp_done;
         image = film.mean();
+        if (!o.variance.empty()) r.variance = film.variance_of_mean();
         write.metadata.insert(write.metadata.end(),
                               {{"wavetrace:engine", o.engine},
                                {"wavetrace:strategy", o.strategy},
@@ -243,6 +249,14 @@ int run_render(const RenderOptions& o) {
         // Every check that can fail before the render does: no render is wasted on an output
         // that cannot be written.
         check_output_writable(output);
+        if (!o.variance.empty()) {
+            if (o.aov != "color")
+                throw SceneError("--variance: only light transport (--aov color) has a variance");
+            if (is_ldr_path(o.variance))
+                throw SceneError("--variance: " + o.variance +
+                                 ": a variance needs a linear float format (.exr, .hdr, .pfm)");
+            check_output_writable(o.variance);
+        }
         scene = load_scene(o.scene);
         if (auto problem = check_options(o, scene.render)) throw SceneError(*problem);
     } catch (const std::exception& e) {
@@ -275,6 +289,11 @@ int run_render(const RenderOptions& o) {
     }
     try {
         write_image(output, r.image, r.write);
+        if (!o.variance.empty()) {
+            WriteOptions meta = r.write;
+            meta.metadata.push_back({"wavetrace:content", "variance of the pixel means"});
+            write_image(o.variance, r.variance, meta);
+        }
     } catch (const ImageError& e) {
         std::cerr << "wavetrace: error: " << e.what() << "\n";
         return kExitFailure;

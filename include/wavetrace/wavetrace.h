@@ -2,6 +2,7 @@
 #pragma once
 
 #include "wavetrace/build_info.h"
+#include "wavetrace/image/compare.h"
 #include "wavetrace/image/image.h"
 #include "wavetrace/math/aabb.h"
 #include "wavetrace/math/frame.h"

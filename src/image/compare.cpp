@@ -1,0 +1,100 @@
+#include "wavetrace/image/compare.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace wavetrace {
+
+namespace {
+
+void check_same_size(const Image& a, const Image& b, const char* what) {
+    if (a.width != b.width || a.height != b.height)
+        throw std::invalid_argument(std::string(what) + " is " + std::to_string(b.width) + "x" +
+                                    std::to_string(b.height) + ", the image is " +
+                                    std::to_string(a.width) + "x" + std::to_string(a.height));
+}
+
+void check_variance(const Image& v, const char* what) {
+    for (const Color& c : v.pixels)
+        for (int k = 0; k < 3; ++k)
+            if (!(c[k] >= 0.0f) || !std::isfinite(c[k]))
+                throw std::invalid_argument(std::string(what) +
+                                            " holds a negative or non-finite value");
+}
+
+}  // namespace
+
+ImageComparison compare_images(const Image& ours,
+                               const Image& ref,
+                               const Image* ours_variance,
+                               const Image* ref_variance,
+                               const CompareOptions& options) {
+    check_same_size(ref, ours, "the image compared");
+    if (ours_variance) {
+        check_same_size(ours, *ours_variance, "the variance of the image");
+        check_variance(*ours_variance, "the variance of the image");
+    }
+    if (ref_variance) {
+        check_same_size(ref, *ref_variance, "the variance of the reference");
+        check_variance(*ref_variance, "the variance of the reference");
+    }
+    if (options.block < 1) throw std::invalid_argument("the block size must be positive");
+    if (ours.pixels.empty()) throw std::invalid_argument("the images are empty");
+
+    ImageComparison r;
+    const double values = 3.0 * double(ours.pixels.size());
+    double sum_o = 0, sum_r = 0, sq = 0;
+    for (size_t i = 0; i < ours.pixels.size(); ++i)
+        for (int k = 0; k < 3; ++k) {
+            const double o = ours.pixels[i][k], f = ref.pixels[i][k];
+            sum_o += o;
+            sum_r += f;
+            sq += (o - f) * (o - f) / (f * f + 1e-3);
+        }
+    r.mean_ours = sum_o / values;
+    r.mean_ref = sum_r / values;
+    r.mean_rel_diff = std::fabs(r.mean_ours - r.mean_ref) / std::fabs(r.mean_ref);
+    r.rel_mse = sq / values;
+
+    r.z_tested = ours_variance || ref_variance;
+    if (!r.z_tested) {
+        r.pass = std::isfinite(r.rel_mse) && r.mean_rel_diff <= options.max_mean_rel_diff &&
+                 r.rel_mse <= options.max_rel_mse;
+        return r;
+    }
+    // Block means and the variances of those means (pixels are independent: the variance of a
+    // mean of n pixel means is the sum of their variances over n^2).
+    const int b = options.block;
+    const int bx = (ours.width + b - 1) / b, by = (ours.height + b - 1) / b;
+    r.tests = 3 * bx * by;
+    r.level = 1.0 - std::pow(1.0 - options.alpha, 1.0 / r.tests);
+    for (int y0 = 0; y0 < ours.height; y0 += b)
+        for (int x0 = 0; x0 < ours.width; x0 += b)
+            for (int k = 0; k < 3; ++k) {
+                double so = 0, sr = 0, vo = 0, vr = 0;
+                int n = 0;
+                for (int y = y0; y < std::min(y0 + b, ours.height); ++y)
+                    for (int x = x0; x < std::min(x0 + b, ours.width); ++x, ++n) {
+                        so += ours.at(x, y)[k];
+                        sr += ref.at(x, y)[k];
+                        if (ours_variance) vo += ours_variance->at(x, y)[k];
+                        if (ref_variance) vr += ref_variance->at(x, y)[k];
+                    }
+                const double diff = (so - sr) / n, sd = std::sqrt(vo + vr) / n;
+                BlockTest t{x0, y0, k};
+                if (!std::isfinite(diff))
+                    t.z = INFINITY;
+                else if (sd > 0)
+                    t.z = diff / sd;
+                else
+                    t.z = diff == 0 ? 0.0 : INFINITY;
+                t.p = std::erfc(std::fabs(t.z) / std::sqrt(2.0));
+                if (t.p < r.level) ++r.failed;
+                if (r.worst.channel < 0 || t.p < r.worst.p) r.worst = t;
+            }
+    r.pass = r.failed == 0;
+    return r;
+}
+
+}  // namespace wavetrace
