@@ -14,6 +14,7 @@ set style data histograms
 set style histogram clustered gap 1
 set style fill solid 0.8 border -1
 set boxwidth 0.9
+set xtics rotate by -40 font ",10"
 plot dir."/engines.csv" using 6:xtic(strcol(1)."\n".strcol(2)." thr") title "megakernel", \
      "" using 7 title "wavefront", "" using 18 title "megakernel on Embree", \
      "" using 19 title "wavefront on Embree"
@@ -22,10 +23,13 @@ plot dir."/engines.csv" using 6:xtic(strcol(1)."\n".strcol(2)." thr") title "meg
 set output dir."/engines-ratio.svg"
 set title "Wavefront speed over megakernel speed (median; target 1.3)"
 set ylabel "ratio"
+set yrange [0:1.4]
 plot dir."/engines.csv" using 11:xtic(strcol(1)."\n".strcol(2)." thr") title "wavefront / megakernel", \
      "" using 22 title "wavefront / megakernel on Embree", 1.3 with lines dt 2 lc rgb "grey" title "target"
 
 # Wavefront speed against the wave size (paths per thread).
+set autoscale y
+set xtics norotate font ",12"
 set output dir."/waves.svg"
 set style data linespoints
 set logscale x 2
