@@ -79,8 +79,10 @@ int run_info(const InfoOptions& o) {
         mib(geometry), mib(st.bytes + st.wide_bytes), mib(st.bytes), mib(st.wide_bytes),
         mib(texels));
     const size_t per_path = wavefront_bytes_per_path(), wave = WavefrontConfig{}.wave_size;
-    fmt::print("wavefront    {} B of queues per path in flight; {} paths per wave: {}\n", per_path,
-               wave, mib(per_path * wave));
+    fmt::print(
+        "wavefront    {} B of queues per path in flight; waves of {} paths, one per thread: {} "
+        "per thread\n",
+        per_path, wave, mib(per_path * wave));
     return kExitOk;
 }
 
