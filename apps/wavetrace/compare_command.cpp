@@ -77,10 +77,13 @@ int run_compare(const CompareOptions& o) {
     fmt::print("rel. MSE  {:.3e}\n", c.rel_mse);
     if (c.z_tested) {
         fmt::print(
-            "z-tests   {} ({}x{} blocks x 3 channels) at level {:.3e} (alpha {}, Sidak): {} "
-            "failed; worst: block at ({}, {}) channel {}, z = {:.3f}, p = {:.3e}\n",
-            c.tests, o.block, o.block, c.level, o.alpha, c.failed, c.worst.x, c.worst.y,
-            "RGB"[c.worst.channel], c.worst.z, c.worst.p);
+            "z-tests   {} ({}x{} blocks and the whole image, x 3 channels) at level {:.3e} "
+            "(alpha {}, Sidak): {} failed\n",
+            c.tests, o.block, o.block, c.level, o.alpha, c.failed);
+        fmt::print("          whole image z = {:.3f} {:.3f} {:.3f} (R G B)\n", c.image_z[0],
+                   c.image_z[1], c.image_z[2]);
+        fmt::print("          worst block at ({}, {}) channel {}: z = {:.3f}, p = {:.3e}\n",
+                   c.worst.x, c.worst.y, "RGB"[c.worst.channel], c.worst.z, c.worst.p);
     } else {
         fmt::print("z-tests   none (no variance image); bounds: mean {}, rel. MSE {}\n",
                    o.max_mean_diff, o.max_rel_mse);

@@ -10,6 +10,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <atomic>
@@ -25,6 +26,8 @@ namespace wavefront_detail {
 
 // Waves handed out between two progress reports (on the caller's thread).
 constexpr size_t kWavesPerReport = 64;
+// Waves per thread and pass that small images are cut into, for balance.
+constexpr size_t kWavesPerThread = 4;
 
 // Carries the wave of the pass's pixels [first, first + n) (in pass order) through all its
 // bounces and adds its paths to the film; returns the rays traced.
@@ -65,14 +68,19 @@ void wavefront(const Scene& scene,
                const WavefrontConfig& wavefront,
                RenderStats* stats,
                const ProgressCallback& progress) {
-    using wavefront_detail::kWavesPerReport;
+    using wavefront_detail::kWavesPerReport, wavefront_detail::kWavesPerThread;
     auto start = std::chrono::steady_clock::now();
     const LightSet lights(scene);
     const CameraRays camera(scene.camera, config.width, config.height);
     const WaveInputs in{scene, lights, config, camera,
                         media_at(scene, bvh, scene.camera.look_from)};
     const size_t pixels = static_cast<size_t>(config.width) * config.height;
-    const size_t wave_size = std::max<size_t>(1, std::min(wavefront.wave_size, pixels));
+    // Small images: waves small enough that every thread gets a few per pass (the image does
+    // not depend on the wave size, so this may follow the thread count).
+    const size_t threads = static_cast<size_t>(tbb::this_task_arena::max_concurrency());
+    const size_t share = (pixels + kWavesPerThread * threads - 1) / (kWavesPerThread * threads);
+    const size_t wave_size =
+        std::max<size_t>(1, std::min({wavefront.wave_size, pixels, std::max<size_t>(share, 64)}));
     const size_t waves = (pixels + wave_size - 1) / wave_size;
     tbb::enumerable_thread_specific<WaveQueues> queues([&] {
         WaveQueues q;

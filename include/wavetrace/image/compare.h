@@ -17,7 +17,8 @@ struct CompareOptions {
     double max_rel_mse = 1e-2;
 };
 
-// One block and channel's z-test: z = (m_ours - m_ref) / sqrt(var(m_ours) + var(m_ref)).
+// One block and channel's z-test: z = (m_ours - m_ref) / sqrt(var(m_ours) + var(m_ref)). The
+// whole image is tested the same way, as one more block.
 struct BlockTest {
     int x = -1, y = -1;  // the block's top-left pixel
     int channel = -1;
@@ -30,7 +31,8 @@ struct ImageComparison {
     double mean_rel_diff = 0.0;              // |mean_ours - mean_ref| / mean_ref
     double rel_mse = 0.0;                    // mean of (o - r)^2 / (r^2 + 1e-3) over values
     bool z_tested = false;                   // a variance image was given
-    int tests = 0;                           // blocks x channels
+    int tests = 0;                           // (blocks + the whole image) x channels
+    double image_z[3] = {0, 0, 0};           // the whole image's z per channel
     double level = 0.0;  // Sidak-corrected per-test level: 1 - (1 - alpha)^(1 / tests)
     int failed = 0;      // tests with p below the level
     BlockTest worst;     // the smallest p

@@ -15,9 +15,9 @@ struct Scene;
 class Bvh;
 
 struct WavefrontConfig {
-    // Paths a thread carries through the stages at once (a wave holds one sample of
-    // consecutive pixels, so it is clamped to the pixel count). 4096 paths keep a wave's
-    // queues (wavefront_bytes_per_path() each) within a core's L2 cache.
+    // Most paths a thread carries through the stages at once (a wave holds one sample of
+    // consecutive pixels; small images are cut into smaller waves, a few per thread). 4096
+    // paths keep a wave's queues (wavefront_bytes_per_path() each) within a core's L2 cache.
     size_t wave_size = 4096;
 };
 
