@@ -207,6 +207,17 @@ SCENES = {
         materials={"gold": {"type": "metal", "albedo": [0.95, 0.7, 0.3], "roughness": 0.3}}),
     "everything": everything(),
     "veach-mis": veach_mis(),
+    # McGuire's OBJ+MTL Cornell box as it is, set up as ../shared's Tungsten reference render
+    # (cornell-box/reference-tungsten/README.md): camera, fov, 512 x 512.
+    "cornell-mcguire": {
+        "description": "Morgan McGuire's Cornell box (OBJ + MTL, materials from the file), "
+                       "framed as the Tungsten reference render",
+        "render": {"width": 512, "height": 512, "spp": 64, "max_depth": 256},
+        "camera": {"look_from": [0, 1, 6.8], "look_at": [0, 1, 0], "up": [0, 1, 0], "vfov": 19.5},
+        "background": [0, 0, 0],
+        "objects": [{"type": "mesh", "file": "meshes/cornell-mcguire/CornellBox-Original.obj",
+                     "materials": "file", "normals": "flat"}],
+    },
 }
 
 

@@ -63,12 +63,12 @@ Color ray_color(PathContext<Tracer>& ctx,
             case SegmentEvent::Scatter:
                 break;
         }
-        if (!may_scatter(cfg, bounce)) return {};
+        if (!may_scatter(cfg, bounce)) return seg.emission;
         const Vertex& v = seg.vertex;
         VertexSamples u = vertex_samples(cfg.seed, ctx.pixel, ctx.sample, bounce);
 
         // Next-event estimation: a shadow ray to a light sample, weighted for the strategy.
-        Color radiance{0.0f};
+        Color radiance = seg.emission;  // zero but at an emitter that also reflects
         if ((cfg.strategy == Strategy::Nee || cfg.strategy == Strategy::Mis) &&
             can_sample_lights(v, ctx.lights)) {
             DirectSample d = sample_direct(ctx.scene, ctx.lights, v, seg.wo, u.light_select,

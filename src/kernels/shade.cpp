@@ -35,7 +35,9 @@ size_t shade(const WaveInputs& in,
             keep[i] = 1;
             continue;
         }
-        if (seg.event == SegmentEvent::Emission) paths.radiance[i] += paths.beta[i] * seg.emission;
+        // Emission found; at an emitter that also reflects, the path scatters on from it.
+        if (seg.event == SegmentEvent::Emission || seg.event == SegmentEvent::Scatter)
+            paths.radiance[i] += paths.beta[i] * seg.emission;
         if (seg.event != SegmentEvent::Scatter) continue;
 
         // ---- a scattering vertex: a light sample, then the continuation ----

@@ -2,6 +2,8 @@
 
 #include <assimp/BaseImporter.h>
 #include <assimp/importerdesc.h>
+#include <assimp/ObjMaterial.h>
+#include <assimp/material.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
@@ -135,6 +137,39 @@ void refuse_unrecognised(const Assimp::Importer& importer,
     throw std::runtime_error("not a ." + extension + " file that its readers recognise");
 }
 
+Color color_of(const aiMaterial& m, const char* key, unsigned type, unsigned index) {
+    aiColor3D c(0, 0, 0);
+    m.Get(key, type, index, c);
+    return {c.r, c.g, c.b};
+}
+
+FileMaterial read_material(const aiMaterial& m) {
+    FileMaterial out;
+    aiString name;
+    if (m.Get(AI_MATKEY_NAME, name) == AI_SUCCESS) out.name = name.C_Str();
+    out.kd = color_of(m, AI_MATKEY_COLOR_DIFFUSE);
+    out.ks = color_of(m, AI_MATKEY_COLOR_SPECULAR);
+    out.ke = color_of(m, AI_MATKEY_COLOR_EMISSIVE);
+    m.Get(AI_MATKEY_SHININESS, out.ns);
+    m.Get(AI_MATKEY_REFRACTI, out.ni);
+    m.Get(AI_MATKEY_OPACITY, out.dissolve);
+    int illum = -1;
+    if (m.Get(AI_MATKEY_OBJ_ILLUM, illum) == AI_SUCCESS) out.illum = illum;
+    aiString path;
+    if (m.GetTextureCount(aiTextureType_DIFFUSE) > 0 &&
+        m.GetTexture(aiTextureType_DIFFUSE, 0, &path) == AI_SUCCESS)
+        out.map_kd = path.C_Str();
+    const std::pair<aiTextureType, const char*> others[] = {
+        {aiTextureType_SPECULAR, "map_Ks"},    {aiTextureType_AMBIENT, "map_Ka"},
+        {aiTextureType_EMISSIVE, "map_Ke"},    {aiTextureType_HEIGHT, "map_Bump"},
+        {aiTextureType_NORMALS, "norm"},       {aiTextureType_SHININESS, "map_Ns"},
+        {aiTextureType_OPACITY, "map_d"},      {aiTextureType_DISPLACEMENT, "disp"},
+        {aiTextureType_REFLECTION, "refl"}};
+    for (const auto& [type, key] : others)
+        if (m.GetTextureCount(type) > 0) out.other_maps.push_back(key);
+    return out;
+}
+
 }  // namespace
 
 MeshFile read_mesh_file(const std::filesystem::path& path) {
@@ -179,6 +214,9 @@ MeshFile read_mesh_file(const std::filesystem::path& path) {
     if (!scene || !scene->mRootNode) throw std::runtime_error(importer.GetErrorString());
 
     MeshFile out;
+    for (unsigned m = 0; m < scene->mNumMaterials; ++m)
+        out.materials.push_back(read_material(*scene->mMaterials[m]));
+    if (out.materials.empty()) out.materials.push_back(FileMaterial{"(none)"});
     bool all_normals = true, all_uvs = true;
     for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
         const aiMesh* mesh = scene->mMeshes[m];
@@ -202,13 +240,17 @@ MeshFile read_mesh_file(const std::filesystem::path& path) {
                 out.uvs.push_back({t.x, t.y});
             }
         }
+        MeshPart part{out.indices.size() / 3, 0, mesh->mMaterialIndex};
         for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
             const aiFace& face = mesh->mFaces[f];
             if (face.mNumIndices != 3) continue;
             // Indices were checked before post-processing; Scene::add_mesh skips any triangle
             // whose index is still out of range.
             for (int k = 0; k < 3; ++k) out.indices.push_back(base + face.mIndices[k]);
+            ++part.triangles;
         }
+        if (part.material >= out.materials.size()) part.material = 0;
+        if (part.triangles > 0) out.parts.push_back(part);
     }
     if (out.indices.empty()) throw std::runtime_error("the file holds no triangles");
     return out;

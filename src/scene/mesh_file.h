@@ -8,16 +8,38 @@
 
 namespace wavetrace {
 
+// A material as the file states it (OBJ's MTL keys; other formats fill what they have).
+// Mapping it onto wavetrace's materials is the scene loader's business.
+struct FileMaterial {
+    std::string name;
+    Color kd{0.0f}, ks{0.0f}, ke{0.0f};
+    float ns = 0.0f;          // Phong exponent
+    float ni = 1.0f;          // index of refraction
+    int illum = -1;           // OBJ illumination model; -1: not given
+    float dissolve = 1.0f;    // d: 1 is opaque
+    std::string map_kd;       // diffuse texture path as written, relative to the file's folder
+    std::vector<std::string> other_maps;  // texture kinds that cannot be mapped (e.g. "map_Bump")
+};
+
+// The triangles [first_triangle, first_triangle + triangles) use material `material`.
+struct MeshPart {
+    size_t first_triangle = 0, triangles = 0;
+    uint32_t material = 0;  // index into MeshFile::materials
+};
+
 // A triangle mesh as read from a file: every mesh in the file merged, node transforms applied.
 struct MeshFile {
     std::vector<Point3> positions;
     std::vector<Normal3> normals;   // empty, or one per position
     std::vector<Vec2> uvs;          // empty, or one per position
     std::vector<uint32_t> indices;  // three per triangle
+    std::vector<FileMaterial> materials;
+    std::vector<MeshPart> parts;    // in triangle order, covering every triangle
 };
 
 // Reads OBJ (+MTL), PLY (ASCII or binary) or glTF 2.0 through Assimp. Polygons are
-// triangulated (fans of the file's own faces), points and lines dropped. Throws
+// triangulated (fans of the file's own faces), points and lines dropped; materials are read as
+// the file states them. Throws
 // std::runtime_error with a message that does not repeat the path.
 MeshFile read_mesh_file(const std::filesystem::path& path);
 

@@ -221,6 +221,8 @@ class Loader {
                 m.kind = MaterialKind::DiffuseLight;
                 m.emission = read_texture(o.required("radiance"), Range::Radiance);
                 if (auto x = o.optional("two_sided")) m.two_sided = x->boolean();
+                // Optional: the emitter also reflects, as a Lambertian surface.
+                if (auto x = o.optional("albedo")) m.albedo = read_texture(*x, Range::Reflectance);
             } else {
                 type_value.fail("unknown material type \"" + type +
                                 "\" (expected lambertian, metal, mirror, dielectric or "
@@ -283,6 +285,113 @@ class Loader {
         return t;
     }
 
+    // One scene mesh per material part of a mesh file, each with its file material mapped.
+    void add_mesh_parts(const MeshFile& mesh,
+                        const fs::path& path,
+                        MediumId interior,
+                        const Transform& to_world,
+                        const Value& where) {
+        std::vector<MaterialId> mapped(mesh.materials.size(), kNone);
+        for (const MeshPart& part : mesh.parts) {
+            if (mapped[part.material] == kNone)
+                mapped[part.material] = map_file_material(mesh.materials[part.material], path, where);
+            // The part's own vertices, re-indexed from 0.
+            std::vector<uint32_t> indices, remap(mesh.positions.size(), UINT32_MAX);
+            std::vector<Point3> positions;
+            std::vector<Normal3> normals;
+            std::vector<Vec2> uvs;
+            for (size_t k = 3 * part.first_triangle; k < 3 * (part.first_triangle + part.triangles);
+                 ++k) {
+                const uint32_t v = mesh.indices[k];
+                if (v >= mesh.positions.size()) continue;  // add_mesh would skip it too
+                if (remap[v] == UINT32_MAX) {
+                    remap[v] = static_cast<uint32_t>(positions.size());
+                    positions.push_back(mesh.positions[v]);
+                    if (!mesh.normals.empty()) normals.push_back(mesh.normals[v]);
+                    if (!mesh.uvs.empty()) uvs.push_back(mesh.uvs[v]);
+                }
+                indices.push_back(remap[v]);
+            }
+            Mesh m;
+            m.name = path.filename().string() + ":" + mesh.materials[part.material].name;
+            m.material = mapped[part.material];
+            m.interior = interior;
+            skipped_triangles_ +=
+                scene_.add_mesh(std::move(m), positions, normals, uvs, indices, to_world);
+        }
+    }
+
+    // A mesh file's material as a wavetrace material (docs/scene-format.md, "Materials from
+    // mesh files"): Ke -> one-sided emitter (reflecting as Lambertian Kd if Kd > 0), illum 4/6/7 ->
+    // dielectric of index Ni, Ks without
+    // Kd -> metal (roughness from Ns), else Kd (or map_Kd) -> Lambertian. What does not map is
+    // a warning naming the material.
+    MaterialId map_file_material(const FileMaterial& fm, const fs::path& mesh_path,
+                                 const Value& where) {
+        const std::string who = mesh_path.filename().string() + ": material \"" + fm.name + "\"";
+        auto positive = [](Color c) { return max_component(c) > 0.0f; };
+        auto check_color = [&](Color c, const char* key) {
+            if (!is_finite(c) || c.x < 0 || c.y < 0 || c.z < 0 || max_component(c) > 1e6f)
+                where.fail(who + ": " + key + " must be finite and non-negative");
+        };
+        check_color(fm.kd, "Kd");
+        check_color(fm.ks, "Ks");
+        check_color(fm.ke, "Ke");
+        Material m;
+        m.name = fm.name;
+        const bool dielectric = fm.illum == 4 || fm.illum == 6 || fm.illum == 7;
+        std::vector<std::string> ignored = fm.other_maps;
+        if (positive(fm.ke)) {
+            m.kind = MaterialKind::DiffuseLight;
+            m.emission = scene_.add_solid(fm.ke);
+            if (positive(fm.kd)) m.albedo = scene_.add_solid(min(fm.kd, Color(1.0f)));
+            if (positive(fm.ks)) ignored.push_back("Ks (an emitter reflects as Lambertian Kd)");
+            if (!fm.map_kd.empty()) ignored.push_back("map_Kd of an emitter");
+        } else if (dielectric) {
+            m.kind = MaterialKind::Dielectric;
+            if (!(fm.ni > 1.0f && fm.ni < 10.0f)) {
+                warn(who + ": Ni " + std::to_string(fm.ni) + " is no index of refraction of glass; using 1.5");
+                m.ior = 1.5f;
+            } else {
+                m.ior = fm.ni;
+            }
+            if (positive(fm.kd) || !fm.map_kd.empty()) ignored.push_back("Kd (a dielectric is clear)");
+        } else if (positive(fm.ks) && !positive(fm.kd) && fm.map_kd.empty()) {
+            m.kind = MaterialKind::Metal;
+            m.albedo = scene_.add_solid(min(fm.ks, Color(1.0f)));
+            // The Phong exponent as a microfacet width: alpha = sqrt(2 / (Ns + 2)) (the
+            // Beckmann-Phong correspondence, Walter et al. 2007, section 5.2); roughness^2 = alpha.
+            m.roughness = std::pow(2.0f / (std::max(fm.ns, 0.0f) + 2.0f), 0.25f);
+        } else {
+            m.kind = MaterialKind::Lambertian;
+            if (!fm.map_kd.empty()) {
+                fs::path tex = mesh_path.parent_path() / fm.map_kd;
+                std::error_code ec;
+                if (!fs::exists(tex, ec))
+                    where.fail(who + ": map_Kd '" + tex.string() + "': no such file");
+                Texture t;
+                t.kind = TextureKind::Image;
+                try {
+                    t.image = scene_.add_image(read_image(tex));
+                } catch (const std::exception& e) {
+                    where.fail(who + ": map_Kd '" + tex.string() + "': " + e.what());
+                }
+                m.albedo = scene_.add_texture(t);
+            } else {
+                if (!positive(fm.kd)) warn(who + ": no Kd, Ks or Ke; rendered black");
+                m.albedo = scene_.add_solid(min(fm.kd, Color(1.0f)));
+            }
+            if (positive(fm.ks)) ignored.push_back("Ks (no diffuse + glossy material)");
+        }
+        if (fm.dissolve < 1.0f) ignored.push_back("d (transparency)");
+        if (!ignored.empty()) {
+            std::string list;
+            for (const std::string& k : ignored) list += (list.empty() ? "" : ", ") + k;
+            warn(who + ": ignored " + list);
+        }
+        return scene_.add_material(std::move(m));
+    }
+
     MaterialId material_ref(const Value& v) const {
         std::string name = v.string();
         auto it = materials_.find(name);
@@ -323,8 +432,16 @@ class Loader {
         // boundary (the seed's constant_medium).
         MediumId interior = kNone;
         if (auto x = o.optional("interior")) interior = medium_ref(*x);
-        MaterialId material;
-        if (auto x = o.optional("material")) {
+        MaterialId material = kNone;
+        bool file_materials = false;  // a mesh whose materials come from its file (OBJ's MTL)
+        if (auto x = type == "mesh" ? o.optional("materials") : std::nullopt) {
+            if (x->string() != "file")
+                x->fail("expected \"file\" (the materials the mesh file names), got " +
+                        x->describe());
+            if (auto m = o.optional("material"))
+                m->fail("give \"material\" or \"materials\": \"file\", not both");
+            file_materials = true;
+        } else if (auto x = o.optional("material")) {
             material = material_ref(*x);
         } else if (interior != kNone) {
             material = scene_.interface_material();
@@ -381,12 +498,17 @@ class Loader {
             }
             if (normals == "flat") mesh.normals.clear();
             if (normals == "smooth") mesh.normals = smooth_normals(mesh.positions, mesh.indices);
-            Mesh m;
-            m.name = p.filename().string();
-            m.material = material;
-            m.interior = interior;
-            skipped_triangles_ += scene_.add_mesh(std::move(m), mesh.positions, mesh.normals,
-                                                  mesh.uvs, mesh.indices, to_world);
+            if (file_materials) {
+                add_mesh_parts(mesh, p, interior, to_world, file);
+            } else {
+                Mesh m;
+                m.name = p.filename().string();
+                m.material = material;
+                m.interior = interior;
+                skipped_triangles_ += scene_.add_mesh(std::move(m), mesh.positions,
+                                                      mesh.normals, mesh.uvs, mesh.indices,
+                                                      to_world);
+            }
         } else {
             type_value.fail("unknown object type \"" + type +
                             "\" (expected sphere, quad, box, mesh or group)");

@@ -16,7 +16,8 @@ Vertex surface_vertex(const Scene& scene, const SurfaceHit& hit) {
     v.frame = Frame::from_normal(hit.ns);
     v.interior = hit.interior;
     const Material& m = scene.materials[hit.material];
-    v.bsdf.kind = m.kind;
+    // A reflecting emitter scatters as a Lambertian surface of its albedo.
+    v.bsdf.kind = m.kind == MaterialKind::DiffuseLight ? MaterialKind::Lambertian : m.kind;
     if (m.albedo != kNone) v.bsdf.albedo = eval_texture(scene, m.albedo, hit.uv, hit.p);
     v.bsdf.alpha = m.roughness * m.roughness;
     v.bsdf.eta = m.ior;
@@ -210,6 +211,12 @@ SegmentResult resolve_segment(const Scene& scene,
     if (kind == MaterialKind::DiffuseLight) {
         Color le = emitted_radiance(scene, s);
         if (max_component(le) > 0.0f) weighted(le, hit.prim, length(s.p - prev.p));
+        // An emitter that also reflects (an albedo, e.g. an MTL light with Kd): its emission
+        // is counted here and the path scatters on, Lambertian.
+        if (scene.materials[s.material].albedo == kNone) return r;
+        r.event = SegmentEvent::Scatter;
+        r.vertex = surface_vertex(scene, s);
+        r.wo = -dir;
         return r;
     }
     r.event = SegmentEvent::Scatter;

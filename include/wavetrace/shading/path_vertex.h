@@ -106,7 +106,8 @@ struct PreviousVertex {
 };
 
 enum class SegmentEvent : uint8_t {
-    Scatter,   // the path scatters at `vertex` (a surface or a point in a medium)
+    Scatter,   // the path scatters at `vertex` (a surface or a point in a medium), after adding
+               // `emission` (weighted; non-zero only at an emitter that also reflects)
     Emission,  // the segment ends on an emitter or in the background: `emission` (weighted)
     Cross,     // the segment crossed a medium boundary and goes on as `next`
     End,       // absorbed: a black background, the back of an emitter, or too many crossings
@@ -116,7 +117,7 @@ struct SegmentResult {
     SegmentEvent event = SegmentEvent::End;
     Vertex vertex;
     Vec3 wo;               // Scatter: unit direction back along the segment
-    Color emission{0.0f};  // Emission: radiance times the strategy's weight
+    Color emission{0.0f};  // Emission, Scatter: radiance times the strategy's weight
     Ray next;              // Cross: the continuing ray
 };
 
