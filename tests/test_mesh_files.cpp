@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstring>
 
 #include "temp_dir.h"
@@ -118,4 +119,82 @@ TEST(MeshFiles, GltfLoads) {
     Aabb b = s.bounds();
     EXPECT_EQ(b.lo, Vec3(0, 0, 0));
     EXPECT_EQ(b.hi, Vec3(1, 1, 0));
+}
+
+// Materials from an OBJ's MTL file: each key maps as docs/scene-format.md says, one scene mesh
+// per material, and what cannot be mapped is a warning naming the material.
+TEST(MeshFiles, ObjMaterialsMapFromTheMtl) {
+    TempDir dir;
+    std::string obj = "mtllib m.mtl\n";
+    const char* names[] = {"paint", "lamp", "glass", "steel", "plastic", "ghost"};
+    for (int k = 0; k < 6; ++k) {  // one triangle per material, side by side
+        const float x = 2.0f * k;
+        obj += "v " + std::to_string(x) + " 0 0\nv " + std::to_string(x + 1) + " 0 0\nv " +
+               std::to_string(x) + " 1 0\n";
+        obj += std::string("usemtl ") + names[k] + "\nf -3 -2 -1\n";
+    }
+    dir.write("m.obj", obj);
+    dir.write("m.mtl",
+              "newmtl paint\nKd 0.2 0.4 0.6\nillum 2\n"
+              "newmtl lamp\nKd 0.78 0.78 0.78\nKe 17 12 4\n"
+              "newmtl glass\nNi 1.33\nillum 7\nKd 0 0 0\n"
+              "newmtl steel\nKd 0 0 0\nKs 0.9 0.8 0.7\nNs 98\nillum 3\n"
+              "newmtl plastic\nKd 0.5 0.5 0.5\nKs 0.3 0.3 0.3\nd 0.5\n"
+              "newmtl ghost\nKd 0 0 0\n");
+    auto p = dir.write("s.json", R"({"camera": {"look_from": [0, 0, -5], "look_at": [0, 0, 0]},
+        "objects": [{"type": "mesh", "file": "m.obj", "materials": "file"}]})");
+    static std::vector<std::string> warnings;
+    warnings.clear();
+    LoadOptions options;
+    options.warn = [](const std::string& w) { warnings.push_back(w); };
+    Scene s = load_scene(p, options);
+
+    ASSERT_EQ(s.meshes.size(), 6u);
+    auto material_of = [&](const char* name) -> const Material& {
+        for (const Mesh& m : s.meshes)
+            if (m.name == std::string("m.obj:") + name) return s.materials[m.material];
+        ADD_FAILURE() << "no mesh for material " << name;
+        return s.materials[0];
+    };
+    auto color = [&](TextureId t) { return s.textures[t].color; };
+    const Material& paint = material_of("paint");
+    EXPECT_EQ(paint.kind, MaterialKind::Lambertian);
+    EXPECT_EQ(color(paint.albedo), Color(0.2f, 0.4f, 0.6f));
+    const Material& lamp = material_of("lamp");
+    EXPECT_EQ(lamp.kind, MaterialKind::DiffuseLight);
+    EXPECT_EQ(color(lamp.emission), Color(17, 12, 4));
+    EXPECT_FALSE(lamp.two_sided);
+    EXPECT_EQ(color(lamp.albedo), Color(0.78f));  // it reflects, too
+    const Material& glass = material_of("glass");
+    EXPECT_EQ(glass.kind, MaterialKind::Dielectric);
+    EXPECT_FLOAT_EQ(glass.ior, 1.33f);
+    const Material& steel = material_of("steel");
+    EXPECT_EQ(steel.kind, MaterialKind::Metal);
+    EXPECT_EQ(color(steel.albedo), Color(0.9f, 0.8f, 0.7f));
+    // roughness^2 = alpha = sqrt(2 / (Ns + 2)) = sqrt(0.02)
+    EXPECT_NEAR(steel.roughness * steel.roughness, std::sqrt(0.02f), 1e-6f);
+    EXPECT_EQ(material_of("plastic").kind, MaterialKind::Lambertian);
+
+    auto warned = [&](const std::string& part) {
+        return std::any_of(warnings.begin(), warnings.end(), [&](const std::string& w) {
+            return w.find(part) != std::string::npos;
+        });
+    };
+    EXPECT_TRUE(warned("material \"plastic\": ignored Ks (no diffuse + glossy material), d "
+                       "(transparency)"));
+    EXPECT_TRUE(warned("material \"ghost\": no Kd, Ks or Ke; rendered black"));
+    EXPECT_FALSE(warned("\"paint\""));
+    EXPECT_FALSE(warned("\"lamp\""));
+
+    // "material" and "materials" together are refused, naming the place.
+    auto both = dir.write("both.json", R"({"camera": {"look_from": [0, 0, -5], "look_at": [0, 0, 0]},
+        "materials": {"m": {"type": "lambertian", "albedo": 0.5}},
+        "objects": [{"type": "mesh", "file": "m.obj", "materials": "file", "material": "m"}]})");
+    try {
+        load_scene(both, options);
+        ADD_FAILURE() << "expected an error";
+    } catch (const SceneError& e) {
+        EXPECT_NE(std::string(e.what()).find("/objects/0/material"), std::string::npos)
+            << e.what();
+    }
 }

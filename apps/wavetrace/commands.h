@@ -30,7 +30,7 @@ struct RenderOptions {
 };
 
 struct CompareOptions {
-    std::string ours, ref, ours_var, ref_var;
+    std::string ours, ref, ours_var, ref_var, z_map;
     int block = 8;
     double alpha = 0.01;
     double max_mean_diff = 1e-2;

@@ -2,6 +2,7 @@
 // difference is noise (see docs/cli.md for the pass rule).
 #include <fmt/core.h>
 
+#include <cmath>
 #include <iostream>
 #include <optional>
 
@@ -29,12 +30,25 @@ void add_compare_command(CLI::App& app, CompareOptions& o) {
     cmd->add_option("--max-mean-diff", o.max_mean_diff,
                     "without variances: most relative difference of the image means")
         ->capture_default_str();
+    cmd->add_option("--z-map", o.z_map,
+                    "write each block's |z| as an image (needs a variance): black 0, white at the "
+                    "failing level, red where a block fails");
     cmd->add_option("--max-rel-mse", o.max_rel_mse,
                     "without variances: most relative MSE")
         ->capture_default_str();
 }
 
 namespace {
+
+// x with erfc(x) = p, for p in (0, 1], by bisection (erfc falls monotonically).
+double erfc_inverse(double p) {
+    double lo = 0.0, hi = 40.0;
+    for (int i = 0; i < 200; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (std::erfc(mid) > p ? lo : hi) = mid;
+    }
+    return 0.5 * (lo + hi);
+}
 
 Image read_linear(const std::string& path) {
     ImageData data = read_image(path);
@@ -87,6 +101,23 @@ int run_compare(const CompareOptions& o) {
     } else {
         fmt::print("z-tests   none (no variance image); bounds: mean {}, rel. MSE {}\n",
                    o.max_mean_diff, o.max_rel_mse);
+    }
+    if (!o.z_map.empty()) {
+        if (!c.z_tested) return bad_input("--z-map needs a variance image (--ours-var, --ref-var)");
+        // |z| over the |z| at which a test fails, per channel averaged to grey; failing red.
+        const double z_fail = std::sqrt(2.0) * erfc_inverse(c.level);
+        Image map(c.block_z.width, c.block_z.height);
+        for (size_t i = 0; i < map.pixels.size(); ++i) {
+            const Color z = c.block_z.pixels[i];
+            const float worst = max_component(z);
+            map.pixels[i] = worst >= z_fail ? Color(1, 0, 0)
+                                            : Color(float((z.x + z.y + z.z) / (3 * z_fail)));
+        }
+        try {
+            write_image(o.z_map, map);
+        } catch (const std::exception& e) {
+            return bad_input(e.what());
+        }
     }
     fmt::print("result    {}\n", c.pass ? "pass" : "differs");
     return c.pass ? kExitOk : kExitFailure;

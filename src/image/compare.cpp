@@ -77,6 +77,7 @@ ImageComparison compare_images(const Image& ours,
     const int b = options.block;
     const int bx = (ours.width + b - 1) / b, by = (ours.height + b - 1) / b;
     r.tests = 3 * bx * by + 3;
+    r.block_z = Image(ours.width, ours.height);
     r.level = 1.0 - std::pow(1.0 - options.alpha, 1.0 / r.tests);
     for (int y0 = 0; y0 < ours.height; y0 += b)
         for (int x0 = 0; x0 < ours.width; x0 += b)
@@ -95,6 +96,9 @@ ImageComparison compare_images(const Image& ours,
                 t.p = std::erfc(std::fabs(t.z) / std::sqrt(2.0));
                 if (t.p < r.level) ++r.failed;
                 if (r.worst.channel < 0 || t.p < r.worst.p) r.worst = t;
+                for (int y = y0; y < std::min(y0 + b, ours.height); ++y)
+                    for (int x = x0; x < std::min(x0 + b, ours.width); ++x)
+                        r.block_z.at(x, y)[k] = static_cast<float>(std::fabs(t.z));
             }
     // The whole image is one more block per channel: a bias spread thinly over every block
     // (a render 1% too bright) hides in each block's noise but not in the image's mean.

@@ -37,6 +37,8 @@ struct ImageComparison {
     int failed = 0;      // tests with p below the level
     BlockTest worst;     // the smallest p
     bool pass = false;
+    // Per pixel, the |z| of its block per channel (z-tested comparisons only): for a z-map.
+    Image block_z;
 };
 
 // Compares `ours` with `ref`. Variances are of each pixel's mean (what `render --variance`
