@@ -52,10 +52,6 @@ def short_box(lift=0, **kw):
                 transform=[rotate_y(-18), {"translate": [130, lift, 65]}], **kw)
 
 
-# A medium's boundary must not be coplanar with a surface: both would be hit at the same t and
-# which comes first would be a coin toss. The smoke blocks float 0.1 units (0.02 % of the box)
-# above the floor.
-MEDIUM_LIFT = 0.1
 
 
 def cornell_scene(description, objects, materials=None, media=None, light_quad=None, light=15,
@@ -191,7 +187,7 @@ SCENES = {
         materials={"mirror": {"type": "mirror", "albedo": [0.8, 0.85, 0.88]}}),
     "cornell-smoke": cornell_scene(
         "The Cornell box with the blocks as black smoke and white fog (RTNW section 9)",
-        [tall_box(interior="smoke", lift=MEDIUM_LIFT), short_box(interior="fog", lift=MEDIUM_LIFT)],
+        [tall_box(interior="smoke"), short_box(interior="fog")],  # standing on the floor, as in the book
         media={"smoke": {"density": 0.01, "albedo": [0, 0, 0]},
                "fog": {"density": 0.01, "albedo": [1, 1, 1]}},
         light_quad={"q": [113, 554, 127], "u": [330, 0, 0], "v": [0, 0, 305]}, light=7),

@@ -68,12 +68,33 @@ MaterialId Scene::interface_material() {
     return add_material(std::move(m));
 }
 
+// Medium boundaries that are no surface (interface material) are moved outwards by a hair, so
+// that they are never coplanar with anything they touch: a surface coincident with a boundary
+// (a smoke box standing on a floor, fog filling a room to its walls) is then met first from
+// inside and last from outside, as if the boundary lay a hair beyond it; of two coincident
+// boundaries (a medium box inside a medium box, both on the floor) the larger one, moved
+// further, is entered first and left last. The hair is the ray offset at the shape's farthest
+// corner (so that rounding never reorders the crossings; it grows with the shape, as the outer
+// of two nested shapes contains the inner one's corners) plus 1e-5 of the shape's size.
+float Scene::boundary_margin(const Aabb& world_bounds) {
+    const Point3 corner = max(abs(world_bounds.lo), abs(world_bounds.hi));
+    return origin_offset(corner) + 1e-5f * length(world_bounds.hi - world_bounds.lo);
+}
+
+bool Scene::is_boundary(MaterialId material) const {
+    return material < materials.size() && materials[material].kind == MaterialKind::Interface;
+}
+
 void Scene::add_sphere(Sphere sphere, const Transform& to_world) {
     float s = 1.0f;
     if (!to_world.preserves_shape(&s))
         throw std::invalid_argument("a sphere's transform must not scale non-uniformly or shear");
     sphere.center = to_world.point(sphere.center);
     sphere.radius *= s;
+    if (is_boundary(sphere.material)) {
+        const Vec3 r(sphere.radius);
+        sphere.radius += boundary_margin(Aabb{sphere.center - r, sphere.center + r});
+    }
     spheres.push_back(sphere);
 }
 
@@ -84,10 +105,35 @@ void Scene::add_quad(Quad quad, const Transform& to_world) {
     // cross(M u, M v) = det(M) M^-T (u x v): a mirroring transform turns the normal inwards
     // unless u and v trade places.
     if (to_world.flips_handedness()) std::swap(quad.u, quad.v);
+    if (is_boundary(quad.material)) {  // outwards: along u x v
+        Aabb b{min(quad.q, quad.q + quad.u + quad.v), max(quad.q, quad.q + quad.u + quad.v)};
+        b.lo = min(b.lo, min(quad.q + quad.u, quad.q + quad.v));
+        b.hi = max(b.hi, max(quad.q + quad.u, quad.q + quad.v));
+        quad.q += boundary_margin(b) * normalize(cross(quad.u, quad.v));
+    }
     quads.push_back(quad);
 }
 
 void Scene::add_box(
+    Point3 lo, Point3 hi, MaterialId material, MediumId interior, const Transform& to_world) {
+    if (is_boundary(material)) {
+        // The whole box grows (its faces moved one by one would open gaps at its edges): each
+        // local axis by the world margin over that axis's world length per unit.
+        Aabb world;
+        for (int c = 0; c < 8; ++c)
+            world.grow(to_world.point({c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y,
+                                         c & 4 ? hi.z : lo.z}));
+        const float m = boundary_margin(world);
+        const Vec3 grow{m / length(to_world.vector({1, 0, 0})),
+                        m / length(to_world.vector({0, 1, 0})),
+                        m / length(to_world.vector({0, 0, 1}))};
+        lo -= grow;
+        hi += grow;
+    }
+    add_box_faces(lo, hi, material, interior, to_world);  // not moved again face by face
+}
+
+void Scene::add_box_faces(
     Point3 lo, Point3 hi, MaterialId material, MediumId interior, const Transform& to_world) {
     Vec3 dx{hi.x - lo.x, 0, 0}, dy{0, hi.y - lo.y, 0}, dz{0, 0, hi.z - lo.z};
     // Each face's u x v points out of the box.
@@ -99,7 +145,13 @@ void Scene::add_box(
         {{lo.x, hi.y, hi.z}, dx, -dz, material, interior},  // top (+y)
         {{lo.x, lo.y, lo.z}, dx, dz, material, interior},   // bottom (-y)
     };
-    for (const Quad& f : faces) add_quad(f, to_world);
+    for (Quad f : faces) {
+        f.q = to_world.point(f.q);
+        f.u = to_world.vector(f.u);
+        f.v = to_world.vector(f.v);
+        if (to_world.flips_handedness()) std::swap(f.u, f.v);
+        quads.push_back(f);
+    }
 }
 
 size_t Scene::add_mesh(Mesh mesh,
@@ -118,6 +170,23 @@ size_t Scene::add_mesh(Mesh mesh,
         float len = length(n);
         normals.push_back(len > 0 && std::isfinite(len) ? n / len : Normal3{});
         uvs.push_back(mesh.has_uvs ? uv[i] : Vec2{});
+    }
+    if (is_boundary(mesh.material) && !pos.empty()) {
+        // A (convex, closed) boundary mesh: every vertex away from the centroid by the margin,
+        // which moves every face outwards and keeps the mesh closed.
+        Aabb b;
+        Vec3 sum{0.0f};
+        for (uint32_t i = mesh.first_vertex; i < positions.size(); ++i) {
+            b.grow(positions[i]);
+            sum += positions[i];
+        }
+        const Point3 centroid = sum / float(pos.size());
+        const float m = boundary_margin(b);
+        for (uint32_t i = mesh.first_vertex; i < positions.size(); ++i) {
+            const Vec3 out = positions[i] - centroid;
+            const float len = length(out);
+            if (len > 0.0f && std::isfinite(len)) positions[i] += (m / len) * out;
+        }
     }
     uint32_t mesh_id = static_cast<uint32_t>(meshes.size());
     meshes.push_back(std::move(mesh));

@@ -16,4 +16,10 @@ struct Ray {
     constexpr Point3 at(float t) const { return o + t * d; }
 };
 
+// How far a new ray starts from the surface point p it leaves: relative to p's magnitude
+// (about 170 float ulps), so that it clears the rounding error of p itself at any scale.
+inline float origin_offset(Point3 p) {
+    return 2e-5f * (1.0f + max_component(abs(p)));
+}
+
 }  // namespace wavetrace

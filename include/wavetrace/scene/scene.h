@@ -66,6 +66,10 @@ struct Scene {
     // The pass-through material of medium boundaries (created on first use).
     MaterialId interface_material();
 
+    // Shapes whose material is the interface material (medium boundaries that are no surface)
+    // are moved outwards by a hair, boundary_margin() of their world bounds, so that they are
+    // never coplanar with a surface or another boundary they touch (docs/scene-format.md,
+    // "Media").
     void add_sphere(Sphere sphere, const Transform& to_world = {});
     void add_quad(Quad quad, const Transform& to_world = {});
     // Six outward-facing quads spanning [lo, hi].
@@ -84,6 +88,9 @@ struct Scene {
                     const std::vector<uint32_t>& indices,
                     const Transform& to_world = {});
 
+    // How far a medium boundary with these world bounds is moved outwards.
+    static float boundary_margin(const Aabb& world_bounds);
+
     // ---- queries ----
     size_t primitive_count() const { return spheres.size() + quads.size() + triangles.size(); }
     Aabb bounds() const;
@@ -91,6 +98,11 @@ struct Scene {
     MaterialId prim_material(PrimRef prim) const;
     MediumId prim_interior(PrimRef prim) const;
     float prim_area(PrimRef prim) const;
+
+  private:
+    bool is_boundary(MaterialId material) const;
+    void add_box_faces(Point3 lo, Point3 hi, MaterialId material, MediumId interior,
+                       const Transform& to_world);
 };
 
 // Every primitive whose material emits: the scene's area lights.

@@ -36,11 +36,6 @@ Vertex medium_vertex(const Scene& scene, MediumId medium, Point3 p);
 // Whether next-event estimation and light-sampled directions apply at this vertex.
 bool can_sample_lights(const Vertex& v, const LightSet& lights);
 
-// How far a new ray starts from the surface point p it leaves: relative to p's magnitude
-// (about 170 float ulps), so that it clears the rounding error of p itself at any scale.
-inline float origin_offset(Point3 p) {
-    return 2e-5f * (1.0f + max_component(abs(p)));
-}
 // A ray origin just off the surface on the side `w` leaves towards, so that the new ray does
 // not hit the surface it starts on.
 Point3 offset_origin(const Vertex& v, Vec3 w);
