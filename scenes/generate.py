@@ -214,6 +214,21 @@ SCENES = {
         "objects": [{"type": "mesh", "file": "meshes/cornell-mcguire/CornellBox-Original.obj",
                      "materials": "file", "normals": "flat"}],
     },
+    # The dragon alone under Tungsten's environment map, set up as ../shared's Tungsten
+    # reference render (dragon/reference-tungsten/README.md): rotation 90 puts +x at the
+    # panorama's centre column, Tungsten's convention; 40 degrees horizontal fov at 4:3.
+    "dragon-envmap": {
+        "description": "The Stanford dragon (grey Lambertian, flat shaded) lit only by an "
+                       "environment map, framed as the Tungsten reference render",
+        "render": {"width": 640, "height": 480, "spp": 64, "max_depth": 256},
+        "camera": {"look_from": [0, 6, 28], "look_at": [0, 4.5, 0], "up": [0, 1, 0],
+                   "vfov": 30.5369432627651},
+        "background": {"type": "environment", "file": "textures/tungsten_envmap.hdr",
+                       "rotation": 90},
+        "materials": {"grey": {"type": "lambertian", "albedo": 0.5}},
+        "objects": [{"type": "mesh", "file": "meshes/dragon_100k.obj", "material": "grey",
+                     "normals": "flat"}],
+    },
 }
 
 
