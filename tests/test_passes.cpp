@@ -49,14 +49,17 @@ TEST(Passes, StoppingBetweenPassesGivesTheImageOfTheSamplesDone) {
     // The wavefront checks before each pass of one sample: stop at the fourth check.
     int calls = 0;
     RenderConfig stopped = small_config(10);
-    stopped.stop = [&] { return ++calls > 3; };
+    stopped.stop = [&](int done) {
+        EXPECT_EQ(done, calls);  // one sample per pass with this config
+        return ++calls > 3;
+    };
     RenderStats stats;
     Film wave = render_wavefront(scene, bvh, stopped, wf, &stats);
     EXPECT_EQ(stats.spp_done, 3);
     expect_same_film(wave, render_wavefront(scene, bvh, small_config(3), wf), 3);
     // The megakernel's first pass is one sample; stop at the second check.
     calls = 0;
-    stopped.stop = [&] { return ++calls > 1; };
+    stopped.stop = [&](int) { return ++calls > 1; };
     Film mega = render_megakernel(scene, bvh, stopped, &stats);
     EXPECT_EQ(stats.spp_done, 1);
     expect_same_film(mega, render_megakernel(scene, bvh, small_config(1)), 1);

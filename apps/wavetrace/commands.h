@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace wavetrace::cli {
 
@@ -20,6 +21,10 @@ struct RenderOptions {
     std::optional<long long> wave_size;
     std::optional<double> time_limit;  // seconds: start no pass after this
     std::string variance;              // where to write the variance of the pixel means
+    std::string film;                  // where to write the film file (sums) at the end
+    std::string resume;                // a film file to continue
+    std::optional<double> checkpoint_every;  // seconds between film refreshes
+    std::optional<long long> sample_offset;  // first sample of the range rendered
     uint64_t seed = 0;
     int threads = 0;  // 0: all hardware threads
     std::string aov = "color";
@@ -37,6 +42,12 @@ struct CompareOptions {
     double max_rel_mse = 1e-2;
 };
 
+struct MergeOptions {
+    std::vector<std::string> parts;
+    std::string output;
+    std::string film;
+};
+
 struct InfoOptions {
     std::string scene;
     int threads = 0;
@@ -45,6 +56,8 @@ struct InfoOptions {
 void add_render_command(CLI::App& app, RenderOptions& options);
 void add_info_command(CLI::App& app, InfoOptions& options);
 void add_compare_command(CLI::App& app, CompareOptions& options);
+void add_merge_command(CLI::App& app, MergeOptions& options);
+int run_merge(const MergeOptions& options);
 int run_compare(const CompareOptions& options);
 int run_render(const RenderOptions& options);
 int run_info(const InfoOptions& options);

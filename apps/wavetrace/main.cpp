@@ -1,4 +1,5 @@
-// wavetrace: render a scene, describe it, or compare a render with a reference.
+// wavetrace: render a scene, describe it, merge renders of sample ranges, or compare a render
+// with a reference.
 #include <iostream>
 #include <new>
 
@@ -21,9 +22,11 @@ int main(int argc, char** argv) {
     RenderOptions render;
     InfoOptions info;
     CompareOptions compare;
+    MergeOptions merge;
     add_render_command(app, render);
     add_info_command(app, info);
     add_compare_command(app, compare);
+    add_merge_command(app, merge);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -33,6 +36,7 @@ int main(int argc, char** argv) {
     try {
         if (app.got_subcommand("render")) return run_render(render);
         if (app.got_subcommand("compare")) return run_compare(compare);
+        if (app.got_subcommand("merge")) return run_merge(merge);
         return run_info(info);
     } catch (const std::bad_alloc&) {
         // The render reports what it was allocating; this catches the rest (e.g. a scene's

@@ -7,11 +7,14 @@
 #include <chrono>
 #include <cmath>
 #include <csignal>
+#include <fstream>
+#include <iterator>
 #include <iostream>
 #include <mutex>
 #include <optional>
 
 #include "commands.h"
+#include "wavetrace/render/film_file.h"
 #include "wavetrace/wavetrace.h"
 
 namespace wavetrace::cli {
@@ -50,6 +53,18 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
     cmd->add_option("--wave-size", o.wave_size,
                     "wavefront: paths a thread carries at once (default 4096, at most the pixel "
                     "count)");
+    cmd->add_option("--film", o.film,
+                    "also write the film (per-pixel sums, docs/film-format.md) at the end: to "
+                    "resume or merge the render");
+    cmd->add_option("--checkpoint-every", o.checkpoint_every,
+                    "refresh the film file every SECONDS during the render (needs --film or "
+                    "--resume)");
+    cmd->add_option("--resume", o.resume,
+                    "continue the render in this film file up to --spp samples (it is updated "
+                    "unless --film names another file)");
+    cmd->add_option("--sample-offset", o.sample_offset,
+                    "render samples [K, K + spp) of each pixel's sequence (default 0): parts of "
+                    "one render for `wavetrace merge`");
     cmd->add_option("--variance", o.variance,
                     "also write the variance of each pixel's mean (per channel; .exr, .hdr or "
                     ".pfm): for `wavetrace compare`");
@@ -141,6 +156,15 @@ std::optional<std::string> check_options(const RenderOptions& o, const RenderSet
     if (o.time_limit && !(*o.time_limit > 0 && *o.time_limit < 1e9))
         return fmt::format("--time-limit: expected a positive number of seconds, got {}",
                            *o.time_limit);
+    if (auto e = out_of_range("--sample-offset", o.sample_offset, 0, (1LL << 31) - kMaxSpp))
+        return e;
+    if (o.checkpoint_every && !(*o.checkpoint_every > 0 && *o.checkpoint_every < 1e9))
+        return fmt::format("--checkpoint-every: expected a positive number of seconds, got {}",
+                           *o.checkpoint_every);
+    if (o.checkpoint_every && o.film.empty() && o.resume.empty())
+        return std::string("--checkpoint-every: needs --film FILE (or --resume FILE) to write");
+    if ((!o.film.empty() || !o.resume.empty()) && o.aov != "color")
+        return std::string("--film/--resume: only light transport (--aov color) has a film");
     if (o.threads < 0)
         return fmt::format("--threads: expected a positive count, got {}", o.threads);
     if (!std::isfinite(o.exposure) || std::fabs(o.exposure) > 64)
@@ -161,9 +185,31 @@ struct Rendered {
     int spp_done = -1;
 };
 
-// The render itself: BVH, engine or AOV, the image and its metadata.
-Rendered render_to_image(
-    const RenderOptions& o, const Scene& scene, int width, int height, const fs::path& output) {
+// What must match for two films to be parts of one render (FilmInfo::settings): the scene
+// file's content and every option that changes the samples.
+std::string film_settings(const RenderOptions& o,
+                          const Scene& scene,
+                          int width,
+                          int height) {
+    std::ifstream in(o.scene, std::ios::binary);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    uint64_t h = 0xcbf29ce484222325ULL;  // FNV-1a 64 of the scene file
+    for (unsigned char c : text) h = (h ^ c) * 0x100000001b3ULL;
+    return fmt::format(
+        "scene_fnv1a={:016x}\nwidth={}\nheight={}\nseed={}\nengine={}\nstrategy={}\n"
+        "mis_heuristic={}\nmax_depth={}\n",
+        h, width, height, o.seed, o.engine, o.strategy, o.heuristic,
+        o.max_depth.value_or(scene.render.max_depth));
+}
+
+// The render itself: BVH, engine or AOV, the image and its metadata. `resumed`: the film of
+// --resume, checked against these settings.
+Rendered render_to_image(const RenderOptions& o,
+                         const Scene& scene,
+                         int width,
+                         int height,
+                         const fs::path& output,
+                         std::optional<std::pair<Film, FilmInfo>>& resumed) {
     Bvh bvh = Bvh::build(scene);
     Rendered r;
     WriteOptions& write = r.write;
@@ -175,52 +221,84 @@ Rendered render_to_image(
         RenderConfig config;
         config.width = width;
         config.height = height;
-        config.spp = o.spp.value_or(scene.render.spp);
         config.seed = o.seed;
         config.strategy = *parse_strategy(o.strategy);
         config.heuristic = o.heuristic == "balance" ? MisHeuristic::Balance : MisHeuristic::Power;
         config.max_depth = o.max_depth.value_or(scene.render.max_depth);
+        // Samples [offset, offset + requested) in all; a resumed film holds the first ones.
+        const int requested = o.spp.value_or(scene.render.spp);
+        const uint32_t offset = static_cast<uint32_t>(o.sample_offset.value_or(0));
+        const int already = resumed ? static_cast<int>(resumed->second.samples()) : 0;
+        Film film = resumed ? std::move(resumed->first) : Film(width, height);
+        config.first_sample = static_cast<int>(offset) + already;
+        config.spp = std::max(0, requested - already);
+        const fs::path film_path = !o.film.empty() ? fs::path(o.film) : fs::path(o.resume);
+        const std::string settings = film_settings(o, scene, width, height);
+        auto film_info = [&](int done) {
+            FilmInfo info{settings, {}};
+            if (already + done > 0)
+                info.ranges.push_back({offset, static_cast<uint32_t>(already + done)});
+            return info;
+        };
+
         RenderStats stats;
         Progress progress(config);
         WavefrontConfig wavefront;
         if (o.wave_size) wavefront.wave_size = static_cast<size_t>(*o.wave_size);
         const auto render_start = std::chrono::steady_clock::now();
-        config.stop = [&] {
+        auto last_checkpoint = render_start;
+        config.stop = [&](int done) {
+            const auto now = std::chrono::steady_clock::now();
+            // Between passes nothing is added to the film: a consistent snapshot.
+            if (o.checkpoint_every && done > 0 &&
+                std::chrono::duration<double>(now - last_checkpoint).count() >=
+                    *o.checkpoint_every) {
+                save_film(film_path, film, film_info(done));
+                last_checkpoint = now;
+            }
             if (g_stop_signal.load() != 0) return true;
             if (!o.time_limit) return false;
-            return std::chrono::duration<double>(std::chrono::steady_clock::now() - render_start)
-                       .count() >= *o.time_limit;
+            return std::chrono::duration<double>(now - render_start).count() >= *o.time_limit;
         };
         std::signal(SIGINT, on_stop_signal);
         std::signal(SIGTERM, on_stop_signal);
-        Film film =
-            o.engine == "megakernel"
-                ? render_megakernel(scene, bvh, config, &stats, progress.callback())
-                : render_wavefront(scene, bvh, config, wavefront, &stats, progress.callback());
+        if (config.spp > 0) {
+            if (o.engine == "megakernel")
+                render_megakernel(scene, bvh, config, film, &stats, progress.callback());
+            else
+                render_wavefront(scene, bvh, config, film, wavefront, &stats,
+                                 progress.callback());
+        }
         progress.finish();
-        r.spp_done = stats.spp_done;
+        const int total = already + stats.spp_done;
+        r.spp_done = total;
+        if (!film_path.empty()) save_film(film_path, film, film_info(stats.spp_done));
         image = film.mean();
         if (!o.variance.empty()) r.variance = film.variance_of_mean();
         write.metadata.insert(write.metadata.end(),
                               {{"wavetrace:engine", o.engine},
                                {"wavetrace:strategy", o.strategy},
                                {"wavetrace:mis_heuristic", o.heuristic},
-                               {"wavetrace:spp", std::to_string(stats.spp_done)},
-                               {"wavetrace:spp_requested", std::to_string(config.spp)},
+                               {"wavetrace:spp", std::to_string(total)},
+                               {"wavetrace:spp_requested", std::to_string(requested)},
+                               {"wavetrace:first_sample", std::to_string(offset)},
                                {"wavetrace:max_depth", std::to_string(config.max_depth)},
                                {"wavetrace:render_seconds", fmt::format("{:.3f}", stats.seconds)}});
         std::string stopped;
-        if (stats.spp_done < config.spp)
-            stopped = fmt::format(" of {} requested ({})", config.spp,
+        if (total < requested)
+            stopped = fmt::format(" of {} requested ({})", requested,
                                   g_stop_signal.load() == SIGINT    ? "interrupted"
                                   : g_stop_signal.load() == SIGTERM ? "terminated"
                                                                     : "time limit reached");
+        const std::string resumed_note =
+            already > 0 ? fmt::format(" ({} resumed, {} rendered)", already, stats.spp_done) : "";
         summary = fmt::format(
-            "{} {} {}x{} {} spp{}: {:.2f} s, {:.2f} Mpaths/s, {:.2f} Mrays/s, "
+            "{} {} {}x{} {} spp{}{}: {:.2f} s, {:.2f} Mpaths/s, {:.2f} Mrays/s, "
             "{} invalid samples, peak memory {:.1f} MiB",
-            o.engine, o.strategy, width, height, stats.spp_done, stopped, stats.seconds,
-            stats.paths / stats.seconds * 1e-6, stats.rays / stats.seconds * 1e-6,
-            film.invalid_samples(), peak_rss_mib());
+            o.engine, o.strategy, width, height, total, stopped, resumed_note, stats.seconds,
+            stats.seconds > 0 ? stats.paths / stats.seconds * 1e-6 : 0.0,
+            stats.seconds > 0 ? stats.rays / stats.seconds * 1e-6 : 0.0, film.invalid_samples(),
+            peak_rss_mib());
     } else {
         AovSettings settings{width, height, o.spp.value_or(1), o.seed};
         Aov aov = o.aov == "albedo" ? Aov::Albedo : o.aov == "normal" ? Aov::Normal : Aov::Depth;
@@ -266,9 +344,35 @@ int run_render(const RenderOptions& o) {
 
     const int width = o.width.value_or(scene.render.width);
     const int height = o.height.value_or(scene.render.height);
+    // A film to resume must be of this render, and hold samples from --sample-offset on.
+    std::optional<std::pair<Film, FilmInfo>> resumed;
+    try {
+        if (!o.resume.empty()) {
+            resumed = load_film(o.resume);
+            const std::string diff =
+                settings_difference(resumed->second.settings, film_settings(o, scene, width, height));
+            if (!diff.empty())
+                throw FilmError(o.resume + ": the film of another render (" + diff + ")");
+            const auto& ranges = resumed->second.ranges;
+            const uint32_t offset = static_cast<uint32_t>(o.sample_offset.value_or(0));
+            if (ranges.size() > 1 || (ranges.size() == 1 && ranges[0].first != offset))
+                throw FilmError(fmt::format(
+                    "{}: holds samples [{}, {}){}, not a range from --sample-offset {}; merge "
+                    "parts with `wavetrace merge`",
+                    o.resume, ranges[0].first, ranges[0].end(), ranges.size() > 1 ? " and more" : "",
+                    offset));
+        }
+        if (!o.film.empty()) check_output_writable(o.film + ".exr");  // the folder is writable
+    } catch (const std::exception& e) {
+        std::cerr << "wavetrace: error: " << e.what() << "\n";
+        return kExitBadInput;
+    }
     Rendered r;
     try {
-        r = render_to_image(o, scene, width, height, output);
+        r = render_to_image(o, scene, width, height, output, resumed);
+    } catch (const FilmError& e) {
+        std::cerr << "wavetrace: error: " << e.what() << "\n";
+        return kExitFailure;
     } catch (const std::bad_alloc&) {
         // Name what needed the memory and what would fit, instead of dying on SIGABRT.
         const double pixels = double(width) * height;

@@ -117,7 +117,7 @@ void megakernel(const Scene& scene,
     // samples together (its part of the BVH stays in cache), short enough to stop promptly.
     int done = 0, chunk = 1;
     while (done < config.spp) {
-        if (config.stop && config.stop()) break;
+        if (config.stop && config.stop(done)) break;
         const int count = config.stop ? std::min(chunk, config.spp - done) : config.spp - done;
         const uint32_t first = static_cast<uint32_t>(config.first_sample + done);
         const auto pass_start = std::chrono::steady_clock::now();

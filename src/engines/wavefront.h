@@ -94,7 +94,7 @@ void wavefront(const Scene& scene,
     // size, the thread count or which thread ran which wave.
     int done = 0;
     for (; done < config.spp; ++done) {
-        if (config.stop && config.stop()) break;
+        if (config.stop && config.stop(done)) break;
         const uint32_t sample = static_cast<uint32_t>(config.first_sample + done);
         for (size_t w0 = 0; w0 < waves; w0 += kWavesPerReport) {
             const size_t w1 = std::min(waves, w0 + kWavesPerReport);

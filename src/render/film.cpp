@@ -1,6 +1,7 @@
 #include "wavetrace/render/film.h"
 
 #include <cmath>
+#include <stdexcept>
 
 namespace wavetrace {
 
@@ -21,6 +22,17 @@ void Film::add(int pixel, Color v) {
         sum_sq_[3 * static_cast<size_t>(pixel) + c] += double(v[c]) * v[c];
     }
     ++counts_[pixel];
+}
+
+void Film::merge(const Film& other) {
+    if (other.width_ != width_ || other.height_ != height_)
+        throw std::invalid_argument("films of different sizes cannot be merged");
+    for (size_t i = 0; i < sum_.size(); ++i) {
+        sum_[i] += other.sum_[i];
+        sum_sq_[i] += other.sum_sq_[i];
+    }
+    for (size_t i = 0; i < counts_.size(); ++i) counts_[i] += other.counts_[i];
+    invalid_ += other.invalid_.load();
 }
 
 Image Film::mean() const {

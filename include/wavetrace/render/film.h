@@ -4,11 +4,15 @@
 
 #include <atomic>
 #include <cstdint>
+#include <filesystem>
+#include <utility>
 #include <vector>
 
 #include "wavetrace/image/image.h"
 
 namespace wavetrace {
+
+struct FilmInfo;  // film_file.h: film files are written and read there
 
 class Film {
   public:
@@ -43,7 +47,14 @@ class Film {
     uint32_t samples(int pixel) const { return counts_[pixel]; }
     uint64_t invalid_samples() const { return invalid_.load(); }
 
+    // Adds another film's sums, squares, counts and invalid samples, pixel by pixel (same
+    // size; std::invalid_argument otherwise).
+    void merge(const Film& other);
+
   private:
+    friend void save_film(const std::filesystem::path&, const Film&, const FilmInfo&);
+    friend std::pair<Film, FilmInfo> load_film(const std::filesystem::path&);
+
     int width_ = 0, height_ = 0;
     std::vector<double> sum_, sum_sq_;  // 3 per pixel
     std::vector<uint32_t> counts_;

@@ -35,9 +35,11 @@ struct RenderConfig {
     // rendering [0, k) and then [k, n) into one film gives the film of [0, n), bit for bit.
     int first_sample = 0;
     // Both engines render in passes, one sample of every pixel each, and call this before
-    // each pass: returning true stops the render there, so that every pixel holds the same
-    // number of samples (RenderStats::spp_done). For interrupts and time limits.
-    std::function<bool()> stop;
+    // each pass, on the caller's thread, with the samples per pixel completed so far: no
+    // sample is being added then, so the film may be read (a checkpoint). Returning true stops
+    // the render there, so that every pixel holds the same number of samples
+    // (RenderStats::spp_done). For interrupts, time limits and checkpoints.
+    std::function<bool(int samples_done)> stop;
 };
 
 }  // namespace wavetrace
