@@ -51,8 +51,7 @@ struct Captured {
         shaded = q;
         shadows = shade(*in, 0, shaded.hits, 0, n, shaded.paths, shaded.rays, shaded.keep,
                         shaded.shadows, 0);
-        intersect_shadow(bvh, *in, shaded.shadows, shaded.paths, 0, shadows,
-                         shaded.transmittance);
+        intersect_shadow(bvh, *in, shaded.shadows, shaded.paths, 0, shadows, shaded.transmittance);
     }
 };
 

@@ -1,8 +1,7 @@
 // Comparing renders with references: the statistics of `compare_images` on images with known
 // noise, and the CLI's `render --variance` and `compare` together.
-#include <gtest/gtest.h>
-
 #include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
 
 #include <cstdio>
 #include <random>
@@ -126,14 +125,14 @@ TEST(Cli, CompareTellsNoiseFromADifferentImage) {
     auto path = [&](const char* name) { return "'" + file(name).string() + "'"; };
     const std::string common =
         "render " + scene_path("cornell").string() + " --width 64 --height 64 --spp 1024";
-    ASSERT_EQ(run_cli(dir, common + " --seed 1 -o " + path("a.exr") + " --variance " +
-                               path("a-var.exr"))
-                  .code,
-              0);
-    ASSERT_EQ(run_cli(dir, common + " --seed 2 -o " + path("b.exr") + " --variance " +
-                               path("b-var.exr"))
-                  .code,
-              0);
+    ASSERT_EQ(
+        run_cli(dir, common + " --seed 1 -o " + path("a.exr") + " --variance " + path("a-var.exr"))
+            .code,
+        0);
+    ASSERT_EQ(
+        run_cli(dir, common + " --seed 2 -o " + path("b.exr") + " --variance " + path("b-var.exr"))
+            .code,
+        0);
     ASSERT_EQ(run_cli(dir, common + " --seed 3 --max-depth 2 -o " + path("direct.exr") +
                                " --variance " + path("direct-var.exr"))
                   .code,
@@ -173,11 +172,11 @@ TEST(Cli, VarianceOfTheMeanFallsAsOneOverSamplesInBothEngines) {
         for (int k = 0; k < 2; ++k) {
             const std::filesystem::path var =
                 file(std::string(engines[e]) + std::to_string(spps[k]) + "-var.exr");
-            CliResult r = run_cli(dir, "render " + scene_path("cornell").string() +
-                                           " --width 32 --height 32 --seed 3 --spp " +
-                                           std::to_string(spps[k]) + " --engine " + engines[e] +
-                                           " -o '" + file("img.exr").string() +
-                                           "' --variance '" + var.string() + "'");
+            CliResult r =
+                run_cli(dir, "render " + scene_path("cornell").string() +
+                                 " --width 32 --height 32 --seed 3 --spp " +
+                                 std::to_string(spps[k]) + " --engine " + engines[e] + " -o '" +
+                                 file("img.exr").string() + "' --variance '" + var.string() + "'");
             ASSERT_EQ(r.code, 0) << r.err;
             auto in = OIIO::ImageInput::open(var.string());
             ASSERT_TRUE(in);

@@ -41,17 +41,17 @@ TEST(Films, InterruptedAndResumedEqualsUninterruptedBitForBit) {
         TempDir dir;
         const std::string common = kRender + "--engine " + engine;
         const int spp = 3000;  // about 2 s: the interrupt at 0.5 s comes well before the end
-        ASSERT_EQ(run_cli(dir, common + " --spp " + std::to_string(spp) + " -o " +
-                                   q(dir.path() / "full.exr") + " --film " +
-                                   q(dir.path() / "full.film"))
-                      .code,
-                  0);
+        ASSERT_EQ(
+            run_cli(dir, common + " --spp " + std::to_string(spp) + " -o " +
+                             q(dir.path() / "full.exr") + " --film " + q(dir.path() / "full.film"))
+                .code,
+            0);
         // Interrupt after 0.5 s, checkpointing every 0.1 s meanwhile.
-        const std::string script =
-            "'" + cli_path().string() + "' " + common + " --spp " + std::to_string(spp) +
-            " --checkpoint-every 0.1 -o " + q(dir.path() / "part.exr") + " --film " +
-            q(dir.path() / "part.film") + " 2> " + q(dir.path() / "err") +
-            " > /dev/null & p=$!; sleep 0.5; kill -INT $p; wait $p";
+        const std::string script = "'" + cli_path().string() + "' " + common + " --spp " +
+                                   std::to_string(spp) + " --checkpoint-every 0.1 -o " +
+                                   q(dir.path() / "part.exr") + " --film " +
+                                   q(dir.path() / "part.film") + " 2> " + q(dir.path() / "err") +
+                                   " > /dev/null & p=$!; sleep 0.5; kill -INT $p; wait $p";
         const int status = std::system(script.c_str());
         ASSERT_EQ(WEXITSTATUS(status), 130) << engine << bytes_of(dir.path() / "err");
         auto [part, info] = load_film(dir.path() / "part.film");
@@ -59,9 +59,9 @@ TEST(Films, InterruptedAndResumedEqualsUninterruptedBitForBit) {
         EXPECT_EQ(info.ranges[0].first, 0u);
         EXPECT_GT(info.samples(), 0u) << engine;
         EXPECT_LT(info.samples(), uint32_t(spp)) << engine << ": interrupt sooner";
-        CliResult resumed = run_cli(dir, common + " --spp " + std::to_string(spp) +
-                                             " --resume " + q(dir.path() / "part.film") +
-                                             " -o " + q(dir.path() / "resumed.exr"));
+        CliResult resumed =
+            run_cli(dir, common + " --spp " + std::to_string(spp) + " --resume " +
+                             q(dir.path() / "part.film") + " -o " + q(dir.path() / "resumed.exr"));
         ASSERT_EQ(resumed.code, 0) << resumed.err;
         EXPECT_NE(resumed.err.find(" resumed, "), std::string::npos) << resumed.err;
         EXPECT_TRUE(bytes_of(dir.path() / "part.film") == bytes_of(dir.path() / "full.film"))
@@ -84,11 +84,11 @@ TEST(Films, SplitsMergedInAnyOrderEqualTheSingleRender) {
         std::vector<std::string> parts;
         for (int k = 0; k < ways; ++k) {
             const int n = 24 / ways;
-            const auto film = dir.path() / ("p" + std::to_string(ways) + "_" + std::to_string(k) +
-                                            ".film");
+            const auto film =
+                dir.path() / ("p" + std::to_string(ways) + "_" + std::to_string(k) + ".film");
             ASSERT_EQ(run_cli(dir, kRender + "--spp " + std::to_string(n) + " --sample-offset " +
-                                       std::to_string(k * n) + " -o " +
-                                       q(dir.path() / "part.exr") + " --film " + q(film))
+                                       std::to_string(k * n) + " -o " + q(dir.path() / "part.exr") +
+                                       " --film " + q(film))
                           .code,
                       0);
             parts.push_back(q(film));
@@ -111,7 +111,9 @@ TEST(Films, SplitsMergedInAnyOrderEqualTheSingleRender) {
                 }
             EXPECT_LE(worst, 1e-6) << ways << "-way split";
             const std::string bits = bytes_of(dir.path() / "merged.film");
-            if (!previous.empty()) EXPECT_TRUE(bits == previous) << "order changed the bits";
+            if (!previous.empty()) {
+                EXPECT_TRUE(bits == previous) << "order changed the bits";
+            }
             previous = bits;
         }
     }
@@ -120,10 +122,10 @@ TEST(Films, SplitsMergedInAnyOrderEqualTheSingleRender) {
 TEST(Films, MismatchedOverlappingAndDamagedFilmsAreRefused) {
     TempDir dir;
     auto film = [&](const char* name) { return dir.path() / name; };
-    ASSERT_EQ(run_cli(dir, kRender + "--spp 2 -o " + q(film("a.exr")) + " --film " +
-                               q(film("a.film")))
-                  .code,
-              0);
+    ASSERT_EQ(
+        run_cli(dir, kRender + "--spp 2 -o " + q(film("a.exr")) + " --film " + q(film("a.film")))
+            .code,
+        0);
     ASSERT_EQ(run_cli(dir, kRender + "--spp 2 --sample-offset 1 -o " + q(film("b.exr")) +
                                " --film " + q(film("b.film")))
                   .code,
@@ -137,14 +139,14 @@ TEST(Films, MismatchedOverlappingAndDamagedFilmsAreRefused) {
         << other.err;
     EXPECT_FALSE(std::filesystem::exists(film("x.exr")));
     // Overlapping parts: [0, 2) and [1, 3).
-    CliResult overlap = run_cli(dir, "merge " + q(film("a.film")) + " " + q(film("b.film")) +
-                                         " -o " + q(film("m.exr")));
+    CliResult overlap = run_cli(
+        dir, "merge " + q(film("a.film")) + " " + q(film("b.film")) + " -o " + q(film("m.exr")));
     EXPECT_EQ(overlap.code, 2);
     EXPECT_NE(overlap.err.find("sample ranges overlap: [0, 2) and [1, 3)"), std::string::npos)
         << overlap.err;
     // Resuming a film that does not start at the offset asked for.
-    CliResult offset = run_cli(dir, kRender + "--spp 4 --resume " + q(film("b.film")) + " -o " +
-                                        q(film("x.exr")));
+    CliResult offset =
+        run_cli(dir, kRender + "--spp 4 --resume " + q(film("b.film")) + " -o " + q(film("x.exr")));
     EXPECT_EQ(offset.code, 2);
     EXPECT_NE(offset.err.find("holds samples [1, 3), not a range from --sample-offset 0"),
               std::string::npos)
@@ -176,10 +178,10 @@ TEST(Films, CheckpointSurvivesAKillAndResumesBitForBit) {
                                q(dir.path() / "full.film"))
                   .code,
               0);
-    const std::string script = "'" + cli_path().string() + "' " + common +
-                               " --checkpoint-every 0.1 -o " + q(dir.path() / "part.exr") +
-                               " --film " + q(dir.path() / "part.film") +
-                               " 2> /dev/null > /dev/null & p=$!; sleep 0.7; kill -KILL $p; wait $p";
+    const std::string script =
+        "'" + cli_path().string() + "' " + common + " --checkpoint-every 0.1 -o " +
+        q(dir.path() / "part.exr") + " --film " + q(dir.path() / "part.film") +
+        " 2> /dev/null > /dev/null & p=$!; sleep 0.7; kill -KILL $p; wait $p";
     std::system(script.c_str());
     EXPECT_FALSE(std::filesystem::exists(dir.path() / "part.exr"));
     auto [film, info] = load_film(dir.path() / "part.film");

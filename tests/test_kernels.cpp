@@ -36,7 +36,7 @@ struct World {
         metal.roughness = 0.3f;
         const MaterialId f = scene.add_material(floor), l = scene.add_material(light),
                          m = scene.add_material(metal);
-        scene.add_quad({{-1, 0, 1}, {2, 0, 0}, {0, 0, -2}, f, kNone});             // normal +y
+        scene.add_quad({{-1, 0, 1}, {2, 0, 0}, {0, 0, -2}, f, kNone});                // normal +y
         scene.add_quad({{-0.25f, 1, -0.25f}, {0.5f, 0, 0}, {0, 0, 0.5f}, l, kNone});  // faces -y
         scene.add_sphere({{3, 0.5f, 0}, 0.5f, m, kNone});
         scene.add_quad({{-1, -1, 1}, {2, 0, 0}, {0, 0, -2}, f, kNone});  // under the floor
@@ -100,9 +100,9 @@ TEST(Kernels, GenerateStartsPathsAtTheirPixelsWithCameraRays) {
         EXPECT_EQ(w.q.paths.counts_fully[i], 1);
         EXPECT_EQ(w.q.paths.beta[i], Color(1.0f));
         EXPECT_EQ(w.q.paths.radiance[i], Color(0.0f));
-        const Ray expect = generate_camera_ray(*w.camera, w.config.seed, pixel, 5,
-                                               static_cast<int>(pixel % 4),
-                                               static_cast<int>(pixel / 4));
+        const Ray expect =
+            generate_camera_ray(*w.camera, w.config.seed, pixel, 5, static_cast<int>(pixel % 4),
+                                static_cast<int>(pixel / 4));
         EXPECT_EQ(w.q.rays.origin[i], expect.o);
         EXPECT_EQ(w.q.rays.dir[i], expect.d);
         EXPECT_EQ(w.q.paths.prev_p[i], expect.o);
@@ -118,9 +118,9 @@ TEST(Kernels, SortByMaterialMakesKindsContiguousAndMovesWholeEntries) {
     const size_t n = std::size(pattern);
     for (size_t i = 0; i < n; ++i) {
         // The ball is along +x from a point beside it; misses go along +x from above it.
-        const Point3 o = pattern[i] == 3 ? Point3{1.5f, 0.5f, 0} : pattern[i] == 0
-                                                                      ? Point3{0, 3, 0}
-                                                                      : above;
+        const Point3 o = pattern[i] == 3   ? Point3{1.5f, 0.5f, 0}
+                         : pattern[i] == 0 ? Point3{0, 3, 0}
+                                           : above;
         w.start(i, Ray{o, dirs[pattern[i]]});
         w.q.hits.u[i] = static_cast<float>(i);  // tags, to see that entries move whole
         w.q.rays.origin[i].z = static_cast<float>(i);
@@ -146,15 +146,16 @@ TEST(Kernels, SortByMaterialMakesKindsContiguousAndMovesWholeEntries) {
     std::sort(tags.begin(), tags.end());
     for (size_t i = 0; i < n; ++i) EXPECT_EQ(tags[i], int(i));
     EXPECT_EQ(ranges[1] - ranges[0], 2u);  // the two misses
-    EXPECT_EQ(ranges[1 + int(MaterialKind::Lambertian) + 1] - ranges[1 + int(MaterialKind::Lambertian)],
-              3u);
+    EXPECT_EQ(
+        ranges[1 + int(MaterialKind::Lambertian) + 1] - ranges[1 + int(MaterialKind::Lambertian)],
+        3u);
 }
 
 TEST(Kernels, ShadeSamplesTheLightAppendsAShadowRayAndContinues) {
     World w;
     const Point3 o{0.1f, 0.5f, 0.05f};
-    w.start(0, Ray{o, {0, -1, 0}});  // the floor below the light
-    w.start(1, Ray{o, {0, 1, 0}});   // the light's front
+    w.start(0, Ray{o, {0, -1, 0}});         // the floor below the light
+    w.start(1, Ray{o, {0, 1, 0}});          // the light's front
     w.start(2, Ray{{0, 3, 0}, {1, 0, 0}});  // nothing: a black background
     const uint32_t sample = 3;
     const size_t shadows =

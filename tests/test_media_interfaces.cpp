@@ -45,8 +45,8 @@ std::string cornell_with(std::string objects, float lift1, float lift2) {
         {"type": "quad", "q": [0, 555, 0], "u": [555, 0, 0], "v": [0, 0, 555], "material": "white"},
         {"type": "quad", "q": [0, 0, 555], "u": [555, 0, 0], "v": [0, 0, -555], "material": "white"},
         {"type": "quad", "q": [555, 0, 555], "u": [-555, 0, 0], "v": [0, 555, 0], "material": "white"},
-        )" + objects +
-           "]}";
+        )" +
+           objects + "]}";
 }
 
 struct Rendered {

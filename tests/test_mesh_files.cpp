@@ -176,25 +176,25 @@ TEST(MeshFiles, ObjMaterialsMapFromTheMtl) {
     EXPECT_EQ(material_of("plastic").kind, MaterialKind::Lambertian);
 
     auto warned = [&](const std::string& part) {
-        return std::any_of(warnings.begin(), warnings.end(), [&](const std::string& w) {
-            return w.find(part) != std::string::npos;
-        });
+        return std::any_of(warnings.begin(), warnings.end(),
+                           [&](const std::string& w) { return w.find(part) != std::string::npos; });
     };
-    EXPECT_TRUE(warned("material \"plastic\": ignored Ks (no diffuse + glossy material), d "
-                       "(transparency)"));
+    EXPECT_TRUE(
+        warned("material \"plastic\": ignored Ks (no diffuse + glossy material), d "
+               "(transparency)"));
     EXPECT_TRUE(warned("material \"ghost\": no Kd, Ks or Ke; rendered black"));
     EXPECT_FALSE(warned("\"paint\""));
     EXPECT_FALSE(warned("\"lamp\""));
 
     // "material" and "materials" together are refused, naming the place.
-    auto both = dir.write("both.json", R"({"camera": {"look_from": [0, 0, -5], "look_at": [0, 0, 0]},
+    auto both =
+        dir.write("both.json", R"({"camera": {"look_from": [0, 0, -5], "look_at": [0, 0, 0]},
         "materials": {"m": {"type": "lambertian", "albedo": 0.5}},
         "objects": [{"type": "mesh", "file": "m.obj", "materials": "file", "material": "m"}]})");
     try {
         load_scene(both, options);
         ADD_FAILURE() << "expected an error";
     } catch (const SceneError& e) {
-        EXPECT_NE(std::string(e.what()).find("/objects/0/material"), std::string::npos)
-            << e.what();
+        EXPECT_NE(std::string(e.what()).find("/objects/0/material"), std::string::npos) << e.what();
     }
 }

@@ -19,10 +19,10 @@ struct RenderOptions {
     // Not given: the scene file's value (or the engine's default, for the wave size).
     std::optional<int> width, height, spp, max_depth;
     std::optional<long long> wave_size;
-    std::optional<double> time_limit;  // seconds: start no pass after this
-    std::string variance;              // where to write the variance of the pixel means
-    std::string film;                  // where to write the film file (sums) at the end
-    std::string resume;                // a film file to continue
+    std::optional<double> time_limit;        // seconds: start no pass after this
+    std::string variance;                    // where to write the variance of the pixel means
+    std::string film;                        // where to write the film file (sums) at the end
+    std::string resume;                      // a film file to continue
     std::optional<double> checkpoint_every;  // seconds between film refreshes
     std::optional<long long> sample_offset;  // first sample of the range rendered
     uint64_t seed = 0;

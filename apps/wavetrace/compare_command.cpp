@@ -33,8 +33,7 @@ void add_compare_command(CLI::App& app, CompareOptions& o) {
     cmd->add_option("--z-map", o.z_map,
                     "write each block's |z| as an image (needs a variance): black 0, white at the "
                     "failing level, red where a block fails");
-    cmd->add_option("--max-rel-mse", o.max_rel_mse,
-                    "without variances: most relative MSE")
+    cmd->add_option("--max-rel-mse", o.max_rel_mse, "without variances: most relative MSE")
         ->capture_default_str();
 }
 
@@ -86,8 +85,8 @@ int run_compare(const CompareOptions& o) {
     } catch (const std::exception& e) {
         return bad_input(e.what());
     }
-    fmt::print("mean      ours {:.6g}, reference {:.6g}: relative difference {:.3e}\n",
-               c.mean_ours, c.mean_ref, c.mean_rel_diff);
+    fmt::print("mean      ours {:.6g}, reference {:.6g}: relative difference {:.3e}\n", c.mean_ours,
+               c.mean_ref, c.mean_rel_diff);
     fmt::print("rel. MSE  {:.3e}\n", c.rel_mse);
     if (c.z_tested) {
         fmt::print(
@@ -110,8 +109,8 @@ int run_compare(const CompareOptions& o) {
         for (size_t i = 0; i < map.pixels.size(); ++i) {
             const Color z = c.block_z.pixels[i];
             const float worst = max_component(z);
-            map.pixels[i] = worst >= z_fail ? Color(1, 0, 0)
-                                            : Color(float((z.x + z.y + z.z) / (3 * z_fail)));
+            map.pixels[i] =
+                worst >= z_fail ? Color(1, 0, 0) : Color(float((z.x + z.y + z.z) / (3 * z_fail)));
         }
         try {
             write_image(o.z_map, map);

@@ -8,8 +8,8 @@
 #include <cmath>
 #include <csignal>
 #include <fstream>
-#include <iterator>
 #include <iostream>
+#include <iterator>
 #include <mutex>
 #include <optional>
 
@@ -187,10 +187,7 @@ struct Rendered {
 
 // What must match for two films to be parts of one render (FilmInfo::settings): the scene
 // file's content and every option that changes the samples.
-std::string film_settings(const RenderOptions& o,
-                          const Scene& scene,
-                          int width,
-                          int height) {
+std::string film_settings(const RenderOptions& o, const Scene& scene, int width, int height) {
     std::ifstream in(o.scene, std::ios::binary);
     std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     uint64_t h = 0xcbf29ce484222325ULL;  // FNV-1a 64 of the scene file
@@ -266,8 +263,7 @@ Rendered render_to_image(const RenderOptions& o,
             if (o.engine == "megakernel")
                 render_megakernel(scene, bvh, config, film, &stats, progress.callback());
             else
-                render_wavefront(scene, bvh, config, film, wavefront, &stats,
-                                 progress.callback());
+                render_wavefront(scene, bvh, config, film, wavefront, &stats, progress.callback());
         }
         progress.finish();
         const int total = already + stats.spp_done;
@@ -349,8 +345,8 @@ int run_render(const RenderOptions& o) {
     try {
         if (!o.resume.empty()) {
             resumed = load_film(o.resume);
-            const std::string diff =
-                settings_difference(resumed->second.settings, film_settings(o, scene, width, height));
+            const std::string diff = settings_difference(resumed->second.settings,
+                                                         film_settings(o, scene, width, height));
             if (!diff.empty())
                 throw FilmError(o.resume + ": the film of another render (" + diff + ")");
             const auto& ranges = resumed->second.ranges;
@@ -359,8 +355,8 @@ int run_render(const RenderOptions& o) {
                 throw FilmError(fmt::format(
                     "{}: holds samples [{}, {}){}, not a range from --sample-offset {}; merge "
                     "parts with `wavetrace merge`",
-                    o.resume, ranges[0].first, ranges[0].end(), ranges.size() > 1 ? " and more" : "",
-                    offset));
+                    o.resume, ranges[0].first, ranges[0].end(),
+                    ranges.size() > 1 ? " and more" : "", offset));
         }
         if (!o.film.empty()) check_output_writable(o.film + ".exr");  // the folder is writable
     } catch (const std::exception& e) {

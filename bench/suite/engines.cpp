@@ -77,76 +77,76 @@ void bench_engines(const Options& o, Results& r) {
     if (all > 1) thread_counts.push_back(all);
     for (const Case& c : full)
         for (int threads : thread_counts) {
-        tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
-        const std::string path = (o.scenes / (std::string(c.scene) + ".json")).string();
-        Scene scene = load_scene(path);
-        Bvh bvh = Bvh::build(scene);
-        // As in the BVH section: Embree's default build and its fast (non-robust) traversal.
-        EmbreeMirror embree(scene, RTC_BUILD_QUALITY_MEDIUM, /*robust=*/false);
-        RenderConfig cfg;
-        cfg.width = o.quick ? 16 : c.w;
-        cfg.height = o.quick ? 16 : c.h;
-        cfg.spp = o.quick ? 1 : c.spp;
-        cfg.seed = 1;
-        cfg.max_depth = scene.render.max_depth;
-        std::vector<double> ratio, mk_paths, wf_paths, mk_rays, wf_rays, mke_paths, wfe_paths,
-            mk_vs_embree, wf_vs_embree, wf_vs_mke;
-        Image mk_img, wf_img;
-        WavefrontConfig wf_cfg;
-        for (int rep = 0; rep < reps; ++rep) {
-            RenderStats mk, wf, mke, wfe;
-            mk_img = render_megakernel(scene, bvh, cfg, &mk).mean();
-            wf_img = render_wavefront(scene, bvh, cfg, wf_cfg, &wf).mean();
-            render_megakernel(scene, embree, cfg, &mke);
-            render_wavefront(scene, embree, cfg, wf_cfg, &wfe);
-            mke_paths.push_back(mke.paths / mke.seconds * 1e-6);
-            wfe_paths.push_back(wfe.paths / wfe.seconds * 1e-6);
-            mk_vs_embree.push_back(mke.seconds / mk.seconds);  // > 1: ours is faster
-            wf_vs_embree.push_back(wfe.seconds / wf.seconds);
-            wf_vs_mke.push_back(mke.seconds / wf.seconds);  // > 1: beats a plain Embree tracer
-            ratio.push_back(mk.seconds / wf.seconds);  // > 1: the wavefront is faster
-            mk_paths.push_back(mk.paths / mk.seconds * 1e-6);
-            wf_paths.push_back(wf.paths / wf.seconds * 1e-6);
-            mk_rays.push_back(mk.rays / mk.seconds * 1e-6);
-            wf_rays.push_back(wf.rays / wf.seconds * 1e-6);
-        }
-        Spread s = spread(ratio);
-        const double pixels = double(cfg.width) * cfg.height;
-        // Each thread carries one wave at a time.
-        const double queue_mib = double(wavefront_bytes_per_path()) *
-                                 std::min<double>(double(wf_cfg.wave_size), pixels) * threads /
-                                 (1 << 20);
-        const double film_mib = pixels * Film::kBytesPerPixel / (1 << 20);
-        r.row("engines", {c.scene,
-                          threads,
-                          cfg.width,
-                          cfg.height,
-                          cfg.spp,
-                          spread(mk_paths).median,
-                          spread(wf_paths).median,
-                          spread(mk_rays).median,
-                          spread(wf_rays).median,
-                          s.min,
-                          s.median,
-                          s.max,
-                          relative_mse(wf_img, mk_img),
-                          queue_mib,
-                          film_mib,
-                          cli_peak_mib(path, "megakernel", cfg),
-                          cli_peak_mib(path, "wavefront", cfg),
-                          spread(mke_paths).median,
-                          spread(wfe_paths).median,
-                          spread(mk_vs_embree).median,
-                          spread(wf_vs_embree).median,
-                          spread(wf_vs_mke).median});
-        std::printf(
-            "engines %-10s %d thr megakernel %6.3f Mpaths/s  wavefront %6.3f Mpaths/s  "
-            "wavefront/megakernel %.2f [%.2f, %.2f] | with Embree: megakernel %6.3f, wavefront "
-            "%6.3f Mpaths/s; ours/Embree: megakernel %.2f, wavefront %.2f\n",
-            c.scene, threads, spread(mk_paths).median, spread(wf_paths).median, s.median, s.min, s.max,
-            spread(mke_paths).median, spread(wfe_paths).median, spread(mk_vs_embree).median,
-            spread(wf_vs_embree).median);
-        std::fflush(stdout);
+            tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+            const std::string path = (o.scenes / (std::string(c.scene) + ".json")).string();
+            Scene scene = load_scene(path);
+            Bvh bvh = Bvh::build(scene);
+            // As in the BVH section: Embree's default build and its fast (non-robust) traversal.
+            EmbreeMirror embree(scene, RTC_BUILD_QUALITY_MEDIUM, /*robust=*/false);
+            RenderConfig cfg;
+            cfg.width = o.quick ? 16 : c.w;
+            cfg.height = o.quick ? 16 : c.h;
+            cfg.spp = o.quick ? 1 : c.spp;
+            cfg.seed = 1;
+            cfg.max_depth = scene.render.max_depth;
+            std::vector<double> ratio, mk_paths, wf_paths, mk_rays, wf_rays, mke_paths, wfe_paths,
+                mk_vs_embree, wf_vs_embree, wf_vs_mke;
+            Image mk_img, wf_img;
+            WavefrontConfig wf_cfg;
+            for (int rep = 0; rep < reps; ++rep) {
+                RenderStats mk, wf, mke, wfe;
+                mk_img = render_megakernel(scene, bvh, cfg, &mk).mean();
+                wf_img = render_wavefront(scene, bvh, cfg, wf_cfg, &wf).mean();
+                render_megakernel(scene, embree, cfg, &mke);
+                render_wavefront(scene, embree, cfg, wf_cfg, &wfe);
+                mke_paths.push_back(mke.paths / mke.seconds * 1e-6);
+                wfe_paths.push_back(wfe.paths / wfe.seconds * 1e-6);
+                mk_vs_embree.push_back(mke.seconds / mk.seconds);  // > 1: ours is faster
+                wf_vs_embree.push_back(wfe.seconds / wf.seconds);
+                wf_vs_mke.push_back(mke.seconds / wf.seconds);  // > 1: beats a plain Embree tracer
+                ratio.push_back(mk.seconds / wf.seconds);       // > 1: the wavefront is faster
+                mk_paths.push_back(mk.paths / mk.seconds * 1e-6);
+                wf_paths.push_back(wf.paths / wf.seconds * 1e-6);
+                mk_rays.push_back(mk.rays / mk.seconds * 1e-6);
+                wf_rays.push_back(wf.rays / wf.seconds * 1e-6);
+            }
+            Spread s = spread(ratio);
+            const double pixels = double(cfg.width) * cfg.height;
+            // Each thread carries one wave at a time.
+            const double queue_mib = double(wavefront_bytes_per_path()) *
+                                     std::min<double>(double(wf_cfg.wave_size), pixels) * threads /
+                                     (1 << 20);
+            const double film_mib = pixels * Film::kBytesPerPixel / (1 << 20);
+            r.row("engines", {c.scene,
+                              threads,
+                              cfg.width,
+                              cfg.height,
+                              cfg.spp,
+                              spread(mk_paths).median,
+                              spread(wf_paths).median,
+                              spread(mk_rays).median,
+                              spread(wf_rays).median,
+                              s.min,
+                              s.median,
+                              s.max,
+                              relative_mse(wf_img, mk_img),
+                              queue_mib,
+                              film_mib,
+                              cli_peak_mib(path, "megakernel", cfg),
+                              cli_peak_mib(path, "wavefront", cfg),
+                              spread(mke_paths).median,
+                              spread(wfe_paths).median,
+                              spread(mk_vs_embree).median,
+                              spread(wf_vs_embree).median,
+                              spread(wf_vs_mke).median});
+            std::printf(
+                "engines %-10s %d thr megakernel %6.3f Mpaths/s  wavefront %6.3f Mpaths/s  "
+                "wavefront/megakernel %.2f [%.2f, %.2f] | with Embree: megakernel %6.3f, wavefront "
+                "%6.3f Mpaths/s; ours/Embree: megakernel %.2f, wavefront %.2f\n",
+                c.scene, threads, spread(mk_paths).median, spread(wf_paths).median, s.median, s.min,
+                s.max, spread(mke_paths).median, spread(wfe_paths).median,
+                spread(mk_vs_embree).median, spread(wf_vs_embree).median);
+            std::fflush(stdout);
         }
 }
 
@@ -177,11 +177,12 @@ void bench_waves(const Options& o, Results& r) {
                 mk_paths.push_back(mk.paths / mk.seconds * 1e-6);
                 ratio.push_back(mk.seconds / wf.seconds);
             }
-            r.row("waves", {name, double(size), wavefront_bytes_per_path() * size / 1024.0,
-                            spread(wf_paths).median, spread(mk_paths).median,
-                            spread(ratio).median});
-            std::printf("waves %-8s wave %6zu: wavefront %6.3f Mpaths/s, wavefront/megakernel %.2f\n",
-                        name, size, spread(wf_paths).median, spread(ratio).median);
+            r.row("waves",
+                  {name, double(size), wavefront_bytes_per_path() * size / 1024.0,
+                   spread(wf_paths).median, spread(mk_paths).median, spread(ratio).median});
+            std::printf(
+                "waves %-8s wave %6zu: wavefront %6.3f Mpaths/s, wavefront/megakernel %.2f\n", name,
+                size, spread(wf_paths).median, spread(ratio).median);
             std::fflush(stdout);
         }
     }

@@ -48,9 +48,10 @@ uint64_t run_wave(const WaveInputs& in,
             intersect(bvh, q.rays, 0, n, q.hits);
         rays += n;
         sort_by_material(in.scene, n, q.key, q.paths, q.rays, q.hits);
-        const size_t shadows = shade(in, sample, q.hits, 0, n, q.paths, q.rays, q.keep, q.shadows, 0);
-        rays += intersect_shadow(bvh, in, q.shadows, q.paths, 0, shadows, q.transmittance,
-                                 camera_rays);
+        const size_t shadows =
+            shade(in, sample, q.hits, 0, n, q.paths, q.rays, q.keep, q.shadows, 0);
+        rays +=
+            intersect_shadow(bvh, in, q.shadows, q.paths, 0, shadows, q.transmittance, camera_rays);
         mis_combine(q.shadows, q.transmittance, 0, shadows, q.paths);
         accumulate_film(q.paths, q.keep, n, film);
         n = compact(q.keep, n, q.paths, q.rays);
@@ -98,19 +99,18 @@ void wavefront(const Scene& scene,
         const uint32_t sample = static_cast<uint32_t>(config.first_sample + done);
         for (size_t w0 = 0; w0 < waves; w0 += kWavesPerReport) {
             const size_t w1 = std::min(waves, w0 + kWavesPerReport);
-            tbb::parallel_for(tbb::blocked_range<size_t>(w0, w1, 1),
-                              [&](const tbb::blocked_range<size_t>& r) {
-                                  WaveQueues& q = queues.local();
-                                  uint64_t traced = 0;
-                                  for (size_t w = r.begin(); w < r.end(); ++w) {
-                                      const size_t first = w * wave_size;
-                                      const size_t n = std::min(wave_size, pixels - first);
-                                      traced += wavefront_detail::run_wave(
-                                          in, bvh, sample, static_cast<uint32_t>(first), n, q,
-                                          film);
-                                  }
-                                  rays.fetch_add(traced, std::memory_order_relaxed);
-                              });
+            tbb::parallel_for(
+                tbb::blocked_range<size_t>(w0, w1, 1), [&](const tbb::blocked_range<size_t>& r) {
+                    WaveQueues& q = queues.local();
+                    uint64_t traced = 0;
+                    for (size_t w = r.begin(); w < r.end(); ++w) {
+                        const size_t first = w * wave_size;
+                        const size_t n = std::min(wave_size, pixels - first);
+                        traced += wavefront_detail::run_wave(
+                            in, bvh, sample, static_cast<uint32_t>(first), n, q, film);
+                    }
+                    rays.fetch_add(traced, std::memory_order_relaxed);
+                });
             if (progress)
                 progress((double(done) * waves + double(w1)) / (double(config.spp) * waves));
         }

@@ -19,10 +19,10 @@ void intersect(
 // (our BVH: 8 rays per packet). Embree's mirror does not qualify: rtcIntersect8 rounds some hits
 // differently from rtcIntersect1, which would make the two engines trace different paths.
 template <class T>
-concept PacketIntersector =
-    Intersector<T> && requires(const T& t, std::span<const Ray> rays, std::span<Hit> hits) {
-        t.intersect_packet(rays, hits);
-    };
+concept PacketIntersector = Intersector<T> &&
+    requires(const T& t, std::span<const Ray> rays, std::span<Hit> hits) {
+    t.intersect_packet(rays, hits);
+};
 
 // The same for coherent rays (a wave's camera rays, in 4x2 pixel tiles): traced as packets
 // where the intersector has them, with the same hits as one by one.

@@ -38,9 +38,8 @@ uint64_t intersect_shadow(const Tracer& tracer,
     }
     uint64_t rays = 0;
     for (size_t i = begin; i < end; ++i)
-        transmittance[i] = wavetrace::transmittance(
-            in.scene, tracer, shadow_ray_at(shadows, i), paths.media[shadows.path[i]].unpack(),
-            &rays);
+        transmittance[i] = wavetrace::transmittance(in.scene, tracer, shadow_ray_at(shadows, i),
+                                                    paths.media[shadows.path[i]].unpack(), &rays);
     return rays;
 }
 

@@ -5,8 +5,7 @@
 namespace wavetrace {
 
 int sort_key(const Scene& scene, PrimRef prim) {
-    return prim.valid() ? 1 + static_cast<int>(scene.materials[scene.prim_material(prim)].kind)
-                        : 0;
+    return prim.valid() ? 1 + static_cast<int>(scene.materials[scene.prim_material(prim)].kind) : 0;
 }
 
 KeyRanges sort_by_material(const Scene& scene,

@@ -12,16 +12,16 @@
 namespace wavetrace {
 
 // The sample index is not here: a wave holds one pass, whose paths share it.
-#define WAVETRACE_PATH_FIELDS(F)                                                           \
-    F(uint32_t, pixel, "film pixel index")                                                 \
-    F(uint16_t, bounce, "index of the vertex the current ray will reach (0: camera ray)")  \
-    F(uint8_t, crossings, "medium boundaries crossed by the current segment")              \
-    F(uint8_t, counts_fully, "previous vertex: camera, or could not sample lights")        \
-    F(Color, beta, "path throughput")                                                      \
-    F(Color, radiance, "radiance gathered so far")                                         \
-    F(Point3, prev_p, "previous vertex: position (MIS density of emission found)")         \
-    F(float, prev_pdf, "previous vertex: BSDF density of the current ray's direction")     \
-    F(PackedMedia, media, "media the current ray travels in")                              \
+#define WAVETRACE_PATH_FIELDS(F)                                                          \
+    F(uint32_t, pixel, "film pixel index")                                                \
+    F(uint16_t, bounce, "index of the vertex the current ray will reach (0: camera ray)") \
+    F(uint8_t, crossings, "medium boundaries crossed by the current segment")             \
+    F(uint8_t, counts_fully, "previous vertex: camera, or could not sample lights")       \
+    F(Color, beta, "path throughput")                                                     \
+    F(Color, radiance, "radiance gathered so far")                                        \
+    F(Point3, prev_p, "previous vertex: position (MIS density of emission found)")        \
+    F(float, prev_pdf, "previous vertex: BSDF density of the current ray's direction")    \
+    F(PackedMedia, media, "media the current ray travels in")                             \
     F(float, flight, "optical depth the current segment may still travel in media")
 
 WAVETRACE_SOA(PathQueue, WAVETRACE_PATH_FIELDS);

@@ -12,7 +12,7 @@
 
 namespace wavetrace {
 
-#define WAVETRACE_RAY_FIELDS(F)      \
+#define WAVETRACE_RAY_FIELDS(F)     \
     F(Point3, origin, "ray origin") \
     F(Vec3, dir, "ray direction (not necessarily unit)")
 

@@ -11,10 +11,10 @@ namespace wavetrace {
 
 // Shadow rays start at t = 0; their media are those of their path (a vertex that samples
 // lights never transmits, so the continuation leaves the path's media as they were).
-#define WAVETRACE_SHADOW_FIELDS(F)                                                     \
-    F(Point3, origin, "shadow ray origin, offset off the surface")                     \
-    F(Vec3, dir, "unit direction to the light sample")                                 \
-    F(float, tmax, "just short of the light")                                          \
+#define WAVETRACE_SHADOW_FIELDS(F)                                                        \
+    F(Point3, origin, "shadow ray origin, offset off the surface")                        \
+    F(Vec3, dir, "unit direction to the light sample")                                    \
+    F(float, tmax, "just short of the light")                                             \
     F(Color, contribution, "beta f Le / p_light times the strategy's weight, unoccluded") \
     F(uint32_t, path, "entry of the path (and ray) queue it belongs to")
 

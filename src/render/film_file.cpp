@@ -85,8 +85,8 @@ std::vector<SampleRange> normalized(std::vector<SampleRange> r) {
         if (x.count == 0) continue;
         if (!out.empty() && x.first < out.back().end())
             throw FilmError("sample ranges overlap: [" + std::to_string(out.back().first) + ", " +
-                            std::to_string(out.back().end()) + ") and [" +
-                            std::to_string(x.first) + ", " + std::to_string(x.end()) + ")");
+                            std::to_string(out.back().end()) + ") and [" + std::to_string(x.first) +
+                            ", " + std::to_string(x.end()) + ")");
         if (!out.empty() && x.first == out.back().end())
             out.back().count += x.count;
         else
@@ -105,7 +105,7 @@ uint32_t FilmInfo::samples() const {
 
 void save_film(const fs::path& path, const Film& film, const FilmInfo& info) {
     Writer w;
-    w.bytes.insert(w.bytes.end(), kMagic, kMagic + sizeof kMagic);
+    for (char c : kMagic) w.put(c);
     w.put(kVersion);
     w.put(static_cast<uint32_t>(film.width_));
     w.put(static_cast<uint32_t>(film.height_));
@@ -129,8 +129,8 @@ void save_film(const fs::path& path, const Film& film, const FilmInfo& info) {
 }
 
 std::pair<Film, FilmInfo> load_film(const fs::path& path) {
-    const uint64_t max_bytes = 4096 + kMaxSettingsBytes + 8ull * kMaxRanges +
-                               uint64_t(kMaxPixels) * Film::kBytesPerPixel;
+    const uint64_t max_bytes =
+        4096 + kMaxSettingsBytes + 8ull * kMaxRanges + uint64_t(kMaxPixels) * Film::kBytesPerPixel;
     try {
         check_input_file(path, max_bytes, "film files");
     } catch (const std::exception& e) {
@@ -224,7 +224,8 @@ std::pair<Film, FilmInfo> merge_films(const std::vector<fs::path>& paths) {
     for (const fs::path& p : paths) {
         auto [film, info] = load_film(p);
         if (!parts.empty()) {
-            const std::string diff = settings_difference(parts.front().info.settings, info.settings);
+            const std::string diff =
+                settings_difference(parts.front().info.settings, info.settings);
             if (!diff.empty())
                 throw FilmError(p.string() + ": not a part of the same render as " +
                                 parts.front().path.string() + " (" + diff + ")");
@@ -232,7 +233,9 @@ std::pair<Film, FilmInfo> merge_films(const std::vector<fs::path>& paths) {
         parts.push_back({p, std::move(film), std::move(info)});
     }
     std::stable_sort(parts.begin(), parts.end(), [](const Part& a, const Part& b) {
-        auto first = [](const Part& p) { return p.info.ranges.empty() ? 0u : p.info.ranges[0].first; };
+        auto first = [](const Part& p) {
+            return p.info.ranges.empty() ? 0u : p.info.ranges[0].first;
+        };
         return first(a) < first(b);
     });
     Film film(parts.front().film.width(), parts.front().film.height());

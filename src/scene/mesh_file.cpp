@@ -1,8 +1,8 @@
 #include "mesh_file.h"
 
 #include <assimp/BaseImporter.h>
-#include <assimp/importerdesc.h>
 #include <assimp/ObjMaterial.h>
+#include <assimp/importerdesc.h>
 #include <assimp/material.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
@@ -160,10 +160,10 @@ FileMaterial read_material(const aiMaterial& m) {
         m.GetTexture(aiTextureType_DIFFUSE, 0, &path) == AI_SUCCESS)
         out.map_kd = path.C_Str();
     const std::pair<aiTextureType, const char*> others[] = {
-        {aiTextureType_SPECULAR, "map_Ks"},    {aiTextureType_AMBIENT, "map_Ka"},
-        {aiTextureType_EMISSIVE, "map_Ke"},    {aiTextureType_HEIGHT, "map_Bump"},
-        {aiTextureType_NORMALS, "norm"},       {aiTextureType_SHININESS, "map_Ns"},
-        {aiTextureType_OPACITY, "map_d"},      {aiTextureType_DISPLACEMENT, "disp"},
+        {aiTextureType_SPECULAR, "map_Ks"}, {aiTextureType_AMBIENT, "map_Ka"},
+        {aiTextureType_EMISSIVE, "map_Ke"}, {aiTextureType_HEIGHT, "map_Bump"},
+        {aiTextureType_NORMALS, "norm"},    {aiTextureType_SHININESS, "map_Ns"},
+        {aiTextureType_OPACITY, "map_d"},   {aiTextureType_DISPLACEMENT, "disp"},
         {aiTextureType_REFLECTION, "refl"}};
     for (const auto& [type, key] : others)
         if (m.GetTextureCount(type) > 0) out.other_maps.push_back(key);

@@ -13,11 +13,11 @@ namespace wavetrace {
 struct FileMaterial {
     std::string name;
     Color kd{0.0f}, ks{0.0f}, ke{0.0f};
-    float ns = 0.0f;          // Phong exponent
-    float ni = 1.0f;          // index of refraction
-    int illum = -1;           // OBJ illumination model; -1: not given
-    float dissolve = 1.0f;    // d: 1 is opaque
-    std::string map_kd;       // diffuse texture path as written, relative to the file's folder
+    float ns = 0.0f;        // Phong exponent
+    float ni = 1.0f;        // index of refraction
+    int illum = -1;         // OBJ illumination model; -1: not given
+    float dissolve = 1.0f;  // d: 1 is opaque
+    std::string map_kd;     // diffuse texture path as written, relative to the file's folder
     std::vector<std::string> other_maps;  // texture kinds that cannot be mapped (e.g. "map_Bump")
 };
 
@@ -34,7 +34,7 @@ struct MeshFile {
     std::vector<Vec2> uvs;          // empty, or one per position
     std::vector<uint32_t> indices;  // three per triangle
     std::vector<FileMaterial> materials;
-    std::vector<MeshPart> parts;    // in triangle order, covering every triangle
+    std::vector<MeshPart> parts;  // in triangle order, covering every triangle
 };
 
 // Reads OBJ (+MTL), PLY (ASCII or binary) or glTF 2.0 through Assimp. Polygons are

@@ -121,8 +121,8 @@ void Scene::add_box(
         // local axis by the world margin over that axis's world length per unit.
         Aabb world;
         for (int c = 0; c < 8; ++c)
-            world.grow(to_world.point({c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y,
-                                         c & 4 ? hi.z : lo.z}));
+            world.grow(
+                to_world.point({c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z}));
         const float m = boundary_margin(world);
         const Vec3 grow{m / length(to_world.vector({1, 0, 0})),
                         m / length(to_world.vector({0, 1, 0})),

@@ -294,7 +294,8 @@ class Loader {
         std::vector<MaterialId> mapped(mesh.materials.size(), kNone);
         for (const MeshPart& part : mesh.parts) {
             if (mapped[part.material] == kNone)
-                mapped[part.material] = map_file_material(mesh.materials[part.material], path, where);
+                mapped[part.material] =
+                    map_file_material(mesh.materials[part.material], path, where);
             // The part's own vertices, re-indexed from 0.
             std::vector<uint32_t> indices, remap(mesh.positions.size(), UINT32_MAX);
             std::vector<Point3> positions;
@@ -326,7 +327,8 @@ class Loader {
     // dielectric of index Ni, Ks without
     // Kd -> metal (roughness from Ns), else Kd (or map_Kd) -> Lambertian. What does not map is
     // a warning naming the material.
-    MaterialId map_file_material(const FileMaterial& fm, const fs::path& mesh_path,
+    MaterialId map_file_material(const FileMaterial& fm,
+                                 const fs::path& mesh_path,
                                  const Value& where) {
         const std::string who = mesh_path.filename().string() + ": material \"" + fm.name + "\"";
         auto positive = [](Color c) { return max_component(c) > 0.0f; };
@@ -350,12 +352,14 @@ class Loader {
         } else if (dielectric) {
             m.kind = MaterialKind::Dielectric;
             if (!(fm.ni > 1.0f && fm.ni < 10.0f)) {
-                warn(who + ": Ni " + std::to_string(fm.ni) + " is no index of refraction of glass; using 1.5");
+                warn(who + ": Ni " + std::to_string(fm.ni) +
+                     " is no index of refraction of glass; using 1.5");
                 m.ior = 1.5f;
             } else {
                 m.ior = fm.ni;
             }
-            if (positive(fm.kd) || !fm.map_kd.empty()) ignored.push_back("Kd (a dielectric is clear)");
+            if (positive(fm.kd) || !fm.map_kd.empty())
+                ignored.push_back("Kd (a dielectric is clear)");
         } else if (positive(fm.ks) && !positive(fm.kd) && fm.map_kd.empty()) {
             m.kind = MaterialKind::Metal;
             m.albedo = scene_.add_solid(min(fm.ks, Color(1.0f)));
@@ -441,8 +445,8 @@ class Loader {
             if (auto m = o.optional("material"))
                 m->fail("give \"material\" or \"materials\": \"file\", not both");
             file_materials = true;
-        } else if (auto x = o.optional("material")) {
-            material = material_ref(*x);
+        } else if (auto m = o.optional("material")) {
+            material = material_ref(*m);
         } else if (interior != kNone) {
             material = scene_.interface_material();
         } else {
@@ -505,9 +509,8 @@ class Loader {
                 m.name = p.filename().string();
                 m.material = material;
                 m.interior = interior;
-                skipped_triangles_ += scene_.add_mesh(std::move(m), mesh.positions,
-                                                      mesh.normals, mesh.uvs, mesh.indices,
-                                                      to_world);
+                skipped_triangles_ += scene_.add_mesh(std::move(m), mesh.positions, mesh.normals,
+                                                      mesh.uvs, mesh.indices, to_world);
             }
         } else {
             type_value.fail("unknown object type \"" + type +

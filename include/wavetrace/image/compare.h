@@ -10,8 +10,8 @@
 namespace wavetrace {
 
 struct CompareOptions {
-    int block = 8;         // z-tests on the means of block x block pixel squares
-    double alpha = 0.01;   // probability that a correct render fails the z-tests (all blocks)
+    int block = 8;        // z-tests on the means of block x block pixel squares
+    double alpha = 0.01;  // probability that a correct render fails the z-tests (all blocks)
     // Without variances no z-test is possible: the images pass if both bounds hold.
     double max_mean_rel_diff = 1e-2;
     double max_rel_mse = 1e-2;

@@ -101,8 +101,8 @@ struct Scene {
 
   private:
     bool is_boundary(MaterialId material) const;
-    void add_box_faces(Point3 lo, Point3 hi, MaterialId material, MediumId interior,
-                       const Transform& to_world);
+    void add_box_faces(
+        Point3 lo, Point3 hi, MaterialId material, MediumId interior, const Transform& to_world);
 };
 
 // Every primitive whose material emits: the scene's area lights.
