@@ -173,3 +173,34 @@ TEST(Passes, TimeLimitRendersWholePassesThenWrites) {
     EXPECT_GE(spp, 1);
     EXPECT_LT(spp, 1000000);
 }
+
+// In a terminal (a pseudo-terminal from util-linux's `script`), the progress line shows the
+// samples done of the total and, with a time limit, the time left counting down; a SIGINT
+// there still writes the image of the completed passes and exits 130.
+TEST(Passes, ProgressLineInATerminalCountsSamplesAndTimeLeft) {
+    TempDir dir;
+    auto out = dir.path() / "x.exr";
+    const std::string render = "'" + cli_path().string() + "' render '" +
+                               scene_path("cornell").string() +
+                               "' --width 128 --height 128 --spp 1000000 -o '" + out.string() + "'";
+    auto in_terminal = [&](const std::string& cmd) {
+        const std::string log = (dir.path() / "tty").string();
+        int status =
+            std::system(("script -qfec \"" + cmd + "\" '" + log + "' > /dev/null").c_str());
+        std::stringstream s;
+        s << std::ifstream(log).rdbuf();
+        return std::pair{status, s.str()};
+    };
+    auto [status, tty] = in_terminal(render + " --time-limit 1.5");
+    EXPECT_EQ(WEXITSTATUS(status), 0) << tty;
+    EXPECT_NE(tty.find("/1000000 spp"), std::string::npos) << tty;
+    EXPECT_NE(tty.find("time left"), std::string::npos) << tty;
+    EXPECT_GE(spp_in_header(out), 1);
+    std::filesystem::remove(out);
+    // SIGINT to the render inside the terminal.
+    auto [int_status, int_tty] =
+        in_terminal(render + " & p=\\$!; sleep 1.5; kill -INT \\$p; wait \\$p");
+    EXPECT_EQ(WEXITSTATUS(int_status), 130) << int_tty;
+    EXPECT_NE(int_tty.find("ETA"), std::string::npos) << int_tty;
+    EXPECT_GE(spp_in_header(out), 1);
+}

@@ -106,12 +106,17 @@ void map_aov_to_display(Aov aov, Image& image) {
     }
 }
 
-// A progress line on stderr, only when stderr is a terminal: percent, elapsed, ETA, Mpaths/s.
+// A progress line on stderr, only when stderr is a terminal: samples per pixel done (of the
+// total, resumed ones included), percent, elapsed, ETA (or, with a time limit, the time left
+// counting down), Mpaths/s. The engines report the fraction of this render's samples done.
 class Progress {
   public:
-    explicit Progress(const RenderConfig& c)
+    Progress(const RenderConfig& c, int already, std::optional<double> time_limit)
         : enabled_(::isatty(2)),
           paths_(double(c.width) * c.height * c.spp),
+          spp_(c.spp),
+          already_(already),
+          time_limit_(time_limit),
           start_(std::chrono::steady_clock::now()) {}
 
     ProgressCallback callback() {
@@ -121,20 +126,27 @@ class Progress {
             std::lock_guard<std::mutex> lock(mutex_);
             if (now - last_ < std::chrono::milliseconds(200) && fraction < 1.0) return;
             last_ = now;
-            double elapsed = std::chrono::duration<double>(now - start_).count();
-            double eta = fraction > 0 ? elapsed * (1 - fraction) / fraction : 0;
-            std::fprintf(stderr, "\r%5.1f%%  elapsed %6.1f s  ETA %6.1f s  %6.2f Mpaths/s   ",
-                         100 * fraction, elapsed, eta,
+            const double elapsed = std::chrono::duration<double>(now - start_).count();
+            const double eta = fraction > 0 ? elapsed * (1 - fraction) / fraction : 0;
+            const int done = already_ + static_cast<int>(fraction * spp_);
+            const std::string left =
+                time_limit_
+                    ? fmt::format("time left {:6.1f} s", std::max(0.0, *time_limit_ - elapsed))
+                    : fmt::format("ETA {:6.1f} s", eta);
+            std::fprintf(stderr, "\r%d/%d spp  %5.1f%%  elapsed %6.1f s  %s  %6.2f Mpaths/s   ",
+                         done, already_ + spp_, 100 * fraction, elapsed, left.c_str(),
                          paths_ * fraction / std::max(elapsed, 1e-9) * 1e-6);
         };
     }
     void finish() {
-        if (enabled_) std::fprintf(stderr, "\r%70s\r", "");
+        if (enabled_) std::fprintf(stderr, "\r%90s\r", "");
     }
 
   private:
     bool enabled_;
     double paths_;
+    int spp_, already_;
+    std::optional<double> time_limit_;
     std::chrono::steady_clock::time_point start_, last_{};
     std::mutex mutex_;
 };
@@ -239,7 +251,7 @@ Rendered render_to_image(const RenderOptions& o,
         };
 
         RenderStats stats;
-        Progress progress(config);
+        Progress progress(config, already, o.time_limit);
         WavefrontConfig wavefront;
         if (o.wave_size) wavefront.wave_size = static_cast<size_t>(*o.wave_size);
         const auto render_start = std::chrono::steady_clock::now();
