@@ -111,6 +111,15 @@ find "$build" -name CTestTestfile.cmake -print0 | xargs -0 -r grep -ho 'add_test
 for tool in bash dpkg-query ldd awk sed grep find xargs sort gcc; do
   printf 'tool %s\t%s\n' "$tool" "$(command -v "$tool")" >>"$refs"
 done
+# What the test scripts run besides: a pseudo-terminal (script) and a Slurm cluster.
+for tool in script munged mungekey munge unmunge slurmctld slurmd sbatch squeue sinfo scontrol; do
+  path=$(command -v "$tool" || true)
+  if [[ -z "$path" ]]; then
+    echo "check-deps: FAILED: the tests run $tool, which is not installed" >&2
+    exit 1
+  fi
+  printf 'tool %s\t%s\n' "$tool" "$path" >>"$refs"
+done
 
 # Our own files are not packages.
 grep -v -P "\t(\Q$root\E|\Q$build\E)/" "$refs" | sort -u >"$tmp/refs.ext" || true

@@ -18,6 +18,7 @@ packages=(
   libgtest-dev libgmock-dev
   libbenchmark-dev
   clang libclang-rt-14-dev  # make sanitize / make fuzz: ASan, UBSan and libFuzzer runtimes
+  slurm-wlm munge       # the `slurm` test: a one-node cluster runs an array render and its merge
 )
 
 # `install-deps.sh --bench` adds what `make bench` needs beyond the build: gnuplot for plots.

@@ -1,0 +1,34 @@
+#!/bin/bash
+# Submits a wavetrace render split into PARTS sample ranges as a Slurm job array, and its
+# merge as a job that runs when every part has succeeded (docs/distributed.md). OUT must be on
+# storage every node sees. Prints the merge job's id.
+#   tools/slurm/submit.sh [--parts K] [--spp-per-part N] [--cpus C] [--wavetrace BIN]
+#                         [--sbatch-args "..."] OUT SCENE.json [render options...]
+set -euo pipefail
+here=$(cd "$(dirname "$0")" && pwd)
+parts=4 spp=64 cpus=1 sbatch_args="" wavetrace=$(command -v wavetrace || true)
+while [[ $# -gt 0 && $1 == --* ]]; do
+  case $1 in
+    --parts) parts=$2; shift 2 ;;
+    --spp-per-part) spp=$2; shift 2 ;;
+    --cpus) cpus=$2; shift 2 ;;
+    --wavetrace) wavetrace=$2; shift 2 ;;
+    --sbatch-args) sbatch_args=$2; shift 2 ;;
+    *) echo "submit.sh: unknown option $1" >&2; exit 2 ;;
+  esac
+done
+if [[ $# -lt 2 || -z $wavetrace ]]; then
+  echo "usage: $0 [--parts K] [--spp-per-part N] [--cpus C] [--wavetrace BIN] OUT SCENE.json [render options...]" >&2
+  exit 2
+fi
+out=$(realpath -m "$1") scene=$(realpath "$2")
+shift 2
+mkdir -p "$out"
+export WAVETRACE=$(realpath "$wavetrace") SCENE=$scene OUT=$out SPP_PER_PART=$spp RENDER_ARGS="$*"
+# shellcheck disable=SC2086  # sbatch_args is a list of options
+array=$(sbatch --parsable --export=ALL --array=0-$((parts - 1)) --cpus-per-task="$cpus" \
+  --output="$out/slurm-%A_%a.log" $sbatch_args "$here/render-part.sbatch")
+array=${array%%;*}
+# shellcheck disable=SC2086
+sbatch --parsable --export=ALL --dependency=afterok:"$array" --kill-on-invalid-dep=yes \
+  --output="$out/slurm-merge-%j.log" $sbatch_args "$here/merge.sbatch"
