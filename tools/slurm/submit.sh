@@ -2,15 +2,17 @@
 # Submits a wavetrace render split into PARTS sample ranges as a Slurm job array, and its
 # merge as a job that runs when every part has succeeded (docs/distributed.md). OUT must be on
 # storage every node sees. Prints the merge job's id.
-#   tools/slurm/submit.sh [--parts K] [--spp-per-part N] [--cpus C] [--wavetrace BIN]
-#                         [--sbatch-args "..."] OUT SCENE.json [render options...]
+#   tools/slurm/submit.sh [--parts K] [--spp-per-part N] [--first-sample S] [--cpus C]
+#                         [--wavetrace BIN] [--sbatch-args "..."] OUT SCENE.json [render options...]
+# Part k renders samples S + [kN, (k + 1)N); S (default 0) adds samples to an earlier split.
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
-parts=4 spp=64 cpus=1 sbatch_args="" wavetrace=$(command -v wavetrace || true)
+parts=4 spp=64 first=0 cpus=1 sbatch_args="" wavetrace=$(command -v wavetrace || true)
 while [[ $# -gt 0 && $1 == --* ]]; do
   case $1 in
     --parts) parts=$2; shift 2 ;;
     --spp-per-part) spp=$2; shift 2 ;;
+    --first-sample) first=$2; shift 2 ;;
     --cpus) cpus=$2; shift 2 ;;
     --wavetrace) wavetrace=$2; shift 2 ;;
     --sbatch-args) sbatch_args=$2; shift 2 ;;
@@ -24,8 +26,9 @@ fi
 out=$(realpath -m "$1") scene=$(realpath "$2")
 shift 2
 mkdir -p "$out"
-export WAVETRACE=$(realpath "$wavetrace") SCENE=$scene OUT=$out SPP_PER_PART=$spp RENDER_ARGS="$*"
+export WAVETRACE=$(realpath "$wavetrace") SCENE=$scene OUT=$out SPP_PER_PART=$spp FIRST_SAMPLE=$first RENDER_ARGS="$*"
 # shellcheck disable=SC2086  # sbatch_args is a list of options
+# Each part's film is named by its first sample, so splits added later never collide.
 array=$(sbatch --parsable --export=ALL --array=0-$((parts - 1)) --cpus-per-task="$cpus" \
   --output="$out/slurm-%A_%a.log" $sbatch_args "$here/render-part.sbatch")
 array=${array%%;*}
