@@ -8,10 +8,14 @@
 #include <cstring>
 #include <fstream>
 #include <sstream>
+#include <thread>
+#include <utility>
+#include <vector>
 
 #include "temp_dir.h"
 #include "test_paths.h"
 #include "wavetrace/render/megakernel.h"
+#include "wavetrace/render/renderer.h"
 #include "wavetrace/render/wavefront.h"
 #include "wavetrace/scene/bvh.h"
 #include "wavetrace/scene/scene.h"
@@ -203,4 +207,55 @@ TEST(Passes, ProgressLineInATerminalCountsSamplesAndTimeLeft) {
     EXPECT_EQ(WEXITSTATUS(int_status), 130) << int_tty;
     EXPECT_NE(int_tty.find("ETA"), std::string::npos) << int_tty;
     EXPECT_GE(spp_in_header(out), 1);
+}
+
+namespace {
+// Records where and what the engine-agnostic render() reports, and stops after `stop_at`.
+class Recorder : public RenderObserver {
+  public:
+    explicit Recorder(int stop_at) : stop_at_(stop_at) {}
+    bool on_pass(int done, int requested, const Film&) override {
+        threads.push_back(std::this_thread::get_id());
+        reports.push_back({done, requested});
+        return done < stop_at_;
+    }
+    std::vector<std::thread::id> threads;
+    std::vector<std::pair<int, int>> reports;
+
+  private:
+    int stop_at_;
+};
+}  // namespace
+
+// render(): either engine from one call; the observer runs on the caller's thread between
+// passes, sees the samples done, and stops the render by returning false.
+TEST(Passes, RenderCallReportsOnTheCallersThreadAndCancels) {
+    Scene scene = load_scene(scene_path("cornell"));
+    Bvh bvh = Bvh::build(scene);
+    for (Engine engine : {Engine::Wavefront, Engine::Megakernel}) {
+        RenderRequest request;
+        request.config = small_config(6);
+        request.engine = engine;
+        request.wavefront.wave_size = 300;
+        Film film(request.config.width, request.config.height);
+        Recorder all(1000);
+        RenderStats stats = render(scene, bvh, request, film, &all);
+        EXPECT_EQ(stats.spp_done, 6);
+        ASSERT_FALSE(all.reports.empty());
+        EXPECT_EQ(all.reports.back(), std::make_pair(6, 6));
+        for (std::thread::id id : all.threads) EXPECT_EQ(id, std::this_thread::get_id());
+        // The same film as the engine's own call.
+        Film direct = engine == Engine::Wavefront
+                          ? render_wavefront(scene, bvh, request.config, request.wavefront)
+                          : render_megakernel(scene, bvh, request.config);
+        expect_same_film(film, direct, 6);
+        if (engine == Engine::Wavefront) {  // one sample per pass: stop after the third
+            Film stopped(request.config.width, request.config.height);
+            Recorder three(3);
+            EXPECT_EQ(render(scene, bvh, request, stopped, &three).spp_done, 3);
+            expect_same_film(stopped, render_wavefront(scene, bvh, small_config(3),
+                                                       request.wavefront),
+                             3);
+        }
+    }
 }
