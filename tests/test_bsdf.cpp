@@ -7,7 +7,7 @@
 #include "chi2.h"
 #include "wavetrace/render/sampler.h"
 #include "wavetrace/shading/bsdf.h"
-#include "wavetrace/shading/warp.h"
+#include "shading/warp.h"
 
 using namespace wavetrace;
 

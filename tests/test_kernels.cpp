@@ -9,7 +9,7 @@
 #include "wavetrace/render/sampler.h"
 #include "wavetrace/render/wavefront.h"
 #include "wavetrace/scene/bvh.h"
-#include "wavetrace/shading/path_vertex.h"
+#include "shading/path_vertex.h"
 
 using namespace wavetrace;
 

@@ -10,7 +10,7 @@
 #include "wavetrace/render/sampler.h"
 #include "wavetrace/scene/scene.h"
 #include "wavetrace/shading/lights.h"
-#include "wavetrace/shading/warp.h"
+#include "shading/warp.h"
 
 using namespace wavetrace;
 

@@ -9,7 +9,7 @@
 #include "wavetrace/scene/bvh.h"
 #include "wavetrace/scene/scene.h"
 #include "wavetrace/shading/mis.h"
-#include "wavetrace/shading/path_vertex.h"
+#include "shading/path_vertex.h"
 
 using namespace wavetrace;
 

@@ -12,8 +12,8 @@
 #include "reference/embree_mirror.h"
 #include "sections.h"
 #include "wavetrace/shading/lights.h"
-#include "wavetrace/shading/path_vertex.h"
-#include "wavetrace/shading/warp.h"
+#include "shading/path_vertex.h"
+#include "shading/warp.h"
 #include "wavetrace/wavetrace.h"
 
 namespace wavetrace::bench {

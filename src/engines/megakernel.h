@@ -14,9 +14,9 @@
 #include "shading/trace.h"
 #include "wavetrace/render/megakernel.h"
 #include "wavetrace/render/sampler.h"
-#include "wavetrace/scene/intersector.h"
+#include "scene/intersector.h"
 #include "wavetrace/scene/scene.h"
-#include "wavetrace/shading/path_vertex.h"
+#include "shading/path_vertex.h"
 
 namespace wavetrace {
 namespace megakernel_detail {

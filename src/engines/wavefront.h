@@ -19,7 +19,7 @@
 #include "kernels/kernels.h"
 #include "shading/trace.h"
 #include "wavetrace/render/wavefront.h"
-#include "wavetrace/scene/intersector.h"
+#include "scene/intersector.h"
 
 namespace wavetrace {
 namespace wavefront_detail {

@@ -1,7 +1,7 @@
 #include <algorithm>
 
 #include "kernels/kernels.h"
-#include "wavetrace/shading/path_vertex.h"
+#include "shading/path_vertex.h"
 
 namespace wavetrace {
 

@@ -4,7 +4,7 @@
 #include <span>
 
 #include "kernels/wave.h"
-#include "wavetrace/scene/intersector.h"
+#include "scene/intersector.h"
 
 namespace wavetrace {
 

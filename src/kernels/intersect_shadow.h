@@ -6,7 +6,7 @@
 #include "kernels/intersect.h"
 #include "kernels/wave.h"
 #include "shading/trace.h"
-#include "wavetrace/scene/intersector.h"
+#include "scene/intersector.h"
 
 namespace wavetrace {
 

@@ -1,5 +1,5 @@
 #include "kernels/kernels.h"
-#include "wavetrace/shading/path_vertex.h"
+#include "shading/path_vertex.h"
 
 namespace wavetrace {
 

@@ -6,7 +6,7 @@
 #include <cstdint>
 
 #include "wavetrace/scene/scene.h"
-#include "wavetrace/shading/medium_stack.h"
+#include "shading/medium_stack.h"
 
 namespace wavetrace {
 

@@ -7,7 +7,7 @@
 #include "queues/packed_media.h"
 #include "queues/soa.h"
 #include "wavetrace/math/vec3.h"
-#include "wavetrace/shading/path_vertex.h"
+#include "shading/path_vertex.h"
 
 namespace wavetrace {
 

@@ -9,7 +9,7 @@
 #include "wavetrace/scene/bvh.h"
 #include "wavetrace/scene/scene.h"
 #include "wavetrace/scene/surface.h"
-#include "wavetrace/shading/path_vertex.h"
+#include "shading/path_vertex.h"
 
 namespace wavetrace {
 namespace {

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "wavetrace/math/constants.h"
-#include "wavetrace/shading/warp.h"
+#include "shading/warp.h"
 
 namespace wavetrace {
 namespace {

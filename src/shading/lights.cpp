@@ -6,7 +6,7 @@
 #include "wavetrace/scene/intersect.h"
 #include "wavetrace/scene/scene.h"
 #include "wavetrace/scene/surface.h"
-#include "wavetrace/shading/warp.h"
+#include "shading/warp.h"
 
 namespace wavetrace {
 namespace {

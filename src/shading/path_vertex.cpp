@@ -1,11 +1,11 @@
-#include "wavetrace/shading/path_vertex.h"
+#include "shading/path_vertex.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include "wavetrace/render/sampler.h"
 #include "wavetrace/scene/scene.h"
-#include "wavetrace/shading/warp.h"
+#include "shading/warp.h"
 
 namespace wavetrace {
 

@@ -4,10 +4,10 @@
 
 #include <cmath>
 
-#include "wavetrace/scene/intersector.h"
+#include "scene/intersector.h"
 #include "wavetrace/scene/scene.h"
 #include "wavetrace/scene/surface.h"
-#include "wavetrace/shading/path_vertex.h"
+#include "shading/path_vertex.h"
 
 namespace wavetrace {
 

@@ -14,7 +14,7 @@
 #include "wavetrace/scene/surface.h"
 #include "wavetrace/shading/bsdf.h"
 #include "wavetrace/shading/lights.h"
-#include "wavetrace/shading/medium_stack.h"
+#include "shading/medium_stack.h"
 
 namespace wavetrace {
 
