@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -201,12 +202,23 @@ TEST(Passes, ProgressLineInATerminalCountsSamplesAndTimeLeft) {
     EXPECT_NE(tty.find("time left"), std::string::npos) << tty;
     EXPECT_GE(spp_in_header(out), 1);
     std::filesystem::remove(out);
-    // SIGINT to the render inside the terminal.
-    auto [int_status, int_tty] =
-        in_terminal(render + " & p=\\$!; sleep 1.5; kill -INT \\$p; wait \\$p");
-    EXPECT_EQ(WEXITSTATUS(int_status), 130) << int_tty;
-    EXPECT_NE(int_tty.find("ETA"), std::string::npos) << int_tty;
-    EXPECT_GE(spp_in_header(out), 1);
+    // SIGINT, then SIGTERM, to the render inside the terminal: the image of the passes done,
+    // its sample count in the header, exit 130 / 143, and no file but the image and the log.
+    for (auto [sig, code] : {std::pair{"INT", 130}, std::pair{"TERM", 143}}) {
+        std::filesystem::remove(out);
+        auto [sig_status, sig_tty] =
+            in_terminal(render + " & p=\\$!; sleep 1.5; kill -" + sig + " \\$p; wait \\$p");
+        EXPECT_EQ(WEXITSTATUS(sig_status), code) << sig << sig_tty;
+        EXPECT_NE(sig_tty.find("ETA"), std::string::npos) << sig_tty;
+        const int spp = spp_in_header(out);
+        EXPECT_GE(spp, 1) << sig;
+        EXPECT_LT(spp, 1000000) << sig;
+        std::vector<std::string> files;
+        for (const auto& e : std::filesystem::directory_iterator(dir.path()))
+            files.push_back(e.path().filename().string());
+        std::sort(files.begin(), files.end());
+        EXPECT_EQ(files, (std::vector<std::string>{"tty", "x.exr"})) << sig;
+    }
 }
 
 namespace {
@@ -253,9 +265,8 @@ TEST(Passes, RenderCallReportsOnTheCallersThreadAndCancels) {
             Film stopped(request.config.width, request.config.height);
             Recorder three(3);
             EXPECT_EQ(render(scene, bvh, request, stopped, &three).spp_done, 3);
-            expect_same_film(stopped, render_wavefront(scene, bvh, small_config(3),
-                                                       request.wavefront),
-                             3);
+            expect_same_film(stopped,
+                             render_wavefront(scene, bvh, small_config(3), request.wavefront), 3);
         }
     }
 }
