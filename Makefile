@@ -40,7 +40,7 @@ sanitize-build: deps
 	@cmake -S . -B $(SAN_DIR) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
 	  -DCMAKE_AR=/usr/bin/ar -DCMAKE_RANLIB=/usr/bin/ranlib -DCMAKE_LINKER=/usr/bin/ld \
 	  -DWAVETRACE_SANITIZE=ON -DWAVETRACE_FUZZ=ON --log-level=WARNING
-	@cmake --build $(SAN_DIR) -j $(JOBS) --target wavetrace_cli wavetrace_tests fuzz_scene fuzz_mesh
+	@cmake --build $(SAN_DIR) -j $(JOBS) --target wavetrace_cli wavetrace_tests fuzz_scene fuzz_mesh fuzz_film
 
 sanitize: sanitize-build
 	@tools/check-deps.sh $(SAN_DIR)

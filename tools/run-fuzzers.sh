@@ -19,7 +19,7 @@ export LSAN_OPTIONS="suppressions=$root/tests/fuzz/lsan.supp"
 mkdir -p "$build/fuzz-artifacts"
 common=(-seed=1 -timeout=10 -rss_limit_mb=4096 -print_final_stats=1
         "-artifact_prefix=$build/fuzz-artifacts/")
-for target in scene mesh; do
+for target in scene mesh film; do
   work=$(mktemp -d)
   trap 'rm -rf "$work"' EXIT
   log="$build/fuzz-$target.log"

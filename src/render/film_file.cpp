@@ -67,6 +67,7 @@ class Reader {
 
   private:
     void take(void* out, size_t n) {
+        if (n == 0) return;  // an empty array: out may be null (found by tests/fuzz/fuzz_film)
         if (n > b_.size() - at_) fail("truncated");
         std::memcpy(out, b_.data() + at_, n);
         at_ += n;
@@ -170,9 +171,16 @@ std::pair<Film, FilmInfo> load_film(const fs::path& path) {
     } catch (const FilmError& e) {
         r.fail(e.what());
     }
+    // The file must hold exactly what its header announces, checked before the film is
+    // allocated: a damaged header must not ask for gigabytes (found by tests/fuzz/fuzz_film).
+    const size_t pixels = size_t(width) * height;
+    const size_t expected = r.at() + sizeof(uint64_t) + pixels * Film::kBytesPerPixel +
+                            sizeof(uint64_t);
+    if (bytes.size() != expected)
+        r.fail(std::to_string(bytes.size()) + " bytes where its header announces " +
+               std::to_string(expected) + " (truncated or damaged)");
     Film film(static_cast<int>(width), static_cast<int>(height));
     film.invalid_ = r.get<uint64_t>();
-    const size_t pixels = size_t(width) * height;
     r.get_array(film.sum_, 3 * pixels);
     r.get_array(film.sum_sq_, 3 * pixels);
     r.get_array(film.counts_, pixels);
