@@ -55,16 +55,6 @@ inline Vec3 permute(Vec3 v, int x, int y, int z) {
 
 }  // namespace
 
-TriangleRay::TriangleRay(const Ray& ray) : o(ray.o) {
-    kz = max_dimension(abs(ray.d));
-    kx = kz + 1 == 3 ? 0 : kz + 1;
-    ky = kx + 1 == 3 ? 0 : kx + 1;
-    Vec3 d = permute(ray.d, kx, ky, kz);
-    sx = -d.x / d.z;
-    sy = -d.y / d.z;
-    sz = 1.0f / d.z;
-}
-
 bool intersect_triangle(const Ray& ray, Point3 p0, Point3 p1, Point3 p2, PrimHit* hit) {
     return intersect_triangle(TriangleRay(ray), ray.tmin, ray.tmax, p0, p1, p2, hit);
 }

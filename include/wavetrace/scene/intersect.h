@@ -35,7 +35,15 @@ struct TriangleRay {
     Point3 o;
     int kx, ky, kz;
     float sx, sy, sz;
-    explicit TriangleRay(const Ray& ray);
+    // Inline: it runs once per traced ray. One division: the shear uses 1 / d_z.
+    explicit TriangleRay(const Ray& ray) : o(ray.o) {
+        kz = max_dimension(abs(ray.d));
+        kx = kz + 1 == 3 ? 0 : kz + 1;
+        ky = kx + 1 == 3 ? 0 : kx + 1;
+        sz = 1.0f / ray.d[kz];
+        sx = -ray.d[kx] * sz;
+        sy = -ray.d[ky] * sz;
+    }
 };
 // The same test with the per-ray part precomputed; hits lie in [tmin, tmax].
 bool intersect_triangle(
