@@ -116,6 +116,17 @@ TEST(HostileInput, PlyFaceWithoutIndicesIsRefused) {
     expect_refused(dir, mesh_scene("empty-face.ply"), "has no vertices");
 }
 
+// Found by tests/fuzz/fuzz_mesh: Assimp reads a numeric first word of an element line as its
+// count (wrapped to 32 bits), so "element 111111111111111111111111114 4" made it allocate 44 GB.
+TEST(HostileInput, PlyElementWithANumericNameIsRefused) {
+    TempDir dir;
+    dir.write("numeric.ply",
+              "ply\nformat binary_little_endian 1.0\nelement 111111111111111111111111114 4\n"
+              "property float x\nend_header\n" +
+                  std::string(16, '\0'));
+    expect_refused(dir, mesh_scene("numeric.ply"), "PLY header: bad element line");
+}
+
 TEST(HostileInput, BrokenPlyUnderAnotherExtensionIsRefused) {
     TempDir dir;
     dir.write("m.gltf", "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\n");
