@@ -202,8 +202,7 @@ struct Rendered {
 std::string film_settings(const RenderOptions& o, const Scene& scene, int width, int height) {
     std::ifstream in(o.scene, std::ios::binary);
     std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    uint64_t h = 0xcbf29ce484222325ULL;  // FNV-1a 64 of the scene file
-    for (unsigned char c : text) h = (h ^ c) * 0x100000001b3ULL;
+    const uint64_t h = fnv1a_64(text.data(), text.size());
     return fmt::format(
         "scene_fnv1a={:016x}\nwidth={}\nheight={}\nseed={}\nengine={}\nstrategy={}\n"
         "mis_heuristic={}\nmax_depth={}\n",
@@ -211,13 +210,14 @@ std::string film_settings(const RenderOptions& o, const Scene& scene, int width,
         o.max_depth.value_or(scene.render.max_depth));
 }
 
-// The render itself: BVH, engine or AOV, the image and its metadata. `resumed`: the film of
-// --resume, checked against these settings.
+// The render itself: BVH, engine or AOV, the image and its metadata. `film_settings_text`: the film
+// settings (film_settings); `resumed`: the film of --resume, already checked against them.
 Rendered render_to_image(const RenderOptions& o,
                          const Scene& scene,
                          int width,
                          int height,
                          const fs::path& output,
+                         const std::string& film_settings_text,
                          std::optional<std::pair<Film, FilmInfo>>& resumed) {
     Bvh bvh = Bvh::build(scene);
     Rendered r;
@@ -242,9 +242,8 @@ Rendered render_to_image(const RenderOptions& o,
         config.first_sample = static_cast<int>(offset) + already;
         config.spp = std::max(0, requested - already);
         const fs::path film_path = !o.film.empty() ? fs::path(o.film) : fs::path(o.resume);
-        const std::string settings = film_settings(o, scene, width, height);
         auto film_info = [&](int done) {
-            FilmInfo info{settings, {}};
+            FilmInfo info{film_settings_text, {}};
             if (already + done > 0)
                 info.ranges.push_back({offset, static_cast<uint32_t>(already + done)});
             return info;
@@ -354,11 +353,11 @@ int run_render(const RenderOptions& o) {
     const int height = o.height.value_or(scene.render.height);
     // A film to resume must be of this render, and hold samples from --sample-offset on.
     std::optional<std::pair<Film, FilmInfo>> resumed;
+    const std::string settings = o.aov == "color" ? film_settings(o, scene, width, height) : "";
     try {
         if (!o.resume.empty()) {
             resumed = load_film(o.resume);
-            const std::string diff = settings_difference(resumed->second.settings,
-                                                         film_settings(o, scene, width, height));
+            const std::string diff = settings_difference(resumed->second.settings, settings);
             if (!diff.empty())
                 throw FilmError(o.resume + ": the film of another render (" + diff + ")");
             const auto& ranges = resumed->second.ranges;
@@ -377,7 +376,7 @@ int run_render(const RenderOptions& o) {
     }
     Rendered r;
     try {
-        r = render_to_image(o, scene, width, height, output, resumed);
+        r = render_to_image(o, scene, width, height, output, settings, resumed);
     } catch (const FilmError& e) {
         std::cerr << "wavetrace: error: " << e.what() << "\n";
         return kExitFailure;

@@ -11,12 +11,12 @@
 #include <atomic>
 #include <chrono>
 
+#include "scene/intersector.h"
+#include "shading/path_vertex.h"
 #include "shading/trace.h"
 #include "wavetrace/render/megakernel.h"
 #include "wavetrace/render/sampler.h"
-#include "scene/intersector.h"
 #include "wavetrace/scene/scene.h"
-#include "shading/path_vertex.h"
 
 namespace wavetrace {
 namespace megakernel_detail {
@@ -44,9 +44,7 @@ Color ray_color(PathContext<Tracer>& ctx,
                 const PreviousVertex& prev,
                 Color beta) {
     const RenderConfig& cfg = ctx.config;
-    // Without media no segment consumes its free-flight depth, so it is not drawn.
-    float flight =
-        ctx.scene.media.empty() ? 0.0f : segment_flight(cfg.seed, ctx.pixel, ctx.sample, bounce);
+    float flight = segment_flight(ctx.scene, cfg.seed, ctx.pixel, ctx.sample, bounce);
     for (int crossing = 0; crossing < kMaxBoundaryCrossings; ++crossing) {
         ++ctx.rays;
         Hit hit = ctx.bvh.intersect(ray);
@@ -69,16 +67,11 @@ Color ray_color(PathContext<Tracer>& ctx,
 
         // Next-event estimation: a shadow ray to a light sample, weighted for the strategy.
         Color radiance = seg.emission;  // zero but at an emitter that also reflects
-        if ((cfg.strategy == Strategy::Nee || cfg.strategy == Strategy::Mis) &&
-            can_sample_lights(v, ctx.lights)) {
-            DirectSample d = sample_direct(ctx.scene, ctx.lights, v, seg.wo, u.light_select,
-                                           u.light_u, u.light_v);
-            float w =
-                d.valid ? direct_weight(cfg.strategy, cfg.heuristic, d.pdf_light, d.pdf_bsdf) : 0;
-            if (w > 0.0f)
-                radiance +=
-                    d.value * (w * transmittance(ctx.scene, ctx.bvh, d.shadow, media, &ctx.rays));
-        }
+        const WeightedDirect d = next_event(ctx.scene, ctx.lights, cfg, v, seg.wo, u);
+        if (d.weight > 0.0f)
+            radiance +=
+                d.sample.value *
+                (d.weight * transmittance(ctx.scene, ctx.bvh, d.sample.shadow, media, &ctx.rays));
 
         // The continuation, recursively.
         PathStep step = continue_path(ctx.scene, ctx.lights, cfg, v, seg.wo, bounce, beta, media,

@@ -26,7 +26,6 @@ void generate(const WaveInputs& in,
     const uint32_t width = static_cast<uint32_t>(in.config.width),
                    height = static_cast<uint32_t>(in.config.height);
     const PackedMedia media = PackedMedia::pack(in.camera_media);
-    const bool has_media = !in.scene.media.empty();
     for (size_t i = begin; i < end; ++i) {
         const uint32_t pixel =
             pixel_in_pass_order(first_index + static_cast<uint32_t>(i), width, height);
@@ -39,7 +38,7 @@ void generate(const WaveInputs& in,
         paths.radiance[i] = Color(0.0f);
         set_previous_vertex(paths, i, PreviousVertex{ray.o});
         paths.media[i] = media;
-        paths.flight[i] = has_media ? segment_flight(in.config.seed, pixel, sample, 0) : 0.0f;
+        paths.flight[i] = segment_flight(in.scene, in.config.seed, pixel, sample, 0);
         set_ray(rays, i, ray);
     }
 }

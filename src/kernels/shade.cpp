@@ -14,9 +14,6 @@ size_t shade(const WaveInputs& in,
              ShadowQueue& shadows,
              size_t first_shadow) {
     const RenderConfig& cfg = in.config;
-    const bool nee = cfg.strategy == Strategy::Nee || cfg.strategy == Strategy::Mis;
-    // Without media no segment consumes its free-flight depth, so it is not drawn.
-    const bool has_media = !in.scene.media.empty();
     size_t s = first_shadow;
     for (size_t i = begin; i < end; ++i) {
         keep[i] = 0;
@@ -46,19 +43,14 @@ size_t shade(const WaveInputs& in,
         const uint32_t pixel = paths.pixel[i];
         const Color beta = paths.beta[i];
         const VertexSamples u = vertex_samples(cfg.seed, pixel, sample, bounce);
-        if (nee && can_sample_lights(seg.vertex, in.lights)) {
-            const DirectSample d = sample_direct(in.scene, in.lights, seg.vertex, seg.wo,
-                                                 u.light_select, u.light_u, u.light_v);
-            const float w =
-                d.valid ? direct_weight(cfg.strategy, cfg.heuristic, d.pdf_light, d.pdf_bsdf) : 0;
-            if (w > 0.0f) {
-                shadows.origin[s] = d.shadow.o;
-                shadows.dir[s] = d.shadow.d;
-                shadows.tmax[s] = d.shadow.tmax;
-                shadows.contribution[s] = beta * (d.value * w);
-                shadows.path[s] = static_cast<uint32_t>(i);
-                ++s;
-            }
+        const WeightedDirect d = next_event(in.scene, in.lights, cfg, seg.vertex, seg.wo, u);
+        if (d.weight > 0.0f) {
+            shadows.origin[s] = d.sample.shadow.o;
+            shadows.dir[s] = d.sample.shadow.d;
+            shadows.tmax[s] = d.sample.shadow.tmax;
+            shadows.contribution[s] = beta * (d.sample.value * d.weight);
+            shadows.path[s] = static_cast<uint32_t>(i);
+            ++s;
         }
         // Vertices that sample lights never transmit, so `media` stays what the shadow ray
         // (which reads its path's media) needs.
@@ -69,7 +61,7 @@ size_t shade(const WaveInputs& in,
         set_previous_vertex(paths, i, step.prev);
         paths.media[i] = PackedMedia::pack(media);
         paths.bounce[i] = static_cast<uint16_t>(bounce + 1);
-        paths.flight[i] = has_media ? segment_flight(cfg.seed, pixel, sample, bounce + 1) : 0.0f;
+        paths.flight[i] = segment_flight(in.scene, cfg.seed, pixel, sample, bounce + 1);
         paths.crossings[i] = 0;
         set_ray(rays, i, step.next);
         keep[i] = 1;

@@ -24,13 +24,6 @@ constexpr uint32_t kVersion = 1;
 constexpr uint32_t kMaxSettingsBytes = 1 << 16;
 constexpr uint32_t kMaxRanges = 1 << 20;
 
-// FNV-1a, 64 bits: enough to tell a truncated or damaged file from a whole one.
-uint64_t fnv1a(const unsigned char* data, size_t n) {
-    uint64_t h = 0xcbf29ce484222325ULL;
-    for (size_t i = 0; i < n; ++i) h = (h ^ data[i]) * 0x100000001b3ULL;
-    return h;
-}
-
 class Writer {
   public:
     template <class T>
@@ -98,6 +91,14 @@ std::vector<SampleRange> normalized(std::vector<SampleRange> r) {
 
 }  // namespace
 
+// Enough to tell a truncated or damaged file from a whole one.
+uint64_t fnv1a_64(const void* data, size_t bytes) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    uint64_t h = 0xcbf29ce484222325ULL;
+    for (size_t i = 0; i < bytes; ++i) h = (h ^ p[i]) * 0x100000001b3ULL;
+    return h;
+}
+
 uint32_t FilmInfo::samples() const {
     uint32_t n = 0;
     for (const SampleRange& r : ranges) n += r.count;
@@ -121,7 +122,7 @@ void save_film(const fs::path& path, const Film& film, const FilmInfo& info) {
     w.put_array(film.sum_);
     w.put_array(film.sum_sq_);
     w.put_array(film.counts_);
-    w.put(fnv1a(w.bytes.data(), w.bytes.size()));
+    w.put(fnv1a_64(w.bytes.data(), w.bytes.size()));
     try {
         write_file_atomically(path, w.bytes);
     } catch (const std::runtime_error& e) {
@@ -174,8 +175,8 @@ std::pair<Film, FilmInfo> load_film(const fs::path& path) {
     // The file must hold exactly what its header announces, checked before the film is
     // allocated: a damaged header must not ask for gigabytes (found by tests/fuzz/fuzz_film).
     const size_t pixels = size_t(width) * height;
-    const size_t expected = r.at() + sizeof(uint64_t) + pixels * Film::kBytesPerPixel +
-                            sizeof(uint64_t);
+    const size_t expected =
+        r.at() + sizeof(uint64_t) + pixels * Film::kBytesPerPixel + sizeof(uint64_t);
     if (bytes.size() != expected)
         r.fail(std::to_string(bytes.size()) + " bytes where its header announces " +
                std::to_string(expected) + " (truncated or damaged)");
@@ -185,7 +186,7 @@ std::pair<Film, FilmInfo> load_film(const fs::path& path) {
     r.get_array(film.sum_sq_, 3 * pixels);
     r.get_array(film.counts_, pixels);
     const size_t checked = r.at();
-    if (r.get<uint64_t>() != fnv1a(bytes.data(), checked)) r.fail("checksum mismatch (damaged)");
+    if (r.get<uint64_t>() != fnv1a_64(bytes.data(), checked)) r.fail("checksum mismatch (damaged)");
     if (r.at() != bytes.size()) r.fail("trailing bytes");
     return {std::move(film), std::move(info)};
 }

@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "shading/warp.h"
 #include "wavetrace/render/sampler.h"
 #include "wavetrace/scene/scene.h"
-#include "shading/warp.h"
 
 namespace wavetrace {
 
@@ -141,6 +141,22 @@ Continuation sample_continuation(Strategy strategy,
     return c;
 }
 
+WeightedDirect next_event(const Scene& scene,
+                          const LightSet& lights,
+                          const RenderConfig& config,
+                          const Vertex& v,
+                          Vec3 wo,
+                          const VertexSamples& u) {
+    WeightedDirect d;
+    const bool nee = config.strategy == Strategy::Nee || config.strategy == Strategy::Mis;
+    if (!nee || !can_sample_lights(v, lights)) return d;
+    d.sample = sample_direct(scene, lights, v, wo, u.light_select, u.light_u, u.light_v);
+    if (d.sample.valid)
+        d.weight =
+            direct_weight(config.strategy, config.heuristic, d.sample.pdf_light, d.sample.pdf_bsdf);
+    return d;
+}
+
 float emission_weight(
     Strategy strategy, MisHeuristic heuristic, bool counts_fully, float pdf_bsdf, float pdf_light) {
     switch (strategy) {
@@ -267,7 +283,9 @@ Ray generate_camera_ray(
     return camera.generate(x + u(kDimPixelX), y + u(kDimPixelY), u(kDimLensU), u(kDimLensV));
 }
 
-float segment_flight(uint64_t seed, uint32_t pixel, uint32_t sample, int bounce) {
+float segment_flight(
+    const Scene& scene, uint64_t seed, uint32_t pixel, uint32_t sample, int bounce) {
+    if (scene.media.empty()) return 0.0f;
     return -std::log1p(-sample_1d(seed, pixel, sample, bounce_dim(bounce, kDimMediumDistance)));
 }
 

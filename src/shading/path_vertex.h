@@ -6,6 +6,7 @@
 
 #include <cstdint>
 
+#include "shading/medium_stack.h"
 #include "wavetrace/math/frame.h"
 #include "wavetrace/math/ray.h"
 #include "wavetrace/render/render.h"
@@ -14,7 +15,6 @@
 #include "wavetrace/scene/surface.h"
 #include "wavetrace/shading/bsdf.h"
 #include "wavetrace/shading/lights.h"
-#include "shading/medium_stack.h"
 
 namespace wavetrace {
 
@@ -155,8 +155,24 @@ struct VertexSamples {
     float roulette;
 };
 VertexSamples vertex_samples(uint64_t seed, uint32_t pixel, uint32_t sample, int bounce);
+// Next-event estimation at a scattering vertex as the strategy does it, for both engines: the
+// light sample and its weight (1 for NEE, w(p_l, p_b) for MIS); weight 0 when the strategy
+// samples no lights, the vertex cannot, or the sample is invalid. The contribution is
+// sample.value * weight times the shadow ray's transmittance.
+struct WeightedDirect {
+    DirectSample sample;
+    float weight = 0.0f;
+};
+WeightedDirect next_event(const Scene& scene,
+                          const LightSet& lights,
+                          const RenderConfig& config,
+                          const Vertex& v,
+                          Vec3 wo,
+                          const VertexSamples& u);
 // Optical depth a segment reaching vertex `bounce` may travel before scattering in a medium.
-float segment_flight(uint64_t seed, uint32_t pixel, uint32_t sample, int bounce);
+// Without media no segment consumes it, so it is not drawn (its log1p was 5-7% of a render).
+float segment_flight(
+    const Scene& scene, uint64_t seed, uint32_t pixel, uint32_t sample, int bounce);
 
 // The camera ray of sample `sample` of pixel (x, y), jittered over the pixel and the lens.
 Ray generate_camera_ray(

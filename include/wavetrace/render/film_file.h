@@ -42,6 +42,9 @@ void save_film(const std::filesystem::path& path, const Film& film, const FilmIn
 // file and what is wrong).
 std::pair<Film, FilmInfo> load_film(const std::filesystem::path& path);
 
+// FNV-1a, 64 bits: the films' checksum, and the scene file's fingerprint in their settings.
+uint64_t fnv1a_64(const void* data, size_t bytes);
+
 // The first settings line that differs between two films' settings, as "key: A vs B"; "" if
 // they are the same.
 std::string settings_difference(const std::string& a, const std::string& b);
