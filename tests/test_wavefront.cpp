@@ -74,20 +74,25 @@ TEST(Wavefront, BitIdenticalForAnyThreadCountAndWaveSize) {
     Scene scene = load_scene(scene_path("cornell-smoke"));
     Bvh bvh = Bvh::build(scene);
     RenderConfig c = config(Strategy::Mis, 37, 23, 5);  // 851 pixels
-    auto render = [&](int threads, size_t wave) {
+    auto render = [&](int threads, size_t wave, bool sort) {
         tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
         WavefrontConfig wf;
         wf.wave_size = wave;
+        wf.sort_by_material = sort;
         return render_wavefront(scene, bvh, c, wf).mean();
     };
-    Image ref = render(1, 851);
-    for (auto [threads, wave] :
-         {std::pair{2, size_t(851)}, std::pair{7, size_t(851)}, std::pair{2, size_t(256)},
-          std::pair{7, size_t(300)},  // 300 divides nothing
-          std::pair{1, size_t(64)}}) {
-        Image img = render(threads, wave);
+    Image ref = render(1, 851, false);
+    struct Run {
+        int threads;
+        size_t wave;
+        bool sort;
+    };
+    for (Run r : {Run{2, 851, false}, Run{7, 851, false}, Run{2, 256, false},
+                  Run{7, 300, false},  // 300 divides nothing
+                  Run{1, 64, false}, Run{1, 851, true}, Run{7, 300, true}}) {
+        Image img = render(r.threads, r.wave, r.sort);
         for (size_t i = 0; i < ref.pixels.size(); ++i)
-            ASSERT_EQ(ref.pixels[i], img.pixels[i])
-                << "threads " << threads << " wave " << wave << " pixel " << i;
+            ASSERT_EQ(ref.pixels[i], img.pixels[i]) << "threads " << r.threads << " wave " << r.wave
+                                                    << " sort " << r.sort << " pixel " << i;
     }
 }

@@ -17,9 +17,9 @@
 #include <chrono>
 
 #include "kernels/kernels.h"
+#include "scene/intersector.h"
 #include "shading/trace.h"
 #include "wavetrace/render/wavefront.h"
-#include "scene/intersector.h"
 
 namespace wavetrace {
 namespace wavefront_detail {
@@ -37,6 +37,7 @@ uint64_t run_wave(const WaveInputs& in,
                   uint32_t sample,
                   uint32_t first,
                   size_t n,
+                  bool sort,
                   WaveQueues& q,
                   Film& film) {
     uint64_t rays = 0;
@@ -47,7 +48,7 @@ uint64_t run_wave(const WaveInputs& in,
         else
             intersect(bvh, q.rays, 0, n, q.hits);
         rays += n;
-        sort_by_material(in.scene, n, q.key, q.paths, q.rays, q.hits);
+        if (sort) sort_by_material(in.scene, n, q.key, q.paths, q.rays, q.hits);
         const size_t shadows =
             shade(in, sample, q.hits, 0, n, q.paths, q.rays, q.keep, q.shadows, 0);
         rays +=
@@ -106,8 +107,9 @@ void wavefront(const Scene& scene,
                     for (size_t w = r.begin(); w < r.end(); ++w) {
                         const size_t first = w * wave_size;
                         const size_t n = std::min(wave_size, pixels - first);
-                        traced += wavefront_detail::run_wave(
-                            in, bvh, sample, static_cast<uint32_t>(first), n, q, film);
+                        traced += wavefront_detail::run_wave(in, bvh, sample,
+                                                             static_cast<uint32_t>(first), n,
+                                                             wavefront.sort_by_material, q, film);
                     }
                     rays.fetch_add(traced, std::memory_order_relaxed);
                 });

@@ -3,17 +3,32 @@
 #include <algorithm>
 #include <cmath>
 
+#include "render/sampler-inl.h"
+#include "shading/lambertian_step-inl.h"
 #include "shading/warp.h"
 #include "wavetrace/render/sampler.h"
 #include "wavetrace/scene/scene.h"
 
 namespace wavetrace {
+namespace lanes = HWY_NAMESPACE;
+using lanes::OneLane;
+
+namespace {
+
+// Frame::from_normal, inlined here: it runs at every vertex.
+Frame frame_from_normal(Vec3 n) {
+    lanes::V3<float> s, t;
+    lanes::OrthonormalBasis<OneLane>(lanes::to_lanes(n), &s, &t);
+    return {lanes::to_vec3(s), lanes::to_vec3(t), n};
+}
+
+}  // namespace
 
 Vertex surface_vertex(const Scene& scene, const SurfaceHit& hit) {
     Vertex v;
     v.p = hit.p;
     v.ng = hit.ng;
-    v.frame = Frame::from_normal(hit.ns);
+    v.frame = frame_from_normal(hit.ns);
     v.interior = hit.interior;
     const Material& m = scene.materials[hit.material];
     // A reflecting emitter scatters as a Lambertian surface of its albedo.
@@ -42,7 +57,7 @@ bool can_sample_lights(const Vertex& v, const LightSet& lights) {
 
 Point3 offset_origin(const Vertex& v, Vec3 w) {
     if (!v.on_surface()) return v.p;
-    float eps = origin_offset(v.p);
+    float eps = lanes::OriginOffset<OneLane>(lanes::to_lanes(v.p));
     return v.p + (dot(w, v.ng) > 0.0f ? eps : -eps) * v.ng;
 }
 
@@ -241,6 +256,14 @@ SegmentResult resolve_segment(const Scene& scene,
     return r;
 }
 
+bool takes_lambertian_step(const RenderConfig& config, const Vertex& v, const LightSet& lights) {
+    // The one-sample strategies (light, mixture) pick the direction by other means.
+    const bool one_sample =
+        (config.strategy == Strategy::Mixture || config.strategy == Strategy::Light) &&
+        can_sample_lights(v, lights);
+    return v.bsdf.kind == MaterialKind::Lambertian && v.on_surface() && !one_sample;
+}
+
 PathStep continue_path(const Scene& scene,
                        const LightSet& lights,
                        const RenderConfig& config,
@@ -252,6 +275,26 @@ PathStep continue_path(const Scene& scene,
                        const ContinuationSamples& u,
                        float u_roulette) {
     PathStep step;
+    if (takes_lambertian_step(config, v, lights)) {
+        using lanes::to_lanes, lanes::to_vec3;
+        const lanes::LambertianVertex<OneLane> lv{to_lanes(v.p),
+                                                  to_lanes(v.ng),
+                                                  to_lanes(v.frame.n),
+                                                  to_lanes(wo),
+                                                  to_lanes(v.bsdf.albedo),
+                                                  to_lanes(beta),
+                                                  u.bsdf_u1,
+                                                  u.bsdf_u2,
+                                                  u_roulette,
+                                                  bounce + 1 >= config.rr_depth};
+        const lanes::LambertianStepResult<OneLane> r = lanes::LambertianStep(lv);
+        if (!r.alive) return step;
+        step.weight = to_vec3(r.weight);
+        step.prev = {v.p, r.pdf, lights.empty()};
+        step.next = Ray{to_vec3(r.origin), to_vec3(r.wi)};
+        step.alive = true;
+        return step;
+    }
     Continuation c = sample_continuation(config.strategy, scene, lights, v, wo, u);
     if (!c.valid) return step;
     step.weight = c.weight;
@@ -268,7 +311,8 @@ PathStep continue_path(const Scene& scene,
 }
 
 VertexSamples vertex_samples(uint64_t seed, uint32_t pixel, uint32_t sample, int bounce) {
-    auto u = [&](BounceDim d) { return sample_1d(seed, pixel, sample, bounce_dim(bounce, d)); };
+    const uint64_t state = lanes::PathState<OneLane>(seed, pixel, sample);
+    auto u = [&](BounceDim d) { return lanes::SampleDim<OneLane>(state, bounce_dim(bounce, d)); };
     return {u(kDimLightSelect),
             u(kDimLightU),
             u(kDimLightV),
@@ -279,18 +323,20 @@ VertexSamples vertex_samples(uint64_t seed, uint32_t pixel, uint32_t sample, int
 
 Ray generate_camera_ray(
     const CameraRays& camera, uint64_t seed, uint32_t pixel, uint32_t sample, int x, int y) {
-    auto u = [&](uint32_t dim) { return sample_1d(seed, pixel, sample, dim); };
+    const uint64_t state = lanes::PathState<OneLane>(seed, pixel, sample);
+    auto u = [&](uint32_t dim) { return lanes::SampleDim<OneLane>(state, dim); };
     return camera.generate(x + u(kDimPixelX), y + u(kDimPixelY), u(kDimLensU), u(kDimLensV));
 }
 
 float segment_flight(
     const Scene& scene, uint64_t seed, uint32_t pixel, uint32_t sample, int bounce) {
     if (scene.media.empty()) return 0.0f;
-    return -std::log1p(-sample_1d(seed, pixel, sample, bounce_dim(bounce, kDimMediumDistance)));
+    const uint64_t state = lanes::PathState<OneLane>(seed, pixel, sample);
+    return -std::log1p(-lanes::SampleDim<OneLane>(state, bounce_dim(bounce, kDimMediumDistance)));
 }
 
 float survival_probability(Color beta) {
-    return std::clamp(max_component(beta), 0.05f, 0.95f);
+    return lanes::SurvivalProbability<OneLane>(lanes::to_lanes(beta));
 }
 
 float sample_free_flight(float density, float u) {

@@ -128,6 +128,11 @@ SegmentResult resolve_segment(const Scene& scene,
                               float& flight,
                               const PreviousVertex& prev);
 
+// Whether the continuation at v is the Lambertian step (shading/lambertian_step-inl.h): a
+// Lambertian surface whose direction the strategy samples from the BSDF. The wavefront runs
+// these vertices' steps in SIMD lanes, continue_path the same formula in one lane.
+bool takes_lambertian_step(const RenderConfig& config, const Vertex& v, const LightSet& lights);
+
 // The continuation of a path at a scattering vertex, Russian roulette included: the next ray,
 // the factor for the path throughput, the record for weighting emission the next segment
 // finds, and the media after a transmission. `alive` is false when the path ends here.

@@ -5,16 +5,17 @@
 #include <algorithm>
 #include <cmath>
 
+#include "shading/warp-inl.h"
 #include "wavetrace/math/constants.h"
 #include "wavetrace/math/vec3.h"
 
 namespace wavetrace {
 
 // Cosine-weighted hemisphere by Malley's method: a uniform disk point lifted to the
-// hemisphere. pdf = cos(theta) / pi.
+// hemisphere. pdf = cos(theta) / pi. (The one-lane instance of CosineHemisphere.)
 inline Vec3 sample_cosine_hemisphere(float u1, float u2) {
-    float r = std::sqrt(u1), phi = 2.0f * kPi * u2;
-    return {r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0f, 1.0f - u1))};
+    namespace lanes = HWY_NAMESPACE;
+    return lanes::to_vec3(lanes::CosineHemisphere<lanes::OneLane>(u1, u2));
 }
 inline float cosine_hemisphere_pdf(float cos_theta) {
     return std::max(0.0f, cos_theta) * kInvPi;

@@ -11,14 +11,9 @@ namespace wavetrace {
 struct Frame {
     Vec3 s, t, n;
 
-    static Frame from_normal(Vec3 n) {
-        float sign = std::copysign(1.0f, n.z);
-        float a = -1.0f / (sign + n.z);
-        float b = n.x * n.y * a;
-        return {{1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x},
-                {b, sign + n.y * n.y * a, -n.y},
-                n};
-    }
+    // The one-lane instance of OrthonormalBasis (src/shading/lanes-inl.h), which the
+    // wavefront's kernels run over SIMD lanes.
+    static Frame from_normal(Vec3 n);
     constexpr Vec3 to_local(Vec3 v) const { return {dot(v, s), dot(v, t), dot(v, n)}; }
     constexpr Vec3 to_world(Vec3 v) const { return v.x * s + v.y * t + v.z * n; }
 };

@@ -17,9 +17,8 @@ struct Ray {
 };
 
 // How far a new ray starts from the surface point p it leaves: relative to p's magnitude
-// (about 170 float ulps), so that it clears the rounding error of p itself at any scale.
-inline float origin_offset(Point3 p) {
-    return 2e-5f * (1.0f + max_component(abs(p)));
-}
+// (about 170 float ulps), so that it clears the rounding error of p itself at any scale:
+// 2e-5 (1 + max |p_i|). The one-lane instance of OriginOffset (src/shading/lanes-inl.h).
+float origin_offset(Point3 p);
 
 }  // namespace wavetrace

@@ -38,21 +38,10 @@ constexpr uint32_t bounce_dim(int bounce, BounceDim d) {
     return kCameraDims + static_cast<uint32_t>(bounce) * kBounceDims + d;
 }
 
-// SplitMix64's finaliser (Steele et al., "Fast Splittable Pseudorandom Number Generators",
-// OOPSLA 2014): a bijective 64-bit mix with full avalanche.
-constexpr uint64_t mix64(uint64_t z) {
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    return z ^ (z >> 31);
-}
-
-// A uniform float in [0, 1) for the given coordinates: the counters are folded in one at a
-// time through the mixer so that neighbouring counters give independent-looking values.
-constexpr float sample_1d(uint64_t seed, uint32_t pixel, uint32_t sample, uint32_t dim) {
-    uint64_t h = mix64(seed ^ 0x9e3779b97f4a7c15ULL);
-    h = mix64(h ^ (static_cast<uint64_t>(pixel) << 32 | sample));
-    h = mix64(h + dim);
-    return static_cast<float>(h >> 40) * 0x1p-24f;  // 24 random bits: exactly representable
-}
+// A uniform float in [0, 1) for the given coordinates, from a hash of them (SplitMix64's
+// finaliser applied to the counters folded in one at a time; 24 random bits, so every value is
+// exactly representable). The one formula both engines draw from: src/render/sampler-inl.h,
+// over lanes.
+float sample_1d(uint64_t seed, uint32_t pixel, uint32_t sample, uint32_t dim);
 
 }  // namespace wavetrace

@@ -19,6 +19,11 @@ struct WavefrontConfig {
     // consecutive pixels; small images are cut into smaller waves, a few per thread). 4096
     // paths keep a wave's queues (wavefront_bytes_per_path() each) within a core's L2 cache.
     size_t wave_size = 4096;
+    // Whether each bounce's entries are reordered by material kind before shading (the
+    // sort_by_material kernel). Off: shade gathers the vertices its SIMD kernels run over by
+    // itself, and the reordering cost 3-6% of the render (docs/benchmarks.md, "Sorting by
+    // material"). The image is the same either way.
+    bool sort_by_material = false;
 };
 
 Film render_wavefront(const Scene& scene,

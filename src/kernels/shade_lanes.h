@@ -1,0 +1,76 @@
+// The parts of the shade kernel that run in SIMD lanes, over a chunk of a sorted range: the
+// uniform numbers of each vertex (render/sampler-inl.h) and the continuation of the Lambertian
+// vertices (shading/lambertian_step-inl.h). The formulas are the ones the megakernel runs in one
+// lane; these run them a vector at a time, on the best target the CPU has (Highway's dynamic
+// dispatch).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "shading/path_vertex.h"
+#include "wavetrace/render/sampler.h"
+
+namespace wavetrace {
+
+// Entries shade gathers before it runs a vector kernel over them: a multiple of every target's
+// lane count, and small enough that the blocks below stay in L1.
+inline constexpr size_t kShadeChunk = 64;
+
+// The bounce's uniform numbers of kShadeChunk paths, one row per BounceDim (the medium
+// distance row is not drawn: segment_flight draws it when the scene has media).
+struct SampleBlock {
+    alignas(64) float u[kBounceDims][kShadeChunk];
+
+    VertexSamples at(size_t k) const {
+        return {u[kDimLightSelect][k],
+                u[kDimLightU][k],
+                u[kDimLightV][k],
+                {u[kDimTechnique][k], u[kDimDirectionSelect][k], u[kDimDirectionU][k],
+                 u[kDimDirectionV][k], u[kDimBsdfLobe][k], u[kDimBsdfU][k], u[kDimBsdfV][k]},
+                u[kDimRoulette][k]};
+    }
+};
+
+// Rows k < n of `out`: vertex_samples(seed, pixel[k], sample, bounce[k]), bit for bit.
+void draw_vertex_samples(uint64_t seed,
+                         uint32_t sample,
+                         const uint32_t* pixel,
+                         const uint16_t* bounce,
+                         size_t n,
+                         SampleBlock& out);
+
+// Lambertian vertices gathered by shade (SoA, `n` of them), and their continuations.
+struct LambertianBlock {
+    // in
+    alignas(64) float p[3][kShadeChunk];
+    alignas(64) float ng[3][kShadeChunk];
+    alignas(64) float ns[3][kShadeChunk];
+    alignas(64) float wo[3][kShadeChunk];
+    alignas(64) float albedo[3][kShadeChunk];
+    alignas(64) float beta[3][kShadeChunk];
+    alignas(64) float u1[kShadeChunk], u2[kShadeChunk], u_rr[kShadeChunk];
+    alignas(64) float roulette[kShadeChunk];  // 1: Russian roulette applies
+    uint32_t entry[kShadeChunk];              // the wave entry of each row
+    size_t n = 0;
+    // out
+    alignas(64) float origin[3][kShadeChunk];
+    alignas(64) float wi[3][kShadeChunk];
+    alignas(64) float weight[3][kShadeChunk];
+    alignas(64) float pdf[kShadeChunk];
+    alignas(64) float alive[kShadeChunk];  // 1: the path goes on
+
+    // Appends the vertex of wave entry `entry`, which takes_lambertian_step().
+    void push(size_t entry,
+              const Vertex& v,
+              Vec3 wo,
+              Color beta,
+              const ContinuationSamples& u,
+              float u_roulette,
+              bool roulette);
+};
+
+// Rows k < b.n: what continue_path computes for them, bit for bit.
+void lambertian_steps(LambertianBlock& b);
+
+}  // namespace wavetrace

@@ -1,0 +1,232 @@
+// Lane types: the transport formulas that both engines run are written once, as templates over
+// a lane type L, and instantiated twice:
+//   OneLane           one path at a time, plain scalar C++: what the megakernel runs;
+//   FloatLanes<D>     a vector of paths (Highway tag D): what the wavefront's kernels run over
+//   HashLanes<D64>    the sorted ranges of a wave, in as many lanes as the CPU's vectors hold.
+// The formulas use only +, -, *, / and the operations below, which give the same bits in a
+// lane as in scalar code (IEEE operations, no fused multiply-adds: -ffp-contract=off), so the
+// two engines trace the same paths. This is Mitsuba 3's / Dr.Jit's "one code, scalar or packet"
+// (Jakob et al., "Dr.Jit", SIGGRAPH 2022), with Highway's runtime dispatch picking the vector
+// target (SSE4, AVX2, AVX-512, NEON).
+//
+// Per-target header (Highway's -inl.h convention): a translation unit under foreach_target.h
+// gets a copy per target; any other gets the static target's, whose OneLane instances are the
+// scalar functions (Frame::from_normal, origin_offset, sample_1d, ...).
+#if defined(WAVETRACE_MATH_LANES_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef WAVETRACE_MATH_LANES_INL_H_
+#undef WAVETRACE_MATH_LANES_INL_H_
+#else
+#define WAVETRACE_MATH_LANES_INL_H_
+#endif
+
+#include <hwy/highway.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+#include "wavetrace/math/vec3.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace wavetrace {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+// ---- the lane types ------------------------------------------------------------------------
+
+struct OneLane {
+    using F = float;
+    using M = bool;
+    using U32 = uint32_t;
+    using U64 = uint64_t;
+
+    static F Set(float x) { return x; }
+    static F Sqrt(F x) { return std::sqrt(x); }
+    static F Abs(F x) { return std::fabs(x); }
+    static F Min(F a, F b) { return b < a ? b : a; }
+    static F Max(F a, F b) { return a < b ? b : a; }
+    static F Neg(F x) { return -x; }
+    static F CopySign(F magnitude, F sign) { return std::copysign(magnitude, sign); }
+    static F Round(F x) { return std::nearbyint(x); }  // to nearest, ties to even
+    static F Select(M m, F yes, F no) { return m ? yes : no; }
+    static M And(M a, M b) { return a && b; }
+    static M Or(M a, M b) { return a || b; }
+    static M AndNot(M not_a, M b) { return !not_a && b; }
+
+    static U64 Set64(uint64_t x) { return x; }
+    static U64 Widen(U32 x) { return x; }
+    template <int kBits>
+    static U64 ShiftRight(U64 x) {
+        return x >> kBits;
+    }
+    template <int kBits>
+    static U64 ShiftLeft(U64 x) {
+        return x << kBits;
+    }
+    static U64 Xor(U64 a, U64 b) { return a ^ b; }
+    static U64 Or64(U64 a, U64 b) { return a | b; }
+    static U64 Add64(U64 a, U64 b) { return a + b; }
+    static U64 Mul64(U64 a, U64 b) { return a * b; }                // modulo 2^64
+    static F SmallToFloat(U64 x) { return static_cast<float>(x); }  // x < 2^24: exact
+};
+
+template <class D>
+struct FloatLanes {
+    using F = hn::Vec<D>;
+    using M = hn::Mask<D>;
+
+    static HWY_INLINE F Set(float x) { return hn::Set(D(), x); }
+    static HWY_INLINE F Sqrt(F x) { return hn::Sqrt(x); }
+    static HWY_INLINE F Abs(F x) { return hn::Abs(x); }
+    static HWY_INLINE F Min(F a, F b) { return hn::Min(a, b); }
+    static HWY_INLINE F Max(F a, F b) { return hn::Max(a, b); }
+    static HWY_INLINE F Neg(F x) { return hn::Neg(x); }
+    static HWY_INLINE F CopySign(F magnitude, F sign) { return hn::CopySign(magnitude, sign); }
+    static HWY_INLINE F Round(F x) { return hn::Round(x); }
+    static HWY_INLINE F Select(M m, F yes, F no) { return hn::IfThenElse(m, yes, no); }
+    static HWY_INLINE M And(M a, M b) { return hn::And(a, b); }
+    static HWY_INLINE M Or(M a, M b) { return hn::Or(a, b); }
+    static HWY_INLINE M AndNot(M not_a, M b) { return hn::AndNot(not_a, b); }
+};
+
+// 64-bit integer lanes with floats of the same lane count (half the vector width).
+template <class D64>
+struct HashLanes : FloatLanes<hn::Rebind<float, D64>> {
+    using D32 = hn::Rebind<uint32_t, D64>;
+    using U32 = hn::Vec<D32>;
+    using U64 = hn::Vec<D64>;
+    using typename FloatLanes<hn::Rebind<float, D64>>::F;
+
+    static HWY_INLINE U64 Set64(uint64_t x) { return hn::Set(D64(), x); }
+    static HWY_INLINE U64 Widen(U32 x) { return hn::PromoteTo(D64(), x); }
+    template <int kBits>
+    static HWY_INLINE U64 ShiftRight(U64 x) {
+        return hn::ShiftRight<kBits>(x);
+    }
+    template <int kBits>
+    static HWY_INLINE U64 ShiftLeft(U64 x) {
+        return hn::ShiftLeft<kBits>(x);
+    }
+    static HWY_INLINE U64 Xor(U64 a, U64 b) { return hn::Xor(a, b); }
+    static HWY_INLINE U64 Or64(U64 a, U64 b) { return hn::Or(a, b); }
+    static HWY_INLINE U64 Add64(U64 a, U64 b) { return hn::Add(a, b); }
+    static HWY_INLINE U64 Mul64(U64 a, U64 b) {
+#if HWY_TARGET <= HWY_AVX3 && HWY_ARCH_X86
+        return hn::Mul(a, b);
+#elif HWY_TARGET == HWY_SCALAR || HWY_TARGET == HWY_EMU128
+        // At most two lanes: one at a time.
+        const D64 d;
+        HWY_ALIGN uint64_t x[2], y[2];
+        hn::Store(a, d, x);
+        hn::Store(b, d, y);
+        for (size_t i = 0; i < hn::Lanes(d); ++i) x[i] *= y[i];
+        return hn::Load(d, x);
+#else
+        // The low 64 bits of a * b from 32-bit halves: lo*lo + ((hi*lo + lo*hi) << 32).
+        const hn::Repartition<uint32_t, D64> d32;
+        const U64 a_hi = hn::ShiftRight<32>(a), b_hi = hn::ShiftRight<32>(b);
+        const U64 lo = hn::MulEven(hn::BitCast(d32, a), hn::BitCast(d32, b));
+        const U64 cross = hn::Add(hn::MulEven(hn::BitCast(d32, a_hi), hn::BitCast(d32, b)),
+                                  hn::MulEven(hn::BitCast(d32, a), hn::BitCast(d32, b_hi)));
+        return hn::Add(lo, hn::ShiftLeft<32>(cross));
+#endif
+    }
+    static HWY_INLINE F SmallToFloat(U64 x) {
+        const hn::Rebind<int32_t, D64> di;
+        return hn::ConvertTo(hn::Rebind<float, D64>(), hn::BitCast(di, hn::TruncateTo(D32(), x)));
+    }
+};
+
+// ---- 3-vectors of lanes ----------------------------------------------------------------------
+
+template <class F>
+struct V3 {
+    F x, y, z;
+};
+
+template <class F>
+HWY_INLINE V3<F> operator+(V3<F> a, V3<F> b) {
+    return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
+template <class F>
+HWY_INLINE V3<F> operator-(V3<F> a, V3<F> b) {
+    return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+template <class F>
+HWY_INLINE V3<F> operator*(V3<F> a, V3<F> b) {
+    return {a.x * b.x, a.y * b.y, a.z * b.z};
+}
+template <class F>
+HWY_INLINE V3<F> operator*(V3<F> a, F s) {
+    return {a.x * s, a.y * s, a.z * s};
+}
+template <class F>
+HWY_INLINE F Dot(V3<F> a, V3<F> b) {
+    return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+template <class L>
+HWY_INLINE typename L::F MaxComponent(V3<typename L::F> a) {
+    return L::Max(L::Max(a.x, a.y), a.z);
+}
+
+inline V3<float> to_lanes(Vec3 v) {
+    return {v.x, v.y, v.z};
+}
+inline Vec3 to_vec3(V3<float> v) {
+    return {v.x, v.y, v.z};
+}
+
+// ---- formulas shared by several kernels ------------------------------------------------------
+
+// sin and cos of 2 pi u for u in [0, 1]: u is reduced to the nearest quarter turn q / 4 (exactly,
+// by Sterbenz's lemma), the remainder y = 2 pi (u - q / 4) in [-pi/4, pi/4] goes through Taylor
+// polynomials of degree 9 and 8 (truncation below 3e-8, under an ulp), and the quarter turn
+// rotates the pair. The same polynomial in every lane and in scalar code.
+template <class L>
+HWY_INLINE void SinCos2Pi(typename L::F u, typename L::F* sin_out, typename L::F* cos_out) {
+    using F = typename L::F;
+    const F q = L::Round(u * L::Set(4.0f));
+    const F y = (u - q * L::Set(0.25f)) * L::Set(6.283185307179586f);
+    const F y2 = y * y;
+    const F s = y + y * y2 *
+                        (L::Set(-1.0f / 6.0f) +
+                         y2 * (L::Set(1.0f / 120.0f) +
+                               y2 * (L::Set(-1.0f / 5040.0f) + y2 * L::Set(1.0f / 362880.0f))));
+    const F c =
+        L::Set(1.0f) +
+        y2 * (L::Set(-0.5f) + y2 * (L::Set(1.0f / 24.0f) +
+                                    y2 * (L::Set(-1.0f / 720.0f) + y2 * L::Set(1.0f / 40320.0f))));
+    // Quarter turn k = q mod 4: (sin, cos) of y + k pi/2 is (s, c), (c, -s), (-s, -c), (-c, s).
+    const auto is = [&](float k) { return q == L::Set(k); };
+    const auto odd = L::Or(is(1.0f), is(3.0f));
+    const F sin_r = L::Select(odd, c, s), cos_r = L::Select(odd, s, c);
+    *sin_out = L::Select(L::Or(is(2.0f), is(3.0f)), L::Neg(sin_r), sin_r);
+    *cos_out = L::Select(L::Or(is(1.0f), is(2.0f)), L::Neg(cos_r), cos_r);
+}
+
+// Orthonormal basis (s, t) completing the unit normal n, without branches on n's direction:
+// Duff et al., "Building an Orthonormal Basis, Revisited", JCGT 6(1), 2017.
+template <class L>
+HWY_INLINE void OrthonormalBasis(V3<typename L::F> n, V3<typename L::F>* s, V3<typename L::F>* t) {
+    using F = typename L::F;
+    const F one = L::Set(1.0f);
+    const F sign = L::CopySign(one, n.z);
+    const F a = L::Neg(one) / (sign + n.z);
+    const F b = n.x * n.y * a;
+    *s = {one + sign * n.x * n.x * a, sign * b, L::Neg(sign * n.x)};
+    *t = {b, sign + n.y * n.y * a, L::Neg(n.y)};
+}
+
+// Offset of ray origins from surfaces, relative to the point's magnitude (math/ray.h).
+template <class L>
+HWY_INLINE typename L::F OriginOffset(V3<typename L::F> p) {
+    using F = typename L::F;
+    const F m = L::Max(L::Max(L::Abs(p.x), L::Abs(p.y)), L::Abs(p.z));
+    return L::Set(2e-5f) * (L::Set(1.0f) + m);
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace wavetrace
+HWY_AFTER_NAMESPACE();
+
+#endif  // WAVETRACE_MATH_LANES_INL_H_

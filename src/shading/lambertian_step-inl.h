@@ -1,0 +1,78 @@
+// The continuation of a path at a Lambertian surface vertex, sampled by the BSDF (cosine-
+// weighted), with Russian roulette and the next ray's origin: what continue_path does at such a
+// vertex, written once over lanes. The megakernel runs it with OneLane inside continue_path; the
+// wavefront's shade kernel runs it over the Lambertian vertices of a sorted range, a vector of
+// paths at a time (kernels/shade_lanes.cpp). Per-target header, see math/lanes-inl.h.
+#if defined(WAVETRACE_SHADING_LAMBERTIAN_STEP_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef WAVETRACE_SHADING_LAMBERTIAN_STEP_INL_H_
+#undef WAVETRACE_SHADING_LAMBERTIAN_STEP_INL_H_
+#else
+#define WAVETRACE_SHADING_LAMBERTIAN_STEP_INL_H_
+#endif
+
+#include "math/lanes-inl.h"
+#include "shading/warp-inl.h"
+#include "wavetrace/math/constants.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace wavetrace {
+namespace HWY_NAMESPACE {
+
+// Russian roulette survival probability for path throughput beta.
+template <class L>
+HWY_INLINE typename L::F SurvivalProbability(V3<typename L::F> beta) {
+    return L::Min(L::Max(MaxComponent<L>(beta), L::Set(0.05f)), L::Set(0.95f));
+}
+
+template <class L>
+struct LambertianVertex {
+    V3<typename L::F> p, ng, ns;  // position, geometric and shading normals
+    V3<typename L::F> wo;         // unit, pointing away from the vertex
+    V3<typename L::F> albedo;
+    V3<typename L::F> beta;      // path throughput before this vertex
+    typename L::F u1, u2, u_rr;  // direction and Russian roulette samples
+    typename L::M roulette;      // whether Russian roulette applies at this bounce
+};
+
+template <class L>
+struct LambertianStepResult {
+    typename L::M alive;           // false: no valid direction, or the path ended by roulette
+    V3<typename L::F> origin, wi;  // the next ray
+    V3<typename L::F> weight;      // f |cos| / p, divided by the survival probability
+    typename L::F pdf;             // BSDF density of wi (for MIS at the emitter it may hit)
+};
+
+template <class L>
+HWY_INLINE LambertianStepResult<L> LambertianStep(const LambertianVertex<L>& v) {
+    using F = typename L::F;
+    const F zero = L::Set(0.0f), one = L::Set(1.0f);
+    LambertianStepResult<L> r;
+    V3<F> s, t;
+    OrthonormalBasis<L>(v.ns, &s, &t);
+    // Reflection on wo's side of the shading surface: the local z of wi takes wo's sign.
+    const F wo_z = Dot(v.wo, v.ns);
+    const V3<F> h = CosineHemisphere<L>(v.u1, v.u2);
+    const F wi_z = h.z * L::Select(wo_z < zero, L::Neg(one), one);
+    r.pdf = L::Set(kInvPi) * L::Abs(wi_z);
+    r.wi = s * h.x + t * h.y + v.ns * wi_z;
+    // ... and on wo's side of the geometric surface, so light does not leak through it where
+    // the shading normal disagrees.
+    const F wi_ng = Dot(r.wi, v.ng);
+    const auto crosses = Dot(v.wo, v.ng) * wi_ng < zero;
+    auto ok = L::AndNot(crosses, L::And(wo_z != zero, r.pdf > zero));
+    // Russian roulette on the throughput after this vertex.
+    const F q = SurvivalProbability<L>(v.beta * v.albedo);
+    ok = L::And(ok, L::Or(L::AndNot(v.roulette, ok), v.u_rr < q));
+    r.alive = ok;
+    const F scale = L::Select(v.roulette, one / q, one);
+    r.weight = v.albedo * scale;
+    const F eps = OriginOffset<L>(v.p);
+    r.origin = v.p + v.ng * L::Select(wi_ng > zero, eps, L::Neg(eps));
+    return r;
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace wavetrace
+HWY_AFTER_NAMESPACE();
+
+#endif  // WAVETRACE_SHADING_LAMBERTIAN_STEP_INL_H_

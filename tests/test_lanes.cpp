@@ -1,0 +1,154 @@
+// The formulas written once over lanes (src/math/lanes-inl.h and the -inl.h files that use it):
+// their vector instances give the one-lane instance's bits on every SIMD target, which is what
+// lets the two engines trace the same paths; and the shared polynomial is accurate.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+
+#include "kernels/shade_lanes.h"
+#include "scene/wide_bvh.h"
+#include "shading/path_vertex.h"
+#include "shading/warp.h"
+#include "wavetrace/math/frame.h"
+#include "wavetrace/math/ray.h"
+#include "wavetrace/render/sampler.h"
+#include "wavetrace/scene/scene.h"
+
+using namespace wavetrace;
+
+namespace {
+
+bool same_bits(float a, float b) {
+    return std::memcmp(&a, &b, sizeof a) == 0;
+}
+bool same_bits(Vec3 a, Vec3 b) {
+    return same_bits(a.x, b.x) && same_bits(a.y, b.y) && same_bits(a.z, b.z);
+}
+
+Vec3 unit(float u1, float u2) {
+    return sample_uniform_sphere(u1, u2);
+}
+
+}  // namespace
+
+TEST(Lanes, SinCosOfTheWarpsIsAccurate) {
+    // sample_cosine_hemisphere's azimuth comes from the shared polynomial: compare it with
+    // libm's in double over a fine grid of u2 (u1 = 1: the point is (cos, sin, 0)).
+    double worst = 0;
+    for (int i = 0; i <= 1 << 16; ++i) {
+        const float u2 = std::nextafter(float(i) / float(1 << 16), 0.0f);
+        const Vec3 w = sample_cosine_hemisphere(1.0f, u2);
+        const double phi = 2.0 * M_PI * double(u2);
+        worst = std::max({worst, std::fabs(w.x - std::cos(phi)), std::fabs(w.y - std::sin(phi))});
+    }
+    EXPECT_LT(worst, 2.5e-7);  // about 2 ulps of 1; the argument 2 pi u2 alone rounds 0.5 ulp
+}
+
+TEST(Lanes, FrameAndOriginOffsetKeepTheirFormulas) {
+    for (uint32_t i = 0; i < 2000; ++i) {
+        const Vec3 n = unit(sample_1d(3, i, 0, 0), sample_1d(3, i, 0, 1));
+        const Frame f = Frame::from_normal(n);
+        EXPECT_NEAR(dot(f.s, f.t), 0.0f, 1e-6f);
+        EXPECT_NEAR(dot(f.s, n), 0.0f, 1e-6f);
+        EXPECT_NEAR(dot(cross(f.s, f.t), n), 1.0f, 1e-5f);  // right-handed
+        const Point3 p = n * (1000.0f * sample_1d(3, i, 0, 2));
+        EXPECT_EQ(origin_offset(p), 2e-5f * (1.0f + max_component(abs(p))));
+    }
+}
+
+TEST(Lanes, VertexSamplesAreTheScalarOnesOnEverySimdTarget) {
+    const size_t n = 61;  // not a multiple of any lane count
+    uint32_t pixel[kShadeChunk];
+    uint16_t bounce[kShadeChunk];
+    for (size_t k = 0; k < n; ++k) {
+        pixel[k] = static_cast<uint32_t>(k * 7919 + (k << 20));
+        bounce[k] = static_cast<uint16_t>(k % 9);
+    }
+    for (int64_t target : wide_simd_targets()) {
+        use_wide_simd_target(target);
+        SCOPED_TRACE(wide_simd_target());
+        SampleBlock block;
+        draw_vertex_samples(42, 17, pixel, bounce, n, block);
+        for (size_t k = 0; k < n; ++k) {
+            const VertexSamples one = vertex_samples(42, pixel[k], 17, bounce[k]);
+            const VertexSamples lanes = block.at(k);
+            ASSERT_EQ(std::memcmp(&one, &lanes, sizeof one), 0) << "row " << k;
+            ASSERT_TRUE(
+                same_bits(one.light_select,
+                          sample_1d(42, pixel[k], 17, bounce_dim(bounce[k], kDimLightSelect))));
+        }
+    }
+    use_wide_simd_target(0);
+}
+
+// Lambertian vertices with random normals (shading normals tilted off the geometric ones, so
+// that the geometric-side test rejects some directions), throughputs and samples: the vector
+// step gives continue_path's result bit for bit, dead paths included.
+TEST(Lanes, LambertianStepsAreContinuePathOnEverySimdTarget) {
+    RenderConfig config;
+    config.strategy = Strategy::Mis;
+    config.rr_depth = 3;
+    config.max_depth = 16;
+    Scene scene;  // continue_path reads nothing of it on this path
+    const LightSet lights;
+    const size_t n = 53;
+    struct Case {
+        Vertex v;
+        Vec3 wo;
+        Color beta;
+        ContinuationSamples u;
+        float u_rr;
+        int bounce;
+    };
+    std::vector<Case> cases;
+    for (uint32_t i = 0; i < n; ++i) {
+        auto u = [&](uint32_t d) { return sample_1d(9, i, 0, d); };
+        Case c;
+        c.v.p = Vec3{u(0) - 0.5f, u(1) - 0.5f, u(2) - 0.5f} * 100.0f;
+        c.v.ng = unit(u(3), u(4));
+        c.v.frame = Frame::from_normal(normalize(c.v.ng + 0.3f * unit(u(5), u(6))));
+        c.v.bsdf.kind = MaterialKind::Lambertian;
+        c.v.bsdf.albedo = {u(7), u(8), u(9)};
+        c.wo = unit(u(10), u(11));
+        c.beta = Color(2.0f * u(12));
+        c.u = {u(13), u(14), u(15), u(16), u(17), u(18), u(19)};
+        c.u_rr = u(20);
+        c.bounce = static_cast<int>(i % 5);
+        cases.push_back(c);
+    }
+    size_t alive = 0, dead = 0;
+    for (int64_t target : wide_simd_targets()) {
+        use_wide_simd_target(target);
+        SCOPED_TRACE(wide_simd_target());
+        LambertianBlock block;
+        for (size_t k = 0; k < n; ++k) {
+            const Case& c = cases[k];
+            ASSERT_TRUE(takes_lambertian_step(config, c.v, lights));
+            block.push(k, c.v, c.wo, c.beta, c.u, c.u_rr, c.bounce + 1 >= config.rr_depth);
+        }
+        lambertian_steps(block);
+        for (size_t k = 0; k < n; ++k) {
+            const Case& c = cases[k];
+            MediumStack media;
+            const PathStep one = continue_path(scene, lights, config, c.v, c.wo, c.bounce, c.beta,
+                                               media, c.u, c.u_rr);
+            ASSERT_EQ(one.alive, block.alive[k] != 0.0f) << "row " << k;
+            if (!one.alive) {
+                ++dead;
+                continue;
+            }
+            ++alive;
+            auto row = [&](const float(*rows)[kShadeChunk]) {
+                return Vec3{rows[0][k], rows[1][k], rows[2][k]};
+            };
+            EXPECT_TRUE(same_bits(one.next.o, row(block.origin))) << "row " << k;
+            EXPECT_TRUE(same_bits(one.next.d, row(block.wi))) << "row " << k;
+            EXPECT_TRUE(same_bits(one.weight, row(block.weight))) << "row " << k;
+            EXPECT_TRUE(same_bits(one.prev.pdf_bsdf, block.pdf[k])) << "row " << k;
+        }
+    }
+    use_wide_simd_target(0);
+    EXPECT_GT(alive, 0u);
+    EXPECT_GT(dead, 0u);  // the geometric-side test and roulette were exercised
+}
