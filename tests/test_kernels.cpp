@@ -6,10 +6,10 @@
 #include <memory>
 
 #include "kernels/kernels.h"
+#include "shading/path_vertex.h"
 #include "wavetrace/render/sampler.h"
 #include "wavetrace/render/wavefront.h"
 #include "wavetrace/scene/bvh.h"
-#include "shading/path_vertex.h"
 
 using namespace wavetrace;
 
@@ -167,8 +167,8 @@ TEST(Kernels, ShadeSamplesTheLightAppendsAShadowRayAndContinues) {
     const SurfaceHit s = surface_at(w.scene, Ray{o, {0, -1, 0}}, hit_at(w.q.hits, 0));
     const Vertex v = surface_vertex(w.scene, s);
     const VertexSamples u = vertex_samples(w.config.seed, 10, sample, 0);
-    const DirectSample d =
-        sample_direct(w.scene, *w.lights, v, {0, 1, 0}, u.light_select, u.light_u, u.light_v);
+    const DirectSample d = sample_direct(w.scene, *w.lights, v, {0, 1, 0},
+                                         w.lights->select(u.light_select), u.light_u, u.light_v);
     ASSERT_TRUE(d.valid);
     EXPECT_EQ(w.q.shadows.origin[0], d.shadow.o);
     EXPECT_EQ(w.q.shadows.dir[0], d.shadow.d);

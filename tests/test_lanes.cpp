@@ -14,6 +14,8 @@
 #include "wavetrace/math/ray.h"
 #include "wavetrace/render/sampler.h"
 #include "wavetrace/scene/scene.h"
+#include "wavetrace/shading/lights.h"
+#include "wavetrace/shading/mis.h"
 
 using namespace wavetrace;
 
@@ -151,4 +153,101 @@ TEST(Lanes, LambertianStepsAreContinuePathOnEverySimdTarget) {
     use_wide_simd_target(0);
     EXPECT_GT(alive, 0u);
     EXPECT_GT(dead, 0u);  // the geometric-side test and roulette were exercised
+}
+
+// Lambertian vertices around two quad lights (one one-sided, one two-sided, of different power):
+// the vector light samples give next_event's shadow rays and contributions bit for bit, for
+// NEE and for MIS with either heuristic.
+TEST(Lanes, QuadLightSamplesAreNextEventOnEverySimdTarget) {
+    Scene scene;
+    Material one_sided;
+    one_sided.kind = MaterialKind::DiffuseLight;
+    one_sided.emission = scene.add_solid({4, 3, 2});
+    Material two_sided = one_sided;
+    two_sided.emission = scene.add_solid({1, 1, 1});
+    two_sided.two_sided = true;
+    const MaterialId a = scene.add_material(one_sided), b = scene.add_material(two_sided);
+    scene.add_quad({{-1, 2, -1}, {2, 0, 0}, {0, 0, 2}, a, kNone});  // faces -y
+    scene.add_quad({{3, -1, -1}, {0, 2, 0}, {0, 0, 3}, b, kNone});
+    const LightSet lights(scene);
+    const size_t n = 59;
+    struct Case {
+        Vertex v;
+        Vec3 wo;
+        Color beta;
+        VertexSamples u;
+    };
+    std::vector<Case> cases;
+    for (uint32_t i = 0; i < n; ++i) {
+        auto u = [&](uint32_t d) { return sample_1d(13, i, 0, d); };
+        Case c;
+        c.v.p = Vec3{4 * u(0) - 2, 4 * u(1) - 2, 4 * u(2) - 2};
+        c.v.ng = unit(u(3), u(4));
+        c.v.frame = Frame::from_normal(normalize(c.v.ng + 0.3f * unit(u(5), u(6))));
+        c.v.bsdf.kind = MaterialKind::Lambertian;
+        c.v.bsdf.albedo = {u(7), u(8), u(9)};
+        c.wo = unit(u(10), u(11));
+        c.beta = Color(2.0f * u(12));
+        c.u.light_select = u(13);
+        c.u.light_u = u(14);
+        c.u.light_v = u(15);
+        cases.push_back(c);
+    }
+    size_t appended = 0, skipped = 0;
+    for (Strategy strategy : {Strategy::Nee, Strategy::Mis})
+        for (MisHeuristic heuristic : {MisHeuristic::Power, MisHeuristic::Balance})
+            for (int64_t target : wide_simd_targets()) {
+                use_wide_simd_target(target);
+                SCOPED_TRACE(wide_simd_target());
+                RenderConfig config;
+                config.strategy = strategy;
+                config.heuristic = heuristic;
+                QuadLightBlock block;
+                for (size_t k = 0; k < n; ++k) {
+                    const Case& c = cases[k];
+                    ASSERT_TRUE(samples_lights(config, c.v, lights));
+                    const LightChoice light = lights.select(c.u.light_select);
+                    const QuadEmitter* e = quad_light_sample_at(c.v, lights, light);
+                    ASSERT_NE(e, nullptr);
+                    block.push(k, c.v, c.wo, c.beta, c.u.light_u, c.u.light_v, *e,
+                               light.probability);
+                }
+                quad_light_samples(block, strategy == Strategy::Mis, heuristic);
+                for (size_t k = 0; k < n; ++k) {
+                    const Case& c = cases[k];
+                    const WeightedDirect d = next_event(scene, lights, config, c.v, c.wo, c.u);
+                    ASSERT_EQ(d.weight > 0.0f, block.valid[k] != 0.0f) << "row " << k;
+                    if (d.weight <= 0.0f) {
+                        ++skipped;
+                        continue;
+                    }
+                    ++appended;
+                    auto row = [&](const float(*rows)[kShadeChunk]) {
+                        return Vec3{rows[0][k], rows[1][k], rows[2][k]};
+                    };
+                    EXPECT_TRUE(same_bits(d.sample.shadow.o, row(block.origin))) << "row " << k;
+                    EXPECT_TRUE(same_bits(d.sample.shadow.d, row(block.wi))) << "row " << k;
+                    EXPECT_TRUE(same_bits(d.sample.shadow.tmax, block.tmax[k])) << "row " << k;
+                    EXPECT_TRUE(
+                        same_bits(c.beta * (d.sample.value * d.weight), row(block.contribution)))
+                        << "row " << k;
+                }
+            }
+    use_wide_simd_target(0);
+    EXPECT_GT(appended, 0u);
+    EXPECT_GT(skipped, 0u);  // back faces, directions below the surface
+}
+
+TEST(Lanes, MisWeightKeepsItsGuards) {
+    for (MisHeuristic h : {MisHeuristic::Power, MisHeuristic::Balance}) {
+        EXPECT_EQ(mis_weight(h, kInfinity, kInfinity), 1.0f);
+        EXPECT_EQ(mis_weight(h, 1.0f, kInfinity), 0.0f);
+        EXPECT_EQ(mis_weight(h, 0.0f, 0.0f), 0.0f);
+        EXPECT_EQ(mis_weight(h, 2.0f, 0.0f), 1.0f);
+        EXPECT_EQ(mis_weight(h, std::nanf(""), 1.0f), 0.0f);
+        EXPECT_EQ(mis_weight(h, 1.0f, 1.0f), 0.5f);
+    }
+    EXPECT_FLOAT_EQ(mis_weight(MisHeuristic::Power, 1.0f, 2.0f), 0.2f);
+    EXPECT_FLOAT_EQ(mis_weight(MisHeuristic::Balance, 1.0f, 3.0f), 0.25f);
+    EXPECT_FLOAT_EQ(mis_weight(MisHeuristic::Power, 1e30f, 1e29f), 1.0f / 1.01f);  // no overflow
 }

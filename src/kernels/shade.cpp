@@ -5,7 +5,51 @@
 #include "shading/path_vertex.h"
 
 namespace wavetrace {
+namespace {
 
+void append_shadow(
+    const Ray& ray, Color contribution, size_t path, ShadowQueue& shadows, size_t& s) {
+    shadows.origin[s] = ray.o;
+    shadows.dir[s] = ray.d;
+    shadows.tmax[s] = ray.tmax;
+    shadows.contribution[s] = contribution;
+    shadows.path[s] = static_cast<uint32_t>(path);
+    ++s;
+}
+
+// Entry i goes on from its scattering vertex: throughput, the record for weighting emission the
+// next segment finds, the next ray. Vertices that sample lights never transmit, so the entry's
+// media stay what its shadow ray (which reads its path's media) needs.
+void advance(const WaveInputs& in,
+             uint32_t sample,
+             size_t i,
+             Color weight,
+             const PreviousVertex& prev,
+             const Ray& next,
+             PathQueue& paths,
+             RayQueue& rays,
+             std::span<uint8_t> keep) {
+    const int bounce = paths.bounce[i];
+    paths.beta[i] = paths.beta[i] * weight;
+    set_previous_vertex(paths, i, prev);
+    paths.bounce[i] = static_cast<uint16_t>(bounce + 1);
+    paths.flight[i] = segment_flight(in.scene, in.config.seed, paths.pixel[i], sample, bounce + 1);
+    paths.crossings[i] = 0;
+    set_ray(rays, i, next);
+    keep[i] = 1;
+}
+
+Vec3 row(const float (*rows)[kShadeChunk], size_t k) {
+    return {rows[0][k], rows[1][k], rows[2][k]};
+}
+
+}  // namespace
+
+// Chunk by chunk: the vertices' uniform numbers in SIMD lanes; each entry's segment in scalar
+// code; the light samples towards quad lights and the continuations of Lambertian vertices
+// gathered into blocks and run in SIMD lanes at the end of the chunk, the rest in scalar code.
+// Shadow rays are appended in a fixed order (scalar ones, then the block's), so the queue, and
+// the image, do not depend on the target.
 size_t shade(const WaveInputs& in,
              uint32_t sample,
              const HitQueue& hits,
@@ -18,15 +62,14 @@ size_t shade(const WaveInputs& in,
              size_t first_shadow) {
     const RenderConfig& cfg = in.config;
     size_t s = first_shadow;
-    // Chunk by chunk: the vertices' uniform numbers in SIMD lanes, then each entry's segment
-    // and light sample in scalar code, with the Lambertian continuations gathered for one
-    // SIMD pass at the end of the chunk.
     SampleBlock samples;
+    QuadLightBlock nee;
     LambertianBlock lambertian;
     for (size_t c = begin; c < end; c += kShadeChunk) {
         const size_t chunk_end = std::min(end, c + kShadeChunk);
         draw_vertex_samples(cfg.seed, sample, &paths.pixel[c], &paths.bounce[c], chunk_end - c,
                             samples);
+        nee.rows = 0;
         lambertian.n = 0;
         for (size_t i = c; i < chunk_end; ++i) {
             keep[i] = 0;
@@ -53,55 +96,46 @@ size_t shade(const WaveInputs& in,
             // ---- a scattering vertex: a light sample, then the continuation ----
             const int bounce = paths.bounce[i];
             if (!may_scatter(cfg, bounce)) continue;
-            const uint32_t pixel = paths.pixel[i];
+            const Vertex& v = seg.vertex;
             const Color beta = paths.beta[i];
             const VertexSamples u = samples.at(i - c);
-            const WeightedDirect d = next_event(in.scene, in.lights, cfg, seg.vertex, seg.wo, u);
-            if (d.weight > 0.0f) {
-                shadows.origin[s] = d.sample.shadow.o;
-                shadows.dir[s] = d.sample.shadow.d;
-                shadows.tmax[s] = d.sample.shadow.tmax;
-                shadows.contribution[s] = beta * (d.sample.value * d.weight);
-                shadows.path[s] = static_cast<uint32_t>(i);
-                ++s;
+            // Light samples towards quad lights go to the block; the rest are taken here.
+            const bool samples = samples_lights(cfg, v, in.lights);
+            const LightChoice light = samples ? in.lights.select(u.light_select) : LightChoice{};
+            const QuadEmitter* quad = samples ? quad_light_sample_at(v, in.lights, light) : nullptr;
+            if (quad) {
+                nee.push(i, v, seg.wo, beta, u.light_u, u.light_v, *quad, light.probability);
+            } else {
+                const WeightedDirect d = next_event(in.scene, in.lights, cfg, v, seg.wo, u);
+                if (d.weight > 0.0f)
+                    append_shadow(d.sample.shadow, beta * (d.sample.value * d.weight), i, shadows,
+                                  s);
             }
-            if (takes_lambertian_step(cfg, seg.vertex, in.lights)) {
-                lambertian.push(i, seg.vertex, seg.wo, beta, u.continuation, u.roulette,
+            if (takes_lambertian_step(cfg, v, in.lights)) {
+                lambertian.push(i, v, seg.wo, beta, u.continuation, u.roulette,
                                 bounce + 1 >= cfg.rr_depth);
                 continue;
             }
-            // Vertices that sample lights never transmit, so `media` stays what the shadow ray
-            // (which reads its path's media) needs.
-            const PathStep step = continue_path(in.scene, in.lights, cfg, seg.vertex, seg.wo,
-                                                bounce, beta, media, u.continuation, u.roulette);
+            const PathStep step = continue_path(in.scene, in.lights, cfg, v, seg.wo, bounce, beta,
+                                                media, u.continuation, u.roulette);
             if (!step.alive) continue;
-            paths.beta[i] = beta * step.weight;
-            set_previous_vertex(paths, i, step.prev);
             paths.media[i] = PackedMedia::pack(media);
-            paths.bounce[i] = static_cast<uint16_t>(bounce + 1);
-            paths.flight[i] = segment_flight(in.scene, cfg.seed, pixel, sample, bounce + 1);
-            paths.crossings[i] = 0;
-            set_ray(rays, i, step.next);
-            keep[i] = 1;
+            advance(in, sample, i, step.weight, step.prev, step.next, paths, rays, keep);
         }
+
+        quad_light_samples(nee, cfg.strategy == Strategy::Mis, cfg.heuristic);
+        for (size_t k = 0; k < nee.rows; ++k)
+            if (nee.valid[k] != 0.0f)
+                append_shadow(Ray{row(nee.origin, k), row(nee.wi, k), 0.0f, nee.tmax[k]},
+                              row(nee.contribution, k), nee.entry[k], shadows, s);
+
         lambertian_steps(lambertian);
         const bool counts_fully = in.lights.empty();  // Lambertian vertices sample lights if any
-        for (size_t k = 0; k < lambertian.n; ++k) {
-            if (lambertian.alive[k] == 0.0f) continue;
-            const size_t i = lambertian.entry[k];
-            auto row = [&](const float(*rows)[kShadeChunk]) {
-                return Vec3{rows[0][k], rows[1][k], rows[2][k]};
-            };
-            const int bounce = paths.bounce[i];
-            paths.beta[i] = paths.beta[i] * row(lambertian.weight);
-            set_previous_vertex(paths, i, {row(lambertian.p), lambertian.pdf[k], counts_fully});
-            paths.bounce[i] = static_cast<uint16_t>(bounce + 1);
-            paths.flight[i] =
-                segment_flight(in.scene, cfg.seed, paths.pixel[i], sample, bounce + 1);
-            paths.crossings[i] = 0;
-            set_ray(rays, i, Ray{row(lambertian.origin), row(lambertian.wi)});
-            keep[i] = 1;
-        }
+        for (size_t k = 0; k < lambertian.n; ++k)
+            if (lambertian.alive[k] != 0.0f)
+                advance(in, sample, lambertian.entry[k], row(lambertian.weight, k),
+                        {row(lambertian.p, k), lambertian.pdf[k], counts_fully},
+                        Ray{row(lambertian.origin, k), row(lambertian.wi, k)}, paths, rays, keep);
     }
     return s - first_shadow;
 }

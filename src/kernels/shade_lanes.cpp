@@ -8,6 +8,7 @@
 #include "math/lanes-inl.h"
 #include "render/sampler-inl.h"
 #include "shading/lambertian_step-inl.h"
+#include "shading/quad_light_nee-inl.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace wavetrace {
@@ -88,6 +89,51 @@ void LambertianSteps(LambertianBlock* b) {
     }
 }
 
+void QuadLightSamples(QuadLightBlock* b, bool mis, MisHeuristic heuristic) {
+    using D = hn::CappedTag<float, kShadeChunk>;
+    using L = FloatLanes<D>;
+    using F = hn::Vec<D>;
+    const D d;
+    const size_t N = hn::Lanes(d);
+    if (b->rows == 0) return;
+    const size_t padded = (b->rows + N - 1) / N * N;
+    for (size_t k = b->rows; k < padded; ++k) {
+        for (auto* rows :
+             {b->p, b->ng, b->ns, b->wo, b->albedo, b->beta, b->q, b->u, b->v, b->n, b->radiance})
+            for (int a = 0; a < 3; ++a) rows[a][k] = rows[a][0];
+        for (float* row : {b->u1, b->u2, b->area, b->select_prob, b->two_sided}) row[k] = row[0];
+    }
+    auto load3 = [&](const float(*rows)[kShadeChunk], size_t k) {
+        return V3<F>{hn::Load(d, rows[0] + k), hn::Load(d, rows[1] + k), hn::Load(d, rows[2] + k)};
+    };
+    auto store3 = [&](V3<F> v, float(*rows)[kShadeChunk], size_t k) {
+        hn::Store(v.x, d, rows[0] + k);
+        hn::Store(v.y, d, rows[1] + k);
+        hn::Store(v.z, d, rows[2] + k);
+    };
+    for (size_t k = 0; k < b->rows; k += N) {
+        const LambertianNeeVertex<L> v{
+            load3(b->p, k),      load3(b->ng, k),        load3(b->ns, k),       load3(b->wo, k),
+            load3(b->albedo, k), hn::Load(d, b->u1 + k), hn::Load(d, b->u2 + k)};
+        const QuadLightLanes<L> light{load3(b->q, k),
+                                      load3(b->u, k),
+                                      load3(b->v, k),
+                                      load3(b->n, k),
+                                      hn::Load(d, b->area + k),
+                                      load3(b->radiance, k),
+                                      hn::Gt(hn::Load(d, b->two_sided + k), hn::Zero(d)),
+                                      hn::Load(d, b->select_prob + k)};
+        const QuadLightNee<L> r = QuadLightSample(v, light, mis, heuristic);
+        // As shade appends a scalar next_event's: beta (value weight), when the weight is > 0.
+        store3(load3(b->beta, k) * (r.value * r.weight), b->contribution, k);
+        store3(r.origin, b->origin, k);
+        store3(r.wi, b->wi, k);
+        hn::Store(r.tmax, d, b->tmax + k);
+        const auto append = hn::And(r.valid, hn::Gt(r.weight, hn::Zero(d)));
+        hn::Store(hn::IfThenElseZero(append, hn::Set(d, 1.0f)), d, b->valid + k);
+    }
+}
+
 }  // namespace HWY_NAMESPACE
 }  // namespace wavetrace
 HWY_AFTER_NAMESPACE();
@@ -97,6 +143,7 @@ namespace wavetrace {
 
 HWY_EXPORT(DrawVertexSamples);
 HWY_EXPORT(LambertianSteps);
+HWY_EXPORT(QuadLightSamples);
 
 void draw_vertex_samples(uint64_t seed,
                          uint32_t sample,
@@ -109,6 +156,40 @@ void draw_vertex_samples(uint64_t seed,
 
 void lambertian_steps(LambertianBlock& b) {
     HWY_DYNAMIC_DISPATCH(LambertianSteps)(&b);
+}
+
+void quad_light_samples(QuadLightBlock& b, bool mis, MisHeuristic heuristic) {
+    HWY_DYNAMIC_DISPATCH(QuadLightSamples)(&b, mis, heuristic);
+}
+
+void QuadLightBlock::push(size_t entry_,
+                          const Vertex& vertex,
+                          Vec3 wo_,
+                          Color beta_,
+                          float u1_,
+                          float u2_,
+                          const QuadEmitter& light,
+                          float select_prob_) {
+    const size_t k = rows++;
+    for (int a = 0; a < 3; ++a) {
+        p[a][k] = vertex.p[a];
+        ng[a][k] = vertex.ng[a];
+        ns[a][k] = vertex.frame.n[a];
+        wo[a][k] = wo_[a];
+        albedo[a][k] = vertex.bsdf.albedo[a];
+        beta[a][k] = beta_[a];
+        q[a][k] = light.q[a];
+        u[a][k] = light.u[a];
+        v[a][k] = light.v[a];
+        n[a][k] = light.n[a];
+        radiance[a][k] = light.radiance[a];
+    }
+    u1[k] = u1_;
+    u2[k] = u2_;
+    area[k] = light.area;
+    select_prob[k] = select_prob_;
+    two_sided[k] = light.two_sided ? 1.0f : 0.0f;
+    entry[k] = static_cast<uint32_t>(entry_);
 }
 
 void LambertianBlock::push(size_t entry,

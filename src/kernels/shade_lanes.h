@@ -73,4 +73,43 @@ struct LambertianBlock {
 // Rows k < b.n: what continue_path computes for them, bit for bit.
 void lambertian_steps(LambertianBlock& b);
 
+// Lambertian vertices whose light sample picked a quad light (quad_light_sample_at), gathered
+// by shade with their light (SoA, `n` of them), and their shadow rays.
+struct QuadLightBlock {
+    // in
+    alignas(64) float p[3][kShadeChunk];
+    alignas(64) float ng[3][kShadeChunk];
+    alignas(64) float ns[3][kShadeChunk];
+    alignas(64) float wo[3][kShadeChunk];
+    alignas(64) float albedo[3][kShadeChunk];
+    alignas(64) float beta[3][kShadeChunk];
+    alignas(64) float u1[kShadeChunk], u2[kShadeChunk];
+    alignas(64) float q[3][kShadeChunk];  // the light of each row (QuadEmitter)
+    alignas(64) float u[3][kShadeChunk];
+    alignas(64) float v[3][kShadeChunk];
+    alignas(64) float n[3][kShadeChunk];
+    alignas(64) float radiance[3][kShadeChunk];
+    alignas(64) float area[kShadeChunk], select_prob[kShadeChunk], two_sided[kShadeChunk];
+    uint32_t entry[kShadeChunk];  // the wave entry of each row
+    size_t rows = 0;
+    // out
+    alignas(64) float origin[3][kShadeChunk];
+    alignas(64) float wi[3][kShadeChunk];
+    alignas(64) float contribution[3][kShadeChunk];  // beta f |cos| Le / p_light times the weight
+    alignas(64) float tmax[kShadeChunk];
+    alignas(64) float valid[kShadeChunk];  // 1: append the shadow ray (weight > 0)
+
+    void push(size_t entry,
+              const Vertex& vertex,
+              Vec3 wo,
+              Color beta,
+              float u1,
+              float u2,
+              const QuadEmitter& light,
+              float select_prob);
+};
+
+// Rows k < b.rows: what next_event computes for them, bit for bit, times their beta.
+void quad_light_samples(QuadLightBlock& b, bool mis, MisHeuristic heuristic);
+
 }  // namespace wavetrace

@@ -49,9 +49,12 @@ struct OneLane {
     static F CopySign(F magnitude, F sign) { return std::copysign(magnitude, sign); }
     static F Round(F x) { return std::nearbyint(x); }  // to nearest, ties to even
     static F Select(M m, F yes, F no) { return m ? yes : no; }
+    static M IsInf(F x) { return std::isinf(x); }
+    static M IsFinite(F x) { return std::isfinite(x); }
     static M And(M a, M b) { return a && b; }
     static M Or(M a, M b) { return a || b; }
     static M AndNot(M not_a, M b) { return !not_a && b; }
+    static M Not(M m) { return !m; }
 
     static U64 Set64(uint64_t x) { return x; }
     static U64 Widen(U32 x) { return x; }
@@ -84,9 +87,12 @@ struct FloatLanes {
     static HWY_INLINE F CopySign(F magnitude, F sign) { return hn::CopySign(magnitude, sign); }
     static HWY_INLINE F Round(F x) { return hn::Round(x); }
     static HWY_INLINE F Select(M m, F yes, F no) { return hn::IfThenElse(m, yes, no); }
+    static HWY_INLINE M IsInf(F x) { return hn::IsInf(x); }
+    static HWY_INLINE M IsFinite(F x) { return hn::IsFinite(x); }
     static HWY_INLINE M And(M a, M b) { return hn::And(a, b); }
     static HWY_INLINE M Or(M a, M b) { return hn::Or(a, b); }
     static HWY_INLINE M AndNot(M not_a, M b) { return hn::AndNot(not_a, b); }
+    static HWY_INLINE M Not(M m) { return hn::Not(m); }
 };
 
 // 64-bit integer lanes with floats of the same lane count (half the vector width).

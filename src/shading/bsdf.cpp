@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "wavetrace/math/constants.h"
 #include "shading/warp.h"
+#include "wavetrace/math/constants.h"
 
 namespace wavetrace {
 namespace {

@@ -2,11 +2,11 @@
 
 #include <cmath>
 
+#include "shading/warp.h"
 #include "wavetrace/math/frame.h"
 #include "wavetrace/scene/intersect.h"
 #include "wavetrace/scene/scene.h"
 #include "wavetrace/scene/surface.h"
-#include "shading/warp.h"
 
 namespace wavetrace {
 namespace {
@@ -36,6 +36,13 @@ LightSet::LightSet(const Scene& scene) {
         const Texture& e = scene.textures[m.emission];
         float lum = e.kind == TextureKind::Solid ? luminance(e.color) : 1.0f;
         power.push_back(scene.prim_area(prim) * kPi * lum * (m.two_sided ? 2.0f : 1.0f));
+        quad_of_.push_back(-1);
+        if (prim.kind() == PrimKind::Quad && e.kind == TextureKind::Solid) {
+            const Quad& q = scene.quads[prim.index()];
+            quad_of_.back() = static_cast<int32_t>(quads_.size());
+            quads_.push_back({q.q, q.u, q.v, normalize(cross(q.u, q.v)), scene.prim_area(prim),
+                              e.color, m.two_sided});
+        }
     }
     background_ = !scene.background.is_black();
     if (background_) {
@@ -78,12 +85,29 @@ float LightSet::background_selection_probability() const {
     return background_ ? select_.probability(count_ - 1) : 0.0f;
 }
 
+LightChoice LightSet::select(float u_select) const {
+    LightChoice c;
+    c.index = select_.sample_discrete(u_select, &c.probability);
+    return c;
+}
+
+const QuadEmitter* LightSet::quad_emitter(LightChoice choice) const {
+    const size_t i = choice.index;
+    return i < quad_of_.size() && quad_of_[i] >= 0 ? &quads_[quad_of_[i]] : nullptr;
+}
+
 LightSample LightSet::sample(
     const Scene& scene, Point3 ref, float u_select, float u1, float u2) const {
+    if (count_ == 0) return {};
+    return sample(scene, ref, select(u_select), u1, u2);
+}
+
+LightSample LightSet::sample(
+    const Scene& scene, Point3 ref, LightChoice choice, float u1, float u2) const {
     LightSample ls;
     if (count_ == 0) return ls;
-    float select_prob;
-    size_t i = select_.sample_discrete(u_select, &select_prob);
+    const float select_prob = choice.probability;
+    const size_t i = choice.index;
 
     if (background_ && i == count_ - 1) {
         const Background& bg = scene.background;

@@ -5,6 +5,8 @@
 
 #include "render/sampler-inl.h"
 #include "shading/lambertian_step-inl.h"
+#include "shading/mis-inl.h"
+#include "shading/quad_light_nee-inl.h"
 #include "shading/warp.h"
 #include "wavetrace/render/sampler.h"
 #include "wavetrace/scene/scene.h"
@@ -82,11 +84,11 @@ DirectSample sample_direct(const Scene& scene,
                            const LightSet& lights,
                            const Vertex& v,
                            Vec3 wo,
-                           float u_select,
+                           LightChoice light,
                            float u1,
                            float u2) {
     DirectSample d;
-    LightSample ls = lights.sample(scene, v.p, u_select, u1, u2);
+    LightSample ls = lights.sample(scene, v.p, light, u1, u2);
     if (!ls.valid || max_component(ls.radiance) <= 0.0f) return d;
     Color f = eval_world(v, wo, ls.wi, &d.pdf_bsdf);
     if (max_component(f) <= 0.0f) return d;
@@ -156,6 +158,18 @@ Continuation sample_continuation(Strategy strategy,
     return c;
 }
 
+bool samples_lights(const RenderConfig& config, const Vertex& v, const LightSet& lights) {
+    const bool nee = config.strategy == Strategy::Nee || config.strategy == Strategy::Mis;
+    return nee && can_sample_lights(v, lights);
+}
+
+const QuadEmitter* quad_light_sample_at(const Vertex& v,
+                                        const LightSet& lights,
+                                        LightChoice choice) {
+    if (v.bsdf.kind != MaterialKind::Lambertian || !v.on_surface()) return nullptr;
+    return lights.quad_emitter(choice);
+}
+
 WeightedDirect next_event(const Scene& scene,
                           const LightSet& lights,
                           const RenderConfig& config,
@@ -163,9 +177,29 @@ WeightedDirect next_event(const Scene& scene,
                           Vec3 wo,
                           const VertexSamples& u) {
     WeightedDirect d;
-    const bool nee = config.strategy == Strategy::Nee || config.strategy == Strategy::Mis;
-    if (!nee || !can_sample_lights(v, lights)) return d;
-    d.sample = sample_direct(scene, lights, v, wo, u.light_select, u.light_u, u.light_v);
+    if (!samples_lights(config, v, lights)) return d;
+    const LightChoice choice = lights.select(u.light_select);
+    if (const QuadEmitter* e = quad_light_sample_at(v, lights, choice)) {
+        using lanes::to_lanes, lanes::to_vec3;
+        const lanes::LambertianNeeVertex<OneLane> lv{
+            to_lanes(v.p), to_lanes(v.ng),          to_lanes(v.frame.n),
+            to_lanes(wo),  to_lanes(v.bsdf.albedo), u.light_u,
+            u.light_v};
+        const lanes::QuadLightLanes<OneLane> light{
+            to_lanes(e->q), to_lanes(e->u),        to_lanes(e->v), to_lanes(e->n),
+            e->area,        to_lanes(e->radiance), e->two_sided,   choice.probability};
+        const lanes::QuadLightNee<OneLane> r =
+            lanes::QuadLightSample(lv, light, config.strategy == Strategy::Mis, config.heuristic);
+        if (!r.valid) return d;
+        d.sample.value = to_vec3(r.value);
+        d.sample.pdf_light = r.pdf_light;
+        d.sample.pdf_bsdf = r.pdf_bsdf;
+        d.sample.shadow = Ray{to_vec3(r.origin), to_vec3(r.wi), 0.0f, r.tmax};
+        d.sample.valid = true;
+        d.weight = r.weight;
+        return d;
+    }
+    d.sample = sample_direct(scene, lights, v, wo, choice, u.light_u, u.light_v);
     if (d.sample.valid)
         d.weight =
             direct_weight(config.strategy, config.heuristic, d.sample.pdf_light, d.sample.pdf_bsdf);
@@ -182,13 +216,14 @@ float emission_weight(
         case Strategy::Nee:
             return counts_fully ? 1.0f : 0.0f;
         case Strategy::Mis:
-            return counts_fully ? 1.0f : mis_weight(heuristic, pdf_bsdf, pdf_light);
+            return counts_fully ? 1.0f : lanes::MisWeight<OneLane>(heuristic, pdf_bsdf, pdf_light);
     }
     return 0.0f;
 }
 
 float direct_weight(Strategy strategy, MisHeuristic heuristic, float pdf_light, float pdf_bsdf) {
-    return strategy == Strategy::Mis ? mis_weight(heuristic, pdf_light, pdf_bsdf) : 1.0f;
+    return strategy == Strategy::Mis ? lanes::MisWeight<OneLane>(heuristic, pdf_light, pdf_bsdf)
+                                     : 1.0f;
 }
 
 SegmentResult resolve_segment(const Scene& scene,

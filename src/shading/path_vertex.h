@@ -59,7 +59,7 @@ DirectSample sample_direct(const Scene& scene,
                            const LightSet& lights,
                            const Vertex& v,
                            Vec3 wo,
-                           float u_select,
+                           LightChoice light,
                            float u1,
                            float u2);
 
@@ -174,6 +174,13 @@ WeightedDirect next_event(const Scene& scene,
                           const Vertex& v,
                           Vec3 wo,
                           const VertexSamples& u);
+// Whether next-event estimation happens at v: the strategy samples lights and v can.
+bool samples_lights(const RenderConfig& config, const Vertex& v, const LightSet& lights);
+// The light next_event samples at v in SIMD lanes (shading/quad_light_nee-inl.h), or null: at
+// a Lambertian surface vertex that samples_lights(), a chosen quad of constant radiance.
+const QuadEmitter* quad_light_sample_at(const Vertex& v,
+                                        const LightSet& lights,
+                                        LightChoice choice);
 // Optical depth a segment reaching vertex `bounce` may travel before scattering in a medium.
 // Without media no segment consumes it, so it is not drawn (its log1p was 5-7% of a render).
 float segment_flight(

@@ -5,9 +5,9 @@
 #include <cmath>
 
 #include "scene/intersector.h"
+#include "shading/path_vertex.h"
 #include "wavetrace/scene/scene.h"
 #include "wavetrace/scene/surface.h"
-#include "shading/path_vertex.h"
 
 namespace wavetrace {
 

@@ -28,6 +28,22 @@ struct LightSample {
     bool valid = false;
 };
 
+// A quad light of constant radiance: the case next-event estimation at Lambertian vertices
+// samples in SIMD lanes (src/shading/quad_light_nee-inl.h).
+struct QuadEmitter {
+    Point3 q;
+    Vec3 u, v;
+    Normal3 n;  // normalize(cross(u, v)): the front side
+    float area;
+    Color radiance;
+    bool two_sided;
+};
+
+struct LightChoice {
+    size_t index = 0;
+    float probability = 0.0f;
+};
+
 class LightSet {
   public:
     LightSet() = default;
@@ -40,7 +56,15 @@ class LightSet {
     float selection_probability(PrimRef prim) const;
     float background_selection_probability() const;
 
-    // Samples a light point as seen from `ref` with three uniform numbers.
+    // Picks a light with selection number u_select, in proportion to power (not empty()).
+    LightChoice select(float u_select) const;
+    // The chosen light if it is a quad of constant radiance, else null.
+    const QuadEmitter* quad_emitter(LightChoice choice) const;
+
+    // Samples a point on the chosen light as seen from `ref` with two uniform numbers.
+    LightSample sample(
+        const Scene& scene, Point3 ref, LightChoice choice, float u1, float u2) const;
+    // Picks a light and samples a point on it as seen from `ref` with three uniform numbers.
     LightSample sample(const Scene& scene, Point3 ref, float u_select, float u1, float u2) const;
     // Density with which sample() from `ref` produces direction wi hitting emitter `prim` at
     // point p (distance dist). Zero for non-emitters.
@@ -55,7 +79,9 @@ class LightSet {
     float prim_pdf_given_selection(
         const Scene& scene, Point3 ref, PrimRef prim, Vec3 wi, float dist) const;
 
-    std::vector<PrimRef> emitters_;                 // light i < emitters_.size()
+    std::vector<PrimRef> emitters_;  // light i < emitters_.size()
+    std::vector<int32_t> quad_of_;   // light i: index into quads_, or -1
+    std::vector<QuadEmitter> quads_;
     std::unordered_map<uint32_t, uint32_t> index_;  // PrimRef bits -> light index
     bool background_ = false;                       // the last light, if present
     size_t count_ = 0;

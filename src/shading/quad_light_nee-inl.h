@@ -1,0 +1,97 @@
+// Next-event estimation at a Lambertian surface vertex towards a quad light of constant
+// radiance: the light point (uniform by area), its solid-angle density, the BSDF value and
+// density, the MIS weight and the shadow ray; what next_event computes for such a vertex and
+// light, written once over lanes. The megakernel runs it with OneLane inside next_event; the
+// wavefront's shade kernel runs it over the vertices of a chunk whose light sample picked such
+// a light (kernels/shade_lanes.cpp). Per-target header, see math/lanes-inl.h.
+#if defined(WAVETRACE_SHADING_QUAD_LIGHT_NEE_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef WAVETRACE_SHADING_QUAD_LIGHT_NEE_INL_H_
+#undef WAVETRACE_SHADING_QUAD_LIGHT_NEE_INL_H_
+#else
+#define WAVETRACE_SHADING_QUAD_LIGHT_NEE_INL_H_
+#endif
+
+#include "math/lanes-inl.h"
+#include "shading/mis-inl.h"
+#include "wavetrace/math/constants.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace wavetrace {
+namespace HWY_NAMESPACE {
+
+// A quad light as LightSet::quad_emitter gives it, in lanes (each lane's own light).
+template <class L>
+struct QuadLightLanes {
+    V3<typename L::F> q, u, v;  // corner and edges: points q + s u + t v, s, t in [0, 1)
+    V3<typename L::F> n;        // unit normal, cross(u, v) normalized: the front side
+    typename L::F area;
+    V3<typename L::F> radiance;  // emitted from the front (and the back if two-sided)
+    typename L::M two_sided;
+    typename L::F select_prob;  // of picking this light
+};
+
+template <class L>
+struct LambertianNeeVertex {
+    V3<typename L::F> p, ng, ns, wo, albedo;
+    typename L::F u1, u2;  // the point on the light
+};
+
+template <class L>
+struct QuadLightNee {
+    typename L::M valid;      // false: no contribution (back face, below the surface ...)
+    V3<typename L::F> value;  // f |cos| Le / p_light: unweighted, unoccluded
+    typename L::F weight;     // of the strategy: w(p_light, p_bsdf) for MIS, else 1
+    typename L::F pdf_light, pdf_bsdf;
+    V3<typename L::F> origin, wi;  // the shadow ray, t in [0, tmax]
+    typename L::F tmax;
+};
+
+template <class L>
+HWY_INLINE QuadLightNee<L> QuadLightSample(const LambertianNeeVertex<L>& v,
+                                           const QuadLightLanes<L>& e,
+                                           bool mis,
+                                           MisHeuristic heuristic) {
+    using F = typename L::F;
+    const F zero = L::Set(0.0f), one = L::Set(1.0f);
+    QuadLightNee<L> r;
+    // The light point, and the density of its direction: p_w = r^2 / (|cos theta_l| A), times
+    // the selection probability.
+    const V3<F> x = e.q + e.u * v.u1 + e.v * v.u2;
+    const V3<F> d = x - v.p;
+    const F dist2 = Dot(d, d);
+    const F dist = L::Sqrt(dist2);
+    r.wi = d * (one / dist);
+    const F cos_l = L::Abs(Dot(e.n, r.wi));
+    const F pdf_light = dist2 / (cos_l * e.area) * e.select_prob;
+    r.pdf_light = pdf_light;
+    const auto emits = L::Or(Dot(d, e.n) < zero, e.two_sided);
+    const V3<F> le{L::Select(emits, e.radiance.x, zero), L::Select(emits, e.radiance.y, zero),
+                   L::Select(emits, e.radiance.z, zero)};
+    auto ok = L::And(L::And(dist2 > zero, cos_l > zero),
+                     L::And(L::IsFinite(pdf_light), pdf_light > zero));
+    ok = L::And(ok, MaxComponent<L>(le) > zero);
+    // The Lambertian BSDF, f |cos| = albedo / pi |cos theta_i|, on wo's side of both the
+    // geometric and the shading surface.
+    const F wi_ng = Dot(r.wi, v.ng);
+    ok = L::And(ok, Dot(v.wo, v.ng) * wi_ng > zero);
+    const F li_z = Dot(r.wi, v.ns);
+    ok = L::And(ok, Dot(v.wo, v.ns) * li_z > zero);
+    const F pdf_bsdf = L::Set(kInvPi) * L::Abs(li_z);
+    r.pdf_bsdf = pdf_bsdf;
+    const V3<F> f = v.albedo * pdf_bsdf;
+    ok = L::And(ok, MaxComponent<L>(f) > zero);
+    r.valid = ok;
+    r.value = f * le * (one / pdf_light);
+    r.weight = mis ? MisWeight<L>(heuristic, pdf_light, pdf_bsdf) : one;
+    // Stop short of the light itself: 1e-4 relative, plus the origin offset.
+    const F eps = OriginOffset<L>(v.p);
+    r.origin = v.p + v.ng * L::Select(wi_ng > zero, eps, L::Neg(eps));
+    r.tmax = dist * L::Set(1.0f - 1e-4f);
+    return r;
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace wavetrace
+HWY_AFTER_NAMESPACE();
+
+#endif  // WAVETRACE_SHADING_QUAD_LIGHT_NEE_INL_H_
