@@ -6,13 +6,14 @@
 #include <cmath>
 #include <cstring>
 
-#include "kernels/shade_lanes.h"
+#include "kernels/lane_kernels.h"
 #include "scene/wide_bvh.h"
 #include "shading/path_vertex.h"
 #include "shading/warp.h"
 #include "wavetrace/math/frame.h"
 #include "wavetrace/math/ray.h"
 #include "wavetrace/render/sampler.h"
+#include "wavetrace/scene/camera.h"
 #include "wavetrace/scene/scene.h"
 #include "wavetrace/shading/lights.h"
 #include "wavetrace/shading/mis.h"
@@ -250,4 +251,37 @@ TEST(Lanes, MisWeightKeepsItsGuards) {
     EXPECT_FLOAT_EQ(mis_weight(MisHeuristic::Power, 1.0f, 2.0f), 0.2f);
     EXPECT_FLOAT_EQ(mis_weight(MisHeuristic::Balance, 1.0f, 3.0f), 0.25f);
     EXPECT_FLOAT_EQ(mis_weight(MisHeuristic::Power, 1e30f, 1e29f), 1.0f / 1.01f);  // no overflow
+}
+
+// Camera rays of a pinhole and of a thin-lens camera: the vector ones are generate_camera_ray's.
+TEST(Lanes, CameraRaysAreTheScalarOnesOnEverySimdTarget) {
+    for (float aperture : {0.0f, 0.5f}) {
+        Camera camera;
+        camera.look_from = {1, 2, 3};
+        camera.look_at = {0, 0.5f, -1};
+        camera.aperture = aperture;
+        const CameraRays rays(camera, 37, 23);
+        const size_t n = 45;
+        uint32_t pixel[kShadeChunk];
+        float x[kShadeChunk], y[kShadeChunk];
+        for (size_t k = 0; k < n; ++k) {
+            pixel[k] = static_cast<uint32_t>(k * 19 % (37 * 23));
+            x[k] = static_cast<float>(pixel[k] % 37);
+            y[k] = static_cast<float>(pixel[k] / 37);
+        }
+        for (int64_t target : wide_simd_targets()) {
+            use_wide_simd_target(target);
+            SCOPED_TRACE(std::string(wide_simd_target()) + " aperture " + std::to_string(aperture));
+            CameraRayBlock block;
+            draw_camera_rays(rays, 5, 3, pixel, x, y, n, block);
+            for (size_t k = 0; k < n; ++k) {
+                const Ray one = generate_camera_ray(rays, 5, pixel[k], 3, int(x[k]), int(y[k]));
+                EXPECT_TRUE(same_bits(one.o, {block.o[0][k], block.o[1][k], block.o[2][k]}))
+                    << "row " << k;
+                EXPECT_TRUE(same_bits(one.d, {block.d[0][k], block.d[1][k], block.d[2][k]}))
+                    << "row " << k;
+            }
+        }
+    }
+    use_wide_simd_target(0);
 }

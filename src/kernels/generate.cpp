@@ -1,6 +1,7 @@
 #include <algorithm>
 
 #include "kernels/kernels.h"
+#include "kernels/lane_kernels.h"
 #include "shading/path_vertex.h"
 
 namespace wavetrace {
@@ -26,20 +27,33 @@ void generate(const WaveInputs& in,
     const uint32_t width = static_cast<uint32_t>(in.config.width),
                    height = static_cast<uint32_t>(in.config.height);
     const PackedMedia media = PackedMedia::pack(in.camera_media);
-    for (size_t i = begin; i < end; ++i) {
-        const uint32_t pixel =
-            pixel_in_pass_order(first_index + static_cast<uint32_t>(i), width, height);
-        const int x = static_cast<int>(pixel % width), y = static_cast<int>(pixel / width);
-        const Ray ray = generate_camera_ray(in.camera, in.config.seed, pixel, sample, x, y);
-        paths.pixel[i] = pixel;
-        paths.bounce[i] = 0;
-        paths.crossings[i] = 0;
-        paths.beta[i] = Color(1.0f);
-        paths.radiance[i] = Color(0.0f);
-        set_previous_vertex(paths, i, PreviousVertex{ray.o});
-        paths.media[i] = media;
-        paths.flight[i] = segment_flight(in.scene, in.config.seed, pixel, sample, 0);
-        set_ray(rays, i, ray);
+    // Chunk by chunk: the pixels, their camera rays in SIMD lanes, then the path entries.
+    alignas(64) uint32_t pixel[kShadeChunk];
+    alignas(64) float x[kShadeChunk], y[kShadeChunk];
+    CameraRayBlock camera;
+    for (size_t c = begin; c < end; c += kShadeChunk) {
+        const size_t n = std::min(kShadeChunk, end - c);
+        for (size_t k = 0; k < n; ++k) {
+            pixel[k] =
+                pixel_in_pass_order(first_index + static_cast<uint32_t>(c + k), width, height);
+            x[k] = static_cast<float>(pixel[k] % width);
+            y[k] = static_cast<float>(pixel[k] / width);
+        }
+        draw_camera_rays(in.camera, in.config.seed, sample, pixel, x, y, n, camera);
+        for (size_t k = 0; k < n; ++k) {
+            const size_t i = c + k;
+            const Ray ray{{camera.o[0][k], camera.o[1][k], camera.o[2][k]},
+                          {camera.d[0][k], camera.d[1][k], camera.d[2][k]}};
+            paths.pixel[i] = pixel[k];
+            paths.bounce[i] = 0;
+            paths.crossings[i] = 0;
+            paths.beta[i] = Color(1.0f);
+            paths.radiance[i] = Color(0.0f);
+            set_previous_vertex(paths, i, PreviousVertex{ray.o});
+            paths.media[i] = media;
+            paths.flight[i] = segment_flight(in.scene, in.config.seed, pixel[k], sample, 0);
+            set_ray(rays, i, ray);
+        }
     }
 }
 

@@ -5,8 +5,8 @@
 
 #include "kernels/intersect.h"
 #include "kernels/wave.h"
-#include "shading/trace.h"
 #include "scene/intersector.h"
+#include "shading/trace.h"
 
 namespace wavetrace {
 
@@ -35,6 +35,11 @@ uint64_t intersect_shadow(const Tracer& tracer,
             }
             return end - begin;
         }
+    }
+    if (in.scene.media.empty()) {  // a blocker or not: no medium stack to read
+        for (size_t i = begin; i < end; ++i)
+            transmittance[i] = tracer.occluded(shadow_ray_at(shadows, i)) ? 0.0f : 1.0f;
+        return end - begin;
     }
     uint64_t rays = 0;
     for (size_t i = begin; i < end; ++i)

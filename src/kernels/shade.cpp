@@ -1,7 +1,7 @@
 #include <algorithm>
 
 #include "kernels/kernels.h"
-#include "kernels/shade_lanes.h"
+#include "kernels/lane_kernels.h"
 #include "shading/path_vertex.h"
 
 namespace wavetrace {

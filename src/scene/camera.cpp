@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "scene/camera_ray-inl.h"
 #include "wavetrace/math/constants.h"
 
 namespace wavetrace {
@@ -18,24 +19,20 @@ CameraRays::CameraRays(const Camera& camera, int width, int height) {
     Vec3 u = normalize(cross(camera.up, w));                // right
     Vec3 v = cross(w, u);                                   // up
 
-    origin_ = camera.look_from;
-    du_ = u * (view_w / static_cast<float>(width));
-    dv_ = -v * (view_h / static_cast<float>(height));
-    pixel00_ = origin_ - focus * w - 0.5f * view_w * u + 0.5f * view_h * v;
+    frame_.origin = camera.look_from;
+    frame_.du = u * (view_w / static_cast<float>(width));
+    frame_.dv = -v * (view_h / static_cast<float>(height));
+    frame_.pixel00 = frame_.origin - focus * w - 0.5f * view_w * u + 0.5f * view_h * v;
     float lens_radius = 0.5f * camera.aperture;
-    lens_u_ = u * lens_radius;
-    lens_v_ = v * lens_radius;
+    frame_.lens_u = u * lens_radius;
+    frame_.lens_v = v * lens_radius;
 }
 
 Ray CameraRays::generate(float x, float y, float lens_u, float lens_v) const {
-    Point3 target = pixel00_ + x * du_ + y * dv_;
-    Point3 o = origin_;
-    if (lens_u_.x != 0 || lens_u_.y != 0 || lens_u_.z != 0) {
-        // Uniform point on the unit disk by the polar map (r = sqrt(u1), phi = 2 pi u2).
-        float r = std::sqrt(lens_u), phi = 2.0f * kPi * lens_v;
-        o += r * std::cos(phi) * lens_u_ + r * std::sin(phi) * lens_v_;
-    }
-    return Ray{o, target - o};
+    namespace lanes = HWY_NAMESPACE;
+    lanes::V3<float> o, d;
+    lanes::CameraRay<lanes::OneLane>(frame_, x, y, lens_u, lens_v, &o, &d);
+    return Ray{lanes::to_vec3(o), lanes::to_vec3(d)};
 }
 
 }  // namespace wavetrace

@@ -2,7 +2,7 @@
 // weighted), with Russian roulette and the next ray's origin: what continue_path does at such a
 // vertex, written once over lanes. The megakernel runs it with OneLane inside continue_path; the
 // wavefront's shade kernel runs it over the Lambertian vertices of a sorted range, a vector of
-// paths at a time (kernels/shade_lanes.cpp). Per-target header, see math/lanes-inl.h.
+// paths at a time (kernels/lane_kernels.cpp). Per-target header, see math/lanes-inl.h.
 #if defined(WAVETRACE_SHADING_LAMBERTIAN_STEP_INL_H_) == defined(HWY_TARGET_TOGGLE)
 #ifdef WAVETRACE_SHADING_LAMBERTIAN_STEP_INL_H_
 #undef WAVETRACE_SHADING_LAMBERTIAN_STEP_INL_H_

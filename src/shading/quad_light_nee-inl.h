@@ -3,7 +3,7 @@
 // density, the MIS weight and the shadow ray; what next_event computes for such a vertex and
 // light, written once over lanes. The megakernel runs it with OneLane inside next_event; the
 // wavefront's shade kernel runs it over the vertices of a chunk whose light sample picked such
-// a light (kernels/shade_lanes.cpp). Per-target header, see math/lanes-inl.h.
+// a light (kernels/lane_kernels.cpp). Per-target header, see math/lanes-inl.h.
 #if defined(WAVETRACE_SHADING_QUAD_LIGHT_NEE_INL_H_) == defined(HWY_TARGET_TOGGLE)
 #ifdef WAVETRACE_SHADING_QUAD_LIGHT_NEE_INL_H_
 #undef WAVETRACE_SHADING_QUAD_LIGHT_NEE_INL_H_

@@ -15,6 +15,15 @@ struct Camera {
     float focus_distance = 0.0f;  // 0: the distance from look_from to look_at
 };
 
+// What maps film positions to rays, for one film size.
+struct CameraFrame {
+    Point3 origin;
+    Point3 pixel00;       // the top-left corner of the film on the focus plane
+    Vec3 du, dv;          // one pixel to the right / down, on the focus plane
+    Vec3 lens_u, lens_v;  // lens radius times the camera's right / up axes
+    bool has_lens() const { return lens_u.x != 0 || lens_u.y != 0 || lens_u.z != 0; }
+};
+
 // A camera set up for one film size: maps film positions to rays.
 class CameraRays {
   public:
@@ -22,14 +31,13 @@ class CameraRays {
 
     // Ray through film position (x, y) in pixels (0,0 is the top-left corner of the image,
     // x to the right, y down); (lens_u, lens_v) in [0,1)^2 pick the point on the lens.
-    // The direction is not normalized.
+    // The direction is not normalized. The one-lane instance of CameraRay
+    // (src/scene/camera_ray-inl.h), which the wavefront's generate kernel runs in SIMD lanes.
     Ray generate(float x, float y, float lens_u, float lens_v) const;
+    const CameraFrame& frame() const { return frame_; }
 
   private:
-    Point3 origin_;
-    Point3 pixel00_;        // the top-left corner of the film on the focus plane
-    Vec3 du_, dv_;          // one pixel to the right / down, on the focus plane
-    Vec3 lens_u_, lens_v_;  // lens radius times the camera's right / up axes
+    CameraFrame frame_;
 };
 
 }  // namespace wavetrace

@@ -1,18 +1,54 @@
 #undef HWY_TARGET_INCLUDE
-#define HWY_TARGET_INCLUDE "kernels/shade_lanes.cpp"
-#include "kernels/shade_lanes.h"
+#define HWY_TARGET_INCLUDE "kernels/lane_kernels.cpp"
+#include "kernels/lane_kernels.h"
 
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/highway.h>
 
 #include "math/lanes-inl.h"
 #include "render/sampler-inl.h"
+#include "scene/camera_ray-inl.h"
 #include "shading/lambertian_step-inl.h"
 #include "shading/quad_light_nee-inl.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace wavetrace {
 namespace HWY_NAMESPACE {
+
+void DrawCameraRays(const CameraFrame* camera,
+                    uint64_t seed,
+                    uint32_t sample,
+                    const uint32_t* pixel,
+                    const float* x,
+                    const float* y,
+                    size_t n,
+                    CameraRayBlock* out) {
+    using D64 = hn::ScalableTag<uint64_t>;
+    using L = HashLanes<D64>;
+    const D64 d64;
+    const hn::Rebind<uint32_t, D64> d32;
+    const hn::Rebind<float, D64> df;
+    const size_t N = hn::Lanes(d64);
+    HWY_ALIGN uint32_t px[kShadeChunk];
+    HWY_ALIGN float fx[kShadeChunk], fy[kShadeChunk];
+    for (size_t k = 0; k < kShadeChunk; ++k) {
+        const size_t j = k < n ? k : 0;
+        px[k] = pixel[j];
+        fx[k] = x[j];
+        fy[k] = y[j];
+    }
+    for (size_t k = 0; k < n; k += N) {
+        const auto state = PathState<L>(seed, hn::Load(d32, px + k), sample);
+        auto u = [&](uint32_t dim) { return SampleDim<L>(state, hn::Set(d64, dim)); };
+        V3<hn::Vec<decltype(df)>> o, d;
+        CameraRay<L>(*camera, hn::Load(df, fx + k) + u(kDimPixelX),
+                     hn::Load(df, fy + k) + u(kDimPixelY), u(kDimLensU), u(kDimLensV), &o, &d);
+        for (int a = 0; a < 3; ++a) {
+            hn::Store(a == 0 ? o.x : a == 1 ? o.y : o.z, df, out->o[a] + k);
+            hn::Store(a == 0 ? d.x : a == 1 ? d.y : d.z, df, out->d[a] + k);
+        }
+    }
+}
 
 void DrawVertexSamples(uint64_t seed,
                        uint32_t sample,
@@ -141,9 +177,21 @@ HWY_AFTER_NAMESPACE();
 #if HWY_ONCE
 namespace wavetrace {
 
+HWY_EXPORT(DrawCameraRays);
 HWY_EXPORT(DrawVertexSamples);
 HWY_EXPORT(LambertianSteps);
 HWY_EXPORT(QuadLightSamples);
+
+void draw_camera_rays(const CameraRays& camera,
+                      uint64_t seed,
+                      uint32_t sample,
+                      const uint32_t* pixel,
+                      const float* x,
+                      const float* y,
+                      size_t n,
+                      CameraRayBlock& out) {
+    HWY_DYNAMIC_DISPATCH(DrawCameraRays)(&camera.frame(), seed, sample, pixel, x, y, n, &out);
+}
 
 void draw_vertex_samples(uint64_t seed,
                          uint32_t sample,

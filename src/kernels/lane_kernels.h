@@ -1,8 +1,9 @@
-// The parts of the shade kernel that run in SIMD lanes, over a chunk of a sorted range: the
-// uniform numbers of each vertex (render/sampler-inl.h) and the continuation of the Lambertian
-// vertices (shading/lambertian_step-inl.h). The formulas are the ones the megakernel runs in one
-// lane; these run them a vector at a time, on the best target the CPU has (Highway's dynamic
-// dispatch).
+// The wavefront's kernels that run in SIMD lanes, over a chunk of a wave: camera rays
+// (scene/camera_ray-inl.h), the uniform numbers of each vertex (render/sampler-inl.h), the light
+// samples towards quad lights (shading/quad_light_nee-inl.h) and the continuation of the
+// Lambertian vertices (shading/lambertian_step-inl.h). The formulas are the ones the megakernel
+// runs in one lane; these run them a vector at a time, on the best target the CPU has
+// (Highway's dynamic dispatch), with the same bits.
 #pragma once
 
 #include <cstddef>
@@ -10,12 +11,30 @@
 
 #include "shading/path_vertex.h"
 #include "wavetrace/render/sampler.h"
+#include "wavetrace/scene/camera.h"
 
 namespace wavetrace {
 
-// Entries shade gathers before it runs a vector kernel over them: a multiple of every target's
-// lane count, and small enough that the blocks below stay in L1.
+// Entries the kernels gather before they run a vector kernel over them: a multiple of every
+// target's lane count, and small enough that the blocks below stay in L1.
 inline constexpr size_t kShadeChunk = 64;
+
+// Camera rays of kShadeChunk pixels.
+struct CameraRayBlock {
+    alignas(64) float o[3][kShadeChunk];
+    alignas(64) float d[3][kShadeChunk];
+};
+
+// Rows k < n of `out`: generate_camera_ray(camera, seed, pixel[k], sample, x[k], y[k]), bit for
+// bit.
+void draw_camera_rays(const CameraRays& camera,
+                      uint64_t seed,
+                      uint32_t sample,
+                      const uint32_t* pixel,
+                      const float* x,
+                      const float* y,
+                      size_t n,
+                      CameraRayBlock& out);
 
 // The bounce's uniform numbers of kShadeChunk paths, one row per BounceDim (the medium
 // distance row is not drawn: segment_flight draws it when the scene has media).

@@ -1,0 +1,51 @@
+// The camera ray through a film position, written once over lanes: CameraRays::generate is the
+// one-lane instance, the wavefront's generate kernel runs it a vector of pixels at a time
+// (kernels/generate_lanes.cpp). Per-target header, see math/lanes-inl.h.
+#if defined(WAVETRACE_SCENE_CAMERA_RAY_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef WAVETRACE_SCENE_CAMERA_RAY_INL_H_
+#undef WAVETRACE_SCENE_CAMERA_RAY_INL_H_
+#else
+#define WAVETRACE_SCENE_CAMERA_RAY_INL_H_
+#endif
+
+#include "math/lanes-inl.h"
+#include "wavetrace/scene/camera.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace wavetrace {
+namespace HWY_NAMESPACE {
+
+template <class L>
+HWY_INLINE V3<typename L::F> Broadcast(Vec3 v) {
+    return {L::Set(v.x), L::Set(v.y), L::Set(v.z)};
+}
+
+// The seed's camera (RTIOW §12-13): a film on the focus plane, rays from a disk lens. (x, y)
+// in pixels, (lens_u, lens_v) in [0,1)^2 pick the lens point by the polar map (r = sqrt(u1),
+// phi = 2 pi u2). The direction is not normalized.
+template <class L>
+HWY_INLINE void CameraRay(const CameraFrame& c,
+                          typename L::F x,
+                          typename L::F y,
+                          typename L::F lens_u,
+                          typename L::F lens_v,
+                          V3<typename L::F>* origin,
+                          V3<typename L::F>* dir) {
+    using F = typename L::F;
+    const V3<F> target = Broadcast<L>(c.pixel00) + Broadcast<L>(c.du) * x + Broadcast<L>(c.dv) * y;
+    V3<F> o = Broadcast<L>(c.origin);
+    if (c.has_lens()) {
+        F sin_phi, cos_phi;
+        SinCos2Pi<L>(lens_v, &sin_phi, &cos_phi);
+        const F r = L::Sqrt(lens_u);
+        o = o + (Broadcast<L>(c.lens_u) * (r * cos_phi) + Broadcast<L>(c.lens_v) * (r * sin_phi));
+    }
+    *origin = o;
+    *dir = target - o;
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace wavetrace
+HWY_AFTER_NAMESPACE();
+
+#endif  // WAVETRACE_SCENE_CAMERA_RAY_INL_H_
