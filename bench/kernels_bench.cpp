@@ -1,7 +1,9 @@
 // Micro-benchmarks of the wavefront's kernels (Google Benchmark), on waves captured from real
 // scenes: one wave of camera rays is generated and traced once, and each benchmark runs one
 // stage over that captured state, restoring its inputs between iterations. Items per second
-// are queue entries per second.
+// are queue entries per second. The lane kernels (kernels/lane_kernels.h) are measured against
+// their one-lane instances, what the megakernel runs, on the same rows: what SIMD buys per
+// formula.
 #include <benchmark/benchmark.h>
 
 #include <map>
@@ -9,6 +11,8 @@
 #include <string>
 
 #include "kernels/kernels.h"
+#include "kernels/lane_kernels.h"
+#include "shading/path_vertex.h"
 #include "wavetrace/wavetrace.h"
 
 using namespace wavetrace;
@@ -137,6 +141,155 @@ void BM_Compact(benchmark::State& st, const char* name) {
     st.SetItemsProcessed(st.iterations() * c.n);
 }
 
+// Up to kShadeChunk Lambertian scattering vertices of the captured cornell wave, as shade
+// finds them, with their samples and the light each light sample picks.
+struct LambertianRows {
+    Captured& c;
+    std::vector<Vertex> v;
+    std::vector<Vec3> wo;
+    std::vector<Color> beta;
+    std::vector<VertexSamples> u;
+    std::vector<uint32_t> pixel;
+    std::vector<uint16_t> bounce;
+    std::vector<float> x, y;
+
+    LambertianRows() : c(scene("cornell")) {
+        for (size_t i = 0; i < c.n && v.size() < kShadeChunk; ++i) {
+            MediumStack media;
+            float flight = 0;
+            const SegmentResult seg = resolve_segment(
+                c.scene, *c.lights, c.config, ray_at(c.unsorted.rays, i),
+                hit_at(c.unsorted.hits, i), media, flight, previous_vertex(c.unsorted.paths, i));
+            if (seg.event != SegmentEvent::Scatter ||
+                !takes_lambertian_step(c.config, seg.vertex, *c.lights))
+                continue;
+            const uint32_t p = c.unsorted.paths.pixel[i];
+            v.push_back(seg.vertex);
+            wo.push_back(seg.wo);
+            beta.push_back(Color(0.8f));
+            u.push_back(vertex_samples(c.config.seed, p, 0, 1));
+            pixel.push_back(p);
+            bounce.push_back(1);
+            x.push_back(float(p % uint32_t(c.config.width)));
+            y.push_back(float(p / uint32_t(c.config.width)));
+        }
+    }
+};
+
+LambertianRows& lambertian_rows() {
+    static LambertianRows rows;
+    return rows;
+}
+
+void BM_CameraRays(benchmark::State& st, bool lanes) {
+    LambertianRows& r = lambertian_rows();
+    const size_t n = r.v.size();
+    CameraRayBlock block;
+    for (auto _ : st) {
+        if (lanes) {
+            draw_camera_rays(*r.c.camera, 1, 0, r.pixel.data(), r.x.data(), r.y.data(), n, block);
+            benchmark::DoNotOptimize(block);
+        } else {
+            for (size_t k = 0; k < n; ++k)
+                benchmark::DoNotOptimize(
+                    generate_camera_ray(*r.c.camera, 1, r.pixel[k], 0, int(r.x[k]), int(r.y[k])));
+        }
+    }
+    st.SetItemsProcessed(st.iterations() * n);
+}
+
+void BM_VertexSamples(benchmark::State& st, bool lanes) {
+    LambertianRows& r = lambertian_rows();
+    const size_t n = r.v.size();
+    SampleBlock block;
+    for (auto _ : st) {
+        if (lanes) {
+            draw_vertex_samples(1, 0, r.pixel.data(), r.bounce.data(), n, block);
+            benchmark::DoNotOptimize(block);
+        } else {
+            for (size_t k = 0; k < n; ++k)
+                benchmark::DoNotOptimize(vertex_samples(1, r.pixel[k], 0, r.bounce[k]));
+        }
+    }
+    st.SetItemsProcessed(st.iterations() * n);
+}
+
+void BM_QuadLightSample(benchmark::State& st, bool lanes) {
+    LambertianRows& r = lambertian_rows();
+    const size_t n = r.v.size();
+    QuadLightBlock block;
+    for (auto _ : st) {
+        if (lanes) {
+            block.rows = 0;
+            for (size_t k = 0; k < n; ++k) {
+                const LightChoice light = r.c.lights->select(r.u[k].light_select);
+                block.push(k, r.v[k], r.wo[k], r.beta[k], r.u[k].light_u, r.u[k].light_v,
+                           *r.c.lights->quad_emitter(light), light.probability);
+            }
+            quad_light_samples(block, true, MisHeuristic::Power);
+            benchmark::DoNotOptimize(block);
+        } else {
+            for (size_t k = 0; k < n; ++k)
+                benchmark::DoNotOptimize(
+                    next_event(r.c.scene, *r.c.lights, r.c.config, r.v[k], r.wo[k], r.u[k]));
+        }
+    }
+    st.SetItemsProcessed(st.iterations() * n);
+}
+
+// The vector kernels alone, on blocks gathered once: what the gathering costs is the
+// difference to the lanes rows above.
+void BM_QuadLightSampleKernel(benchmark::State& st) {
+    LambertianRows& r = lambertian_rows();
+    QuadLightBlock block;
+    for (size_t k = 0; k < r.v.size(); ++k) {
+        const LightChoice light = r.c.lights->select(r.u[k].light_select);
+        block.push(k, r.v[k], r.wo[k], r.beta[k], r.u[k].light_u, r.u[k].light_v,
+                   *r.c.lights->quad_emitter(light), light.probability);
+    }
+    for (auto _ : st) {
+        quad_light_samples(block, true, MisHeuristic::Power);
+        benchmark::DoNotOptimize(block);
+    }
+    st.SetItemsProcessed(st.iterations() * block.rows);
+}
+
+void BM_LambertianStepKernel(benchmark::State& st) {
+    LambertianRows& r = lambertian_rows();
+    LambertianBlock block;
+    for (size_t k = 0; k < r.v.size(); ++k)
+        block.push(k, r.v[k], r.wo[k], r.beta[k], r.u[k].continuation, r.u[k].roulette, true);
+    for (auto _ : st) {
+        lambertian_steps(block);
+        benchmark::DoNotOptimize(block);
+    }
+    st.SetItemsProcessed(st.iterations() * block.n);
+}
+
+void BM_LambertianStep(benchmark::State& st, bool lanes) {
+    LambertianRows& r = lambertian_rows();
+    const size_t n = r.v.size();
+    LambertianBlock block;
+    for (auto _ : st) {
+        if (lanes) {
+            block.n = 0;
+            for (size_t k = 0; k < n; ++k)
+                block.push(k, r.v[k], r.wo[k], r.beta[k], r.u[k].continuation, r.u[k].roulette,
+                           true);
+            lambertian_steps(block);
+            benchmark::DoNotOptimize(block);
+        } else {
+            for (size_t k = 0; k < n; ++k) {
+                MediumStack media;
+                benchmark::DoNotOptimize(continue_path(r.c.scene, *r.c.lights, r.c.config, r.v[k],
+                                                       r.wo[k], 4, r.beta[k], media,
+                                                       r.u[k].continuation, r.u[k].roulette));
+            }
+        }
+    }
+    st.SetItemsProcessed(st.iterations() * n);
+}
+
 }  // namespace
 
 #define WAVETRACE_KERNEL_BENCH(fn, scene_name) \
@@ -176,5 +329,17 @@ WAVETRACE_KERNEL_BENCH(BM_IntersectShadow, cornell);
 WAVETRACE_KERNEL_BENCH(BM_IntersectShadow, dragon);
 WAVETRACE_KERNEL_BENCH(BM_MisCombine, cornell);
 WAVETRACE_KERNEL_BENCH(BM_Compact, cornell);
+
+// One lane (the megakernel's instance) against the vector kernel, on the same rows; the
+// vector kernels of the blocks include gathering the rows (push), as shade does.
+#define WAVETRACE_LANES_BENCH(fn)                                                         \
+    BENCHMARK_CAPTURE(fn, one_lane, false)->Unit(benchmark::kMicrosecond)->UseRealTime(); \
+    BENCHMARK_CAPTURE(fn, lanes, true)->Unit(benchmark::kMicrosecond)->UseRealTime()
+WAVETRACE_LANES_BENCH(BM_CameraRays);
+WAVETRACE_LANES_BENCH(BM_VertexSamples);
+WAVETRACE_LANES_BENCH(BM_QuadLightSample);
+WAVETRACE_LANES_BENCH(BM_LambertianStep);
+BENCHMARK(BM_QuadLightSampleKernel)->Unit(benchmark::kMicrosecond)->UseRealTime();
+BENCHMARK(BM_LambertianStepKernel)->Unit(benchmark::kMicrosecond)->UseRealTime();
 
 BENCHMARK_MAIN();
