@@ -214,72 +214,34 @@ void BM_VertexSamples(benchmark::State& st, bool lanes) {
     st.SetItemsProcessed(st.iterations() * n);
 }
 
-void BM_QuadLightSample(benchmark::State& st, bool lanes) {
+// Shade's work on Lambertian vertices: the light sample towards the quad light and the
+// continuation. One lane: next_event and continue_path per vertex. Lanes: gathering the rows
+// (push), then the vector kernel.
+void fill(LambertianRows& r, LambertianBlock& block) {
+    block.n = 0;
+    for (size_t k = 0; k < r.v.size(); ++k) {
+        const size_t row = block.push(k, r.v[k], r.wo[k], r.beta[k]);
+        const LightChoice light = r.c.lights->select(r.u[k].light_select);
+        block.set_light_sample(row, r.c.lights->quad_emitter_index(light), light.probability,
+                               r.u[k].light_u, r.u[k].light_v);
+        block.set_step(row, r.u[k].continuation, r.u[k].roulette, true);
+    }
+}
+
+void BM_LambertianVertices(benchmark::State& st, bool lanes) {
     LambertianRows& r = lambertian_rows();
     const size_t n = r.v.size();
-    QuadLightBlock block;
+    LambertianBlock block;
     for (auto _ : st) {
         if (lanes) {
-            block.rows = 0;
-            for (size_t k = 0; k < n; ++k) {
-                const LightChoice light = r.c.lights->select(r.u[k].light_select);
-                block.push(k, r.v[k], r.wo[k], r.beta[k], r.u[k].light_u, r.u[k].light_v,
-                           *r.c.lights->quad_emitter(light), light.probability);
-            }
-            quad_light_samples(block, true, MisHeuristic::Power);
+            fill(r, block);
+            lambertian_vertices(block, r.c.lights->quad_emitter_columns(), true,
+                                MisHeuristic::Power);
             benchmark::DoNotOptimize(block);
         } else {
-            for (size_t k = 0; k < n; ++k)
+            for (size_t k = 0; k < n; ++k) {
                 benchmark::DoNotOptimize(
                     next_event(r.c.scene, *r.c.lights, r.c.config, r.v[k], r.wo[k], r.u[k]));
-        }
-    }
-    st.SetItemsProcessed(st.iterations() * n);
-}
-
-// The vector kernels alone, on blocks gathered once: what the gathering costs is the
-// difference to the lanes rows above.
-void BM_QuadLightSampleKernel(benchmark::State& st) {
-    LambertianRows& r = lambertian_rows();
-    QuadLightBlock block;
-    for (size_t k = 0; k < r.v.size(); ++k) {
-        const LightChoice light = r.c.lights->select(r.u[k].light_select);
-        block.push(k, r.v[k], r.wo[k], r.beta[k], r.u[k].light_u, r.u[k].light_v,
-                   *r.c.lights->quad_emitter(light), light.probability);
-    }
-    for (auto _ : st) {
-        quad_light_samples(block, true, MisHeuristic::Power);
-        benchmark::DoNotOptimize(block);
-    }
-    st.SetItemsProcessed(st.iterations() * block.rows);
-}
-
-void BM_LambertianStepKernel(benchmark::State& st) {
-    LambertianRows& r = lambertian_rows();
-    LambertianBlock block;
-    for (size_t k = 0; k < r.v.size(); ++k)
-        block.push(k, r.v[k], r.wo[k], r.beta[k], r.u[k].continuation, r.u[k].roulette, true);
-    for (auto _ : st) {
-        lambertian_steps(block);
-        benchmark::DoNotOptimize(block);
-    }
-    st.SetItemsProcessed(st.iterations() * block.n);
-}
-
-void BM_LambertianStep(benchmark::State& st, bool lanes) {
-    LambertianRows& r = lambertian_rows();
-    const size_t n = r.v.size();
-    LambertianBlock block;
-    for (auto _ : st) {
-        if (lanes) {
-            block.n = 0;
-            for (size_t k = 0; k < n; ++k)
-                block.push(k, r.v[k], r.wo[k], r.beta[k], r.u[k].continuation, r.u[k].roulette,
-                           true);
-            lambertian_steps(block);
-            benchmark::DoNotOptimize(block);
-        } else {
-            for (size_t k = 0; k < n; ++k) {
                 MediumStack media;
                 benchmark::DoNotOptimize(continue_path(r.c.scene, *r.c.lights, r.c.config, r.v[k],
                                                        r.wo[k], 4, r.beta[k], media,
@@ -288,6 +250,19 @@ void BM_LambertianStep(benchmark::State& st, bool lanes) {
         }
     }
     st.SetItemsProcessed(st.iterations() * n);
+}
+
+// The vector kernel alone, on a block gathered once: what the gathering costs is the difference
+// to BM_LambertianVertices/lanes.
+void BM_LambertianVerticesKernel(benchmark::State& st) {
+    LambertianRows& r = lambertian_rows();
+    LambertianBlock block;
+    fill(r, block);
+    for (auto _ : st) {
+        lambertian_vertices(block, r.c.lights->quad_emitter_columns(), true, MisHeuristic::Power);
+        benchmark::DoNotOptimize(block);
+    }
+    st.SetItemsProcessed(st.iterations() * block.n);
 }
 
 }  // namespace
@@ -337,9 +312,7 @@ WAVETRACE_KERNEL_BENCH(BM_Compact, cornell);
     BENCHMARK_CAPTURE(fn, lanes, true)->Unit(benchmark::kMicrosecond)->UseRealTime()
 WAVETRACE_LANES_BENCH(BM_CameraRays);
 WAVETRACE_LANES_BENCH(BM_VertexSamples);
-WAVETRACE_LANES_BENCH(BM_QuadLightSample);
-WAVETRACE_LANES_BENCH(BM_LambertianStep);
-BENCHMARK(BM_QuadLightSampleKernel)->Unit(benchmark::kMicrosecond)->UseRealTime();
-BENCHMARK(BM_LambertianStepKernel)->Unit(benchmark::kMicrosecond)->UseRealTime();
+WAVETRACE_LANES_BENCH(BM_LambertianVertices);
+BENCHMARK(BM_LambertianVerticesKernel)->Unit(benchmark::kMicrosecond)->UseRealTime();
 
 BENCHMARK_MAIN();

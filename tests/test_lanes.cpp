@@ -128,9 +128,11 @@ TEST(Lanes, LambertianStepsAreContinuePathOnEverySimdTarget) {
         for (size_t k = 0; k < n; ++k) {
             const Case& c = cases[k];
             ASSERT_TRUE(takes_lambertian_step(config, c.v, lights));
-            block.push(k, c.v, c.wo, c.beta, c.u, c.u_rr, c.bounce + 1 >= config.rr_depth);
+            const size_t row = block.push(k, c.v, c.wo, c.beta);
+            block.set_step(row, c.u, c.u_rr, c.bounce + 1 >= config.rr_depth);
         }
-        lambertian_steps(block);
+        lambertian_vertices(block, lights.quad_emitter_columns(), true, MisHeuristic::Power);
+        for (size_t k = 0; k < n; ++k) ASSERT_EQ(block.shadow[k], 0.0f);  // no light sample asked
         for (size_t k = 0; k < n; ++k) {
             const Case& c = cases[k];
             MediumStack media;
@@ -203,21 +205,29 @@ TEST(Lanes, QuadLightSamplesAreNextEventOnEverySimdTarget) {
                 RenderConfig config;
                 config.strategy = strategy;
                 config.heuristic = heuristic;
-                QuadLightBlock block;
+                LambertianBlock block;
                 for (size_t k = 0; k < n; ++k) {
                     const Case& c = cases[k];
                     ASSERT_TRUE(samples_lights(config, c.v, lights));
                     const LightChoice light = lights.select(c.u.light_select);
-                    const QuadEmitter* e = quad_light_sample_at(c.v, lights, light);
-                    ASSERT_NE(e, nullptr);
-                    block.push(k, c.v, c.wo, c.beta, c.u.light_u, c.u.light_v, *e,
-                               light.probability);
+                    ASSERT_NE(quad_light_sample_at(c.v, lights, light), nullptr);
+                    const size_t row = block.push(k, c.v, c.wo, c.beta);
+                    // Every third row without a light sample: its lanes must stay out.
+                    if (k % 3 != 2)
+                        block.set_light_sample(row, lights.quad_emitter_index(light),
+                                               light.probability, c.u.light_u, c.u.light_v);
                 }
-                quad_light_samples(block, strategy == Strategy::Mis, heuristic);
+                lambertian_vertices(block, lights.quad_emitter_columns(), strategy == Strategy::Mis,
+                                    heuristic);
                 for (size_t k = 0; k < n; ++k) {
                     const Case& c = cases[k];
+                    ASSERT_EQ(block.alive[k], 0.0f);  // no step asked
+                    if (k % 3 == 2) {
+                        ASSERT_EQ(block.shadow[k], 0.0f) << "row " << k;
+                        continue;
+                    }
                     const WeightedDirect d = next_event(scene, lights, config, c.v, c.wo, c.u);
-                    ASSERT_EQ(d.weight > 0.0f, block.valid[k] != 0.0f) << "row " << k;
+                    ASSERT_EQ(d.weight > 0.0f, block.shadow[k] != 0.0f) << "row " << k;
                     if (d.weight <= 0.0f) {
                         ++skipped;
                         continue;
@@ -226,8 +236,9 @@ TEST(Lanes, QuadLightSamplesAreNextEventOnEverySimdTarget) {
                     auto row = [&](const float(*rows)[kShadeChunk]) {
                         return Vec3{rows[0][k], rows[1][k], rows[2][k]};
                     };
-                    EXPECT_TRUE(same_bits(d.sample.shadow.o, row(block.origin))) << "row " << k;
-                    EXPECT_TRUE(same_bits(d.sample.shadow.d, row(block.wi))) << "row " << k;
+                    EXPECT_TRUE(same_bits(d.sample.shadow.o, row(block.shadow_origin)))
+                        << "row " << k;
+                    EXPECT_TRUE(same_bits(d.sample.shadow.d, row(block.shadow_dir))) << "row " << k;
                     EXPECT_TRUE(same_bits(d.sample.shadow.tmax, block.tmax[k])) << "row " << k;
                     EXPECT_TRUE(
                         same_bits(c.beta * (d.sample.value * d.weight), row(block.contribution)))

@@ -78,66 +78,26 @@ void DrawVertexSamples(uint64_t seed,
     }
 }
 
-void LambertianSteps(LambertianBlock* b) {
+void LambertianVertices(LambertianBlock* b,
+                        const QuadEmitterColumns* lights,
+                        bool mis,
+                        MisHeuristic heuristic) {
     using D = hn::CappedTag<float, kShadeChunk>;
     using L = FloatLanes<D>;
     using F = hn::Vec<D>;
     const D d;
+    const hn::RebindToSigned<D> di;
     const size_t N = hn::Lanes(d);
     if (b->n == 0) return;
     // Pad the last vector with copies of row 0, so that every lane computes on real numbers.
     const size_t padded = (b->n + N - 1) / N * N;
     for (size_t k = b->n; k < padded; ++k) {
-        for (int a = 0; a < 3; ++a) {
-            b->p[a][k] = b->p[a][0];
-            b->ng[a][k] = b->ng[a][0];
-            b->ns[a][k] = b->ns[a][0];
-            b->wo[a][k] = b->wo[a][0];
-            b->albedo[a][k] = b->albedo[a][0];
-            b->beta[a][k] = b->beta[a][0];
-        }
-        b->u1[k] = b->u1[0];
-        b->u2[k] = b->u2[0];
-        b->u_rr[k] = b->u_rr[0];
-        b->roulette[k] = b->roulette[0];
-    }
-    auto load3 = [&](const float(*rows)[kShadeChunk], size_t k) {
-        return V3<F>{hn::Load(d, rows[0] + k), hn::Load(d, rows[1] + k), hn::Load(d, rows[2] + k)};
-    };
-    auto store3 = [&](V3<F> v, float(*rows)[kShadeChunk], size_t k) {
-        hn::Store(v.x, d, rows[0] + k);
-        hn::Store(v.y, d, rows[1] + k);
-        hn::Store(v.z, d, rows[2] + k);
-    };
-    for (size_t k = 0; k < b->n; k += N) {
-        const LambertianVertex<L> v{
-            load3(b->p, k),           load3(b->ng, k),
-            load3(b->ns, k),          load3(b->wo, k),
-            load3(b->albedo, k),      load3(b->beta, k),
-            hn::Load(d, b->u1 + k),   hn::Load(d, b->u2 + k),
-            hn::Load(d, b->u_rr + k), hn::Gt(hn::Load(d, b->roulette + k), hn::Zero(d))};
-        const LambertianStepResult<L> r = LambertianStep(v);
-        store3(r.origin, b->origin, k);
-        store3(r.wi, b->wi, k);
-        store3(r.weight, b->weight, k);
-        hn::Store(r.pdf, d, b->pdf + k);
-        hn::Store(hn::IfThenElseZero(r.alive, hn::Set(d, 1.0f)), d, b->alive + k);
-    }
-}
-
-void QuadLightSamples(QuadLightBlock* b, bool mis, MisHeuristic heuristic) {
-    using D = hn::CappedTag<float, kShadeChunk>;
-    using L = FloatLanes<D>;
-    using F = hn::Vec<D>;
-    const D d;
-    const size_t N = hn::Lanes(d);
-    if (b->rows == 0) return;
-    const size_t padded = (b->rows + N - 1) / N * N;
-    for (size_t k = b->rows; k < padded; ++k) {
-        for (auto* rows :
-             {b->p, b->ng, b->ns, b->wo, b->albedo, b->beta, b->q, b->u, b->v, b->n, b->radiance})
+        for (auto* rows : {b->p, b->ng, b->ns, b->wo, b->albedo, b->beta})
             for (int a = 0; a < 3; ++a) rows[a][k] = rows[a][0];
-        for (float* row : {b->u1, b->u2, b->area, b->select_prob, b->two_sided}) row[k] = row[0];
+        for (float* row : {b->select_prob, b->light_u1, b->light_u2, b->step, b->dir_u1, b->dir_u2,
+                           b->u_rr, b->roulette})
+            row[k] = row[0];
+        b->light[k] = b->light[0];
     }
     auto load3 = [&](const float(*rows)[kShadeChunk], size_t k) {
         return V3<F>{hn::Load(d, rows[0] + k), hn::Load(d, rows[1] + k), hn::Load(d, rows[2] + k)};
@@ -147,26 +107,66 @@ void QuadLightSamples(QuadLightBlock* b, bool mis, MisHeuristic heuristic) {
         hn::Store(v.y, d, rows[1] + k);
         hn::Store(v.z, d, rows[2] + k);
     };
-    for (size_t k = 0; k < b->rows; k += N) {
-        const LambertianNeeVertex<L> v{
-            load3(b->p, k),      load3(b->ng, k),        load3(b->ns, k),       load3(b->wo, k),
-            load3(b->albedo, k), hn::Load(d, b->u1 + k), hn::Load(d, b->u2 + k)};
-        const QuadLightLanes<L> light{load3(b->q, k),
-                                      load3(b->u, k),
-                                      load3(b->v, k),
-                                      load3(b->n, k),
-                                      hn::Load(d, b->area + k),
-                                      load3(b->radiance, k),
-                                      hn::Gt(hn::Load(d, b->two_sided + k), hn::Zero(d)),
-                                      hn::Load(d, b->select_prob + k)};
-        const QuadLightNee<L> r = QuadLightSample(v, light, mis, heuristic);
-        // As shade appends a scalar next_event's: beta (value weight), when the weight is > 0.
-        store3(load3(b->beta, k) * (r.value * r.weight), b->contribution, k);
-        store3(r.origin, b->origin, k);
-        store3(r.wi, b->wi, k);
-        hn::Store(r.tmax, d, b->tmax + k);
-        const auto append = hn::And(r.valid, hn::Gt(r.weight, hn::Zero(d)));
-        hn::Store(hn::IfThenElseZero(append, hn::Set(d, 1.0f)), d, b->valid + k);
+    const F zero = hn::Zero(d), one = hn::Set(d, 1.0f);
+    for (size_t k = 0; k < b->n; k += N) {
+        const V3<F> p = load3(b->p, k), ng = load3(b->ng, k), ns = load3(b->ns, k),
+                    wo = load3(b->wo, k), albedo = load3(b->albedo, k), beta = load3(b->beta, k);
+
+        // The light sample, towards each row's own light (gathered from the columns).
+        const auto quad = hn::Load(di, b->light + k);
+        const auto has_light = hn::RebindMask(d, hn::Gt(quad, hn::Set(di, -1)));
+        const auto index = hn::Max(quad, hn::Zero(di));
+        auto gather3 = [&](const std::vector<float>* columns) {
+            return V3<F>{hn::GatherIndex(d, columns[0].data(), index),
+                         hn::GatherIndex(d, columns[1].data(), index),
+                         hn::GatherIndex(d, columns[2].data(), index)};
+        };
+        if (!hn::AllFalse(d, has_light)) {
+            const QuadLightLanes<L> light{
+                gather3(lights->q),
+                gather3(lights->u),
+                gather3(lights->v),
+                gather3(lights->n),
+                hn::GatherIndex(d, lights->area.data(), index),
+                gather3(lights->radiance),
+                hn::Gt(hn::GatherIndex(d, lights->two_sided.data(), index), zero),
+                hn::Load(d, b->select_prob + k)};
+            const LambertianNeeVertex<L> v{
+                p, ng, ns, wo, albedo, hn::Load(d, b->light_u1 + k), hn::Load(d, b->light_u2 + k)};
+            const QuadLightNee<L> r = QuadLightSample(v, light, mis, heuristic);
+            // As shade appends a scalar next_event's: beta (value weight), when the weight is > 0.
+            store3(beta * (r.value * r.weight), b->contribution, k);
+            store3(r.origin, b->shadow_origin, k);
+            store3(r.wi, b->shadow_dir, k);
+            hn::Store(r.tmax, d, b->tmax + k);
+            const auto append = hn::And(has_light, hn::And(r.valid, hn::Gt(r.weight, zero)));
+            hn::Store(hn::IfThenElseZero(append, one), d, b->shadow + k);
+        } else {
+            hn::Store(zero, d, b->shadow + k);
+        }
+
+        // The continuation.
+        const auto step = hn::Gt(hn::Load(d, b->step + k), zero);
+        if (!hn::AllFalse(d, step)) {
+            const LambertianVertex<L> v{p,
+                                        ng,
+                                        ns,
+                                        wo,
+                                        albedo,
+                                        beta,
+                                        hn::Load(d, b->dir_u1 + k),
+                                        hn::Load(d, b->dir_u2 + k),
+                                        hn::Load(d, b->u_rr + k),
+                                        hn::Gt(hn::Load(d, b->roulette + k), zero)};
+            const LambertianStepResult<L> r = LambertianStep(v);
+            store3(r.origin, b->origin, k);
+            store3(r.wi, b->wi, k);
+            store3(r.weight, b->weight, k);
+            hn::Store(r.pdf, d, b->pdf + k);
+            hn::Store(hn::IfThenElseZero(hn::And(step, r.alive), one), d, b->alive + k);
+        } else {
+            hn::Store(zero, d, b->alive + k);
+        }
     }
 }
 
@@ -179,8 +179,7 @@ namespace wavetrace {
 
 HWY_EXPORT(DrawCameraRays);
 HWY_EXPORT(DrawVertexSamples);
-HWY_EXPORT(LambertianSteps);
-HWY_EXPORT(QuadLightSamples);
+HWY_EXPORT(LambertianVertices);
 
 void draw_camera_rays(const CameraRays& camera,
                       uint64_t seed,
@@ -202,51 +201,14 @@ void draw_vertex_samples(uint64_t seed,
     HWY_DYNAMIC_DISPATCH(DrawVertexSamples)(seed, sample, pixel, bounce, n, &out);
 }
 
-void lambertian_steps(LambertianBlock& b) {
-    HWY_DYNAMIC_DISPATCH(LambertianSteps)(&b);
+void lambertian_vertices(LambertianBlock& b,
+                         const QuadEmitterColumns& lights,
+                         bool mis,
+                         MisHeuristic heuristic) {
+    HWY_DYNAMIC_DISPATCH(LambertianVertices)(&b, &lights, mis, heuristic);
 }
 
-void quad_light_samples(QuadLightBlock& b, bool mis, MisHeuristic heuristic) {
-    HWY_DYNAMIC_DISPATCH(QuadLightSamples)(&b, mis, heuristic);
-}
-
-void QuadLightBlock::push(size_t entry_,
-                          const Vertex& vertex,
-                          Vec3 wo_,
-                          Color beta_,
-                          float u1_,
-                          float u2_,
-                          const QuadEmitter& light,
-                          float select_prob_) {
-    const size_t k = rows++;
-    for (int a = 0; a < 3; ++a) {
-        p[a][k] = vertex.p[a];
-        ng[a][k] = vertex.ng[a];
-        ns[a][k] = vertex.frame.n[a];
-        wo[a][k] = wo_[a];
-        albedo[a][k] = vertex.bsdf.albedo[a];
-        beta[a][k] = beta_[a];
-        q[a][k] = light.q[a];
-        u[a][k] = light.u[a];
-        v[a][k] = light.v[a];
-        n[a][k] = light.n[a];
-        radiance[a][k] = light.radiance[a];
-    }
-    u1[k] = u1_;
-    u2[k] = u2_;
-    area[k] = light.area;
-    select_prob[k] = select_prob_;
-    two_sided[k] = light.two_sided ? 1.0f : 0.0f;
-    entry[k] = static_cast<uint32_t>(entry_);
-}
-
-void LambertianBlock::push(size_t entry,
-                           const Vertex& v,
-                           Vec3 wo_,
-                           Color beta_,
-                           const ContinuationSamples& u,
-                           float u_roulette,
-                           bool roulette_) {
+size_t LambertianBlock::push(size_t entry_, const Vertex& v, Vec3 wo_, Color beta_) {
     const size_t k = n++;
     for (int a = 0; a < 3; ++a) {
         p[a][k] = v.p[a];
@@ -256,11 +218,30 @@ void LambertianBlock::push(size_t entry,
         albedo[a][k] = v.bsdf.albedo[a];
         beta[a][k] = beta_[a];
     }
-    u1[k] = u.bsdf_u1;
-    u2[k] = u.bsdf_u2;
-    u_rr[k] = u_roulette;
-    roulette[k] = roulette_ ? 1.0f : 0.0f;
-    this->entry[k] = static_cast<uint32_t>(entry);
+    light[k] = -1;
+    select_prob[k] = light_u1[k] = light_u2[k] = 0.0f;
+    step[k] = dir_u1[k] = dir_u2[k] = u_rr[k] = roulette[k] = 0.0f;
+    entry[k] = static_cast<uint32_t>(entry_);
+    return k;
+}
+
+void LambertianBlock::set_light_sample(
+    size_t row, int32_t quad, float probability, float u1, float u2) {
+    light[row] = quad;
+    select_prob[row] = probability;
+    light_u1[row] = u1;
+    light_u2[row] = u2;
+}
+
+void LambertianBlock::set_step(size_t row,
+                               const ContinuationSamples& u,
+                               float u_roulette,
+                               bool applies) {
+    step[row] = 1.0f;
+    dir_u1[row] = u.bsdf_u1;
+    dir_u2[row] = u.bsdf_u2;
+    u_rr[row] = u_roulette;
+    roulette[row] = applies ? 1.0f : 0.0f;
 }
 
 }  // namespace wavetrace

@@ -59,76 +59,49 @@ void draw_vertex_samples(uint64_t seed,
                          size_t n,
                          SampleBlock& out);
 
-// Lambertian vertices gathered by shade (SoA, `n` of them), and their continuations.
+// Lambertian surface vertices gathered by shade (SoA, `n` rows): each row's light sample towards a
+// quad light (next_event's, where light[k] >= 0) and its continuation (continue_path's, where
+// step[k] = 1), computed in one pass over the rows.
 struct LambertianBlock {
-    // in
+    // in: the vertices
     alignas(64) float p[3][kShadeChunk];
     alignas(64) float ng[3][kShadeChunk];
     alignas(64) float ns[3][kShadeChunk];
     alignas(64) float wo[3][kShadeChunk];
     alignas(64) float albedo[3][kShadeChunk];
     alignas(64) float beta[3][kShadeChunk];
-    alignas(64) float u1[kShadeChunk], u2[kShadeChunk], u_rr[kShadeChunk];
-    alignas(64) float roulette[kShadeChunk];  // 1: Russian roulette applies
-    uint32_t entry[kShadeChunk];              // the wave entry of each row
+    // in: the light sample: the light's index among the LightSet's quad emitters (-1: none),
+    // its selection probability and the point on it
+    alignas(64) int32_t light[kShadeChunk];
+    alignas(64) float select_prob[kShadeChunk], light_u1[kShadeChunk], light_u2[kShadeChunk];
+    // in: the continuation (step = 1: take it here), its direction and roulette samples
+    alignas(64) float step[kShadeChunk], dir_u1[kShadeChunk], dir_u2[kShadeChunk];
+    alignas(64) float u_rr[kShadeChunk], roulette[kShadeChunk];  // roulette = 1: it applies
+    uint32_t entry[kShadeChunk];                                 // the wave entry of each row
     size_t n = 0;
-    // out
+    // out: the shadow ray and its contribution beta f |cos| Le / p_light times the weight, for
+    // rows with shadow = 1 (a light sample of weight > 0)
+    alignas(64) float shadow_origin[3][kShadeChunk];
+    alignas(64) float shadow_dir[3][kShadeChunk];
+    alignas(64) float contribution[3][kShadeChunk];
+    alignas(64) float tmax[kShadeChunk], shadow[kShadeChunk];
+    // out: the next ray, the throughput factor and the BSDF density, for rows with alive = 1
     alignas(64) float origin[3][kShadeChunk];
     alignas(64) float wi[3][kShadeChunk];
     alignas(64) float weight[3][kShadeChunk];
-    alignas(64) float pdf[kShadeChunk];
-    alignas(64) float alive[kShadeChunk];  // 1: the path goes on
+    alignas(64) float pdf[kShadeChunk], alive[kShadeChunk];
 
-    // Appends the vertex of wave entry `entry`, which takes_lambertian_step().
-    void push(size_t entry,
-              const Vertex& v,
-              Vec3 wo,
-              Color beta,
-              const ContinuationSamples& u,
-              float u_roulette,
-              bool roulette);
+    // Appends the vertex of wave entry `entry` with neither a light sample nor a step; returns
+    // its row.
+    size_t push(size_t entry, const Vertex& v, Vec3 wo, Color beta);
+    void set_light_sample(size_t row, int32_t quad, float probability, float u1, float u2);
+    void set_step(size_t row, const ContinuationSamples& u, float u_roulette, bool roulette);
 };
 
-// Rows k < b.n: what continue_path computes for them, bit for bit.
-void lambertian_steps(LambertianBlock& b);
-
-// Lambertian vertices whose light sample picked a quad light (quad_light_sample_at), gathered
-// by shade with their light (SoA, `n` of them), and their shadow rays.
-struct QuadLightBlock {
-    // in
-    alignas(64) float p[3][kShadeChunk];
-    alignas(64) float ng[3][kShadeChunk];
-    alignas(64) float ns[3][kShadeChunk];
-    alignas(64) float wo[3][kShadeChunk];
-    alignas(64) float albedo[3][kShadeChunk];
-    alignas(64) float beta[3][kShadeChunk];
-    alignas(64) float u1[kShadeChunk], u2[kShadeChunk];
-    alignas(64) float q[3][kShadeChunk];  // the light of each row (QuadEmitter)
-    alignas(64) float u[3][kShadeChunk];
-    alignas(64) float v[3][kShadeChunk];
-    alignas(64) float n[3][kShadeChunk];
-    alignas(64) float radiance[3][kShadeChunk];
-    alignas(64) float area[kShadeChunk], select_prob[kShadeChunk], two_sided[kShadeChunk];
-    uint32_t entry[kShadeChunk];  // the wave entry of each row
-    size_t rows = 0;
-    // out
-    alignas(64) float origin[3][kShadeChunk];
-    alignas(64) float wi[3][kShadeChunk];
-    alignas(64) float contribution[3][kShadeChunk];  // beta f |cos| Le / p_light times the weight
-    alignas(64) float tmax[kShadeChunk];
-    alignas(64) float valid[kShadeChunk];  // 1: append the shadow ray (weight > 0)
-
-    void push(size_t entry,
-              const Vertex& vertex,
-              Vec3 wo,
-              Color beta,
-              float u1,
-              float u2,
-              const QuadEmitter& light,
-              float select_prob);
-};
-
-// Rows k < b.rows: what next_event computes for them, bit for bit, times their beta.
-void quad_light_samples(QuadLightBlock& b, bool mis, MisHeuristic heuristic);
+// Rows k < b.n: next_event's light sample (times beta) and continue_path's step, bit for bit.
+void lambertian_vertices(LambertianBlock& b,
+                         const QuadEmitterColumns& lights,
+                         bool mis,
+                         MisHeuristic heuristic);
 
 }  // namespace wavetrace

@@ -63,13 +63,11 @@ size_t shade(const WaveInputs& in,
     const RenderConfig& cfg = in.config;
     size_t s = first_shadow;
     SampleBlock samples;
-    QuadLightBlock nee;
     LambertianBlock lambertian;
     for (size_t c = begin; c < end; c += kShadeChunk) {
         const size_t chunk_end = std::min(end, c + kShadeChunk);
         draw_vertex_samples(cfg.seed, sample, &paths.pixel[c], &paths.bounce[c], chunk_end - c,
                             samples);
-        nee.rows = 0;
         lambertian.n = 0;
         for (size_t i = c; i < chunk_end; ++i) {
             keep[i] = 0;
@@ -99,23 +97,28 @@ size_t shade(const WaveInputs& in,
             const Vertex& v = seg.vertex;
             const Color beta = paths.beta[i];
             const VertexSamples u = samples.at(i - c);
-            // Light samples towards quad lights go to the block; the rest are taken here.
-            const bool samples = samples_lights(cfg, v, in.lights);
-            const LightChoice light = samples ? in.lights.select(u.light_select) : LightChoice{};
-            const QuadEmitter* quad = samples ? quad_light_sample_at(v, in.lights, light) : nullptr;
-            if (quad) {
-                nee.push(i, v, seg.wo, beta, u.light_u, u.light_v, *quad, light.probability);
-            } else {
+            // Lambertian surface vertices go to the block for their light samples towards quad
+            // lights and their continuations; the rest is taken here.
+            const bool nee = samples_lights(cfg, v, in.lights);
+            const LightChoice light = nee ? in.lights.select(u.light_select) : LightChoice{};
+            const bool quad = nee && quad_light_sample_at(v, in.lights, light) != nullptr;
+            const bool diffuse_step = takes_lambertian_step(cfg, v, in.lights);
+            if (quad || diffuse_step) {
+                const size_t row = lambertian.push(i, v, seg.wo, beta);
+                if (quad)
+                    lambertian.set_light_sample(row, in.lights.quad_emitter_index(light),
+                                                light.probability, u.light_u, u.light_v);
+                if (diffuse_step)
+                    lambertian.set_step(row, u.continuation, u.roulette,
+                                        bounce + 1 >= cfg.rr_depth);
+            }
+            if (!quad) {
                 const WeightedDirect d = next_event(in.scene, in.lights, cfg, v, seg.wo, u);
                 if (d.weight > 0.0f)
                     append_shadow(d.sample.shadow, beta * (d.sample.value * d.weight), i, shadows,
                                   s);
             }
-            if (takes_lambertian_step(cfg, v, in.lights)) {
-                lambertian.push(i, v, seg.wo, beta, u.continuation, u.roulette,
-                                bounce + 1 >= cfg.rr_depth);
-                continue;
-            }
+            if (diffuse_step) continue;
             const PathStep step = continue_path(in.scene, in.lights, cfg, v, seg.wo, bounce, beta,
                                                 media, u.continuation, u.roulette);
             if (!step.alive) continue;
@@ -123,19 +126,19 @@ size_t shade(const WaveInputs& in,
             advance(in, sample, i, step.weight, step.prev, step.next, paths, rays, keep);
         }
 
-        quad_light_samples(nee, cfg.strategy == Strategy::Mis, cfg.heuristic);
-        for (size_t k = 0; k < nee.rows; ++k)
-            if (nee.valid[k] != 0.0f)
-                append_shadow(Ray{row(nee.origin, k), row(nee.wi, k), 0.0f, nee.tmax[k]},
-                              row(nee.contribution, k), nee.entry[k], shadows, s);
-
-        lambertian_steps(lambertian);
+        lambertian_vertices(lambertian, in.lights.quad_emitter_columns(),
+                            cfg.strategy == Strategy::Mis, cfg.heuristic);
         const bool counts_fully = in.lights.empty();  // Lambertian vertices sample lights if any
-        for (size_t k = 0; k < lambertian.n; ++k)
+        for (size_t k = 0; k < lambertian.n; ++k) {
+            if (lambertian.shadow[k] != 0.0f)
+                append_shadow(Ray{row(lambertian.shadow_origin, k), row(lambertian.shadow_dir, k),
+                                  0.0f, lambertian.tmax[k]},
+                              row(lambertian.contribution, k), lambertian.entry[k], shadows, s);
             if (lambertian.alive[k] != 0.0f)
                 advance(in, sample, lambertian.entry[k], row(lambertian.weight, k),
                         {row(lambertian.p, k), lambertian.pdf[k], counts_fully},
                         Ray{row(lambertian.origin, k), row(lambertian.wi, k)}, paths, rays, keep);
+        }
     }
     return s - first_shadow;
 }

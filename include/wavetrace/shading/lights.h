@@ -7,6 +7,7 @@
 // with luminance 1; the background as a sphere of the scene's radius, 4 pi^2 r^2 L).
 #pragma once
 
+#include <cstdint>
 #include <unordered_map>
 #include <vector>
 
@@ -39,6 +40,12 @@ struct QuadEmitter {
     bool two_sided;
 };
 
+// The quad emitters again as columns, entry k for quad emitter k (quad_emitter_index()): what
+// kernels that sample them in SIMD lanes gather from.
+struct QuadEmitterColumns {
+    std::vector<float> q[3], u[3], v[3], n[3], radiance[3], area, two_sided;
+};
+
 struct LightChoice {
     size_t index = 0;
     float probability = 0.0f;
@@ -58,8 +65,11 @@ class LightSet {
 
     // Picks a light with selection number u_select, in proportion to power (not empty()).
     LightChoice select(float u_select) const;
-    // The chosen light if it is a quad of constant radiance, else null.
+    // The chosen light if it is a quad of constant radiance, else null; its index among the
+    // quad emitters, else -1.
     const QuadEmitter* quad_emitter(LightChoice choice) const;
+    int32_t quad_emitter_index(LightChoice choice) const;
+    const QuadEmitterColumns& quad_emitter_columns() const { return quad_columns_; }
 
     // Samples a point on the chosen light as seen from `ref` with two uniform numbers.
     LightSample sample(
@@ -82,6 +92,7 @@ class LightSet {
     std::vector<PrimRef> emitters_;  // light i < emitters_.size()
     std::vector<int32_t> quad_of_;   // light i: index into quads_, or -1
     std::vector<QuadEmitter> quads_;
+    QuadEmitterColumns quad_columns_;
     std::unordered_map<uint32_t, uint32_t> index_;  // PrimRef bits -> light index
     bool background_ = false;                       // the last light, if present
     size_t count_ = 0;
