@@ -137,12 +137,12 @@ TEST(Cli, ColorRenderRecordsItsSettingsInTheExr) {
     EXPECT_FALSE(spec.get_string_attribute("wavetrace:render_seconds").empty());
 }
 
-TEST(Cli, OutputDoesNotDependOnThreadCount) {
+TEST(Cli, OutputDoesNotDependOnThreadCountOrSortingByMaterial) {
     TempDir dir;
     auto a = dir.path() / "a.exr", b = dir.path() / "b.exr";
     std::string common = "render " + scene("everything") + " --spp 3 --width 48 --height 48";
     ASSERT_EQ(run(dir, common + " --threads 1 -o '" + a.string() + "'").code, 0);
-    ASSERT_EQ(run(dir, common + " --threads 2 -o '" + b.string() + "'").code, 0);
+    ASSERT_EQ(run(dir, common + " --threads 2 --sort-by-material -o '" + b.string() + "'").code, 0);
     ImageData ia = read_image(a), ib = read_image(b);
     ASSERT_EQ(ia.texels.size(), ib.texels.size());
     for (size_t i = 0; i < ia.texels.size(); ++i) ASSERT_EQ(ia.texels[i], ib.texels[i]) << i;
