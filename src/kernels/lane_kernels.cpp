@@ -112,25 +112,30 @@ void LambertianVertices(LambertianBlock* b,
         const V3<F> p = load3(b->p, k), ng = load3(b->ng, k), ns = load3(b->ns, k),
                     wo = load3(b->wo, k), albedo = load3(b->albedo, k), beta = load3(b->beta, k);
 
-        // The light sample, towards each row's own light (gathered from the columns).
+        // The light sample, towards each row's own light: gathered from the columns, or
+        // broadcast when the rows share one light (a scene with one quad light, or a chunk
+        // whose samples picked the same), which saves 17 gathers.
         const auto quad = hn::Load(di, b->light + k);
         const auto has_light = hn::RebindMask(d, hn::Gt(quad, hn::Set(di, -1)));
         const auto index = hn::Max(quad, hn::Zero(di));
-        auto gather3 = [&](const std::vector<float>* columns) {
-            return V3<F>{hn::GatherIndex(d, columns[0].data(), index),
-                         hn::GatherIndex(d, columns[1].data(), index),
-                         hn::GatherIndex(d, columns[2].data(), index)};
+        const int32_t first = hn::GetLane(index);
+        const bool shared = hn::AllTrue(di, hn::Eq(index, hn::Set(di, first)));
+        auto fetch = [&](const std::vector<float>& column) {
+            return shared ? hn::Set(d, column[size_t(first)])
+                          : hn::GatherIndex(d, column.data(), index);
+        };
+        auto fetch3 = [&](const std::vector<float>* columns) {
+            return V3<F>{fetch(columns[0]), fetch(columns[1]), fetch(columns[2])};
         };
         if (!hn::AllFalse(d, has_light)) {
-            const QuadLightLanes<L> light{
-                gather3(lights->q),
-                gather3(lights->u),
-                gather3(lights->v),
-                gather3(lights->n),
-                hn::GatherIndex(d, lights->area.data(), index),
-                gather3(lights->radiance),
-                hn::Gt(hn::GatherIndex(d, lights->two_sided.data(), index), zero),
-                hn::Load(d, b->select_prob + k)};
+            const QuadLightLanes<L> light{fetch3(lights->q),
+                                          fetch3(lights->u),
+                                          fetch3(lights->v),
+                                          fetch3(lights->n),
+                                          fetch(lights->area),
+                                          fetch3(lights->radiance),
+                                          hn::Gt(fetch(lights->two_sided), zero),
+                                          hn::Load(d, b->select_prob + k)};
             const LambertianNeeVertex<L> v{
                 p, ng, ns, wo, albedo, hn::Load(d, b->light_u1 + k), hn::Load(d, b->light_u2 + k)};
             const QuadLightNee<L> r = QuadLightSample(v, light, mis, heuristic);
