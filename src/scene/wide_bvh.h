@@ -19,13 +19,28 @@ namespace wavetrace {
 inline constexpr int kWideNodeWidth = 8;
 inline constexpr int kLeafBlockWidth = 8;
 
-// Child codes: a node index, a leaf (kLeafChild | block count << kLeafCountShift | first block),
-// or kEmptyChild for an unused slot.
+// Child codes: a node index, kEmptyChild for an unused slot, or a leaf: kLeafChild | kind <<
+// kLeafKindShift | block count << kLeafCountShift | first block. A leaf whose primitives are of
+// one kind (nearly all of them) names that kind, and its blocks lie at [first, first + count)
+// of that kind's block array, so a ray goes from the child code straight to the blocks; a leaf
+// of several kinds is kMixedLeaf, and its blocks are leaf_blocks[first, first + count).
 inline constexpr uint32_t kLeafChild = 0x80000000u;
-inline constexpr int kLeafCountShift = 27;
+inline constexpr int kLeafKindShift = 29;
+inline constexpr uint32_t kMixedLeaf = 3;
+inline constexpr int kLeafCountShift = 25;
 inline constexpr uint32_t kLeafFirstMask = (1u << kLeafCountShift) - 1;
 inline constexpr uint32_t kMaxLeafBlocks = 15;
 inline constexpr uint32_t kEmptyChild = 0xffffffffu;
+
+inline uint32_t leaf_kind(uint32_t code) {
+    return (code >> kLeafKindShift) & 3u;
+}
+inline uint32_t leaf_block_count(uint32_t code) {
+    return (code >> kLeafCountShift) & kMaxLeafBlocks;
+}
+inline uint32_t leaf_first(uint32_t code) {
+    return code & kLeafFirstMask;
+}
 
 // An empty slot's box is inverted (lo = +inf, hi = -inf): its entry distance is +inf for every
 // ray, so the box test culls it without a separate check.
@@ -35,8 +50,8 @@ struct alignas(64) WideNode {
 };
 static_assert(sizeof(WideNode) == 256);
 
-// Unused lanes of a block repeat lane 0, so that every lane holds ordinary numbers; `count`
-// says which lanes are real.
+// Unused lanes of a block repeat lane 0, primitive and reference: every lane holds ordinary
+// numbers, and testing all lanes finds nothing lane 0 does not (a ray needs no lane count).
 struct alignas(32) TriangleBlock {
     float p[3][3][kLeafBlockWidth];  // vertex, axis, lane
     PrimRef ref[kLeafBlockWidth];
@@ -60,8 +75,8 @@ struct LeafBlock {
 };
 
 struct WideBvh {
-    std::vector<WideNode> nodes;  // nodes[0] is the root
-    std::vector<LeafBlock> leaf_blocks;
+    std::vector<WideNode> nodes;         // nodes[0] is the root
+    std::vector<LeafBlock> leaf_blocks;  // of the leaves of several kinds
     std::vector<TriangleBlock> triangles;
     std::vector<QuadBlock> quads;
     std::vector<SphereBlock> spheres;
@@ -72,6 +87,10 @@ struct WideBvh {
                spheres.size() * sizeof(SphereBlock);
     }
 };
+
+// Block j of the leaf with child code `code`: its kind, the lanes in use and its index in the
+// kind's block array.
+LeafBlock leaf_block(const WideBvh& bvh, uint32_t code, uint32_t j);
 
 // Collapses a built binary tree (nodes in depth-first order, leaves indexing `prims`).
 WideBvh collapse_to_wide(const Scene& scene,

@@ -73,7 +73,7 @@ class Collapser {
 
     // A binary leaf's primitives, grouped by kind into blocks of up to kLeafBlockWidth.
     uint32_t leaf(const BvhNode& leaf) {
-        uint32_t first = static_cast<uint32_t>(out_.leaf_blocks.size());
+        std::vector<LeafBlock> blocks;
         for (PrimKind kind : {PrimKind::Triangle, PrimKind::Quad, PrimKind::Sphere}) {
             std::vector<PrimRef> refs;
             for (uint32_t i = leaf.offset; i < leaf.offset + leaf.count; ++i)
@@ -81,17 +81,25 @@ class Collapser {
             for (size_t start = 0; start < refs.size(); start += kLeafBlockWidth) {
                 size_t n = std::min(refs.size() - start, size_t(kLeafBlockWidth));
                 std::span<const PrimRef> lanes(refs.data() + start, n);
-                out_.leaf_blocks.push_back({kind, static_cast<uint32_t>(n), block(kind, lanes)});
+                blocks.push_back({kind, static_cast<uint32_t>(n), block(kind, lanes)});
             }
         }
-        uint32_t count = static_cast<uint32_t>(out_.leaf_blocks.size()) - first;
+        const uint32_t count = static_cast<uint32_t>(blocks.size());
+        bool one_kind = true;
+        for (const LeafBlock& b : blocks) one_kind = one_kind && b.kind == blocks[0].kind;
+        // One kind: its blocks were appended one after the other to the kind's array.
+        const uint32_t kind = one_kind ? static_cast<uint32_t>(blocks[0].kind) : kMixedLeaf;
+        const uint32_t first =
+            one_kind ? blocks[0].index : static_cast<uint32_t>(out_.leaf_blocks.size());
+        if (!one_kind)
+            out_.leaf_blocks.insert(out_.leaf_blocks.end(), blocks.begin(), blocks.end());
         if (count > kMaxLeafBlocks || first > kLeafFirstMask)
             throw std::length_error("BVH leaf does not fit the wide layout");
-        return kLeafChild | (count << kLeafCountShift) | first;
+        return kLeafChild | kind << kLeafKindShift | count << kLeafCountShift | first;
     }
 
     uint32_t block(PrimKind kind, std::span<const PrimRef> refs) {
-        // Lane i < refs.size() holds primitive i; the rest repeat lane 0.
+        // Lane i < refs.size() holds primitive i; the rest repeat lane 0, reference included.
         auto lane_ref = [&](int i) { return refs[size_t(i) < refs.size() ? i : 0]; };
         switch (kind) {
             case PrimKind::Triangle: {
@@ -100,7 +108,7 @@ class Collapser {
                     const Triangle& t = scene_.triangles[lane_ref(i).index()];
                     for (int vtx = 0; vtx < 3; ++vtx)
                         for (int a = 0; a < 3; ++a) b.p[vtx][a][i] = scene_.positions[t.v[vtx]][a];
-                    b.ref[i] = size_t(i) < refs.size() ? refs[i] : PrimRef{};
+                    b.ref[i] = lane_ref(i);
                 }
                 return static_cast<uint32_t>(out_.triangles.size() - 1);
             }
@@ -117,7 +125,7 @@ class Collapser {
                         b.n[a][i] = n[a];
                         b.w[a][i] = w[a];
                     }
-                    b.ref[i] = size_t(i) < refs.size() ? refs[i] : PrimRef{};
+                    b.ref[i] = lane_ref(i);
                 }
                 return static_cast<uint32_t>(out_.quads.size() - 1);
             }
@@ -127,7 +135,7 @@ class Collapser {
                     const Sphere& s = scene_.spheres[lane_ref(i).index()];
                     for (int a = 0; a < 3; ++a) b.c[a][i] = s.center[a];
                     b.r[i] = s.radius;
-                    b.ref[i] = size_t(i) < refs.size() ? refs[i] : PrimRef{};
+                    b.ref[i] = lane_ref(i);
                 }
                 return static_cast<uint32_t>(out_.spheres.size() - 1);
             }
@@ -142,6 +150,17 @@ class Collapser {
 };
 
 }  // namespace
+
+LeafBlock leaf_block(const WideBvh& bvh, uint32_t code, uint32_t j) {
+    const uint32_t kind = leaf_kind(code), index = leaf_first(code) + j;
+    if (kind == kMixedLeaf) return bvh.leaf_blocks[index];
+    const PrimRef* refs = kind == uint32_t(PrimKind::Triangle) ? bvh.triangles[index].ref
+                          : kind == uint32_t(PrimKind::Quad)   ? bvh.quads[index].ref
+                                                               : bvh.spheres[index].ref;
+    uint32_t used = 1;  // lanes in use: up to the first repeat of lane 0
+    while (used < uint32_t(kLeafBlockWidth) && refs[used] != refs[0]) ++used;
+    return {static_cast<PrimKind>(kind), used, index};
+}
 
 WideBvh collapse_to_wide(const Scene& scene,
                          std::span<const BvhNode> nodes,

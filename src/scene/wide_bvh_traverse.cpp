@@ -403,10 +403,14 @@ HWY_INLINE bool Traverse(const WideBvh& bvh, const Ray& ray, Hit* hit) {
                 continue;
             }
         } else {
-            const uint32_t first = code & kLeafFirstMask;
-            const uint32_t count = (code & ~kLeafChild) >> kLeafCountShift;
+            // Blocks of one kind straight from the child code (all lanes: unused ones repeat
+            // lane 0), or through leaf_blocks for a leaf of several kinds.
+            const uint32_t kind = leaf_kind(code), first = leaf_first(code);
+            const uint32_t count = leaf_block_count(code);
             for (uint32_t k = first; k < first + count; ++k) {
-                const LeafBlock& lb = bvh.leaf_blocks[k];
+                const LeafBlock lb = kind == kMixedLeaf ? bvh.leaf_blocks[k]
+                                                        : LeafBlock{static_cast<PrimKind>(kind),
+                                                                    uint32_t(kLeafBlockWidth), k};
                 const PrimRef* refs = nullptr;
                 hits.bits = 0;
                 switch (lb.kind) {
@@ -426,7 +430,8 @@ HWY_INLINE bool Traverse(const WideBvh& bvh, const Ray& ray, Hit* hit) {
                 if (hits.bits == 0) continue;
                 if constexpr (AnyHit) return true;
                 // The nearest lane; lanes are tested in order and a later one at equal t
-                // wins, as in a scalar loop with an inclusive tmax.
+                // wins, as in a scalar loop with an inclusive tmax (a repeat of lane 0 gives
+                // lane 0's hit again).
                 for (uint32_t bits = hits.bits; bits != 0; bits &= bits - 1) {
                     uint32_t l = static_cast<uint32_t>(__builtin_ctz(bits));
                     if (hits.t[l] <= tmax) {
@@ -559,10 +564,8 @@ HWY_INLINE void TraversePacket(
                 continue;
             }
         } else {
-            const uint32_t first = code & kLeafFirstMask;
-            const uint32_t blocks = (code & ~kLeafChild) >> kLeafCountShift;
-            for (uint32_t k = first; k < first + blocks; ++k) {
-                const LeafBlock& lb = bvh.leaf_blocks[k];
+            for (uint32_t blk = 0, blocks = leaf_block_count(code); blk < blocks; ++blk) {
+                const LeafBlock lb = leaf_block(bvh, code, blk);
                 if (lb.kind == PrimKind::Triangle && !uniform) {
                     // Rays with different permutations: one ray at a time against the block.
                     const TriangleBlock& b = bvh.triangles[lb.index];
