@@ -90,7 +90,16 @@ struct WideBvh {
 
 // Block j of the leaf with child code `code`: its kind, the lanes in use and its index in the
 // kind's block array.
-LeafBlock leaf_block(const WideBvh& bvh, uint32_t code, uint32_t j);
+inline LeafBlock leaf_block(const WideBvh& bvh, uint32_t code, uint32_t j) {
+    const uint32_t kind = leaf_kind(code), index = leaf_first(code) + j;
+    if (kind == kMixedLeaf) return bvh.leaf_blocks[index];
+    const PrimRef* refs = kind == uint32_t(PrimKind::Triangle) ? bvh.triangles[index].ref
+                          : kind == uint32_t(PrimKind::Quad)   ? bvh.quads[index].ref
+                                                               : bvh.spheres[index].ref;
+    uint32_t used = 1;  // lanes in use: up to the first repeat of lane 0
+    while (used < uint32_t(kLeafBlockWidth) && refs[used] != refs[0]) ++used;
+    return {static_cast<PrimKind>(kind), used, index};
+}
 
 // Collapses a built binary tree (nodes in depth-first order, leaves indexing `prims`).
 WideBvh collapse_to_wide(const Scene& scene,
