@@ -32,7 +32,7 @@ test: build
 # loader, CLI, BVH and engine tests under the sanitizers, then each fuzz target for a fixed
 # number of executions. `make fuzz FUZZ_SECONDS=600`: explore longer and grow the corpus.
 SAN_DIR ?= build-sanitize
-SAN_TESTS ?= SceneLoader.*:Cli.*:Hostile*:Bvh.*:Triangle.*:Sphere.*:Quad.*:MeshFiles.*:Wavefront.*:Megakernel.*:Kernels.*:Films.*:CompareImages.*
+SAN_TESTS ?= SceneLoader.*:Cli.*:Hostile*:Bvh.*:Triangle.*:Sphere.*:Quad.*:MeshFiles.*:Wavefront.*:Megakernel.*:Kernels.*:Lanes.*:Films.*:CompareImages.*
 FUZZ_RUNS ?= 20000
 FUZZ_SECONDS ?= 600
 
