@@ -5,6 +5,8 @@
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/highway.h>
 
+#include <algorithm>
+
 #include "math/lanes-inl.h"
 #include "render/sampler-inl.h"
 #include "scene/camera_ray-inl.h"
@@ -14,6 +16,14 @@
 HWY_BEFORE_NAMESPACE();
 namespace wavetrace {
 namespace HWY_NAMESPACE {
+
+// Rows [0, n) of `in` copied to `out`, and row 0 repeated to kShadeChunk: whole vectors of
+// ordinary values.
+template <class T>
+HWY_INLINE void PadRows(const T* in, size_t n, T* out) {
+    std::copy(in, in + n, out);
+    std::fill(out + n, out + kShadeChunk, in[0]);
+}
 
 void DrawCameraRays(const CameraFrame* camera,
                     uint64_t seed,
@@ -31,18 +41,13 @@ void DrawCameraRays(const CameraFrame* camera,
     const size_t N = hn::Lanes(d64);
     HWY_ALIGN uint32_t px[kShadeChunk];
     HWY_ALIGN float fx[kShadeChunk], fy[kShadeChunk];
-    for (size_t k = 0; k < kShadeChunk; ++k) {
-        const size_t j = k < n ? k : 0;
-        px[k] = pixel[j];
-        fx[k] = x[j];
-        fy[k] = y[j];
-    }
+    PadRows(pixel, n, px);
+    PadRows(x, n, fx);
+    PadRows(y, n, fy);
     for (size_t k = 0; k < n; k += N) {
-        const auto state = PathState<L>(seed, hn::Load(d32, px + k), sample);
-        auto u = [&](uint32_t dim) { return SampleDim<L>(state, hn::Set(d64, dim)); };
         V3<hn::Vec<decltype(df)>> o, d;
-        CameraRay<L>(*camera, hn::Load(df, fx + k) + u(kDimPixelX),
-                     hn::Load(df, fy + k) + u(kDimPixelY), u(kDimLensU), u(kDimLensV), &o, &d);
+        SampledCameraRay<L>(*camera, PathState<L>(seed, hn::Load(d32, px + k), sample),
+                            hn::Load(df, fx + k), hn::Load(df, fy + k), &o, &d);
         for (int a = 0; a < 3; ++a) {
             hn::Store(a == 0 ? o.x : a == 1 ? o.y : o.z, df, out->o[a] + k);
             hn::Store(a == 0 ? d.x : a == 1 ? d.y : d.z, df, out->d[a] + k);
@@ -65,11 +70,9 @@ void DrawVertexSamples(uint64_t seed,
     // Counters as 32-bit rows padded to whole vectors: the pixel and the bounce's first
     // dimension.
     HWY_ALIGN uint32_t px[kShadeChunk], first_dim[kShadeChunk];
-    for (size_t k = 0; k < kShadeChunk; ++k) {
-        const size_t j = k < n ? k : 0;
-        px[k] = pixel[j];
-        first_dim[k] = bounce_dim(bounce[j], BounceDim(0));
-    }
+    PadRows(pixel, n, px);
+    for (size_t k = 0; k < kShadeChunk; ++k)
+        first_dim[k] = bounce_dim(bounce[k < n ? k : 0], BounceDim(0));
     for (size_t k = 0; k < n; k += N) {
         const auto state = PathState<L>(seed, hn::Load(d32, px + k), sample);
         const auto first = hn::PromoteTo(d64, hn::Load(d32, first_dim + k));
@@ -124,18 +127,9 @@ void LambertianVertices(LambertianBlock* b,
             return shared ? hn::Set(d, column[size_t(first)])
                           : hn::GatherIndex(d, column.data(), index);
         };
-        auto fetch3 = [&](const std::vector<float>* columns) {
-            return V3<F>{fetch(columns[0]), fetch(columns[1]), fetch(columns[2])};
-        };
         if (!hn::AllFalse(d, has_light)) {
-            const QuadLightLanes<L> light{fetch3(lights->q),
-                                          fetch3(lights->u),
-                                          fetch3(lights->v),
-                                          fetch3(lights->n),
-                                          fetch(lights->area),
-                                          fetch3(lights->radiance),
-                                          hn::Gt(fetch(lights->two_sided), zero),
-                                          hn::Load(d, b->select_prob + k)};
+            const QuadLightLanes<L> light =
+                QuadLightFrom<L>(*lights, fetch, hn::Load(d, b->select_prob + k));
             const LambertianNeeVertex<L> v{
                 p, ng, ns, wo, albedo, hn::Load(d, b->light_u1 + k), hn::Load(d, b->light_u2 + k)};
             const QuadLightNee<L> r = QuadLightSample(v, light, mis, heuristic);

@@ -42,12 +42,7 @@ struct SampleBlock {
     alignas(64) float u[kBounceDims][kShadeChunk];
 
     VertexSamples at(size_t k) const {
-        return {u[kDimLightSelect][k],
-                u[kDimLightU][k],
-                u[kDimLightV][k],
-                {u[kDimTechnique][k], u[kDimDirectionSelect][k], u[kDimDirectionU][k],
-                 u[kDimDirectionV][k], u[kDimBsdfLobe][k], u[kDimBsdfU][k], u[kDimBsdfV][k]},
-                u[kDimRoulette][k]};
+        return vertex_samples_of([&](BounceDim d) { return u[d][k]; });
     }
 };
 

@@ -101,19 +101,20 @@ size_t shade(const WaveInputs& in,
             // lights and their continuations; the rest is taken here.
             const bool nee = samples_lights(cfg, v, in.lights);
             const LightChoice light = nee ? in.lights.select(u.light_select) : LightChoice{};
-            const bool quad = nee && quad_light_sample_at(v, in.lights, light) != nullptr;
+            const int32_t quad_index = nee ? quad_light_sample_at(v, in.lights, light) : -1;
+            const bool quad = quad_index >= 0;
             const bool diffuse_step = takes_lambertian_step(cfg, v, in.lights);
             if (quad || diffuse_step) {
                 const size_t row = lambertian.push(i, v, seg.wo, beta);
                 if (quad)
-                    lambertian.set_light_sample(row, in.lights.quad_emitter_index(light),
-                                                light.probability, u.light_u, u.light_v);
+                    lambertian.set_light_sample(row, quad_index, light.probability, u.light_u,
+                                                u.light_v);
                 if (diffuse_step)
                     lambertian.set_step(row, u.continuation, u.roulette,
                                         bounce + 1 >= cfg.rr_depth);
             }
-            if (!quad) {
-                const WeightedDirect d = next_event(in.scene, in.lights, cfg, v, seg.wo, u);
+            if (nee && !quad) {
+                const WeightedDirect d = next_event(in.scene, in.lights, cfg, v, seg.wo, u, light);
                 if (d.weight > 0.0f)
                     append_shadow(d.sample.shadow, beta * (d.sample.value * d.weight), i, shadows,
                                   s);

@@ -9,6 +9,7 @@
 #endif
 
 #include "math/lanes-inl.h"
+#include "render/sampler-inl.h"
 #include "wavetrace/scene/camera.h"
 
 HWY_BEFORE_NAMESPACE();
@@ -42,6 +43,20 @@ HWY_INLINE void CameraRay(const CameraFrame& c,
     }
     *origin = o;
     *dir = target - o;
+}
+
+// The camera ray of one sample of pixel (x, y), its path's sampler state `state`: jittered over
+// the pixel and the lens by the camera dimensions (render/sampler.h). What generate_camera_ray
+// (one lane) and the generate kernel (a vector of pixels) both run.
+template <class L>
+HWY_INLINE void SampledCameraRay(const CameraFrame& c,
+                                 typename L::U64 state,
+                                 typename L::F x,
+                                 typename L::F y,
+                                 V3<typename L::F>* origin,
+                                 V3<typename L::F>* dir) {
+    auto u = [&](uint32_t dim) { return SampleDim<L>(state, L::Set64(dim)); };
+    CameraRay<L>(c, x + u(kDimPixelX), y + u(kDimPixelY), u(kDimLensU), u(kDimLensV), origin, dir);
 }
 
 }  // namespace HWY_NAMESPACE

@@ -39,20 +39,18 @@ LightSet::LightSet(const Scene& scene) {
         quad_of_.push_back(-1);
         if (prim.kind() == PrimKind::Quad && e.kind == TextureKind::Solid) {
             const Quad& q = scene.quads[prim.index()];
-            quad_of_.back() = static_cast<int32_t>(quads_.size());
-            quads_.push_back({q.q, q.u, q.v, normalize(cross(q.u, q.v)), scene.prim_area(prim),
-                              e.color, m.two_sided});
-            const QuadEmitter& added = quads_.back();
             QuadEmitterColumns& c = quad_columns_;
+            quad_of_.back() = static_cast<int32_t>(c.area.size());
+            const Normal3 n = normalize(cross(q.u, q.v));
             for (int a = 0; a < 3; ++a) {
-                c.q[a].push_back(added.q[a]);
-                c.u[a].push_back(added.u[a]);
-                c.v[a].push_back(added.v[a]);
-                c.n[a].push_back(added.n[a]);
-                c.radiance[a].push_back(added.radiance[a]);
+                c.q[a].push_back(q.q[a]);
+                c.u[a].push_back(q.u[a]);
+                c.v[a].push_back(q.v[a]);
+                c.n[a].push_back(n[a]);
+                c.radiance[a].push_back(e.color[a]);
             }
-            c.area.push_back(added.area);
-            c.two_sided.push_back(added.two_sided ? 1.0f : 0.0f);
+            c.area.push_back(scene.prim_area(prim));
+            c.two_sided.push_back(m.two_sided ? 1.0f : 0.0f);
         }
     }
     background_ = !scene.background.is_black();
@@ -104,11 +102,6 @@ LightChoice LightSet::select(float u_select) const {
 
 int32_t LightSet::quad_emitter_index(LightChoice choice) const {
     return choice.index < quad_of_.size() ? quad_of_[choice.index] : -1;
-}
-
-const QuadEmitter* LightSet::quad_emitter(LightChoice choice) const {
-    const int32_t k = quad_emitter_index(choice);
-    return k >= 0 ? &quads_[size_t(k)] : nullptr;
 }
 
 LightSample LightSet::sample(

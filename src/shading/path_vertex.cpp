@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "render/sampler-inl.h"
+#include "scene/camera_ray-inl.h"
 #include "shading/lambertian_step-inl.h"
 #include "shading/mis-inl.h"
 #include "shading/quad_light_nee-inl.h"
@@ -65,6 +66,13 @@ Point3 offset_origin(const Vertex& v, Vec3 w) {
 
 namespace {
 
+// Whether the strategy picks the continuation at v by one-sample MIS of two techniques (light
+// and mixture, where v can sample lights) rather than by BSDF sampling alone.
+bool one_sample_continuation(Strategy strategy, const Vertex& v, const LightSet& lights) {
+    return (strategy == Strategy::Mixture || strategy == Strategy::Light) &&
+           can_sample_lights(v, lights);
+}
+
 // f |cos| at a vertex for world directions, with the geometric-normal test that keeps
 // reflection-only materials from leaking light through the surface when shading and
 // geometric normals disagree.
@@ -109,10 +117,7 @@ Continuation sample_continuation(Strategy strategy,
                                  Vec3 wo,
                                  const ContinuationSamples& u) {
     Continuation c;
-    const bool lights_ok = can_sample_lights(v, lights);
-    const bool one_sample =
-        lights_ok && (strategy == Strategy::Mixture || strategy == Strategy::Light);
-    if (!one_sample) {
+    if (!one_sample_continuation(strategy, v, lights)) {
         Vec3 lo = v.frame.to_local(wo);
         BsdfSample s = bsdf_sample(v.bsdf, lo, u.lobe, u.bsdf_u1, u.bsdf_u2);
         if (!s.valid) return c;
@@ -163,11 +168,9 @@ bool samples_lights(const RenderConfig& config, const Vertex& v, const LightSet&
     return nee && can_sample_lights(v, lights);
 }
 
-const QuadEmitter* quad_light_sample_at(const Vertex& v,
-                                        const LightSet& lights,
-                                        LightChoice choice) {
-    if (v.bsdf.kind != MaterialKind::Lambertian || !v.on_surface()) return nullptr;
-    return lights.quad_emitter(choice);
+int32_t quad_light_sample_at(const Vertex& v, const LightSet& lights, LightChoice choice) {
+    if (v.bsdf.kind != MaterialKind::Lambertian || !v.on_surface()) return -1;
+    return lights.quad_emitter_index(choice);
 }
 
 WeightedDirect next_event(const Scene& scene,
@@ -176,18 +179,28 @@ WeightedDirect next_event(const Scene& scene,
                           const Vertex& v,
                           Vec3 wo,
                           const VertexSamples& u) {
+    if (!samples_lights(config, v, lights)) return {};
+    return next_event(scene, lights, config, v, wo, u, lights.select(u.light_select));
+}
+
+WeightedDirect next_event(const Scene& scene,
+                          const LightSet& lights,
+                          const RenderConfig& config,
+                          const Vertex& v,
+                          Vec3 wo,
+                          const VertexSamples& u,
+                          LightChoice choice) {
     WeightedDirect d;
-    if (!samples_lights(config, v, lights)) return d;
-    const LightChoice choice = lights.select(u.light_select);
-    if (const QuadEmitter* e = quad_light_sample_at(v, lights, choice)) {
+    if (const int32_t k = quad_light_sample_at(v, lights, choice); k >= 0) {
         using lanes::to_lanes, lanes::to_vec3;
         const lanes::LambertianNeeVertex<OneLane> lv{
             to_lanes(v.p), to_lanes(v.ng),          to_lanes(v.frame.n),
             to_lanes(wo),  to_lanes(v.bsdf.albedo), u.light_u,
             u.light_v};
-        const lanes::QuadLightLanes<OneLane> light{
-            to_lanes(e->q), to_lanes(e->u),        to_lanes(e->v), to_lanes(e->n),
-            e->area,        to_lanes(e->radiance), e->two_sided,   choice.probability};
+        const lanes::QuadLightLanes<OneLane> light = lanes::QuadLightFrom<OneLane>(
+            lights.quad_emitter_columns(),
+            [&](const std::vector<float>& column) { return column[size_t(k)]; },
+            choice.probability);
         const lanes::QuadLightNee<OneLane> r =
             lanes::QuadLightSample(lv, light, config.strategy == Strategy::Mis, config.heuristic);
         if (!r.valid) return d;
@@ -292,11 +305,8 @@ SegmentResult resolve_segment(const Scene& scene,
 }
 
 bool takes_lambertian_step(const RenderConfig& config, const Vertex& v, const LightSet& lights) {
-    // The one-sample strategies (light, mixture) pick the direction by other means.
-    const bool one_sample =
-        (config.strategy == Strategy::Mixture || config.strategy == Strategy::Light) &&
-        can_sample_lights(v, lights);
-    return v.bsdf.kind == MaterialKind::Lambertian && v.on_surface() && !one_sample;
+    return v.bsdf.kind == MaterialKind::Lambertian && v.on_surface() &&
+           !one_sample_continuation(config.strategy, v, lights);
 }
 
 PathStep continue_path(const Scene& scene,
@@ -347,20 +357,16 @@ PathStep continue_path(const Scene& scene,
 
 VertexSamples vertex_samples(uint64_t seed, uint32_t pixel, uint32_t sample, int bounce) {
     const uint64_t state = lanes::PathState<OneLane>(seed, pixel, sample);
-    auto u = [&](BounceDim d) { return lanes::SampleDim<OneLane>(state, bounce_dim(bounce, d)); };
-    return {u(kDimLightSelect),
-            u(kDimLightU),
-            u(kDimLightV),
-            {u(kDimTechnique), u(kDimDirectionSelect), u(kDimDirectionU), u(kDimDirectionV),
-             u(kDimBsdfLobe), u(kDimBsdfU), u(kDimBsdfV)},
-            u(kDimRoulette)};
+    return vertex_samples_of(
+        [&](BounceDim d) { return lanes::SampleDim<OneLane>(state, bounce_dim(bounce, d)); });
 }
 
 Ray generate_camera_ray(
     const CameraRays& camera, uint64_t seed, uint32_t pixel, uint32_t sample, int x, int y) {
-    const uint64_t state = lanes::PathState<OneLane>(seed, pixel, sample);
-    auto u = [&](uint32_t dim) { return lanes::SampleDim<OneLane>(state, dim); };
-    return camera.generate(x + u(kDimPixelX), y + u(kDimPixelY), u(kDimLensU), u(kDimLensV));
+    lanes::V3<float> o, d;
+    lanes::SampledCameraRay<OneLane>(camera.frame(), lanes::PathState<OneLane>(seed, pixel, sample),
+                                     float(x), float(y), &o, &d);
+    return Ray{lanes::to_vec3(o), lanes::to_vec3(d)};
 }
 
 float segment_flight(

@@ -10,6 +10,7 @@
 #include "wavetrace/math/frame.h"
 #include "wavetrace/math/ray.h"
 #include "wavetrace/render/render.h"
+#include "wavetrace/render/sampler.h"
 #include "wavetrace/scene/bvh.h"
 #include "wavetrace/scene/camera.h"
 #include "wavetrace/scene/surface.h"
@@ -160,6 +161,17 @@ struct VertexSamples {
     float roulette;
 };
 VertexSamples vertex_samples(uint64_t seed, uint32_t pixel, uint32_t sample, int bounce);
+// The same from u(d), the value of bounce dimension d: the one mapping of dimensions to fields,
+// for vertex_samples and for the rows the wavefront draws in SIMD lanes.
+template <class DimValue>
+VertexSamples vertex_samples_of(DimValue u) {
+    return {u(kDimLightSelect),
+            u(kDimLightU),
+            u(kDimLightV),
+            {u(kDimTechnique), u(kDimDirectionSelect), u(kDimDirectionU), u(kDimDirectionV),
+             u(kDimBsdfLobe), u(kDimBsdfU), u(kDimBsdfV)},
+            u(kDimRoulette)};
+}
 // Next-event estimation at a scattering vertex as the strategy does it, for both engines: the
 // light sample and its weight (1 for NEE, w(p_l, p_b) for MIS); weight 0 when the strategy
 // samples no lights, the vertex cannot, or the sample is invalid. The contribution is
@@ -174,13 +186,20 @@ WeightedDirect next_event(const Scene& scene,
                           const Vertex& v,
                           Vec3 wo,
                           const VertexSamples& u);
+// The same with the light already chosen, where samples_lights(config, v, lights) holds.
+WeightedDirect next_event(const Scene& scene,
+                          const LightSet& lights,
+                          const RenderConfig& config,
+                          const Vertex& v,
+                          Vec3 wo,
+                          const VertexSamples& u,
+                          LightChoice light);
 // Whether next-event estimation happens at v: the strategy samples lights and v can.
 bool samples_lights(const RenderConfig& config, const Vertex& v, const LightSet& lights);
-// The light next_event samples at v in SIMD lanes (shading/quad_light_nee-inl.h), or null: at
-// a Lambertian surface vertex that samples_lights(), a chosen quad of constant radiance.
-const QuadEmitter* quad_light_sample_at(const Vertex& v,
-                                        const LightSet& lights,
-                                        LightChoice choice);
+// The light next_event samples at v in SIMD lanes (shading/quad_light_nee-inl.h), as its index
+// among the LightSet's quad emitters, or -1: at a Lambertian surface vertex that
+// samples_lights(), a chosen quad of constant radiance.
+int32_t quad_light_sample_at(const Vertex& v, const LightSet& lights, LightChoice choice);
 // Optical depth a segment reaching vertex `bounce` may travel before scattering in a medium.
 // Without media no segment consumes it, so it is not drawn (its log1p was 5-7% of a render).
 float segment_flight(

@@ -14,12 +14,13 @@
 #include "math/lanes-inl.h"
 #include "shading/mis-inl.h"
 #include "wavetrace/math/constants.h"
+#include "wavetrace/shading/lights.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace wavetrace {
 namespace HWY_NAMESPACE {
 
-// A quad light as LightSet::quad_emitter gives it, in lanes (each lane's own light).
+// A quad light of LightSet::quad_emitter_columns(), in lanes (each lane's own light).
 template <class L>
 struct QuadLightLanes {
     V3<typename L::F> q, u, v;  // corner and edges: points q + s u + t v, s, t in [0, 1)
@@ -29,6 +30,25 @@ struct QuadLightLanes {
     typename L::M two_sided;
     typename L::F select_prob;  // of picking this light
 };
+
+// Each lane's light read from the columns: fetch(column) gives a column's value in each lane
+// (one entry in scalar code; a gather or a broadcast over vectors).
+template <class L, class Fetch>
+HWY_INLINE QuadLightLanes<L> QuadLightFrom(const QuadEmitterColumns& c,
+                                           Fetch fetch,
+                                           typename L::F select_prob) {
+    auto fetch3 = [&](const std::vector<float>* columns) {
+        return V3<typename L::F>{fetch(columns[0]), fetch(columns[1]), fetch(columns[2])};
+    };
+    return {fetch3(c.q),
+            fetch3(c.u),
+            fetch3(c.v),
+            fetch3(c.n),
+            fetch(c.area),
+            fetch3(c.radiance),
+            fetch(c.two_sided) > L::Set(0.0f),
+            select_prob};
+}
 
 template <class L>
 struct LambertianNeeVertex {

@@ -29,19 +29,10 @@ struct LightSample {
     bool valid = false;
 };
 
-// A quad light of constant radiance: the case next-event estimation at Lambertian vertices
-// samples in SIMD lanes (src/shading/quad_light_nee-inl.h).
-struct QuadEmitter {
-    Point3 q;
-    Vec3 u, v;
-    Normal3 n;  // normalize(cross(u, v)): the front side
-    float area;
-    Color radiance;
-    bool two_sided;
-};
-
-// The quad emitters again as columns, entry k for quad emitter k (quad_emitter_index()): what
-// kernels that sample them in SIMD lanes gather from.
+// The quad lights of constant radiance (the case next-event estimation at Lambertian vertices
+// samples in SIMD lanes, src/shading/quad_light_nee-inl.h) as columns, entry k for quad emitter
+// k (quad_emitter_index()): corner q, edges u and v, the front normal n = normalize(cross(u,
+// v)), the area, the radiance, and two_sided (1 or 0).
 struct QuadEmitterColumns {
     std::vector<float> q[3], u[3], v[3], n[3], radiance[3], area, two_sided;
 };
@@ -65,9 +56,8 @@ class LightSet {
 
     // Picks a light with selection number u_select, in proportion to power (not empty()).
     LightChoice select(float u_select) const;
-    // The chosen light if it is a quad of constant radiance, else null; its index among the
-    // quad emitters, else -1.
-    const QuadEmitter* quad_emitter(LightChoice choice) const;
+    // The chosen light's index among the quad emitters if it is a quad of constant radiance,
+    // else -1.
     int32_t quad_emitter_index(LightChoice choice) const;
     const QuadEmitterColumns& quad_emitter_columns() const { return quad_columns_; }
 
@@ -90,8 +80,7 @@ class LightSet {
         const Scene& scene, Point3 ref, PrimRef prim, Vec3 wi, float dist) const;
 
     std::vector<PrimRef> emitters_;  // light i < emitters_.size()
-    std::vector<int32_t> quad_of_;   // light i: index into quads_, or -1
-    std::vector<QuadEmitter> quads_;
+    std::vector<int32_t> quad_of_;   // light i: index into quad_columns_, or -1
     QuadEmitterColumns quad_columns_;
     std::unordered_map<uint32_t, uint32_t> index_;  // PrimRef bits -> light index
     bool background_ = false;                       // the last light, if present
