@@ -64,10 +64,10 @@ set title "Speed-up over one thread"
 set xlabel "threads"
 set ylabel "speed-up"
 set xtics 1
-plot dir."/scaling.csv" using (strcol(1) eq "cornell" && strcol(2) eq "megakernel" ? column(3) : 1/0):5 title "cornell, megakernel", \
-     "" using (strcol(1) eq "cornell" && strcol(2) eq "wavefront" ? column(3) : 1/0):5 title "cornell, wavefront", \
-     "" using (strcol(1) eq "dragon" && strcol(2) eq "megakernel" ? column(3) : 1/0):5 title "dragon, megakernel", \
-     "" using (strcol(1) eq "dragon" && strcol(2) eq "wavefront" ? column(3) : 1/0):5 title "dragon, wavefront", \
+plot dir."/scaling.csv" using (strcol(1) eq "cornell" && strcol(2) eq "megakernel" ? column(3) : 1/0):6 title "cornell, megakernel", \
+     "" using (strcol(1) eq "cornell" && strcol(2) eq "wavefront" ? column(3) : 1/0):6 title "cornell, wavefront", \
+     "" using (strcol(1) eq "dragon" && strcol(2) eq "megakernel" ? column(3) : 1/0):6 title "dragon, megakernel", \
+     "" using (strcol(1) eq "dragon" && strcol(2) eq "wavefront" ? column(3) : 1/0):6 title "dragon, wavefront", \
      x title "ideal" dt 2 lc rgb "grey"
 
 # Convergence: relative MSE against time, log-log, one plot per scene.

@@ -77,6 +77,7 @@ void bench_engines(const Options& o, Results& r) {
     if (all > 1) thread_counts.push_back(all);
     for (const Case& c : full)
         for (int threads : thread_counts) {
+            if (!o.wants(c.scene)) continue;
             tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
             const std::string path = (o.scenes / (std::string(c.scene) + ".json")).string();
             Scene scene = load_scene(path);

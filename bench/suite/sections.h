@@ -2,7 +2,10 @@
 // tables to the results.
 #pragma once
 
+#include <algorithm>
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include "results.h"
 
@@ -12,6 +15,11 @@ struct Options {
     bool quick = false;   // tiny settings: checks the harness, measures nothing useful
     int max_threads = 0;  // scaling goes 1 .. this (0: all hardware threads)
     std::filesystem::path scenes;
+    std::vector<std::string> only;  // engines and scaling: these bench scenes only (empty: all)
+
+    bool wants(const std::string& scene) const {
+        return only.empty() || std::find(only.begin(), only.end(), scene) != only.end();
+    }
 };
 
 void bench_engines(const Options& o, Results& r);      // megakernel vs wavefront, A B A B ...
