@@ -24,10 +24,9 @@
 namespace wavetrace {
 namespace wavefront_detail {
 
-// Waves handed out between two progress reports (on the caller's thread).
-constexpr size_t kWavesPerReport = 64;
-// Waves per thread and pass that small images are cut into, for balance.
-constexpr size_t kWavesPerThread = 4;
+// Waves per thread that an image is cut into, for balance: a wave carries its pixels through
+// all the samples of a pass, so the last waves of a pass decide when the threads meet again.
+constexpr size_t kWavesPerThread = 8;
 
 // Carries the wave of the pass's pixels [first, first + n) (in pass order) through all its
 // bounces and adds its paths to the film; returns the rays traced.
@@ -70,15 +69,15 @@ void wavefront(const Scene& scene,
                const WavefrontConfig& wavefront,
                RenderStats* stats,
                const ProgressCallback& progress) {
-    using wavefront_detail::kWavesPerReport, wavefront_detail::kWavesPerThread;
+    using wavefront_detail::kWavesPerThread;
     auto start = std::chrono::steady_clock::now();
     const LightSet lights(scene);
     const CameraRays camera(scene.camera, config.width, config.height);
     const WaveInputs in{scene, lights, config, camera,
                         media_at(scene, bvh, scene.camera.look_from)};
     const size_t pixels = static_cast<size_t>(config.width) * config.height;
-    // Small images: waves small enough that every thread gets a few per pass (the image does
-    // not depend on the wave size, so this may follow the thread count).
+    // Waves small enough that every thread gets several (the image does not depend on the wave
+    // size, so this may follow the thread count).
     const size_t threads = static_cast<size_t>(tbb::this_task_arena::max_concurrency());
     const size_t share = (pixels + kWavesPerThread * threads - 1) / (kWavesPerThread * threads);
     const size_t wave_size =
@@ -90,32 +89,41 @@ void wavefront(const Scene& scene,
         return q;
     });
     std::atomic<uint64_t> rays{0};
+    std::atomic<uint64_t> wave_samples_done{0};  // waves times the samples they carried
 
-    // Passes run in order and a stop is only taken between them, so every pixel has the same
-    // number of samples, received in sample order: the image does not depend on the wave
-    // size, the thread count or which thread ran which wave.
-    int done = 0;
-    for (; done < config.spp; ++done) {
+    // Passes of samples over all waves, as in the megakernel: each wave carries its pixels
+    // through the pass's samples in order, so every pixel receives its samples in sample order
+    // whatever the wave size, the thread count or which thread ran which wave, and a stop
+    // between passes leaves every pixel with the same number of samples. Without a stop
+    // function the render is one pass (the threads meet once, at the end); with one, passes
+    // last about half a second.
+    int done = 0, chunk = 1;
+    while (done < config.spp) {
         if (config.stop && config.stop(done)) break;
-        const uint32_t sample = static_cast<uint32_t>(config.first_sample + done);
-        for (size_t w0 = 0; w0 < waves; w0 += kWavesPerReport) {
-            const size_t w1 = std::min(waves, w0 + kWavesPerReport);
-            tbb::parallel_for(
-                tbb::blocked_range<size_t>(w0, w1, 1), [&](const tbb::blocked_range<size_t>& r) {
-                    WaveQueues& q = queues.local();
-                    uint64_t traced = 0;
-                    for (size_t w = r.begin(); w < r.end(); ++w) {
-                        const size_t first = w * wave_size;
-                        const size_t n = std::min(wave_size, pixels - first);
+        const int count = config.stop ? std::min(chunk, config.spp - done) : config.spp - done;
+        const uint32_t first_sample = static_cast<uint32_t>(config.first_sample + done);
+        const auto pass_start = std::chrono::steady_clock::now();
+        tbb::parallel_for(
+            tbb::blocked_range<size_t>(0, waves, 1), [&](const tbb::blocked_range<size_t>& r) {
+                WaveQueues& q = queues.local();
+                uint64_t traced = 0;
+                for (size_t w = r.begin(); w < r.end(); ++w) {
+                    const size_t first = w * wave_size;
+                    const size_t n = std::min(wave_size, pixels - first);
+                    for (uint32_t sample = first_sample; sample < first_sample + uint32_t(count);
+                         ++sample)
                         traced += wavefront_detail::run_wave(in, bvh, sample,
                                                              static_cast<uint32_t>(first), n,
                                                              wavefront.sort_by_material, q, film);
-                    }
-                    rays.fetch_add(traced, std::memory_order_relaxed);
-                });
-            if (progress)
-                progress((double(done) * waves + double(w1)) / (double(config.spp) * waves));
-        }
+                    const double finished = double(wave_samples_done.fetch_add(count) + count);
+                    if (progress) progress(finished / (double(waves) * config.spp));
+                }
+                rays.fetch_add(traced, std::memory_order_relaxed);
+            });
+        done += count;
+        const double seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - pass_start).count();
+        chunk = static_cast<int>(std::clamp(count * 0.5 / std::max(seconds, 1e-3), 1.0, 65536.0));
     }
 
     if (stats) {

@@ -14,8 +14,8 @@ struct RenderStats {
 };
 
 // The per-engine calls (render_megakernel, render_wavefront) call this now and then with the
-// fraction of the render done, from worker threads (the megakernel) or the caller's thread
-// (the wavefront). render() in renderer.h reports on the caller's thread only.
+// fraction of the render done, from worker threads. render() in renderer.h reports on the
+// caller's thread only.
 using ProgressCallback = std::function<void(double fraction)>;
 
 }  // namespace wavetrace
