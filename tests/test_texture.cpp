@@ -67,9 +67,44 @@ TEST(Texture, EarthImageIsDecodedFromSrgb) {
     }
 }
 
+// Only image textures read uv, directly or as a checker's cell; surface_at computes a sphere's
+// uv (an acos and an atan2) only for such materials.
+TEST(Texture, OnlyImagesReadUv) {
+    Scene s;
+    ImageData img;
+    img.width = img.height = 1;
+    img.texels = {Color(0.5f)};
+    Texture image;
+    image.kind = TextureKind::Image;
+    image.image = s.add_image(img);
+    const TextureId solid = s.add_solid({1, 0, 0}), picture = s.add_texture(image);
+    Texture noise;
+    noise.kind = TextureKind::Noise;
+    Texture checker;
+    checker.kind = TextureKind::Checker;
+    checker.even = solid;
+    checker.odd = solid;
+    const TextureId plain_checker = s.add_texture(checker);
+    checker.odd = picture;
+    EXPECT_FALSE(texture_reads_uv(s, kNone));
+    EXPECT_FALSE(texture_reads_uv(s, solid));
+    EXPECT_FALSE(texture_reads_uv(s, s.add_texture(noise)));
+    EXPECT_FALSE(texture_reads_uv(s, plain_checker));
+    EXPECT_TRUE(texture_reads_uv(s, picture));
+    EXPECT_TRUE(texture_reads_uv(s, s.add_texture(checker)));
+}
+
 TEST(Surface, SphereUvFollowsTheSeed) {
     Scene s;
-    s.add_material({});
+    ImageData img;
+    img.width = img.height = 1;
+    img.texels = {Color(0.5f)};
+    Texture image;
+    image.kind = TextureKind::Image;
+    image.image = s.add_image(img);
+    Material textured;
+    textured.albedo = s.add_texture(image);
+    s.add_material(textured);
     s.add_sphere({{0, 0, 0}, 1, 0, kNone});
     Hit hit{1.0f, PrimRef::make(PrimKind::Sphere, 0)};
     // The point (1, 0, 0): theta = pi/2, phi = pi -> (0.5, 0.5).

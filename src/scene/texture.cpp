@@ -97,6 +97,21 @@ float perlin_turbulence(Point3 p, int octaves) {
     return std::fabs(accum);
 }
 
+bool texture_reads_uv(const Scene& scene, TextureId id) {
+    if (id == kNone) return false;
+    const Texture& t = scene.textures[id];
+    switch (t.kind) {
+        case TextureKind::Image:
+            return true;
+        case TextureKind::Checker:
+            return texture_reads_uv(scene, t.even) || texture_reads_uv(scene, t.odd);
+        case TextureKind::Solid:
+        case TextureKind::Noise:
+            return false;
+    }
+    return false;
+}
+
 Color eval_texture(const Scene& scene, TextureId id, Vec2 uv, Point3 p) {
     for (;;) {
         const Texture& t = scene.textures[id];

@@ -13,7 +13,7 @@ struct SurfaceHit {
     Point3 p;
     Normal3 ng;              // geometric normal, unit, on the shape's outside (front)
     Normal3 ns;              // shading normal, unit, on the same side as ng
-    Vec2 uv;                 // texture coordinates
+    Vec2 uv;                 // texture coordinates (spheres: only where a texture reads them)
     bool front_face = true;  // the ray arrived from the side ng points to
     MaterialId material = kNone;
     MediumId interior = kNone;

@@ -42,6 +42,10 @@ struct ImageData {
 
 struct Scene;
 // Evaluates texture `id` at surface coordinates `uv` and world point `p`.
+// Whether texture `id` (kNone: no texture) reads the surface's uv: image textures, directly or
+// as a checker's cell. The others read the point or nothing.
+bool texture_reads_uv(const Scene& scene, TextureId id);
+
 Color eval_texture(const Scene& scene, TextureId id, Vec2 uv, Point3 p);
 // Perlin turbulence (RTNW §5.6): the sum of 7 octaves of |noise|, in [0, ~1.5).
 float perlin_turbulence(Point3 p, int octaves = 7);
