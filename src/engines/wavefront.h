@@ -26,7 +26,7 @@ namespace wavefront_detail {
 
 // Waves per thread that an image is cut into, for balance: a wave carries its pixels through
 // all the samples of a pass, so the last waves of a pass decide when the threads meet again.
-constexpr size_t kWavesPerThread = 8;
+constexpr size_t kWavesPerThread = 16;
 
 // Carries the wave of the pass's pixels [first, first + n) (in pass order) through all its
 // bounces and adds its paths to the film; returns the rays traced.
