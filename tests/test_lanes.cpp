@@ -301,3 +301,124 @@ TEST(Lanes, CameraRaysAreTheScalarOnesOnEverySimdTarget) {
     }
     use_wide_simd_target(0);
 }
+
+// Hits on random quads and on triangles of meshes with and without vertex normals (some flipped
+// against the face, so that the shading normal is turned over): the rows the block resolves from
+// the hit get surface_at's point and normals and resolve_segment's wo, and the same light-free
+// continuation as rows given that vertex, bit for bit.
+TEST(Lanes, HitsResolvedInLanesAreSurfaceAtOnEverySimdTarget) {
+    Scene scene;
+    const MaterialId white = scene.add_material({});
+    std::vector<Point3> positions;
+    std::vector<Normal3> normals;
+    std::vector<uint32_t> indices;
+    const uint32_t triangles = 24;
+    for (uint32_t i = 0; i < triangles; ++i) {
+        auto u = [&](uint32_t d) { return sample_1d(5, i, 0, d); };
+        const Point3 o{u(0) * 20.0f - 10.0f, u(1) * 20.0f - 10.0f, u(2) * 20.0f - 10.0f};
+        for (int k = 0; k < 3; ++k) {
+            positions.push_back(o + 3.0f * unit(u(3 + 2 * k), u(4 + 2 * k)));
+            normals.push_back(unit(u(9 + 2 * k), u(10 + 2 * k)));
+            indices.push_back(3 * i + k);
+        }
+    }
+    Mesh smooth, flat;
+    smooth.material = flat.material = white;
+    ASSERT_EQ(scene.add_mesh(smooth, positions, normals, {}, indices), 0u);
+    ASSERT_EQ(scene.add_mesh(flat, positions, {}, {}, indices), 0u);
+    for (uint32_t i = 0; i < 8; ++i) {
+        auto u = [&](uint32_t d) { return sample_1d(6, i, 0, d); };
+        scene.add_quad({{u(0) * 10.0f, u(1) * 10.0f, u(2) * 10.0f},
+                        4.0f * unit(u(3), u(4)),
+                        (1.0f + u(5)) * unit(u(6), u(7)),
+                        white});
+    }
+    const size_t prims = 2 * triangles + scene.quads.size();
+
+    RenderConfig config;
+    config.strategy = Strategy::Mis;
+    const LightSet lights;
+    const size_t n = 59;  // rows: hits, then the same vertices given
+    struct Case {
+        Ray ray;
+        Hit hit;
+        Color albedo, beta;
+        ContinuationSamples u;
+        float u_rr;
+    };
+    std::vector<Case> cases;
+    for (uint32_t i = 0; i < n; ++i) {
+        auto u = [&](uint32_t d) { return sample_1d(7, i, 0, d); };
+        const size_t k = i % prims;
+        const PrimRef prim = k < 2 * triangles
+                                 ? PrimRef::make(PrimKind::Triangle, uint32_t(k))
+                                 : PrimRef::make(PrimKind::Quad, uint32_t(k - 2 * triangles));
+        float a = u(0), b = u(1);
+        if (prim.kind() == PrimKind::Triangle && a + b > 1.0f) a = 1.0f - a, b = 1.0f - b;
+        Case c;
+        c.ray = Ray{{u(2) * 30.0f, u(3) * 30.0f, u(4) * 30.0f}, unit(u(5), u(6)) * (0.5f + u(7))};
+        c.hit = Hit{1.0f + u(8), prim, a, b};
+        c.albedo = {u(9), u(10), u(11)};
+        c.beta = Color(2.0f * u(12));
+        c.u = {u(13), u(14), u(15), u(16), u(17), u(18), u(19)};
+        c.u_rr = u(20);
+        cases.push_back(c);
+    }
+    auto row = [](const float(*rows)[kShadeChunk], size_t k) {
+        return Vec3{rows[0][k], rows[1][k], rows[2][k]};
+    };
+    size_t flipped = 0;
+    for (int64_t target : wide_simd_targets()) {
+        use_wide_simd_target(target);
+        SCOPED_TRACE(wide_simd_target());
+        LambertianBlock hits, given;
+        for (size_t k = 0; k < n; ++k) {
+            const Case& c = cases[k];
+            const uint32_t index = c.hit.prim.index();
+            size_t r;
+            if (c.hit.prim.kind() == PrimKind::Quad) {
+                r = hits.push_quad_hit(k, c.ray.d, c.hit.u, c.hit.v, scene.quads[index], c.albedo,
+                                       c.beta);
+            } else {
+                const Triangle& t = scene.triangles[index];
+                const Point3 p[3] = {scene.positions[t.v[0]], scene.positions[t.v[1]],
+                                     scene.positions[t.v[2]]};
+                const Normal3 nv[3] = {scene.normals[t.v[0]], scene.normals[t.v[1]],
+                                       scene.normals[t.v[2]]};
+                r = hits.push_triangle_hit(k, c.ray.d, c.hit.u, c.hit.v, p,
+                                           scene.meshes[t.mesh].has_normals ? nv : nullptr,
+                                           c.albedo, c.beta);
+            }
+            hits.set_step(r, c.u, c.u_rr, true);
+            // The scalar path: surface_at, and resolve_segment's wo = -d / |d|.
+            const SurfaceHit s = surface_at(scene, c.ray, c.hit);
+            Vertex v = surface_vertex(scene, s);
+            v.bsdf.albedo = c.albedo;
+            const Vec3 wo = -(c.ray.d / length(c.ray.d));
+            given.set_step(given.push(k, v, wo, c.beta), c.u, c.u_rr, true);
+            if (c.hit.prim.kind() == PrimKind::Triangle &&
+                scene.meshes[scene.triangles[index].mesh].has_normals) {
+                const Triangle& t = scene.triangles[index];
+                const float b0 = 1.0f - c.hit.u - c.hit.v;
+                const Vec3 ni = b0 * scene.normals[t.v[0]] + c.hit.u * scene.normals[t.v[1]] +
+                                c.hit.v * scene.normals[t.v[2]];
+                flipped += dot(ni, s.ng) < 0.0f;
+            }
+        }
+        lambertian_vertices(hits, lights.quad_emitter_columns(), true, MisHeuristic::Power);
+        lambertian_vertices(given, lights.quad_emitter_columns(), true, MisHeuristic::Power);
+        for (size_t k = 0; k < n; ++k) {
+            for (auto rows : {&LambertianBlock::p, &LambertianBlock::ng, &LambertianBlock::ns,
+                              &LambertianBlock::wo})
+                ASSERT_TRUE(same_bits(row(hits.*rows, k), row(given.*rows, k))) << "row " << k;
+            ASSERT_EQ(hits.alive[k], given.alive[k]) << "row " << k;
+            if (given.alive[k] == 0.0f) continue;
+            for (auto rows : {&LambertianBlock::origin, &LambertianBlock::wi,
+                              &LambertianBlock::weight})
+                ASSERT_TRUE(same_bits(row(hits.*rows, k), row(given.*rows, k))) << "row " << k;
+            ASSERT_TRUE(same_bits(hits.pdf[k], given.pdf[k])) << "row " << k;
+        }
+    }
+    use_wide_simd_target(0);
+    EXPECT_GT(flipped, 0u);  // interpolated normals that disagree with the face were exercised
+}

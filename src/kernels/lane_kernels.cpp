@@ -10,6 +10,7 @@
 #include "math/lanes-inl.h"
 #include "render/sampler-inl.h"
 #include "scene/camera_ray-inl.h"
+#include "scene/surface_point-inl.h"
 #include "shading/lambertian_step-inl.h"
 #include "shading/quad_light_nee-inl.h"
 
@@ -98,9 +99,17 @@ void LambertianVertices(LambertianBlock* b,
         for (auto* rows : {b->p, b->ng, b->ns, b->wo, b->albedo, b->beta})
             for (int a = 0; a < 3; ++a) rows[a][k] = rows[a][0];
         for (float* row : {b->select_prob, b->light_u1, b->light_u2, b->step, b->dir_u1, b->dir_u2,
-                           b->u_rr, b->roulette})
+                           b->u_rr, b->roulette, b->hit_u, b->hit_v, b->smooth})
             row[k] = row[0];
+        for (int a = 0; a < 3; ++a) {
+            b->dir[a][k] = b->dir[a][0];
+            for (int c = 0; c < 3; ++c) {
+                b->corner[c][a][k] = b->corner[c][a][0];
+                b->vertex_normal[c][a][k] = b->vertex_normal[c][a][0];
+            }
+        }
         b->light[k] = b->light[0];
+        b->hit_kind[k] = b->hit_kind[0];
     }
     auto load3 = [&](const float(*rows)[kShadeChunk], size_t k) {
         return V3<F>{hn::Load(d, rows[0] + k), hn::Load(d, rows[1] + k), hn::Load(d, rows[2] + k)};
@@ -111,9 +120,46 @@ void LambertianVertices(LambertianBlock* b,
         hn::Store(v.z, d, rows[2] + k);
     };
     const F zero = hn::Zero(d), one = hn::Set(d, 1.0f);
+    auto select3 = [&](hn::Mask<D> m, V3<F> yes, V3<F> no) {
+        return V3<F>{hn::IfThenElse(m, yes.x, no.x), hn::IfThenElse(m, yes.y, no.y),
+                     hn::IfThenElse(m, yes.z, no.z)};
+    };
     for (size_t k = 0; k < b->n; k += N) {
-        const V3<F> p = load3(b->p, k), ng = load3(b->ng, k), ns = load3(b->ns, k),
-                    wo = load3(b->wo, k), albedo = load3(b->albedo, k), beta = load3(b->beta, k);
+        V3<F> p = load3(b->p, k), ng = load3(b->ng, k), ns = load3(b->ns, k), wo = load3(b->wo, k);
+        const V3<F> albedo = load3(b->albedo, k), beta = load3(b->beta, k);
+
+        // The vertices to resolve from their hits: surface_at's point and normals, and the
+        // unit direction back along the ray, -d / |d|, as resolve_segment computes it.
+        const auto kind = hn::Load(di, b->hit_kind + k);
+        const auto quad_hit = hn::RebindMask(d, hn::Eq(kind, hn::Set(di, 1)));
+        const auto triangle_hit = hn::RebindMask(d, hn::Eq(kind, hn::Set(di, 2)));
+        const auto any_hit = hn::Or(quad_hit, triangle_hit);
+        if (!hn::AllFalse(d, any_hit)) {
+            const F u = hn::Load(d, b->hit_u + k), v = hn::Load(d, b->hit_v + k);
+            const V3<F> c[3] = {load3(b->corner[0], k), load3(b->corner[1], k),
+                                load3(b->corner[2], k)};
+            if (!hn::AllFalse(d, quad_hit)) {
+                const SurfacePoint<L> s = QuadPoint<L>(c[0], c[1], c[2], u, v);
+                p = select3(quad_hit, s.p, p);
+                ng = select3(quad_hit, s.ng, ng);
+                ns = select3(quad_hit, s.ns, ns);
+            }
+            if (!hn::AllFalse(d, triangle_hit)) {
+                const V3<F> vn[3] = {load3(b->vertex_normal[0], k), load3(b->vertex_normal[1], k),
+                                     load3(b->vertex_normal[2], k)};
+                const SurfacePoint<L> s =
+                    TrianglePoint<L>(c, vn, hn::Gt(hn::Load(d, b->smooth + k), zero), u, v);
+                p = select3(triangle_hit, s.p, p);
+                ng = select3(triangle_hit, s.ng, ng);
+                ns = select3(triangle_hit, s.ns, ns);
+            }
+            const V3<F> dir = Normalize<L>(load3(b->dir, k));
+            wo = select3(any_hit, V3<F>{hn::Neg(dir.x), hn::Neg(dir.y), hn::Neg(dir.z)}, wo);
+            store3(p, b->p, k);
+            store3(ng, b->ng, k);
+            store3(ns, b->ns, k);
+            store3(wo, b->wo, k);
+        }
 
         // The light sample, towards each row's own light: gathered from the columns, or
         // broadcast when the rows share one light (a scene with one quad light, or a chunk
@@ -214,13 +260,61 @@ size_t LambertianBlock::push(size_t entry_, const Vertex& v, Vec3 wo_, Color bet
         ng[a][k] = v.ng[a];
         ns[a][k] = v.frame.n[a];
         wo[a][k] = wo_[a];
-        albedo[a][k] = v.bsdf.albedo[a];
+    }
+    start_row(k, entry_, v.bsdf.albedo, beta_);
+    return k;
+}
+
+void LambertianBlock::start_row(size_t k, size_t entry_, Color albedo_, Color beta_) {
+    for (int a = 0; a < 3; ++a) {
+        albedo[a][k] = albedo_[a];
         beta[a][k] = beta_[a];
     }
     light[k] = -1;
     select_prob[k] = light_u1[k] = light_u2[k] = 0.0f;
     step[k] = dir_u1[k] = dir_u2[k] = u_rr[k] = roulette[k] = 0.0f;
+    hit_kind[k] = 0;
     entry[k] = static_cast<uint32_t>(entry_);
+}
+
+size_t LambertianBlock::push_quad_hit(
+    size_t entry_, Vec3 d, float u, float v, const Quad& quad, Color albedo_, Color beta_) {
+    const size_t k = n++;
+    start_row(k, entry_, albedo_, beta_);
+    hit_kind[k] = 1;
+    hit_u[k] = u;
+    hit_v[k] = v;
+    for (int a = 0; a < 3; ++a) {
+        dir[a][k] = d[a];
+        corner[0][a][k] = quad.q[a];
+        corner[1][a][k] = quad.u[a];
+        corner[2][a][k] = quad.v[a];
+    }
+    smooth[k] = 0.0f;
+    return k;
+}
+
+size_t LambertianBlock::push_triangle_hit(size_t entry_,
+                                          Vec3 d,
+                                          float u,
+                                          float v,
+                                          const Point3 (&vertices)[3],
+                                          const Normal3* normals,
+                                          Color albedo_,
+                                          Color beta_) {
+    const size_t k = n++;
+    start_row(k, entry_, albedo_, beta_);
+    hit_kind[k] = 2;
+    hit_u[k] = u;
+    hit_v[k] = v;
+    for (int a = 0; a < 3; ++a) {
+        dir[a][k] = d[a];
+        for (int c = 0; c < 3; ++c) {
+            corner[c][a][k] = vertices[c][a];
+            vertex_normal[c][a][k] = normals ? normals[c][a] : 0.0f;
+        }
+    }
+    smooth[k] = normals ? 1.0f : 0.0f;
     return k;
 }
 

@@ -12,6 +12,7 @@
 #include "shading/path_vertex.h"
 #include "wavetrace/render/sampler.h"
 #include "wavetrace/scene/camera.h"
+#include "wavetrace/scene/shapes.h"
 
 namespace wavetrace {
 
@@ -56,7 +57,10 @@ void draw_vertex_samples(uint64_t seed,
 
 // Lambertian surface vertices gathered by shade (SoA, `n` rows): each row's light sample towards a
 // quad light (next_event's, where light[k] >= 0) and its continuation (continue_path's, where
-// step[k] = 1), computed in one pass over the rows.
+// step[k] = 1), computed in one pass over the rows. A row's vertex is either given (p, ng, ns,
+// wo: push) or resolved there from its hit on a quad or a triangle (push_quad_hit,
+// push_triangle_hit: surface_at's point and normals, resolve_segment's wo), and then written to
+// p, ng, ns, wo.
 struct LambertianBlock {
     // in: the vertices
     alignas(64) float p[3][kShadeChunk];
@@ -73,6 +77,16 @@ struct LambertianBlock {
     alignas(64) float step[kShadeChunk], dir_u1[kShadeChunk], dir_u2[kShadeChunk];
     alignas(64) float u_rr[kShadeChunk], roulette[kShadeChunk];  // roulette = 1: it applies
     uint32_t entry[kShadeChunk];                                 // the wave entry of each row
+    // in: the hits of rows whose vertex is resolved here (hit_kind 1: a quad, 2: a triangle;
+    // 0: the vertex is given): the ray's direction, the hit's (u, v), the corners (quad: q, u,
+    // v; triangle: p0, p1, p2) and, for triangles of a mesh with normals (smooth = 1), the
+    // vertex normals
+    alignas(64) int32_t hit_kind[kShadeChunk];
+    alignas(64) float dir[3][kShadeChunk];
+    alignas(64) float hit_u[kShadeChunk], hit_v[kShadeChunk];
+    alignas(64) float corner[3][3][kShadeChunk];
+    alignas(64) float vertex_normal[3][3][kShadeChunk];
+    alignas(64) float smooth[kShadeChunk];
     size_t n = 0;
     // out: the shadow ray and its contribution beta f |cos| Le / p_light times the weight, for
     // rows with shadow = 1 (a light sample of weight > 0)
@@ -89,8 +103,23 @@ struct LambertianBlock {
     // Appends the vertex of wave entry `entry` with neither a light sample nor a step; returns
     // its row.
     size_t push(size_t entry, const Vertex& v, Vec3 wo, Color beta);
+    // The same for a vertex to resolve from the ray direction `d` and its hit at (u, v) on a
+    // quad (q, eu, ev) or a triangle (p, and vertex normals n or nullptr).
+    size_t push_quad_hit(
+        size_t entry, Vec3 d, float u, float v, const Quad& quad, Color albedo, Color beta);
+    size_t push_triangle_hit(size_t entry,
+                             Vec3 d,
+                             float u,
+                             float v,
+                             const Point3 (&p)[3],
+                             const Normal3* n,
+                             Color albedo,
+                             Color beta);
     void set_light_sample(size_t row, int32_t quad, float probability, float u1, float u2);
     void set_step(size_t row, const ContinuationSamples& u, float u_roulette, bool roulette);
+
+  private:
+    void start_row(size_t row, size_t entry, Color albedo, Color beta);
 };
 
 // Rows k < b.n: next_event's light sample (times beta) and continue_path's step, bit for bit.

@@ -43,6 +43,72 @@ Vec3 row(const float (*rows)[kShadeChunk], size_t k) {
     return {rows[0][k], rows[1][k], rows[2][k]};
 }
 
+// The albedo of a Lambertian material of constant albedo (a Solid texture), or false: the
+// materials whose surface vertices shade needs nothing of but the hit's point and normals.
+bool constant_lambertian(const Scene& scene, MaterialId m, Color* albedo) {
+    if (m == kNone) return false;
+    const Material& mat = scene.materials[m];
+    if (mat.kind != MaterialKind::Lambertian || mat.albedo == kNone) return false;
+    const Texture& t = scene.textures[mat.albedo];
+    if (t.kind != TextureKind::Solid) return false;
+    *albedo = t.color;
+    return true;
+}
+
+// Entry i's hit, if it is on a Lambertian quad or triangle of constant albedo whose light
+// sample (if any) goes to a quad light, as a row of the block to resolve there (or nothing, at
+// the last bounce); false for the scalar path. At such a hit resolve_segment finds no emission
+// and no medium, and the vertex takes the Lambertian step.
+bool shade_in_lanes(const WaveInputs& in,
+                    size_t i,
+                    size_t chunk_row,
+                    const SampleBlock& samples,
+                    const HitQueue& hits,
+                    const RayQueue& rays,
+                    const PathQueue& paths,
+                    bool nee,
+                    LambertianBlock& block) {
+    const Scene& scene = in.scene;
+    const PrimRef prim = hits.prim[i];
+    const uint32_t index = prim.index();
+    const Triangle* tri = nullptr;
+    MaterialId m;
+    if (prim.kind() == PrimKind::Quad) {
+        m = scene.quads[index].material;
+    } else if (prim.kind() == PrimKind::Triangle) {
+        tri = &scene.triangles[index];
+        m = scene.meshes[tri->mesh].material;
+    } else {
+        return false;
+    }
+    Color albedo;
+    if (!constant_lambertian(scene, m, &albedo)) return false;
+    const int bounce = paths.bounce[i];
+    if (!may_scatter(in.config, bounce)) return true;  // the path ends here, with nothing found
+    const VertexSamples u = samples.at(chunk_row);
+    const bool light_sample = nee && !in.lights.empty();
+    const LightChoice light = light_sample ? in.lights.select(u.light_select) : LightChoice{};
+    const int32_t quad = light_sample ? in.lights.quad_emitter_index(light) : -1;
+    if (light_sample && quad < 0) return false;  // a light sample the block does not take
+    size_t row;
+    if (tri) {
+        const Mesh& mesh = scene.meshes[tri->mesh];
+        const Point3 p[3] = {scene.positions[tri->v[0]], scene.positions[tri->v[1]],
+                             scene.positions[tri->v[2]]};
+        Normal3 n[3];
+        if (mesh.has_normals)
+            for (int k = 0; k < 3; ++k) n[k] = scene.normals[tri->v[k]];
+        row = block.push_triangle_hit(i, rays.dir[i], hits.u[i], hits.v[i], p,
+                                      mesh.has_normals ? n : nullptr, albedo, paths.beta[i]);
+    } else {
+        row = block.push_quad_hit(i, rays.dir[i], hits.u[i], hits.v[i], scene.quads[index], albedo,
+                                  paths.beta[i]);
+    }
+    if (light_sample) block.set_light_sample(row, quad, light.probability, u.light_u, u.light_v);
+    block.set_step(row, u.continuation, u.roulette, bounce + 1 >= in.config.rr_depth);
+    return true;
+}
+
 }  // namespace
 
 // Chunk by chunk: the vertices' uniform numbers in SIMD lanes; each entry's segment in scalar
@@ -64,6 +130,15 @@ size_t shade(const WaveInputs& in,
     size_t s = first_shadow;
     SampleBlock samples;
     LambertianBlock lambertian;
+    // Hits on Lambertian quads and triangles of constant albedo skip resolve_segment: their
+    // vertex is resolved in lanes with the block. That takes a scene without media (a segment
+    // then ends at its hit) and a strategy whose continuation there is the Lambertian step
+    // (not the one-sample light/mixture choice); light samples must go to quad lights.
+    const bool nee = cfg.strategy == Strategy::Nee || cfg.strategy == Strategy::Mis;
+    const bool resolve_in_lanes =
+        in.scene.media.empty() &&
+        ((cfg.strategy != Strategy::Light && cfg.strategy != Strategy::Mixture) ||
+         in.lights.empty());
     for (size_t c = begin; c < end; c += kShadeChunk) {
         const size_t chunk_end = std::min(end, c + kShadeChunk);
         draw_vertex_samples(cfg.seed, sample, &paths.pixel[c], &paths.bounce[c], chunk_end - c,
@@ -71,6 +146,11 @@ size_t shade(const WaveInputs& in,
         lambertian.n = 0;
         for (size_t i = c; i < chunk_end; ++i) {
             keep[i] = 0;
+
+            // ---- a Lambertian quad or triangle: its vertex in lanes ----
+            if (resolve_in_lanes && hits.prim[i].valid() &&
+                shade_in_lanes(in, i, i - c, samples, hits, rays, paths, nee, lambertian))
+                continue;
 
             // ---- the segment: medium, emission, boundary or surface ----
             MediumStack media = paths.media[i].unpack();

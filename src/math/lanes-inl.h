@@ -170,6 +170,15 @@ template <class F>
 HWY_INLINE F Dot(V3<F> a, V3<F> b) {
     return a.x * b.x + a.y * b.y + a.z * b.z;
 }
+// cross and normalize of math/vec3.h: the same operations in the same order.
+template <class F>
+HWY_INLINE V3<F> Cross(V3<F> a, V3<F> b) {
+    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+template <class L>
+HWY_INLINE V3<typename L::F> Normalize(V3<typename L::F> a) {
+    return a * (L::Set(1.0f) / L::Sqrt(Dot(a, a)));
+}
 template <class L>
 HWY_INLINE typename L::F MaxComponent(V3<typename L::F> a) {
     return L::Max(L::Max(a.x, a.y), a.z);

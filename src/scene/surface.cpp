@@ -2,11 +2,14 @@
 
 #include <cmath>
 
+#include "scene/surface_point-inl.h"
 #include "wavetrace/math/constants.h"
 #include "wavetrace/scene/scene.h"
 #include "wavetrace/scene/texture.h"
 
 namespace wavetrace {
+namespace lanes = HWY_NAMESPACE;
+using lanes::OneLane, lanes::to_lanes, lanes::to_vec3;
 
 SurfaceHit surface_at(const Scene& scene, const Ray& ray, const Hit& hit) {
     SurfaceHit s;
@@ -16,18 +19,18 @@ SurfaceHit surface_at(const Scene& scene, const Ray& ray, const Hit& hit) {
         case PrimKind::Triangle: {
             const Triangle& tri = scene.triangles[i];
             const Mesh& mesh = scene.meshes[tri.mesh];
-            Point3 p0 = scene.positions[tri.v[0]], p1 = scene.positions[tri.v[1]],
-                   p2 = scene.positions[tri.v[2]];
-            float b1 = hit.u, b2 = hit.v, b0 = 1.0f - b1 - b2;
-            // Interpolate the position from the vertices: more accurate than o + t d.
-            s.p = b0 * p0 + b1 * p1 + b2 * p2;
-            s.ng = normalize(cross(p1 - p0, p2 - p0));
-            s.ns = s.ng;
-            if (mesh.has_normals) {
-                Normal3 n = b0 * scene.normals[tri.v[0]] + b1 * scene.normals[tri.v[1]] +
-                            b2 * scene.normals[tri.v[2]];
-                if (length_squared(n) > 0) s.ns = normalize(n);
-            }
+            const lanes::V3<float> p[3] = {to_lanes(scene.positions[tri.v[0]]),
+                                           to_lanes(scene.positions[tri.v[1]]),
+                                           to_lanes(scene.positions[tri.v[2]])};
+            lanes::V3<float> n[3] = {};
+            if (mesh.has_normals)
+                for (int k = 0; k < 3; ++k) n[k] = to_lanes(scene.normals[tri.v[k]]);
+            const float b1 = hit.u, b2 = hit.v, b0 = 1.0f - b1 - b2;
+            const lanes::SurfacePoint<OneLane> sp =
+                lanes::TrianglePoint<OneLane>(p, n, mesh.has_normals, b1, b2);
+            s.p = to_vec3(sp.p);
+            s.ng = to_vec3(sp.ng);
+            s.ns = to_vec3(sp.ns);
             if (mesh.has_uvs) {
                 Vec2 t0 = scene.uvs[tri.v[0]], t1 = scene.uvs[tri.v[1]], t2 = scene.uvs[tri.v[2]];
                 s.uv = {b0 * t0.x + b1 * t1.x + b2 * t2.x, b0 * t0.y + b1 * t1.y + b2 * t2.y};
@@ -40,8 +43,10 @@ SurfaceHit surface_at(const Scene& scene, const Ray& ray, const Hit& hit) {
         }
         case PrimKind::Quad: {
             const Quad& q = scene.quads[i];
-            s.p = q.q + hit.u * q.u + hit.v * q.v;
-            s.ng = s.ns = normalize(cross(q.u, q.v));
+            const lanes::SurfacePoint<OneLane> sp = lanes::QuadPoint<OneLane>(
+                to_lanes(q.q), to_lanes(q.u), to_lanes(q.v), hit.u, hit.v);
+            s.p = to_vec3(sp.p);
+            s.ng = s.ns = to_vec3(sp.ng);
             s.uv = {hit.u, hit.v};
             s.material = q.material;
             s.interior = q.interior;
