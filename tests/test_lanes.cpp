@@ -33,17 +33,18 @@ Vec3 unit(float u1, float u2) {
     return sample_uniform_sphere(u1, u2);
 }
 
-// A Lambertian surface vertex at p, its normals and albedo from dimensions 3-9 of u: the
-// shading normal tilted off the geometric one, so that the geometric-side tests reject some
-// directions.
+// A Lambertian or rough metal surface vertex at p, its normals, albedo and roughness from
+// dimensions 3-9 and 21 of u: the shading normal tilted off the geometric one, so that the
+// geometric-side tests reject some directions.
 template <class Dim>
-Vertex lambertian_vertex(Point3 p, Dim u) {
+Vertex surface_vertex_at(Point3 p, Dim u, bool metal) {
     Vertex v;
     v.p = p;
     v.ng = unit(u(3), u(4));
     v.frame = Frame::from_normal(normalize(v.ng + 0.3f * unit(u(5), u(6))));
-    v.bsdf.kind = MaterialKind::Lambertian;
+    v.bsdf.kind = metal ? MaterialKind::Metal : MaterialKind::Lambertian;
     v.bsdf.albedo = {u(7), u(8), u(9)};
+    v.bsdf.alpha = metal ? 0.02f + 0.6f * u(21) : 0.0f;
     return v;
 }
 
@@ -99,9 +100,10 @@ TEST(Lanes, VertexSamplesAreTheScalarOnesOnEverySimdTarget) {
     use_wide_simd_target(0);
 }
 
-// Lambertian vertices with random normals (lambertian_vertex), throughputs and samples: the vector
-// step gives continue_path's result bit for bit, dead paths included.
-TEST(Lanes, LambertianStepsAreContinuePathOnEverySimdTarget) {
+// Lambertian vertices, then rough metal ones (so that vectors hold one kind or both), with random
+// normals (surface_vertex_at), throughputs and samples: the vector step gives continue_path's
+// result bit for bit, dead paths included.
+TEST(Lanes, SurfaceStepsAreContinuePathOnEverySimdTarget) {
     RenderConfig config;
     config.strategy = Strategy::Mis;
     config.rr_depth = 3;
@@ -121,7 +123,8 @@ TEST(Lanes, LambertianStepsAreContinuePathOnEverySimdTarget) {
     for (uint32_t i = 0; i < n; ++i) {
         auto u = [&](uint32_t d) { return sample_1d(9, i, 0, d); };
         Case c;
-        c.v = lambertian_vertex(Vec3{u(0) - 0.5f, u(1) - 0.5f, u(2) - 0.5f} * 100.0f, u);
+        c.v =
+            surface_vertex_at(Vec3{u(0) - 0.5f, u(1) - 0.5f, u(2) - 0.5f} * 100.0f, u, i >= n / 2);
         c.wo = unit(u(10), u(11));
         c.beta = Color(2.0f * u(12));
         c.u = {u(13), u(14), u(15), u(16), u(17), u(18), u(19)};
@@ -136,7 +139,7 @@ TEST(Lanes, LambertianStepsAreContinuePathOnEverySimdTarget) {
         LambertianBlock block;
         for (size_t k = 0; k < n; ++k) {
             const Case& c = cases[k];
-            ASSERT_TRUE(takes_lambertian_step(config, c.v, lights));
+            ASSERT_TRUE(takes_surface_step(config, c.v, lights));
             const size_t row = block.push(k, c.v, c.wo, c.beta);
             block.set_step(row, c.u, c.u_rr, c.bounce + 1 >= config.rr_depth);
         }
@@ -167,9 +170,9 @@ TEST(Lanes, LambertianStepsAreContinuePathOnEverySimdTarget) {
     EXPECT_GT(dead, 0u);  // the geometric-side test and roulette were exercised
 }
 
-// Lambertian vertices around two quad lights (one one-sided, one two-sided, of different power):
-// the vector light samples give next_event's shadow rays and contributions bit for bit, for
-// NEE and for MIS with either heuristic.
+// Lambertian and rough metal vertices around two quad lights (one one-sided, one two-sided, of
+// different power): the vector light samples give next_event's shadow rays and contributions bit
+// for bit, for NEE and for MIS with either heuristic.
 TEST(Lanes, QuadLightSamplesAreNextEventOnEverySimdTarget) {
     Scene scene;
     Material one_sided;
@@ -193,7 +196,7 @@ TEST(Lanes, QuadLightSamplesAreNextEventOnEverySimdTarget) {
     for (uint32_t i = 0; i < n; ++i) {
         auto u = [&](uint32_t d) { return sample_1d(13, i, 0, d); };
         Case c;
-        c.v = lambertian_vertex(Vec3{4 * u(0) - 2, 4 * u(1) - 2, 4 * u(2) - 2}, u);
+        c.v = surface_vertex_at(Vec3{4 * u(0) - 2, 4 * u(1) - 2, 4 * u(2) - 2}, u, i >= n / 2);
         c.wo = unit(u(10), u(11));
         c.beta = Color(2.0f * u(12));
         c.u.light_select = u(13);
@@ -342,7 +345,8 @@ TEST(Lanes, HitsResolvedInLanesAreSurfaceAtOnEverySimdTarget) {
     struct Case {
         Ray ray;
         Hit hit;
-        Color albedo, beta;
+        BsdfParams bsdf;
+        Color beta;
         ContinuationSamples u;
         float u_rr;
     };
@@ -358,7 +362,11 @@ TEST(Lanes, HitsResolvedInLanesAreSurfaceAtOnEverySimdTarget) {
         Case c;
         c.ray = Ray{{u(2) * 30.0f, u(3) * 30.0f, u(4) * 30.0f}, unit(u(5), u(6)) * (0.5f + u(7))};
         c.hit = Hit{1.0f + u(8), prim, a, b};
-        c.albedo = {u(9), u(10), u(11)};
+        c.bsdf.albedo = {u(9), u(10), u(11)};
+        if (i >= n / 2) {  // rough metal rows after the Lambertian ones
+            c.bsdf.kind = MaterialKind::Metal;
+            c.bsdf.alpha = 0.02f + 0.6f * u(21);
+        }
         c.beta = Color(2.0f * u(12));
         c.u = {u(13), u(14), u(15), u(16), u(17), u(18), u(19)};
         c.u_rr = u(20);
@@ -377,7 +385,7 @@ TEST(Lanes, HitsResolvedInLanesAreSurfaceAtOnEverySimdTarget) {
             const uint32_t index = c.hit.prim.index();
             size_t r;
             if (c.hit.prim.kind() == PrimKind::Quad) {
-                r = hits.push_quad_hit(k, c.ray.d, c.hit.u, c.hit.v, scene.quads[index], c.albedo,
+                r = hits.push_quad_hit(k, c.ray.d, c.hit.u, c.hit.v, scene.quads[index], c.bsdf,
                                        c.beta);
             } else {
                 const Triangle& t = scene.triangles[index];
@@ -386,14 +394,14 @@ TEST(Lanes, HitsResolvedInLanesAreSurfaceAtOnEverySimdTarget) {
                 const Normal3 nv[3] = {scene.normals[t.v[0]], scene.normals[t.v[1]],
                                        scene.normals[t.v[2]]};
                 r = hits.push_triangle_hit(k, c.ray.d, c.hit.u, c.hit.v, p,
-                                           scene.meshes[t.mesh].has_normals ? nv : nullptr,
-                                           c.albedo, c.beta);
+                                           scene.meshes[t.mesh].has_normals ? nv : nullptr, c.bsdf,
+                                           c.beta);
             }
             hits.set_step(r, c.u, c.u_rr, true);
             // The scalar path: surface_at, and resolve_segment's wo = -d / |d|.
             const SurfaceHit s = surface_at(scene, c.ray, c.hit);
             Vertex v = surface_vertex(scene, s);
-            v.bsdf.albedo = c.albedo;
+            v.bsdf = c.bsdf;
             const Vec3 wo = -(c.ray.d / length(c.ray.d));
             given.set_step(given.push(k, v, wo, c.beta), c.u, c.u_rr, true);
             if (c.hit.prim.kind() == PrimKind::Triangle &&
@@ -413,8 +421,8 @@ TEST(Lanes, HitsResolvedInLanesAreSurfaceAtOnEverySimdTarget) {
                 ASSERT_TRUE(same_bits(row(hits.*rows, k), row(given.*rows, k))) << "row " << k;
             ASSERT_EQ(hits.alive[k], given.alive[k]) << "row " << k;
             if (given.alive[k] == 0.0f) continue;
-            for (auto rows : {&LambertianBlock::origin, &LambertianBlock::wi,
-                              &LambertianBlock::weight})
+            for (auto rows :
+                 {&LambertianBlock::origin, &LambertianBlock::wi, &LambertianBlock::weight})
                 ASSERT_TRUE(same_bits(row(hits.*rows, k), row(given.*rows, k))) << "row " << k;
             ASSERT_TRUE(same_bits(hits.pdf[k], given.pdf[k])) << "row " << k;
         }

@@ -11,8 +11,8 @@
 #include "render/sampler-inl.h"
 #include "scene/camera_ray-inl.h"
 #include "scene/surface_point-inl.h"
-#include "shading/lambertian_step-inl.h"
 #include "shading/quad_light_nee-inl.h"
+#include "shading/surface_step-inl.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace wavetrace {
@@ -99,7 +99,7 @@ void LambertianVertices(LambertianBlock* b,
         for (auto* rows : {b->p, b->ng, b->ns, b->wo, b->albedo, b->beta})
             for (int a = 0; a < 3; ++a) rows[a][k] = rows[a][0];
         for (float* row : {b->select_prob, b->light_u1, b->light_u2, b->step, b->dir_u1, b->dir_u2,
-                           b->u_rr, b->roulette, b->hit_u, b->hit_v, b->smooth})
+                           b->u_rr, b->roulette, b->hit_u, b->hit_v, b->smooth, b->alpha, b->metal})
             row[k] = row[0];
         for (int a = 0; a < 3; ++a) {
             b->dir[a][k] = b->dir[a][0];
@@ -127,6 +127,8 @@ void LambertianVertices(LambertianBlock* b,
     for (size_t k = 0; k < b->n; k += N) {
         V3<F> p = load3(b->p, k), ng = load3(b->ng, k), ns = load3(b->ns, k), wo = load3(b->wo, k);
         const V3<F> albedo = load3(b->albedo, k), beta = load3(b->beta, k);
+        const F alpha = hn::Load(d, b->alpha + k);
+        const auto metal = hn::Gt(hn::Load(d, b->metal + k), zero);
 
         // The vertices to resolve from their hits: surface_at's point and normals, and the
         // unit direction back along the ray, -d / |d|, as resolve_segment computes it.
@@ -176,8 +178,15 @@ void LambertianVertices(LambertianBlock* b,
         if (!hn::AllFalse(d, has_light)) {
             const QuadLightLanes<L> light =
                 QuadLightFrom<L>(*lights, fetch, hn::Load(d, b->select_prob + k));
-            const LambertianNeeVertex<L> v{
-                p, ng, ns, wo, albedo, hn::Load(d, b->light_u1 + k), hn::Load(d, b->light_u2 + k)};
+            const NeeVertex<L> v{p,
+                                 ng,
+                                 ns,
+                                 wo,
+                                 albedo,
+                                 alpha,
+                                 metal,
+                                 hn::Load(d, b->light_u1 + k),
+                                 hn::Load(d, b->light_u2 + k)};
             const QuadLightNee<L> r = QuadLightSample(v, light, mis, heuristic);
             // As shade appends a scalar next_event's: beta (value weight), when the weight is > 0.
             store3(beta * (r.value * r.weight), b->contribution, k);
@@ -193,17 +202,34 @@ void LambertianVertices(LambertianBlock* b,
         // The continuation.
         const auto step = hn::Gt(hn::Load(d, b->step + k), zero);
         if (!hn::AllFalse(d, step)) {
-            const LambertianVertex<L> v{p,
-                                        ng,
-                                        ns,
-                                        wo,
-                                        albedo,
-                                        beta,
-                                        hn::Load(d, b->dir_u1 + k),
-                                        hn::Load(d, b->dir_u2 + k),
-                                        hn::Load(d, b->u_rr + k),
-                                        hn::Gt(hn::Load(d, b->roulette + k), zero)};
-            const LambertianStepResult<L> r = LambertianStep(v);
+            const StepVertex<L> v{p,
+                                  ng,
+                                  ns,
+                                  wo,
+                                  albedo,
+                                  alpha,
+                                  beta,
+                                  hn::Load(d, b->dir_u1 + k),
+                                  hn::Load(d, b->dir_u2 + k),
+                                  hn::Load(d, b->u_rr + k),
+                                  hn::Gt(hn::Load(d, b->roulette + k), zero)};
+            // Each lane's lobe: vectors of one kind run one step, mixed ones both.
+            StepResult<L> r;
+            const bool any_metal = !hn::AllFalse(d, metal);
+            const bool all_metal = hn::AllTrue(d, metal);
+            if (!all_metal) r = LambertianStep(v);
+            if (any_metal) {
+                const StepResult<L> m = MetalStep(v);
+                if (all_metal) {
+                    r = m;
+                } else {
+                    r.alive = hn::Or(hn::And(metal, m.alive), hn::AndNot(metal, r.alive));
+                    r.origin = select3(metal, m.origin, r.origin);
+                    r.wi = select3(metal, m.wi, r.wi);
+                    r.weight = select3(metal, m.weight, r.weight);
+                    r.pdf = hn::IfThenElse(metal, m.pdf, r.pdf);
+                }
+            }
             store3(r.origin, b->origin, k);
             store3(r.wi, b->wi, k);
             store3(r.weight, b->weight, k);
@@ -261,15 +287,17 @@ size_t LambertianBlock::push(size_t entry_, const Vertex& v, Vec3 wo_, Color bet
         ns[a][k] = v.frame.n[a];
         wo[a][k] = wo_[a];
     }
-    start_row(k, entry_, v.bsdf.albedo, beta_);
+    start_row(k, entry_, v.bsdf, beta_);
     return k;
 }
 
-void LambertianBlock::start_row(size_t k, size_t entry_, Color albedo_, Color beta_) {
+void LambertianBlock::start_row(size_t k, size_t entry_, const BsdfParams& bsdf, Color beta_) {
     for (int a = 0; a < 3; ++a) {
-        albedo[a][k] = albedo_[a];
+        albedo[a][k] = bsdf.albedo[a];
         beta[a][k] = beta_[a];
     }
+    alpha[k] = bsdf.alpha;
+    metal[k] = bsdf.kind == MaterialKind::Metal ? 1.0f : 0.0f;
     light[k] = -1;
     select_prob[k] = light_u1[k] = light_u2[k] = 0.0f;
     step[k] = dir_u1[k] = dir_u2[k] = u_rr[k] = roulette[k] = 0.0f;
@@ -277,10 +305,15 @@ void LambertianBlock::start_row(size_t k, size_t entry_, Color albedo_, Color be
     entry[k] = static_cast<uint32_t>(entry_);
 }
 
-size_t LambertianBlock::push_quad_hit(
-    size_t entry_, Vec3 d, float u, float v, const Quad& quad, Color albedo_, Color beta_) {
+size_t LambertianBlock::push_quad_hit(size_t entry_,
+                                      Vec3 d,
+                                      float u,
+                                      float v,
+                                      const Quad& quad,
+                                      const BsdfParams& bsdf,
+                                      Color beta_) {
     const size_t k = n++;
-    start_row(k, entry_, albedo_, beta_);
+    start_row(k, entry_, bsdf, beta_);
     hit_kind[k] = 1;
     hit_u[k] = u;
     hit_v[k] = v;
@@ -300,10 +333,10 @@ size_t LambertianBlock::push_triangle_hit(size_t entry_,
                                           float v,
                                           const Point3 (&vertices)[3],
                                           const Normal3* normals,
-                                          Color albedo_,
+                                          const BsdfParams& bsdf,
                                           Color beta_) {
     const size_t k = n++;
-    start_row(k, entry_, albedo_, beta_);
+    start_row(k, entry_, bsdf, beta_);
     hit_kind[k] = 2;
     hit_u[k] = u;
     hit_v[k] = v;

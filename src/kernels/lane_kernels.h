@@ -1,7 +1,7 @@
 // The wavefront's kernels that run in SIMD lanes, over a chunk of a wave: camera rays
 // (scene/camera_ray-inl.h), the uniform numbers of each vertex (render/sampler-inl.h), the light
 // samples towards quad lights (shading/quad_light_nee-inl.h) and the continuation of the
-// Lambertian vertices (shading/lambertian_step-inl.h). The formulas are the ones the megakernel
+// Lambertian vertices (shading/surface_step-inl.h). The formulas are the ones the megakernel
 // runs in one lane; these run them a vector at a time, on the best target the CPU has
 // (Highway's dynamic dispatch), with the same bits.
 #pragma once
@@ -68,6 +68,7 @@ struct LambertianBlock {
     alignas(64) float ns[3][kShadeChunk];
     alignas(64) float wo[3][kShadeChunk];
     alignas(64) float albedo[3][kShadeChunk];
+    alignas(64) float alpha[kShadeChunk], metal[kShadeChunk];  // metal = 1: a rough metal
     alignas(64) float beta[3][kShadeChunk];
     // in: the light sample: the light's index among the LightSet's quad emitters (-1: none),
     // its selection probability and the point on it
@@ -104,22 +105,28 @@ struct LambertianBlock {
     // its row.
     size_t push(size_t entry, const Vertex& v, Vec3 wo, Color beta);
     // The same for a vertex to resolve from the ray direction `d` and its hit at (u, v) on a
-    // quad (q, eu, ev) or a triangle (p, and vertex normals n or nullptr).
-    size_t push_quad_hit(
-        size_t entry, Vec3 d, float u, float v, const Quad& quad, Color albedo, Color beta);
+    // quad (q, eu, ev) or a triangle (p, and vertex normals n or nullptr), of the BSDF `bsdf`
+    // (Lambertian or rough metal).
+    size_t push_quad_hit(size_t entry,
+                         Vec3 d,
+                         float u,
+                         float v,
+                         const Quad& quad,
+                         const BsdfParams& bsdf,
+                         Color beta);
     size_t push_triangle_hit(size_t entry,
                              Vec3 d,
                              float u,
                              float v,
                              const Point3 (&p)[3],
                              const Normal3* n,
-                             Color albedo,
+                             const BsdfParams& bsdf,
                              Color beta);
     void set_light_sample(size_t row, int32_t quad, float probability, float u1, float u2);
     void set_step(size_t row, const ContinuationSamples& u, float u_roulette, bool roulette);
 
   private:
-    void start_row(size_t row, size_t entry, Color albedo, Color beta);
+    void start_row(size_t row, size_t entry, const BsdfParams& bsdf, Color beta);
 };
 
 // Rows k < b.n: next_event's light sample (times beta) and continue_path's step, bit for bit.

@@ -43,22 +43,30 @@ Vec3 row(const float (*rows)[kShadeChunk], size_t k) {
     return {rows[0][k], rows[1][k], rows[2][k]};
 }
 
-// The albedo of a Lambertian material of constant albedo (a Solid texture), or false: the
-// materials whose surface vertices shade needs nothing of but the hit's point and normals.
-bool constant_lambertian(const Scene& scene, MaterialId m, Color* albedo) {
+// The BSDF surface_vertex gives material m, if it is Lambertian or a rough metal of constant
+// albedo (a Solid texture): the materials whose surface vertices shade needs nothing of but the
+// hit's point and normals.
+bool lane_material(const Scene& scene, MaterialId m, BsdfParams* bsdf) {
     if (m == kNone) return false;
     const Material& mat = scene.materials[m];
-    if (mat.kind != MaterialKind::Lambertian || mat.albedo == kNone) return false;
+    const float alpha = mat.roughness * mat.roughness;
+    if (!(mat.kind == MaterialKind::Lambertian || (mat.kind == MaterialKind::Metal && alpha > 0)) ||
+        mat.albedo == kNone)
+        return false;
     const Texture& t = scene.textures[mat.albedo];
     if (t.kind != TextureKind::Solid) return false;
-    *albedo = t.color;
+    bsdf->kind = mat.kind;
+    bsdf->albedo = t.color;
+    bsdf->alpha = alpha;
+    bsdf->eta = mat.ior;
     return true;
 }
 
-// Entry i's hit, if it is on a Lambertian quad or triangle of constant albedo whose light
+// Entry i's hit, if it is on a Lambertian or rough metal quad or triangle of constant albedo
+// (lane_material) whose light
 // sample (if any) goes to a quad light, as a row of the block to resolve there (or nothing, at
 // the last bounce); false for the scalar path. At such a hit resolve_segment finds no emission
-// and no medium, and the vertex takes the Lambertian step.
+// and no medium, and the vertex takes the surface step.
 bool shade_in_lanes(const WaveInputs& in,
                     size_t i,
                     size_t chunk_row,
@@ -81,8 +89,8 @@ bool shade_in_lanes(const WaveInputs& in,
     } else {
         return false;
     }
-    Color albedo;
-    if (!constant_lambertian(scene, m, &albedo)) return false;
+    BsdfParams bsdf;
+    if (!lane_material(scene, m, &bsdf)) return false;
     const int bounce = paths.bounce[i];
     if (!may_scatter(in.config, bounce)) return true;  // the path ends here, with nothing found
     const VertexSamples u = samples.at(chunk_row);
@@ -99,9 +107,9 @@ bool shade_in_lanes(const WaveInputs& in,
         if (mesh.has_normals)
             for (int k = 0; k < 3; ++k) n[k] = scene.normals[tri->v[k]];
         row = block.push_triangle_hit(i, rays.dir[i], hits.u[i], hits.v[i], p,
-                                      mesh.has_normals ? n : nullptr, albedo, paths.beta[i]);
+                                      mesh.has_normals ? n : nullptr, bsdf, paths.beta[i]);
     } else {
-        row = block.push_quad_hit(i, rays.dir[i], hits.u[i], hits.v[i], scene.quads[index], albedo,
+        row = block.push_quad_hit(i, rays.dir[i], hits.u[i], hits.v[i], scene.quads[index], bsdf,
                                   paths.beta[i]);
     }
     if (light_sample) block.set_light_sample(row, quad, light.probability, u.light_u, u.light_v);
@@ -130,10 +138,11 @@ size_t shade(const WaveInputs& in,
     size_t s = first_shadow;
     SampleBlock samples;
     LambertianBlock lambertian;
-    // Hits on Lambertian quads and triangles of constant albedo skip resolve_segment: their
-    // vertex is resolved in lanes with the block. That takes a scene without media (a segment
-    // then ends at its hit) and a strategy whose continuation there is the Lambertian step
-    // (not the one-sample light/mixture choice); light samples must go to quad lights.
+    // Hits on Lambertian and rough metal quads and triangles of constant albedo skip
+    // resolve_segment: their vertex is resolved in lanes with the block. That takes a scene
+    // without media (a segment then ends at its hit) and a strategy whose continuation there is
+    // the surface step (not the one-sample light/mixture choice); light samples must go to quad
+    // lights.
     const bool nee = cfg.strategy == Strategy::Nee || cfg.strategy == Strategy::Mis;
     const bool resolve_in_lanes =
         in.scene.media.empty() &&
@@ -177,19 +186,19 @@ size_t shade(const WaveInputs& in,
             const Vertex& v = seg.vertex;
             const Color beta = paths.beta[i];
             const VertexSamples u = samples.at(i - c);
-            // Lambertian surface vertices go to the block for their light samples towards quad
-            // lights and their continuations; the rest is taken here.
+            // Lambertian and rough metal surface vertices go to the block for their light samples
+            // towards quad lights and their continuations; the rest is taken here.
             const bool nee = samples_lights(cfg, v, in.lights);
             const LightChoice light = nee ? in.lights.select(u.light_select) : LightChoice{};
             const int32_t quad_index = nee ? quad_light_sample_at(v, in.lights, light) : -1;
             const bool quad = quad_index >= 0;
-            const bool diffuse_step = takes_lambertian_step(cfg, v, in.lights);
-            if (quad || diffuse_step) {
+            const bool surface_step = takes_surface_step(cfg, v, in.lights);
+            if (quad || surface_step) {
                 const size_t row = lambertian.push(i, v, seg.wo, beta);
                 if (quad)
                     lambertian.set_light_sample(row, quad_index, light.probability, u.light_u,
                                                 u.light_v);
-                if (diffuse_step)
+                if (surface_step)
                     lambertian.set_step(row, u.continuation, u.roulette,
                                         bounce + 1 >= cfg.rr_depth);
             }
@@ -199,7 +208,7 @@ size_t shade(const WaveInputs& in,
                     append_shadow(d.sample.shadow, beta * (d.sample.value * d.weight), i, shadows,
                                   s);
             }
-            if (diffuse_step) continue;
+            if (surface_step) continue;
             const PathStep step = continue_path(in.scene, in.lights, cfg, v, seg.wo, bounce, beta,
                                                 media, u.continuation, u.roulette);
             if (!step.alive) continue;

@@ -55,6 +55,7 @@ struct OneLane {
     static M Or(M a, M b) { return a || b; }
     static M AndNot(M not_a, M b) { return !not_a && b; }
     static M Not(M m) { return !m; }
+    static bool Any(M m) { return m; }
 
     static U64 Set64(uint64_t x) { return x; }
     static U64 Widen(U32 x) { return x; }
@@ -93,6 +94,7 @@ struct FloatLanes {
     static HWY_INLINE M Or(M a, M b) { return hn::Or(a, b); }
     static HWY_INLINE M AndNot(M not_a, M b) { return hn::AndNot(not_a, b); }
     static HWY_INLINE M Not(M m) { return hn::Not(m); }
+    static HWY_INLINE bool Any(M m) { return !hn::AllFalse(D(), m); }
 };
 
 // 64-bit integer lanes with floats of the same lane count (half the vector width).

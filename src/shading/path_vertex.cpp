@@ -5,9 +5,9 @@
 
 #include "render/sampler-inl.h"
 #include "scene/camera_ray-inl.h"
-#include "shading/lambertian_step-inl.h"
 #include "shading/mis-inl.h"
 #include "shading/quad_light_nee-inl.h"
+#include "shading/surface_step-inl.h"
 #include "shading/warp.h"
 #include "wavetrace/render/sampler.h"
 #include "wavetrace/scene/scene.h"
@@ -169,7 +169,7 @@ bool samples_lights(const RenderConfig& config, const Vertex& v, const LightSet&
 }
 
 int32_t quad_light_sample_at(const Vertex& v, const LightSet& lights, LightChoice choice) {
-    if (v.bsdf.kind != MaterialKind::Lambertian || !v.on_surface()) return -1;
+    if (!is_lane_surface(v)) return -1;
     return lights.quad_emitter_index(choice);
 }
 
@@ -193,10 +193,15 @@ WeightedDirect next_event(const Scene& scene,
     WeightedDirect d;
     if (const int32_t k = quad_light_sample_at(v, lights, choice); k >= 0) {
         using lanes::to_lanes, lanes::to_vec3;
-        const lanes::LambertianNeeVertex<OneLane> lv{
-            to_lanes(v.p), to_lanes(v.ng),          to_lanes(v.frame.n),
-            to_lanes(wo),  to_lanes(v.bsdf.albedo), u.light_u,
-            u.light_v};
+        const lanes::NeeVertex<OneLane> lv{to_lanes(v.p),
+                                           to_lanes(v.ng),
+                                           to_lanes(v.frame.n),
+                                           to_lanes(wo),
+                                           to_lanes(v.bsdf.albedo),
+                                           v.bsdf.alpha,
+                                           v.bsdf.kind == MaterialKind::Metal,
+                                           u.light_u,
+                                           u.light_v};
         const lanes::QuadLightLanes<OneLane> light = lanes::QuadLightFrom<OneLane>(
             lights.quad_emitter_columns(),
             [&](const std::vector<float>& column) { return column[size_t(k)]; },
@@ -304,9 +309,13 @@ SegmentResult resolve_segment(const Scene& scene,
     return r;
 }
 
-bool takes_lambertian_step(const RenderConfig& config, const Vertex& v, const LightSet& lights) {
-    return v.bsdf.kind == MaterialKind::Lambertian && v.on_surface() &&
-           !one_sample_continuation(config.strategy, v, lights);
+bool is_lane_surface(const Vertex& v) {
+    return v.on_surface() && (v.bsdf.kind == MaterialKind::Lambertian ||
+                              (v.bsdf.kind == MaterialKind::Metal && v.bsdf.alpha > 0.0f));
+}
+
+bool takes_surface_step(const RenderConfig& config, const Vertex& v, const LightSet& lights) {
+    return is_lane_surface(v) && !one_sample_continuation(config.strategy, v, lights);
 }
 
 PathStep continue_path(const Scene& scene,
@@ -320,19 +329,21 @@ PathStep continue_path(const Scene& scene,
                        const ContinuationSamples& u,
                        float u_roulette) {
     PathStep step;
-    if (takes_lambertian_step(config, v, lights)) {
+    if (takes_surface_step(config, v, lights)) {
         using lanes::to_lanes, lanes::to_vec3;
-        const lanes::LambertianVertex<OneLane> lv{to_lanes(v.p),
-                                                  to_lanes(v.ng),
-                                                  to_lanes(v.frame.n),
-                                                  to_lanes(wo),
-                                                  to_lanes(v.bsdf.albedo),
-                                                  to_lanes(beta),
-                                                  u.bsdf_u1,
-                                                  u.bsdf_u2,
-                                                  u_roulette,
-                                                  bounce + 1 >= config.rr_depth};
-        const lanes::LambertianStepResult<OneLane> r = lanes::LambertianStep(lv);
+        const lanes::StepVertex<OneLane> lv{to_lanes(v.p),
+                                            to_lanes(v.ng),
+                                            to_lanes(v.frame.n),
+                                            to_lanes(wo),
+                                            to_lanes(v.bsdf.albedo),
+                                            v.bsdf.alpha,
+                                            to_lanes(beta),
+                                            u.bsdf_u1,
+                                            u.bsdf_u2,
+                                            u_roulette,
+                                            bounce + 1 >= config.rr_depth};
+        const lanes::StepResult<OneLane> r =
+            v.bsdf.kind == MaterialKind::Metal ? lanes::MetalStep(lv) : lanes::LambertianStep(lv);
         if (!r.alive) return step;
         step.weight = to_vec3(r.weight);
         step.prev = {v.p, r.pdf, lights.empty()};

@@ -129,10 +129,13 @@ SegmentResult resolve_segment(const Scene& scene,
                               float& flight,
                               const PreviousVertex& prev);
 
-// Whether the continuation at v is the Lambertian step (shading/lambertian_step-inl.h): a
-// Lambertian surface whose direction the strategy samples from the BSDF. The wavefront runs
+// Whether the continuation at v is a surface step (shading/surface_step-inl.h): a Lambertian or
+// rough metal surface whose direction the strategy samples from the BSDF. The wavefront runs
 // these vertices' steps in SIMD lanes, continue_path the same formula in one lane.
-bool takes_lambertian_step(const RenderConfig& config, const Vertex& v, const LightSet& lights);
+bool takes_surface_step(const RenderConfig& config, const Vertex& v, const LightSet& lights);
+// A Lambertian or rough metal surface: the vertices the lane formulas of next-event estimation
+// towards quad lights and of the surface step take.
+bool is_lane_surface(const Vertex& v);
 
 // The continuation of a path at a scattering vertex, Russian roulette included: the next ray,
 // the factor for the path throughput, the record for weighting emission the next segment
@@ -197,8 +200,8 @@ WeightedDirect next_event(const Scene& scene,
 // Whether next-event estimation happens at v: the strategy samples lights and v can.
 bool samples_lights(const RenderConfig& config, const Vertex& v, const LightSet& lights);
 // The light next_event samples at v in SIMD lanes (shading/quad_light_nee-inl.h), as its index
-// among the LightSet's quad emitters, or -1: at a Lambertian surface vertex that
-// samples_lights(), a chosen quad of constant radiance.
+// among the LightSet's quad emitters, or -1: at a Lambertian or rough metal surface vertex
+// (is_lane_surface) that samples_lights(), a chosen quad of constant radiance.
 int32_t quad_light_sample_at(const Vertex& v, const LightSet& lights, LightChoice choice);
 // Optical depth a segment reaching vertex `bounce` may travel before scattering in a medium.
 // Without media no segment consumes it, so it is not drawn (its log1p was 5-7% of a render).

@@ -1,5 +1,5 @@
-// Next-event estimation at a Lambertian surface vertex towards a quad light of constant
-// radiance: the light point (uniform by area), its solid-angle density, the BSDF value and
+// Next-event estimation at a Lambertian or a rough metal surface vertex towards a quad light of
+// constant radiance: the light point (uniform by area), its solid-angle density, the BSDF value and
 // density, the MIS weight and the shadow ray; what next_event computes for such a vertex and
 // light, written once over lanes. The megakernel runs it with OneLane inside next_event; the
 // wavefront's shade kernel runs it over the vertices of a chunk whose light sample picked such
@@ -12,6 +12,7 @@
 #endif
 
 #include "math/lanes-inl.h"
+#include "shading/ggx-inl.h"
 #include "shading/mis-inl.h"
 #include "wavetrace/math/constants.h"
 #include "wavetrace/shading/lights.h"
@@ -51,8 +52,10 @@ HWY_INLINE QuadLightLanes<L> QuadLightFrom(const QuadEmitterColumns& c,
 }
 
 template <class L>
-struct LambertianNeeVertex {
+struct NeeVertex {
     V3<typename L::F> p, ng, ns, wo, albedo;
+    typename L::F alpha;   // metal: GGX roughness (> 0)
+    typename L::M metal;   // a rough metal; else Lambertian
     typename L::F u1, u2;  // the point on the light
 };
 
@@ -67,7 +70,7 @@ struct QuadLightNee {
 };
 
 template <class L>
-HWY_INLINE QuadLightNee<L> QuadLightSample(const LambertianNeeVertex<L>& v,
+HWY_INLINE QuadLightNee<L> QuadLightSample(const NeeVertex<L>& v,
                                            const QuadLightLanes<L>& e,
                                            bool mis,
                                            MisHeuristic heuristic) {
@@ -90,15 +93,31 @@ HWY_INLINE QuadLightNee<L> QuadLightSample(const LambertianNeeVertex<L>& v,
     auto ok = L::And(L::And(dist2 > zero, cos_l > zero),
                      L::And(L::IsFinite(pdf_light), pdf_light > zero));
     ok = L::And(ok, MaxComponent<L>(le) > zero);
-    // The Lambertian BSDF, f |cos| = albedo / pi |cos theta_i|, on wo's side of both the
-    // geometric and the shading surface.
+    // The BSDF's f |cos| and density, zero unless wo and wi lie on one side of the geometric
+    // surface (eval_world) and of the shading surface (each lobe).
     const F wi_ng = Dot(r.wi, v.ng);
     ok = L::And(ok, Dot(v.wo, v.ng) * wi_ng > zero);
-    const F li_z = Dot(r.wi, v.ns);
-    ok = L::And(ok, Dot(v.wo, v.ns) * li_z > zero);
-    const F pdf_bsdf = L::Set(kInvPi) * L::Abs(li_z);
+    V3<F> f{zero, zero, zero};
+    F pdf_bsdf = zero;
+    if (L::Any(L::Not(v.metal))) {
+        // Lambertian: f |cos| = albedo / pi |cos theta_i|.
+        const F li_z = Dot(r.wi, v.ns);
+        const auto same_side = Dot(v.wo, v.ns) * li_z > zero;
+        pdf_bsdf = L::Select(same_side, L::Set(kInvPi) * L::Abs(li_z), zero);
+        f = v.albedo * pdf_bsdf;
+    }
+    if (L::Any(v.metal)) {
+        V3<F> s, t;
+        OrthonormalBasis<L>(v.ns, &s, &t);
+        const V3<F> lo{Dot(v.wo, s), Dot(v.wo, t), Dot(v.wo, v.ns)};
+        const V3<F> li{Dot(r.wi, s), Dot(r.wi, t), Dot(r.wi, v.ns)};
+        F pdf_metal;
+        const V3<F> f_metal = MetalEval<L>(v.albedo, v.alpha, lo, li, &pdf_metal);
+        f = {L::Select(v.metal, f_metal.x, f.x), L::Select(v.metal, f_metal.y, f.y),
+             L::Select(v.metal, f_metal.z, f.z)};
+        pdf_bsdf = L::Select(v.metal, pdf_metal, pdf_bsdf);
+    }
     r.pdf_bsdf = pdf_bsdf;
-    const V3<F> f = v.albedo * pdf_bsdf;
     ok = L::And(ok, MaxComponent<L>(f) > zero);
     r.valid = ok;
     r.value = f * le * (one / pdf_light);

@@ -1,0 +1,157 @@
+// The GGX microfacet metal (Trowbridge-Reitz distribution, height-correlated Smith masking,
+// Schlick's Fresnel with the albedo as F0, visible-normal sampling), written once over lanes:
+// bsdf_eval / bsdf_pdf / bsdf_sample run the one-lane instances for both engines; the
+// wavefront's shade kernel runs them over the metal vertices of a chunk
+// (kernels/lane_kernels.cpp). Directions are in the shading frame, z along the normal. Per-target
+// header, see math/lanes-inl.h.
+#if defined(WAVETRACE_SHADING_GGX_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef WAVETRACE_SHADING_GGX_INL_H_
+#undef WAVETRACE_SHADING_GGX_INL_H_
+#else
+#define WAVETRACE_SHADING_GGX_INL_H_
+#endif
+
+#include "math/lanes-inl.h"
+#include "wavetrace/math/constants.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace wavetrace {
+namespace HWY_NAMESPACE {
+
+// Smith's Lambda for GGX of a direction with cosine z: (-1 + sqrt(1 + alpha^2 tan^2)) / 2
+// (Heitz 2014, eq. 72); infinite at grazing.
+template <class L>
+HWY_INLINE typename L::F GgxLambda(typename L::F z, typename L::F alpha) {
+    using F = typename L::F;
+    const F zero = L::Set(0.0f), one = L::Set(1.0f);
+    const F cos2 = z * z;
+    const F tan2 = L::Max(zero, one - cos2) / cos2;
+    const F lambda = L::Set(0.5f) * (L::Set(-1.0f) + L::Sqrt(one + alpha * alpha * tan2));
+    return L::Select(cos2 <= zero, L::Set(kInfinity), lambda);
+}
+
+template <class L>
+HWY_INLINE typename L::F GgxG1(typename L::F z, typename L::F alpha) {
+    return L::Set(1.0f) / (L::Set(1.0f) + GgxLambda<L>(z, alpha));
+}
+
+// The GGX distribution of microfacet normals with cosine hz: alpha^2 / (pi t^2),
+// t = hz^2 (alpha^2 - 1) + 1; zero below the surface.
+template <class L>
+HWY_INLINE typename L::F GgxD(typename L::F hz, typename L::F alpha) {
+    using F = typename L::F;
+    const F a2 = alpha * alpha;
+    const F t = hz * hz * (a2 - L::Set(1.0f)) + L::Set(1.0f);
+    return L::Select(hz <= L::Set(0.0f), L::Set(0.0f), a2 / (L::Set(kPi) * t * t));
+}
+
+// Schlick's approximation with the albedo as the reflectance at normal incidence: the seed's
+// metal tint, made angle-dependent (Schlick 1994).
+template <class L>
+HWY_INLINE V3<typename L::F> Schlick(V3<typename L::F> f0, typename L::F cos_theta) {
+    using F = typename L::F;
+    const F one = L::Set(1.0f);
+    const F m = L::Min(L::Max(one - cos_theta, L::Set(0.0f)), one);
+    const F m5 = (m * m) * (m * m) * m;
+    return f0 + V3<F>{one - f0.x, one - f0.y, one - f0.z} * m5;
+}
+
+// A visible normal of the GGX distribution seen from o (upper hemisphere): stretch to the
+// hemisphere configuration, sample the projected half-disk, unstretch (Heitz 2018, "Sampling
+// the GGX Distribution of Visible Normals", JCGT 7(4)).
+template <class L>
+HWY_INLINE V3<typename L::F> GgxVisibleNormal(V3<typename L::F> o,
+                                              typename L::F alpha,
+                                              typename L::F u1,
+                                              typename L::F u2) {
+    using F = typename L::F;
+    const F zero = L::Set(0.0f), one = L::Set(1.0f);
+    const V3<F> vh = Normalize<L>(V3<F>{alpha * o.x, alpha * o.y, o.z});
+    const F lensq = vh.x * vh.x + vh.y * vh.y;
+    const F inv = one / L::Sqrt(lensq);
+    const auto tilted = lensq > zero;
+    const V3<F> t1{L::Select(tilted, L::Neg(vh.y) * inv, one), L::Select(tilted, vh.x * inv, zero),
+                   L::Select(tilted, zero * inv, zero)};
+    const V3<F> t2 = Cross(vh, t1);
+    const F r = L::Sqrt(u1);
+    F sin_phi, cos_phi;
+    SinCos2Pi<L>(u2, &sin_phi, &cos_phi);
+    const F p1 = r * cos_phi;
+    const F s = L::Set(0.5f) * (one + vh.z);
+    const F p2 = (one - s) * L::Sqrt(L::Max(zero, one - p1 * p1)) + s * (r * sin_phi);
+    const V3<F> nh = t1 * p1 + t2 * p2 + vh * L::Sqrt(L::Max(zero, one - p1 * p1 - p2 * p2));
+    return Normalize<L>(V3<F>{alpha * nh.x, alpha * nh.y, L::Max(L::Set(1e-7f), nh.z)});
+}
+
+// Both directions mirrored into the upper hemisphere when wo is below (two-sided shading).
+template <class L>
+HWY_INLINE V3<typename L::F> Upper(V3<typename L::F> w, typename L::F side) {
+    return {w.x, w.y, w.z * side};
+}
+template <class L>
+HWY_INLINE typename L::F SideOf(V3<typename L::F> wo) {
+    return L::Select(wo.z < L::Set(0.0f), L::Set(-1.0f), L::Set(1.0f));
+}
+
+// f |cos theta_i| and the density of sampling wi, for wo and wi on one side (else 0, 0), of a
+// metal of roughness alpha > 0.
+template <class L>
+HWY_INLINE V3<typename L::F> MetalEval(V3<typename L::F> albedo,
+                                       typename L::F alpha,
+                                       V3<typename L::F> wo,
+                                       V3<typename L::F> wi,
+                                       typename L::F* pdf) {
+    using F = typename L::F;
+    const F zero = L::Set(0.0f), one = L::Set(1.0f);
+    const auto valid = L::Not(wo.z * wi.z <= zero);
+    const F side = SideOf<L>(wo);
+    const V3<F> o = Upper<L>(wo, side), i = Upper<L>(wi, side);
+    const V3<F> h = Normalize<L>(o + i);
+    const F d = GgxD<L>(h.z, alpha);
+    // Visible-normal density D_o(h) = G1(o) D(h) (o.h) / o.z, times the reflection Jacobian
+    // 1 / (4 o.h); f cos_i = F D G2 / (4 cos_o), with the height-correlated Smith G2.
+    *pdf = L::Select(valid, GgxG1<L>(o.z, alpha) * d / (L::Set(4.0f) * o.z), zero);
+    const F g2 = one / (one + GgxLambda<L>(o.z, alpha) + GgxLambda<L>(i.z, alpha));
+    const V3<F> f = Schlick<L>(albedo, Dot(i, h)) * (d * g2 / (L::Set(4.0f) * o.z));
+    return {L::Select(valid, f.x, zero), L::Select(valid, f.y, zero), L::Select(valid, f.z, zero)};
+}
+
+template <class L>
+struct MetalSampleResult {
+    typename L::M valid;       // false: wo grazing, or reflected below the surface
+    V3<typename L::F> wi;      // on wo's side
+    V3<typename L::F> weight;  // f |cos| / pdf = F G2 / G1(o)
+    typename L::F pdf;
+};
+
+// A direction sampled by the visible normals, for a metal of roughness alpha > 0. The pdf and
+// weight are recomputed from (o, i) as MetalEval computes them, so that they agree with it to
+// the last bit (MIS relies on it).
+template <class L>
+HWY_INLINE MetalSampleResult<L> MetalSample(V3<typename L::F> albedo,
+                                            typename L::F alpha,
+                                            V3<typename L::F> wo,
+                                            typename L::F u1,
+                                            typename L::F u2) {
+    using F = typename L::F;
+    const F zero = L::Set(0.0f), one = L::Set(1.0f);
+    MetalSampleResult<L> s;
+    const F side = SideOf<L>(wo);
+    const V3<F> o = Upper<L>(wo, side);
+    const V3<F> m = GgxVisibleNormal<L>(o, alpha, u1, u2);
+    const V3<F> i = m * (L::Set(2.0f) * Dot(o, m)) - o;
+    const V3<F> h = Normalize<L>(o + i);
+    const F g1 = GgxG1<L>(o.z, alpha);
+    s.pdf = g1 * GgxD<L>(h.z, alpha) / (L::Set(4.0f) * o.z);
+    const F g2 = one / (one + GgxLambda<L>(o.z, alpha) + GgxLambda<L>(i.z, alpha));
+    s.weight = Schlick<L>(albedo, Dot(i, h)) * (g2 / g1);
+    s.wi = Upper<L>(i, side);
+    s.valid = L::And(L::And(L::Not(wo.z == zero), i.z > zero), s.pdf > zero);
+    return s;
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace wavetrace
+HWY_AFTER_NAMESPACE();
+
+#endif  // WAVETRACE_SHADING_GGX_INL_H_

@@ -1,0 +1,105 @@
+// The continuation of a path at a Lambertian or a (rough) metal surface vertex, sampled by the
+// BSDF (cosine-weighted / GGX visible normals), with Russian roulette and the next ray's
+// origin: what continue_path does at such a vertex, written once over lanes. The megakernel runs
+// it with OneLane inside continue_path; the wavefront's shade kernel runs it over the surface
+// vertices of a chunk, a vector of paths at a time (kernels/lane_kernels.cpp). Per-target
+// header, see math/lanes-inl.h.
+#if defined(WAVETRACE_SHADING_SURFACE_STEP_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef WAVETRACE_SHADING_SURFACE_STEP_INL_H_
+#undef WAVETRACE_SHADING_SURFACE_STEP_INL_H_
+#else
+#define WAVETRACE_SHADING_SURFACE_STEP_INL_H_
+#endif
+
+#include "math/lanes-inl.h"
+#include "shading/ggx-inl.h"
+#include "shading/warp-inl.h"
+#include "wavetrace/math/constants.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace wavetrace {
+namespace HWY_NAMESPACE {
+
+// Russian roulette survival probability for path throughput beta.
+template <class L>
+HWY_INLINE typename L::F SurvivalProbability(V3<typename L::F> beta) {
+    return L::Min(L::Max(MaxComponent<L>(beta), L::Set(0.05f)), L::Set(0.95f));
+}
+
+template <class L>
+struct StepVertex {
+    V3<typename L::F> p, ng, ns;  // position, geometric and shading normals
+    V3<typename L::F> wo;         // unit, pointing away from the vertex
+    V3<typename L::F> albedo;
+    typename L::F alpha;         // metal: GGX roughness (> 0)
+    V3<typename L::F> beta;      // path throughput before this vertex
+    typename L::F u1, u2, u_rr;  // direction and Russian roulette samples
+    typename L::M roulette;      // whether Russian roulette applies at this bounce
+};
+
+template <class L>
+struct StepResult {
+    typename L::M alive;           // false: no valid direction, or the path ended by roulette
+    V3<typename L::F> origin, wi;  // the next ray
+    V3<typename L::F> weight;      // f |cos| / p, divided by the survival probability
+    typename L::F pdf;             // BSDF density of wi (for MIS at the emitter it may hit)
+};
+
+// The part both lobes share, for a sampled wi of throughput factor `weight` (ok: a valid
+// sample): reflection stays on wo's side of the geometric surface, so that light does not leak
+// through it where the shading normal disagrees; Russian roulette on the throughput after this
+// vertex; the origin just off the surface on wi's side.
+template <class L>
+HWY_INLINE StepResult<L> FinishStep(const StepVertex<L>& v,
+                                    V3<typename L::F> wi,
+                                    V3<typename L::F> weight,
+                                    typename L::F pdf,
+                                    typename L::M ok) {
+    using F = typename L::F;
+    const F zero = L::Set(0.0f), one = L::Set(1.0f);
+    StepResult<L> r;
+    r.wi = wi;
+    r.pdf = pdf;
+    const F wi_ng = Dot(wi, v.ng);
+    ok = L::AndNot(Dot(v.wo, v.ng) * wi_ng < zero, ok);
+    const F q = SurvivalProbability<L>(v.beta * weight);
+    ok = L::And(ok, L::Or(L::AndNot(v.roulette, ok), v.u_rr < q));
+    r.alive = ok;
+    r.weight = weight * L::Select(v.roulette, one / q, one);
+    const F eps = OriginOffset<L>(v.p);
+    r.origin = v.p + v.ng * L::Select(wi_ng > zero, eps, L::Neg(eps));
+    return r;
+}
+
+template <class L>
+HWY_INLINE StepResult<L> LambertianStep(const StepVertex<L>& v) {
+    using F = typename L::F;
+    const F zero = L::Set(0.0f), one = L::Set(1.0f);
+    V3<F> s, t;
+    OrthonormalBasis<L>(v.ns, &s, &t);
+    // Reflection on wo's side of the shading surface: the local z of wi takes wo's sign.
+    const F wo_z = Dot(v.wo, v.ns);
+    const V3<F> h = CosineHemisphere<L>(v.u1, v.u2);
+    const F wi_z = h.z * L::Select(wo_z < zero, L::Neg(one), one);
+    const F pdf = L::Set(kInvPi) * L::Abs(wi_z);
+    const V3<F> wi = s * h.x + t * h.y + v.ns * wi_z;
+    return FinishStep(v, wi, v.albedo, pdf, L::And(wo_z != zero, pdf > zero));
+}
+
+// A rough metal (alpha > 0): a GGX visible-normal sample in the shading frame.
+template <class L>
+HWY_INLINE StepResult<L> MetalStep(const StepVertex<L>& v) {
+    using F = typename L::F;
+    V3<F> s, t;
+    OrthonormalBasis<L>(v.ns, &s, &t);
+    const V3<F> lo{Dot(v.wo, s), Dot(v.wo, t), Dot(v.wo, v.ns)};
+    const MetalSampleResult<L> m = MetalSample<L>(v.albedo, v.alpha, lo, v.u1, v.u2);
+    const V3<F> wi = s * m.wi.x + t * m.wi.y + v.ns * m.wi.z;
+    return FinishStep(v, wi, m.weight, m.pdf, m.valid);
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace wavetrace
+HWY_AFTER_NAMESPACE();
+
+#endif  // WAVETRACE_SHADING_SURFACE_STEP_INL_H_
