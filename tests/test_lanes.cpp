@@ -413,6 +413,8 @@ TEST(Lanes, HitsResolvedInLanesAreSurfaceAtOnEverySimdTarget) {
                 flipped += dot(ni, s.ng) < 0.0f;
             }
         }
+        resolve_surface_hits(hits);
+        resolve_surface_hits(given);  // nothing to resolve: the rows stay as given
         lambertian_vertices(hits, lights.quad_emitter_columns(), true, MisHeuristic::Power);
         lambertian_vertices(given, lights.quad_emitter_columns(), true, MisHeuristic::Power);
         for (size_t k = 0; k < n; ++k) {

@@ -82,10 +82,7 @@ void DrawVertexSamples(uint64_t seed,
     }
 }
 
-void LambertianVertices(LambertianBlock* b,
-                        const QuadEmitterColumns* lights,
-                        bool mis,
-                        MisHeuristic heuristic) {
+void ResolveSurfaceHits(LambertianBlock* b) {
     using D = hn::CappedTag<float, kShadeChunk>;
     using L = FloatLanes<D>;
     using F = hn::Vec<D>;
@@ -96,19 +93,18 @@ void LambertianVertices(LambertianBlock* b,
     // Pad the last vector with copies of row 0, so that every lane computes on real numbers.
     const size_t padded = (b->n + N - 1) / N * N;
     for (size_t k = b->n; k < padded; ++k) {
-        for (auto* rows : {b->p, b->ng, b->ns, b->wo, b->albedo, b->beta})
-            for (int a = 0; a < 3; ++a) rows[a][k] = rows[a][0];
-        for (float* row : {b->select_prob, b->light_u1, b->light_u2, b->step, b->dir_u1, b->dir_u2,
-                           b->u_rr, b->roulette, b->hit_u, b->hit_v, b->smooth, b->alpha, b->metal})
-            row[k] = row[0];
+        for (float* row : {b->hit_u, b->hit_v, b->smooth}) row[k] = row[0];
         for (int a = 0; a < 3; ++a) {
+            b->p[a][k] = b->p[a][0];
+            b->ng[a][k] = b->ng[a][0];
+            b->ns[a][k] = b->ns[a][0];
+            b->wo[a][k] = b->wo[a][0];
             b->dir[a][k] = b->dir[a][0];
             for (int c = 0; c < 3; ++c) {
                 b->corner[c][a][k] = b->corner[c][a][0];
                 b->vertex_normal[c][a][k] = b->vertex_normal[c][a][0];
             }
         }
-        b->light[k] = b->light[0];
         b->hit_kind[k] = b->hit_kind[0];
     }
     auto load3 = [&](const float(*rows)[kShadeChunk], size_t k) {
@@ -119,17 +115,13 @@ void LambertianVertices(LambertianBlock* b,
         hn::Store(v.y, d, rows[1] + k);
         hn::Store(v.z, d, rows[2] + k);
     };
-    const F zero = hn::Zero(d), one = hn::Set(d, 1.0f);
     auto select3 = [&](hn::Mask<D> m, V3<F> yes, V3<F> no) {
         return V3<F>{hn::IfThenElse(m, yes.x, no.x), hn::IfThenElse(m, yes.y, no.y),
                      hn::IfThenElse(m, yes.z, no.z)};
     };
+    const F zero = hn::Zero(d);
     for (size_t k = 0; k < b->n; k += N) {
         V3<F> p = load3(b->p, k), ng = load3(b->ng, k), ns = load3(b->ns, k), wo = load3(b->wo, k);
-        const V3<F> albedo = load3(b->albedo, k), beta = load3(b->beta, k);
-        const F alpha = hn::Load(d, b->alpha + k);
-        const auto metal = hn::Gt(hn::Load(d, b->metal + k), zero);
-
         // The vertices to resolve from their hits: surface_at's point and normals, and the
         // unit direction back along the ray, -d / |d|, as resolve_segment computes it.
         const auto kind = hn::Load(di, b->hit_kind + k);
@@ -162,6 +154,50 @@ void LambertianVertices(LambertianBlock* b,
             store3(ns, b->ns, k);
             store3(wo, b->wo, k);
         }
+    }
+    // Every vertex is given now.
+    std::fill(b->hit_kind, b->hit_kind + b->n, 0);
+}
+
+void LambertianVertices(LambertianBlock* b,
+                        const QuadEmitterColumns* lights,
+                        bool mis,
+                        MisHeuristic heuristic) {
+    using D = hn::CappedTag<float, kShadeChunk>;
+    using L = FloatLanes<D>;
+    using F = hn::Vec<D>;
+    const D d;
+    const hn::RebindToSigned<D> di;
+    const size_t N = hn::Lanes(d);
+    if (b->n == 0) return;
+    // Pad the last vector with copies of row 0, so that every lane computes on real numbers.
+    const size_t padded = (b->n + N - 1) / N * N;
+    for (size_t k = b->n; k < padded; ++k) {
+        for (auto* rows : {b->p, b->ng, b->ns, b->wo, b->albedo, b->beta})
+            for (int a = 0; a < 3; ++a) rows[a][k] = rows[a][0];
+        for (float* row : {b->select_prob, b->light_u1, b->light_u2, b->step, b->dir_u1, b->dir_u2,
+                           b->u_rr, b->roulette, b->alpha, b->metal})
+            row[k] = row[0];
+        b->light[k] = b->light[0];
+    }
+    auto load3 = [&](const float(*rows)[kShadeChunk], size_t k) {
+        return V3<F>{hn::Load(d, rows[0] + k), hn::Load(d, rows[1] + k), hn::Load(d, rows[2] + k)};
+    };
+    auto store3 = [&](V3<F> v, float(*rows)[kShadeChunk], size_t k) {
+        hn::Store(v.x, d, rows[0] + k);
+        hn::Store(v.y, d, rows[1] + k);
+        hn::Store(v.z, d, rows[2] + k);
+    };
+    const F zero = hn::Zero(d), one = hn::Set(d, 1.0f);
+    auto select3 = [&](hn::Mask<D> m, V3<F> yes, V3<F> no) {
+        return V3<F>{hn::IfThenElse(m, yes.x, no.x), hn::IfThenElse(m, yes.y, no.y),
+                     hn::IfThenElse(m, yes.z, no.z)};
+    };
+    for (size_t k = 0; k < b->n; k += N) {
+        const V3<F> p = load3(b->p, k), ng = load3(b->ng, k), ns = load3(b->ns, k),
+                    wo = load3(b->wo, k), albedo = load3(b->albedo, k), beta = load3(b->beta, k);
+        const F alpha = hn::Load(d, b->alpha + k);
+        const auto metal = hn::Gt(hn::Load(d, b->metal + k), zero);
 
         // The light sample, towards each row's own light: gathered from the columns, or
         // broadcast when the rows share one light (a scene with one quad light, or a chunk
@@ -250,7 +286,12 @@ namespace wavetrace {
 
 HWY_EXPORT(DrawCameraRays);
 HWY_EXPORT(DrawVertexSamples);
+HWY_EXPORT(ResolveSurfaceHits);
 HWY_EXPORT(LambertianVertices);
+
+void resolve_surface_hits(LambertianBlock& b) {
+    HWY_DYNAMIC_DISPATCH(ResolveSurfaceHits)(&b);
+}
 
 void draw_camera_rays(const CameraRays& camera,
                       uint64_t seed,

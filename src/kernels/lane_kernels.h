@@ -58,9 +58,8 @@ void draw_vertex_samples(uint64_t seed,
 // Lambertian surface vertices gathered by shade (SoA, `n` rows): each row's light sample towards a
 // quad light (next_event's, where light[k] >= 0) and its continuation (continue_path's, where
 // step[k] = 1), computed in one pass over the rows. A row's vertex is either given (p, ng, ns,
-// wo: push) or resolved there from its hit on a quad or a triangle (push_quad_hit,
-// push_triangle_hit: surface_at's point and normals, resolve_segment's wo), and then written to
-// p, ng, ns, wo.
+// wo: push) or resolved from its hit on a quad or a triangle (push_quad_hit, push_triangle_hit,
+// then resolve_surface_hits: surface_at's point and normals, resolve_segment's wo).
 struct LambertianBlock {
     // in: the vertices
     alignas(64) float p[3][kShadeChunk];
@@ -129,7 +128,12 @@ struct LambertianBlock {
     void start_row(size_t row, size_t entry, const BsdfParams& bsdf, Color beta);
 };
 
-// Rows k < b.n: next_event's light sample (times beta) and continue_path's step, bit for bit.
+// Rows k < b.n pushed with a hit: their p, ng, ns, wo (surface_at's and resolve_segment's), bit
+// for bit; afterwards every row's vertex is given.
+void resolve_surface_hits(LambertianBlock& b);
+
+// Rows k < b.n, whose vertices are given (resolve_surface_hits): next_event's light sample
+// (times beta) and continue_path's step, bit for bit.
 void lambertian_vertices(LambertianBlock& b,
                          const QuadEmitterColumns& lights,
                          bool mis,

@@ -62,10 +62,17 @@ bool lane_material(const Scene& scene, MaterialId m, BsdfParams* bsdf) {
     return true;
 }
 
+// A light sample of a row resolved in lanes towards a light the block does not sample (not a
+// quad): taken in scalar code once the row's vertex is known.
+struct DeferredLightSample {
+    size_t row;
+    LightChoice light;
+    float u1, u2;
+};
+
 // Entry i's hit, if it is on a Lambertian or rough metal quad or triangle of constant albedo
-// (lane_material) whose light
-// sample (if any) goes to a quad light, as a row of the block to resolve there (or nothing, at
-// the last bounce); false for the scalar path. At such a hit resolve_segment finds no emission
+// (lane_material), as a row of the block to resolve there (or nothing, at the last bounce);
+// false for the scalar path. At such a hit resolve_segment finds no emission
 // and no medium, and the vertex takes the surface step.
 bool shade_in_lanes(const WaveInputs& in,
                     size_t i,
@@ -75,7 +82,9 @@ bool shade_in_lanes(const WaveInputs& in,
                     const RayQueue& rays,
                     const PathQueue& paths,
                     bool nee,
-                    LambertianBlock& block) {
+                    LambertianBlock& block,
+                    DeferredLightSample* deferred,
+                    size_t& deferred_count) {
     const Scene& scene = in.scene;
     const PrimRef prim = hits.prim[i];
     const uint32_t index = prim.index();
@@ -97,7 +106,6 @@ bool shade_in_lanes(const WaveInputs& in,
     const bool light_sample = nee && !in.lights.empty();
     const LightChoice light = light_sample ? in.lights.select(u.light_select) : LightChoice{};
     const int32_t quad = light_sample ? in.lights.quad_emitter_index(light) : -1;
-    if (light_sample && quad < 0) return false;  // a light sample the block does not take
     size_t row;
     if (tri) {
         const Mesh& mesh = scene.meshes[tri->mesh];
@@ -112,7 +120,10 @@ bool shade_in_lanes(const WaveInputs& in,
         row = block.push_quad_hit(i, rays.dir[i], hits.u[i], hits.v[i], scene.quads[index], bsdf,
                                   paths.beta[i]);
     }
-    if (light_sample) block.set_light_sample(row, quad, light.probability, u.light_u, u.light_v);
+    if (light_sample && quad >= 0)
+        block.set_light_sample(row, quad, light.probability, u.light_u, u.light_v);
+    else if (light_sample)
+        deferred[deferred_count++] = {row, light, u.light_u, u.light_v};
     block.set_step(row, u.continuation, u.roulette, bounce + 1 >= in.config.rr_depth);
     return true;
 }
@@ -138,11 +149,11 @@ size_t shade(const WaveInputs& in,
     size_t s = first_shadow;
     SampleBlock samples;
     LambertianBlock lambertian;
+    DeferredLightSample deferred[kShadeChunk];
     // Hits on Lambertian and rough metal quads and triangles of constant albedo skip
     // resolve_segment: their vertex is resolved in lanes with the block. That takes a scene
     // without media (a segment then ends at its hit) and a strategy whose continuation there is
-    // the surface step (not the one-sample light/mixture choice); light samples must go to quad
-    // lights.
+    // the surface step (not the one-sample light/mixture choice).
     const bool nee = cfg.strategy == Strategy::Nee || cfg.strategy == Strategy::Mis;
     const bool resolve_in_lanes =
         in.scene.media.empty() &&
@@ -153,12 +164,14 @@ size_t shade(const WaveInputs& in,
         draw_vertex_samples(cfg.seed, sample, &paths.pixel[c], &paths.bounce[c], chunk_end - c,
                             samples);
         lambertian.n = 0;
+        size_t deferred_count = 0;
         for (size_t i = c; i < chunk_end; ++i) {
             keep[i] = 0;
 
             // ---- a Lambertian quad or triangle: its vertex in lanes ----
             if (resolve_in_lanes && hits.prim[i].valid() &&
-                shade_in_lanes(in, i, i - c, samples, hits, rays, paths, nee, lambertian))
+                shade_in_lanes(in, i, i - c, samples, hits, rays, paths, nee, lambertian, deferred,
+                               deferred_count))
                 continue;
 
             // ---- the segment: medium, emission, boundary or surface ----
@@ -216,6 +229,28 @@ size_t shade(const WaveInputs& in,
             advance(in, sample, i, step.weight, step.prev, step.next, paths, rays, keep);
         }
 
+        resolve_surface_hits(lambertian);
+        for (size_t j = 0; j < deferred_count; ++j) {
+            const DeferredLightSample& l = deferred[j];
+            const size_t k = l.row;
+            Vertex v;
+            v.p = row(lambertian.p, k);
+            v.ng = row(lambertian.ng, k);
+            v.frame = Frame::from_normal(row(lambertian.ns, k));
+            v.bsdf.kind =
+                lambertian.metal[k] != 0.0f ? MaterialKind::Metal : MaterialKind::Lambertian;
+            v.bsdf.albedo = row(lambertian.albedo, k);
+            v.bsdf.alpha = lambertian.alpha[k];
+            VertexSamples u{};
+            u.light_u = l.u1;
+            u.light_v = l.u2;
+            const WeightedDirect d =
+                next_event(in.scene, in.lights, cfg, v, row(lambertian.wo, k), u, l.light);
+            if (d.weight > 0.0f)
+                append_shadow(d.sample.shadow,
+                              row(lambertian.beta, k) * (d.sample.value * d.weight),
+                              lambertian.entry[k], shadows, s);
+        }
         lambertian_vertices(lambertian, in.lights.quad_emitter_columns(),
                             cfg.strategy == Strategy::Mis, cfg.heuristic);
         const bool counts_fully = in.lights.empty();  // Lambertian vertices sample lights if any
