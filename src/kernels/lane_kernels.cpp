@@ -127,7 +127,8 @@ void ResolveSurfaceHits(LambertianBlock* b) {
         const auto kind = hn::Load(di, b->hit_kind + k);
         const auto quad_hit = hn::RebindMask(d, hn::Eq(kind, hn::Set(di, 1)));
         const auto triangle_hit = hn::RebindMask(d, hn::Eq(kind, hn::Set(di, 2)));
-        const auto any_hit = hn::Or(quad_hit, triangle_hit);
+        const auto sphere_hit = hn::RebindMask(d, hn::Eq(kind, hn::Set(di, 3)));
+        const auto any_hit = hn::Or(hn::Or(quad_hit, triangle_hit), sphere_hit);
         if (!hn::AllFalse(d, any_hit)) {
             const F u = hn::Load(d, b->hit_u + k), v = hn::Load(d, b->hit_v + k);
             const V3<F> c[3] = {load3(b->corner[0], k), load3(b->corner[1], k),
@@ -146,6 +147,12 @@ void ResolveSurfaceHits(LambertianBlock* b) {
                 p = select3(triangle_hit, s.p, p);
                 ng = select3(triangle_hit, s.ng, ng);
                 ns = select3(triangle_hit, s.ns, ns);
+            }
+            if (!hn::AllFalse(d, sphere_hit)) {
+                const SurfacePoint<L> s = SpherePoint<L>(c[0], c[1], u);
+                p = select3(sphere_hit, s.p, p);
+                ng = select3(sphere_hit, s.ng, ng);
+                ns = select3(sphere_hit, s.ns, ns);
             }
             const V3<F> dir = Normalize<L>(load3(b->dir, k));
             wo = select3(any_hit, V3<F>{hn::Neg(dir.x), hn::Neg(dir.y), hn::Neg(dir.z)}, wo);
@@ -363,6 +370,23 @@ size_t LambertianBlock::push_quad_hit(size_t entry_,
         corner[0][a][k] = quad.q[a];
         corner[1][a][k] = quad.u[a];
         corner[2][a][k] = quad.v[a];
+    }
+    smooth[k] = 0.0f;
+    return k;
+}
+
+size_t LambertianBlock::push_sphere_hit(
+    size_t entry_, Vec3 d, Point3 p_, const Sphere& sphere, const BsdfParams& bsdf, Color beta_) {
+    const size_t k = n++;
+    start_row(k, entry_, bsdf, beta_);
+    hit_kind[k] = 3;
+    hit_u[k] = sphere.radius;
+    hit_v[k] = 0.0f;
+    for (int a = 0; a < 3; ++a) {
+        dir[a][k] = d[a];
+        corner[0][a][k] = p_[a];
+        corner[1][a][k] = sphere.center[a];
+        corner[2][a][k] = 0.0f;
     }
     smooth[k] = 0.0f;
     return k;

@@ -77,10 +77,11 @@ struct LambertianBlock {
     alignas(64) float step[kShadeChunk], dir_u1[kShadeChunk], dir_u2[kShadeChunk];
     alignas(64) float u_rr[kShadeChunk], roulette[kShadeChunk];  // roulette = 1: it applies
     uint32_t entry[kShadeChunk];                                 // the wave entry of each row
-    // in: the hits of rows whose vertex is resolved here (hit_kind 1: a quad, 2: a triangle;
-    // 0: the vertex is given): the ray's direction, the hit's (u, v), the corners (quad: q, u,
-    // v; triangle: p0, p1, p2) and, for triangles of a mesh with normals (smooth = 1), the
-    // vertex normals
+    // in: the hits of rows whose vertex is resolved here (hit_kind 1: a quad, 2: a triangle,
+    // 3: a sphere; 0: the vertex is given): the ray's direction, the hit's (u, v) (sphere: the
+    // radius), the corners (quad: q, u, v; triangle: p0, p1, p2; sphere: the hit point o + t d
+    // and the centre) and, for triangles of a mesh with normals (smooth = 1), the vertex
+    // normals
     alignas(64) int32_t hit_kind[kShadeChunk];
     alignas(64) float dir[3][kShadeChunk];
     alignas(64) float hit_u[kShadeChunk], hit_v[kShadeChunk];
@@ -104,7 +105,8 @@ struct LambertianBlock {
     // its row.
     size_t push(size_t entry, const Vertex& v, Vec3 wo, Color beta);
     // The same for a vertex to resolve from the ray direction `d` and its hit at (u, v) on a
-    // quad (q, eu, ev) or a triangle (p, and vertex normals n or nullptr), of the BSDF `bsdf`
+    // quad (q, eu, ev), a triangle (p, and vertex normals n or nullptr) or a sphere (at its point
+    // p = o + t d), of the BSDF `bsdf`
     // (Lambertian or rough metal).
     size_t push_quad_hit(size_t entry,
                          Vec3 d,
@@ -113,6 +115,8 @@ struct LambertianBlock {
                          const Quad& quad,
                          const BsdfParams& bsdf,
                          Color beta);
+    size_t push_sphere_hit(
+        size_t entry, Vec3 d, Point3 p, const Sphere& sphere, const BsdfParams& bsdf, Color beta);
     size_t push_triangle_hit(size_t entry,
                              Vec3 d,
                              float u,

@@ -70,10 +70,10 @@ struct DeferredLightSample {
     float u1, u2;
 };
 
-// Entry i's hit, if it is on a Lambertian or rough metal quad or triangle of constant albedo
-// (lane_material), as a row of the block to resolve there (or nothing, at the last bounce);
-// false for the scalar path. At such a hit resolve_segment finds no emission
-// and no medium, and the vertex takes the surface step.
+// Entry i's hit, if it is on a Lambertian or rough metal quad, triangle or sphere of constant
+// albedo (lane_material), as a row of the block to resolve there (or nothing, at the last bounce);
+// false for the scalar path. At such a hit resolve_segment finds no emission, and the vertex
+// takes the surface step.
 bool shade_in_lanes(const WaveInputs& in,
                     size_t i,
                     size_t chunk_row,
@@ -90,16 +90,29 @@ bool shade_in_lanes(const WaveInputs& in,
     const uint32_t index = prim.index();
     const Triangle* tri = nullptr;
     MaterialId m;
-    if (prim.kind() == PrimKind::Quad) {
-        m = scene.quads[index].material;
-    } else if (prim.kind() == PrimKind::Triangle) {
-        tri = &scene.triangles[index];
-        m = scene.meshes[tri->mesh].material;
-    } else {
-        return false;
+    switch (prim.kind()) {
+        case PrimKind::Quad:
+            m = scene.quads[index].material;
+            break;
+        case PrimKind::Triangle:
+            tri = &scene.triangles[index];
+            m = scene.meshes[tri->mesh].material;
+            break;
+        case PrimKind::Sphere:
+            m = scene.spheres[index].material;
+            break;
     }
     BsdfParams bsdf;
     if (!lane_material(scene, m, &bsdf)) return false;
+    // In a medium, the path reaches the hit unless it scatters on the way (then the scalar path
+    // takes it); the optical depth left is not needed past a scattering vertex.
+    if (!scene.media.empty()) {
+        const Ray ray{rays.origin[i], rays.dir[i]};
+        float flight = paths.flight[i], s;
+        if (scatters_in_medium(scene, paths.media[i].unpack().current(), ray, hit_at(hits, i),
+                               length(ray.d), flight, &s))
+            return false;
+    }
     const int bounce = paths.bounce[i];
     if (!may_scatter(in.config, bounce)) return true;  // the path ends here, with nothing found
     const VertexSamples u = samples.at(chunk_row);
@@ -116,9 +129,14 @@ bool shade_in_lanes(const WaveInputs& in,
             for (int k = 0; k < 3; ++k) n[k] = scene.normals[tri->v[k]];
         row = block.push_triangle_hit(i, rays.dir[i], hits.u[i], hits.v[i], p,
                                       mesh.has_normals ? n : nullptr, bsdf, paths.beta[i]);
-    } else {
+    } else if (prim.kind() == PrimKind::Quad) {
         row = block.push_quad_hit(i, rays.dir[i], hits.u[i], hits.v[i], scene.quads[index], bsdf,
                                   paths.beta[i]);
+    } else {
+        // surface_at's point of a sphere hit: ray.at(t).
+        const Ray ray{rays.origin[i], rays.dir[i]};
+        row = block.push_sphere_hit(i, ray.d, ray.at(hits.t[i]), scene.spheres[index], bsdf,
+                                    paths.beta[i]);
     }
     if (light_sample && quad >= 0)
         block.set_light_sample(row, quad, light.probability, u.light_u, u.light_v);
@@ -150,15 +168,12 @@ size_t shade(const WaveInputs& in,
     SampleBlock samples;
     LambertianBlock lambertian;
     DeferredLightSample deferred[kShadeChunk];
-    // Hits on Lambertian and rough metal quads and triangles of constant albedo skip
-    // resolve_segment: their vertex is resolved in lanes with the block. That takes a scene
-    // without media (a segment then ends at its hit) and a strategy whose continuation there is
-    // the surface step (not the one-sample light/mixture choice).
+    // Hits on Lambertian and rough metal surfaces of constant albedo skip resolve_segment: their
+    // vertex is resolved in lanes with the block. That takes a strategy whose continuation
+    // there is the surface step (not the one-sample light/mixture choice).
     const bool nee = cfg.strategy == Strategy::Nee || cfg.strategy == Strategy::Mis;
     const bool resolve_in_lanes =
-        in.scene.media.empty() &&
-        ((cfg.strategy != Strategy::Light && cfg.strategy != Strategy::Mixture) ||
-         in.lights.empty());
+        (cfg.strategy != Strategy::Light && cfg.strategy != Strategy::Mixture) || in.lights.empty();
     for (size_t c = begin; c < end; c += kShadeChunk) {
         const size_t chunk_end = std::min(end, c + kShadeChunk);
         draw_vertex_samples(cfg.seed, sample, &paths.pixel[c], &paths.bounce[c], chunk_end - c,

@@ -54,8 +54,8 @@ SurfaceHit surface_at(const Scene& scene, const Ray& ray, const Hit& hit) {
         }
         case PrimKind::Sphere: {
             const Sphere& sp = scene.spheres[i];
-            s.ng = s.ns = (s.p - sp.center) / sp.radius;
-            s.ng = s.ns = normalize(s.ng);
+            s.ng = s.ns = to_vec3(
+                lanes::SpherePoint<OneLane>(to_lanes(s.p), to_lanes(sp.center), sp.radius).ng);
             // The seed's sphere mapping: u = phi / 2 pi around -x..+z.., v = theta / pi from -y.
             // An acos and an atan2 (7% of a render of spheres lit by spheres), so only where a
             // texture of the sphere's material reads it.

@@ -1,7 +1,7 @@
-// The point and normals of a hit on a quad or a triangle: what surface_at computes for such
-// hits (the rest of a SurfaceHit, uv and material, stays there), written once over lanes.
+// The point and normals of a hit on a quad, a triangle or a sphere: what surface_at computes for
+// such hits (the rest of a SurfaceHit, uv and material, stays there), written once over lanes.
 // surface_at runs the one-lane instance for both engines; the wavefront's shade kernel runs it
-// over the Lambertian quad and triangle hits of a chunk (kernels/lane_kernels.cpp), so that
+// over the Lambertian and metal hits of a chunk (kernels/lane_kernels.cpp), so that
 // their vertices never go through the scalar code. Per-target header, see math/lanes-inl.h.
 #if defined(WAVETRACE_SCENE_SURFACE_POINT_INL_H_) == defined(HWY_TARGET_TOGGLE)
 #ifdef WAVETRACE_SCENE_SURFACE_POINT_INL_H_
@@ -33,6 +33,15 @@ HWY_INLINE SurfacePoint<L> QuadPoint(V3<typename L::F> q,
     SurfacePoint<L> s;
     s.p = q + eu * a + ev * b;
     s.ng = s.ns = Normalize<L>(Cross(eu, ev));
+    return s;
+}
+
+// The sphere of centre c and radius r at its point p (the hit, o + t d): the outward normal.
+template <class L>
+HWY_INLINE SurfacePoint<L> SpherePoint(V3<typename L::F> p, V3<typename L::F> c, typename L::F r) {
+    SurfacePoint<L> s;
+    s.p = p;
+    s.ng = s.ns = Normalize<L>((p - c) * (L::Set(1.0f) / r));
     return s;
 }
 

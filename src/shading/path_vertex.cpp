@@ -244,6 +244,22 @@ float direct_weight(Strategy strategy, MisHeuristic heuristic, float pdf_light, 
                                      : 1.0f;
 }
 
+bool scatters_in_medium(const Scene& scene,
+                        MediumId m,
+                        const Ray& ray,
+                        const Hit& hit,
+                        float dir_length,
+                        float& flight,
+                        float* s) {
+    if (m == kNone) return false;
+    const float density = scene.media[m].density;
+    const float seg = hit.found() ? (hit.t - ray.tmin) * dir_length : kInfinity;
+    *s = flight / density;  // world distance to the scattering event
+    if (*s < seg) return true;
+    flight -= density * seg;  // memoryless: the rest carries over past the boundary
+    return false;
+}
+
 SegmentResult resolve_segment(const Scene& scene,
                               const LightSet& lights,
                               const RenderConfig& config,
@@ -256,17 +272,11 @@ SegmentResult resolve_segment(const Scene& scene,
     const float dir_length = length(ray.d);
     const Vec3 dir = ray.d / dir_length;
     const MediumId m = media.current();
-    if (m != kNone) {
-        const float density = scene.media[m].density;
-        const float seg = hit.found() ? (hit.t - ray.tmin) * dir_length : kInfinity;
-        const float s = flight / density;  // world distance to the scattering event
-        if (s < seg) {
-            r.event = SegmentEvent::Scatter;
-            r.vertex = medium_vertex(scene, m, ray.o + (ray.tmin + s / dir_length) * ray.d);
-            r.wo = -dir;
-            return r;
-        }
-        flight -= density * seg;  // memoryless: the rest carries over past the boundary
+    if (float s; scatters_in_medium(scene, m, ray, hit, dir_length, flight, &s)) {
+        r.event = SegmentEvent::Scatter;
+        r.vertex = medium_vertex(scene, m, ray.o + (ray.tmin + s / dir_length) * ray.d);
+        r.wo = -dir;
+        return r;
     }
     // Emission found by this segment, weighted for the strategy (MIS needs the density with
     // which the previous vertex's light sampling would have produced it).

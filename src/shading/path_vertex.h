@@ -117,6 +117,18 @@ struct SegmentResult {
     Ray next;              // Cross: the continuing ray
 };
 
+// The medium part of a segment in medium m (kNone: none) towards its closest hit, for a ray of
+// direction length dir_length: true when the path scatters in the medium first, at world
+// distance *s from the origin; else the optical depth the segment crosses is spent from
+// `flight` (the rest carries over past the boundary: free flights are memoryless).
+bool scatters_in_medium(const Scene& scene,
+                        MediumId m,
+                        const Ray& ray,
+                        const Hit& hit,
+                        float dir_length,
+                        float& flight,
+                        float* s);
+
 // Resolves one ray segment given its closest hit: medium scattering before the hit (consuming
 // `flight`, the optical depth left, drawn once per segment), escaping, emitters, medium
 // boundaries (updating `media`), or a surface to scatter at.
