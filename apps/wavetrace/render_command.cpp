@@ -257,6 +257,9 @@ Rendered render_to_image(const RenderOptions& o,
         WavefrontConfig wavefront;
         if (o.wave_size) wavefront.wave_size = static_cast<size_t>(*o.wave_size);
         wavefront.sort_by_material = o.sort_by_material;
+        // Checkpoints come between passes: passes no longer than half the interval.
+        if (o.checkpoint_every)
+            config.pass_seconds = std::min(config.pass_seconds, *o.checkpoint_every / 2);
         const auto render_start = std::chrono::steady_clock::now();
         auto last_checkpoint = render_start;
         config.stop = [&](int done) {

@@ -106,8 +106,9 @@ void megakernel(const Scene& scene,
     // Passes of samples over all tiles: a stop between passes leaves every pixel with the same
     // number of samples, and each pixel still receives its samples in order, so the image does
     // not depend on how the samples were split. Without a stop function the render is one
-    // pass; with one, passes last about half a second: long enough that a tile keeps its
-    // samples together (its part of the BVH stays in cache), short enough to stop promptly.
+    // pass; with one, passes last about config.pass_seconds (half a second): long enough that a
+    // tile keeps its samples together (its part of the BVH stays in cache), short enough to stop
+    // promptly.
     int done = 0, chunk = 1;
     while (done < config.spp) {
         if (config.stop && config.stop(done)) break;
@@ -139,7 +140,8 @@ void megakernel(const Scene& scene,
         done += count;
         const double seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - pass_start).count();
-        chunk = static_cast<int>(std::clamp(count * 0.5 / std::max(seconds, 1e-3), 1.0, 65536.0));
+        chunk = static_cast<int>(
+            std::clamp(count * config.pass_seconds / std::max(seconds, 1e-3), 1.0, 65536.0));
     }
 
     if (stats) {

@@ -96,7 +96,7 @@ void wavefront(const Scene& scene,
     // whatever the wave size, the thread count or which thread ran which wave, and a stop
     // between passes leaves every pixel with the same number of samples. Without a stop
     // function the render is one pass (the threads meet once, at the end); with one, passes
-    // last about half a second.
+    // last about config.pass_seconds.
     int done = 0, chunk = 1;
     while (done < config.spp) {
         if (config.stop && config.stop(done)) break;
@@ -123,7 +123,8 @@ void wavefront(const Scene& scene,
         done += count;
         const double seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - pass_start).count();
-        chunk = static_cast<int>(std::clamp(count * 0.5 / std::max(seconds, 1e-3), 1.0, 65536.0));
+        chunk = static_cast<int>(
+            std::clamp(count * config.pass_seconds / std::max(seconds, 1e-3), 1.0, 65536.0));
     }
 
     if (stats) {

@@ -35,12 +35,16 @@ struct RenderConfig {
     // rendering [0, k) and then [k, n) into one film gives the film of [0, n), bit for bit.
     int first_sample = 0;
     // Both engines render in passes of one or more samples of every pixel (the first pass
-    // one sample, the later ones about half a second long) and call this before each pass, on
+    // one sample, the later ones about pass_seconds long) and call this before each pass, on
     // the caller's thread, with the samples per pixel completed so far: no sample is being
     // added then, so the film may be read (a checkpoint). Returning true stops the render
     // there, so that every pixel holds the same number of samples (RenderStats::spp_done).
     // For interrupts, time limits and checkpoints.
     std::function<bool(int samples_done)> stop;
+    // The length passes aim at when there is a stop function: long enough that the threads
+    // seldom wait on each other and a tile keeps its samples together, short enough to stop
+    // (or checkpoint) promptly.
+    double pass_seconds = 0.5;
 };
 
 }  // namespace wavetrace
