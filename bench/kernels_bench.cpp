@@ -217,7 +217,7 @@ void BM_VertexSamples(benchmark::State& st, bool lanes) {
 // Shade's work on Lambertian vertices: the light sample towards the quad light and the
 // continuation. One lane: next_event and continue_path per vertex. Lanes: gathering the rows
 // (push), then the vector kernel.
-void fill(LambertianRows& r, LambertianBlock& block) {
+void fill(LambertianRows& r, SurfaceBlock& block) {
     block.n = 0;
     for (size_t k = 0; k < r.v.size(); ++k) {
         const size_t row = block.push(k, r.v[k], r.wo[k], r.beta[k]);
@@ -231,12 +231,11 @@ void fill(LambertianRows& r, LambertianBlock& block) {
 void BM_LambertianVertices(benchmark::State& st, bool lanes) {
     LambertianRows& r = lambertian_rows();
     const size_t n = r.v.size();
-    LambertianBlock block;
+    SurfaceBlock block;
     for (auto _ : st) {
         if (lanes) {
             fill(r, block);
-            lambertian_vertices(block, r.c.lights->quad_emitter_columns(), true,
-                                MisHeuristic::Power);
+            surface_vertices(block, r.c.lights->quad_emitter_columns(), true, MisHeuristic::Power);
             benchmark::DoNotOptimize(block);
         } else {
             for (size_t k = 0; k < n; ++k) {
@@ -256,10 +255,10 @@ void BM_LambertianVertices(benchmark::State& st, bool lanes) {
 // to BM_LambertianVertices/lanes.
 void BM_LambertianVerticesKernel(benchmark::State& st) {
     LambertianRows& r = lambertian_rows();
-    LambertianBlock block;
+    SurfaceBlock block;
     fill(r, block);
     for (auto _ : st) {
-        lambertian_vertices(block, r.c.lights->quad_emitter_columns(), true, MisHeuristic::Power);
+        surface_vertices(block, r.c.lights->quad_emitter_columns(), true, MisHeuristic::Power);
         benchmark::DoNotOptimize(block);
     }
     st.SetItemsProcessed(st.iterations() * block.n);

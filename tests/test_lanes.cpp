@@ -136,14 +136,14 @@ TEST(Lanes, SurfaceStepsAreContinuePathOnEverySimdTarget) {
     for (int64_t target : wide_simd_targets()) {
         use_wide_simd_target(target);
         SCOPED_TRACE(wide_simd_target());
-        LambertianBlock block;
+        SurfaceBlock block;
         for (size_t k = 0; k < n; ++k) {
             const Case& c = cases[k];
             ASSERT_TRUE(takes_surface_step(config, c.v, lights));
             const size_t row = block.push(k, c.v, c.wo, c.beta);
             block.set_step(row, c.u, c.u_rr, c.bounce + 1 >= config.rr_depth);
         }
-        lambertian_vertices(block, lights.quad_emitter_columns(), true, MisHeuristic::Power);
+        surface_vertices(block, lights.quad_emitter_columns(), true, MisHeuristic::Power);
         for (size_t k = 0; k < n; ++k) ASSERT_EQ(block.shadow[k], 0.0f);  // no light sample asked
         for (size_t k = 0; k < n; ++k) {
             const Case& c = cases[k];
@@ -213,7 +213,7 @@ TEST(Lanes, QuadLightSamplesAreNextEventOnEverySimdTarget) {
                 RenderConfig config;
                 config.strategy = strategy;
                 config.heuristic = heuristic;
-                LambertianBlock block;
+                SurfaceBlock block;
                 for (size_t k = 0; k < n; ++k) {
                     const Case& c = cases[k];
                     ASSERT_TRUE(samples_lights(config, c.v, lights));
@@ -225,8 +225,8 @@ TEST(Lanes, QuadLightSamplesAreNextEventOnEverySimdTarget) {
                         block.set_light_sample(row, lights.quad_emitter_index(light),
                                                light.probability, c.u.light_u, c.u.light_v);
                 }
-                lambertian_vertices(block, lights.quad_emitter_columns(), strategy == Strategy::Mis,
-                                    heuristic);
+                surface_vertices(block, lights.quad_emitter_columns(), strategy == Strategy::Mis,
+                                 heuristic);
                 for (size_t k = 0; k < n; ++k) {
                     const Case& c = cases[k];
                     ASSERT_EQ(block.alive[k], 0.0f);  // no step asked
@@ -379,7 +379,7 @@ TEST(Lanes, HitsResolvedInLanesAreSurfaceAtOnEverySimdTarget) {
     for (int64_t target : wide_simd_targets()) {
         use_wide_simd_target(target);
         SCOPED_TRACE(wide_simd_target());
-        LambertianBlock hits, given;
+        SurfaceBlock hits, given;
         for (size_t k = 0; k < n; ++k) {
             const Case& c = cases[k];
             const uint32_t index = c.hit.prim.index();
@@ -415,16 +415,15 @@ TEST(Lanes, HitsResolvedInLanesAreSurfaceAtOnEverySimdTarget) {
         }
         resolve_surface_hits(hits);
         resolve_surface_hits(given);  // nothing to resolve: the rows stay as given
-        lambertian_vertices(hits, lights.quad_emitter_columns(), true, MisHeuristic::Power);
-        lambertian_vertices(given, lights.quad_emitter_columns(), true, MisHeuristic::Power);
+        surface_vertices(hits, lights.quad_emitter_columns(), true, MisHeuristic::Power);
+        surface_vertices(given, lights.quad_emitter_columns(), true, MisHeuristic::Power);
         for (size_t k = 0; k < n; ++k) {
-            for (auto rows : {&LambertianBlock::p, &LambertianBlock::ng, &LambertianBlock::ns,
-                              &LambertianBlock::wo})
+            for (auto rows :
+                 {&SurfaceBlock::p, &SurfaceBlock::ng, &SurfaceBlock::ns, &SurfaceBlock::wo})
                 ASSERT_TRUE(same_bits(row(hits.*rows, k), row(given.*rows, k))) << "row " << k;
             ASSERT_EQ(hits.alive[k], given.alive[k]) << "row " << k;
             if (given.alive[k] == 0.0f) continue;
-            for (auto rows :
-                 {&LambertianBlock::origin, &LambertianBlock::wi, &LambertianBlock::weight})
+            for (auto rows : {&SurfaceBlock::origin, &SurfaceBlock::wi, &SurfaceBlock::weight})
                 ASSERT_TRUE(same_bits(row(hits.*rows, k), row(given.*rows, k))) << "row " << k;
             ASSERT_TRUE(same_bits(hits.pdf[k], given.pdf[k])) << "row " << k;
         }

@@ -82,7 +82,7 @@ void DrawVertexSamples(uint64_t seed,
     }
 }
 
-void ResolveSurfaceHits(LambertianBlock* b) {
+void ResolveSurfaceHits(SurfaceBlock* b) {
     using D = hn::CappedTag<float, kShadeChunk>;
     using L = FloatLanes<D>;
     using F = hn::Vec<D>;
@@ -166,10 +166,10 @@ void ResolveSurfaceHits(LambertianBlock* b) {
     std::fill(b->hit_kind, b->hit_kind + b->n, 0);
 }
 
-void LambertianVertices(LambertianBlock* b,
-                        const QuadEmitterColumns* lights,
-                        bool mis,
-                        MisHeuristic heuristic) {
+void SurfaceVertices(SurfaceBlock* b,
+                     const QuadEmitterColumns* lights,
+                     bool mis,
+                     MisHeuristic heuristic) {
     using D = hn::CappedTag<float, kShadeChunk>;
     using L = FloatLanes<D>;
     using F = hn::Vec<D>;
@@ -294,9 +294,9 @@ namespace wavetrace {
 HWY_EXPORT(DrawCameraRays);
 HWY_EXPORT(DrawVertexSamples);
 HWY_EXPORT(ResolveSurfaceHits);
-HWY_EXPORT(LambertianVertices);
+HWY_EXPORT(SurfaceVertices);
 
-void resolve_surface_hits(LambertianBlock& b) {
+void resolve_surface_hits(SurfaceBlock& b) {
     HWY_DYNAMIC_DISPATCH(ResolveSurfaceHits)(&b);
 }
 
@@ -320,14 +320,14 @@ void draw_vertex_samples(uint64_t seed,
     HWY_DYNAMIC_DISPATCH(DrawVertexSamples)(seed, sample, pixel, bounce, n, &out);
 }
 
-void lambertian_vertices(LambertianBlock& b,
-                         const QuadEmitterColumns& lights,
-                         bool mis,
-                         MisHeuristic heuristic) {
-    HWY_DYNAMIC_DISPATCH(LambertianVertices)(&b, &lights, mis, heuristic);
+void surface_vertices(SurfaceBlock& b,
+                      const QuadEmitterColumns& lights,
+                      bool mis,
+                      MisHeuristic heuristic) {
+    HWY_DYNAMIC_DISPATCH(SurfaceVertices)(&b, &lights, mis, heuristic);
 }
 
-size_t LambertianBlock::push(size_t entry_, const Vertex& v, Vec3 wo_, Color beta_) {
+size_t SurfaceBlock::push(size_t entry_, const Vertex& v, Vec3 wo_, Color beta_) {
     const size_t k = n++;
     for (int a = 0; a < 3; ++a) {
         p[a][k] = v.p[a];
@@ -339,7 +339,7 @@ size_t LambertianBlock::push(size_t entry_, const Vertex& v, Vec3 wo_, Color bet
     return k;
 }
 
-void LambertianBlock::start_row(size_t k, size_t entry_, const BsdfParams& bsdf, Color beta_) {
+void SurfaceBlock::start_row(size_t k, size_t entry_, const BsdfParams& bsdf, Color beta_) {
     for (int a = 0; a < 3; ++a) {
         albedo[a][k] = bsdf.albedo[a];
         beta[a][k] = beta_[a];
@@ -353,13 +353,13 @@ void LambertianBlock::start_row(size_t k, size_t entry_, const BsdfParams& bsdf,
     entry[k] = static_cast<uint32_t>(entry_);
 }
 
-size_t LambertianBlock::push_quad_hit(size_t entry_,
-                                      Vec3 d,
-                                      float u,
-                                      float v,
-                                      const Quad& quad,
-                                      const BsdfParams& bsdf,
-                                      Color beta_) {
+size_t SurfaceBlock::push_quad_hit(size_t entry_,
+                                   Vec3 d,
+                                   float u,
+                                   float v,
+                                   const Quad& quad,
+                                   const BsdfParams& bsdf,
+                                   Color beta_) {
     const size_t k = n++;
     start_row(k, entry_, bsdf, beta_);
     hit_kind[k] = 1;
@@ -375,7 +375,7 @@ size_t LambertianBlock::push_quad_hit(size_t entry_,
     return k;
 }
 
-size_t LambertianBlock::push_sphere_hit(
+size_t SurfaceBlock::push_sphere_hit(
     size_t entry_, Vec3 d, Point3 p_, const Sphere& sphere, const BsdfParams& bsdf, Color beta_) {
     const size_t k = n++;
     start_row(k, entry_, bsdf, beta_);
@@ -392,14 +392,14 @@ size_t LambertianBlock::push_sphere_hit(
     return k;
 }
 
-size_t LambertianBlock::push_triangle_hit(size_t entry_,
-                                          Vec3 d,
-                                          float u,
-                                          float v,
-                                          const Point3 (&vertices)[3],
-                                          const Normal3* normals,
-                                          const BsdfParams& bsdf,
-                                          Color beta_) {
+size_t SurfaceBlock::push_triangle_hit(size_t entry_,
+                                       Vec3 d,
+                                       float u,
+                                       float v,
+                                       const Point3 (&vertices)[3],
+                                       const Normal3* normals,
+                                       const BsdfParams& bsdf,
+                                       Color beta_) {
     const size_t k = n++;
     start_row(k, entry_, bsdf, beta_);
     hit_kind[k] = 2;
@@ -416,7 +416,7 @@ size_t LambertianBlock::push_triangle_hit(size_t entry_,
     return k;
 }
 
-void LambertianBlock::set_light_sample(
+void SurfaceBlock::set_light_sample(
     size_t row, int32_t quad, float probability, float u1, float u2) {
     light[row] = quad;
     select_prob[row] = probability;
@@ -424,10 +424,10 @@ void LambertianBlock::set_light_sample(
     light_u2[row] = u2;
 }
 
-void LambertianBlock::set_step(size_t row,
-                               const ContinuationSamples& u,
-                               float u_roulette,
-                               bool applies) {
+void SurfaceBlock::set_step(size_t row,
+                            const ContinuationSamples& u,
+                            float u_roulette,
+                            bool applies) {
     step[row] = 1.0f;
     dir_u1[row] = u.bsdf_u1;
     dir_u2[row] = u.bsdf_u2;

@@ -1,7 +1,8 @@
 // The wavefront's kernels that run in SIMD lanes, over a chunk of a wave: camera rays
-// (scene/camera_ray-inl.h), the uniform numbers of each vertex (render/sampler-inl.h), the light
-// samples towards quad lights (shading/quad_light_nee-inl.h) and the continuation of the
-// Lambertian vertices (shading/surface_step-inl.h). The formulas are the ones the megakernel
+// (scene/camera_ray-inl.h), the uniform numbers of each vertex (render/sampler-inl.h), the
+// points and normals of surface hits (scene/surface_point-inl.h), the light samples towards quad
+// lights (shading/quad_light_nee-inl.h) and the continuation (shading/surface_step-inl.h) of
+// Lambertian and rough metal vertices. The formulas are the ones the megakernel
 // runs in one lane; these run them a vector at a time, on the best target the CPU has
 // (Highway's dynamic dispatch), with the same bits.
 #pragma once
@@ -55,12 +56,12 @@ void draw_vertex_samples(uint64_t seed,
                          size_t n,
                          SampleBlock& out);
 
-// Lambertian surface vertices gathered by shade (SoA, `n` rows): each row's light sample towards a
-// quad light (next_event's, where light[k] >= 0) and its continuation (continue_path's, where
-// step[k] = 1), computed in one pass over the rows. A row's vertex is either given (p, ng, ns,
-// wo: push) or resolved from its hit on a quad or a triangle (push_quad_hit, push_triangle_hit,
-// then resolve_surface_hits: surface_at's point and normals, resolve_segment's wo).
-struct LambertianBlock {
+// Lambertian and rough metal surface vertices gathered by shade (SoA, `n` rows): each row's
+// light sample towards a quad light (next_event's, where light[k] >= 0) and its continuation
+// (continue_path's, where step[k] = 1), computed in one pass over the rows. A row's vertex is
+// either given (p, ng, ns, wo: push) or resolved from its hit on a quad, a triangle or a sphere
+// (push_*_hit, then resolve_surface_hits: surface_at's point and normals, resolve_segment's wo).
+struct SurfaceBlock {
     // in: the vertices
     alignas(64) float p[3][kShadeChunk];
     alignas(64) float ng[3][kShadeChunk];
@@ -134,13 +135,13 @@ struct LambertianBlock {
 
 // Rows k < b.n pushed with a hit: their p, ng, ns, wo (surface_at's and resolve_segment's), bit
 // for bit; afterwards every row's vertex is given.
-void resolve_surface_hits(LambertianBlock& b);
+void resolve_surface_hits(SurfaceBlock& b);
 
 // Rows k < b.n, whose vertices are given (resolve_surface_hits): next_event's light sample
 // (times beta) and continue_path's step, bit for bit.
-void lambertian_vertices(LambertianBlock& b,
-                         const QuadEmitterColumns& lights,
-                         bool mis,
-                         MisHeuristic heuristic);
+void surface_vertices(SurfaceBlock& b,
+                      const QuadEmitterColumns& lights,
+                      bool mis,
+                      MisHeuristic heuristic);
 
 }  // namespace wavetrace

@@ -113,7 +113,7 @@ bool shade_in_lanes(const WaveInputs& in,
                     const RayQueue& rays,
                     const PathQueue& paths,
                     bool nee,
-                    LambertianBlock& block,
+                    SurfaceBlock& block,
                     DeferredLightSample* deferred,
                     size_t& deferred_count) {
     const Scene& scene = in.scene;
@@ -179,11 +179,12 @@ bool shade_in_lanes(const WaveInputs& in,
 
 }  // namespace
 
-// Chunk by chunk: the vertices' uniform numbers in SIMD lanes; each entry's segment in scalar
-// code; the light samples towards quad lights and the continuations of Lambertian vertices
-// gathered into blocks and run in SIMD lanes at the end of the chunk, the rest in scalar code.
-// Shadow rays are appended in a fixed order (scalar ones, then the block's), so the queue, and
-// the image, do not depend on the target.
+// Chunk by chunk: the vertices' uniform numbers in SIMD lanes; hits on Lambertian and rough
+// metal surfaces gathered into a block whose vertices, light samples towards quad lights and
+// continuations run in SIMD lanes at the end of the chunk (light samples towards other lights
+// in scalar code from the resolved vertices); every other segment in scalar code. Shadow rays
+// are appended in a fixed order (scalar ones, then the deferred ones, then the block's), so
+// the queue, and the image, do not depend on the target.
 size_t shade(const WaveInputs& in,
              uint32_t sample,
              const HitQueue& hits,
@@ -197,7 +198,7 @@ size_t shade(const WaveInputs& in,
     const RenderConfig& cfg = in.config;
     size_t s = first_shadow;
     SampleBlock samples;
-    LambertianBlock lambertian;
+    SurfaceBlock block;
     DeferredLightSample deferred[kShadeChunk];
     const bool prefetch = prefetches_meshes(in.scene);
     // Hits on Lambertian and rough metal surfaces of constant albedo skip resolve_segment: their
@@ -210,7 +211,7 @@ size_t shade(const WaveInputs& in,
         const size_t chunk_end = std::min(end, c + kShadeChunk);
         draw_vertex_samples(cfg.seed, sample, &paths.pixel[c], &paths.bounce[c], chunk_end - c,
                             samples);
-        lambertian.n = 0;
+        block.n = 0;
         size_t deferred_count = 0;
         if (prefetch) prefetch_triangles(in.scene, hits, c, chunk_end);
         for (size_t i = c; i < chunk_end; ++i) {
@@ -218,9 +219,9 @@ size_t shade(const WaveInputs& in,
             if (prefetch && i + kVertexPrefetchDistance < chunk_end)
                 prefetch_vertices(in.scene, hits.prim[i + kVertexPrefetchDistance]);
 
-            // ---- a Lambertian quad or triangle: its vertex in lanes ----
+            // ---- a Lambertian or rough metal surface: its vertex in lanes ----
             if (resolve_in_lanes && hits.prim[i].valid() &&
-                shade_in_lanes(in, i, i - c, samples, hits, rays, paths, nee, lambertian, deferred,
+                shade_in_lanes(in, i, i - c, samples, hits, rays, paths, nee, block, deferred,
                                deferred_count))
                 continue;
 
@@ -257,13 +258,12 @@ size_t shade(const WaveInputs& in,
             const bool quad = quad_index >= 0;
             const bool surface_step = takes_surface_step(cfg, v, in.lights);
             if (quad || surface_step) {
-                const size_t row = lambertian.push(i, v, seg.wo, beta);
+                const size_t row = block.push(i, v, seg.wo, beta);
                 if (quad)
-                    lambertian.set_light_sample(row, quad_index, light.probability, u.light_u,
-                                                u.light_v);
+                    block.set_light_sample(row, quad_index, light.probability, u.light_u,
+                                           u.light_v);
                 if (surface_step)
-                    lambertian.set_step(row, u.continuation, u.roulette,
-                                        bounce + 1 >= cfg.rr_depth);
+                    block.set_step(row, u.continuation, u.roulette, bounce + 1 >= cfg.rr_depth);
             }
             if (nee && !quad) {
                 const WeightedDirect d = next_event(in.scene, in.lights, cfg, v, seg.wo, u, light);
@@ -279,40 +279,38 @@ size_t shade(const WaveInputs& in,
             advance(in, sample, i, step.weight, step.prev, step.next, paths, rays, keep);
         }
 
-        resolve_surface_hits(lambertian);
+        resolve_surface_hits(block);
         for (size_t j = 0; j < deferred_count; ++j) {
             const DeferredLightSample& l = deferred[j];
             const size_t k = l.row;
             Vertex v;
-            v.p = row(lambertian.p, k);
-            v.ng = row(lambertian.ng, k);
-            v.frame = Frame::from_normal(row(lambertian.ns, k));
-            v.bsdf.kind =
-                lambertian.metal[k] != 0.0f ? MaterialKind::Metal : MaterialKind::Lambertian;
-            v.bsdf.albedo = row(lambertian.albedo, k);
-            v.bsdf.alpha = lambertian.alpha[k];
+            v.p = row(block.p, k);
+            v.ng = row(block.ng, k);
+            v.frame = Frame::from_normal(row(block.ns, k));
+            v.bsdf.kind = block.metal[k] != 0.0f ? MaterialKind::Metal : MaterialKind::Lambertian;
+            v.bsdf.albedo = row(block.albedo, k);
+            v.bsdf.alpha = block.alpha[k];
             VertexSamples u{};
             u.light_u = l.u1;
             u.light_v = l.u2;
             const WeightedDirect d =
-                next_event(in.scene, in.lights, cfg, v, row(lambertian.wo, k), u, l.light);
+                next_event(in.scene, in.lights, cfg, v, row(block.wo, k), u, l.light);
             if (d.weight > 0.0f)
-                append_shadow(d.sample.shadow,
-                              row(lambertian.beta, k) * (d.sample.value * d.weight),
-                              lambertian.entry[k], shadows, s);
+                append_shadow(d.sample.shadow, row(block.beta, k) * (d.sample.value * d.weight),
+                              block.entry[k], shadows, s);
         }
-        lambertian_vertices(lambertian, in.lights.quad_emitter_columns(),
-                            cfg.strategy == Strategy::Mis, cfg.heuristic);
-        const bool counts_fully = in.lights.empty();  // Lambertian vertices sample lights if any
-        for (size_t k = 0; k < lambertian.n; ++k) {
-            if (lambertian.shadow[k] != 0.0f)
-                append_shadow(Ray{row(lambertian.shadow_origin, k), row(lambertian.shadow_dir, k),
-                                  0.0f, lambertian.tmax[k]},
-                              row(lambertian.contribution, k), lambertian.entry[k], shadows, s);
-            if (lambertian.alive[k] != 0.0f)
-                advance(in, sample, lambertian.entry[k], row(lambertian.weight, k),
-                        {row(lambertian.p, k), lambertian.pdf[k], counts_fully},
-                        Ray{row(lambertian.origin, k), row(lambertian.wi, k)}, paths, rays, keep);
+        surface_vertices(block, in.lights.quad_emitter_columns(), cfg.strategy == Strategy::Mis,
+                         cfg.heuristic);
+        const bool counts_fully = in.lights.empty();  // the block's vertices sample lights if any
+        for (size_t k = 0; k < block.n; ++k) {
+            if (block.shadow[k] != 0.0f)
+                append_shadow(
+                    Ray{row(block.shadow_origin, k), row(block.shadow_dir, k), 0.0f, block.tmax[k]},
+                    row(block.contribution, k), block.entry[k], shadows, s);
+            if (block.alive[k] != 0.0f)
+                advance(in, sample, block.entry[k], row(block.weight, k),
+                        {row(block.p, k), block.pdf[k], counts_fully},
+                        Ray{row(block.origin, k), row(block.wi, k)}, paths, rays, keep);
         }
     }
     return s - first_shadow;
