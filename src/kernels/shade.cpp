@@ -49,17 +49,11 @@ Vec3 row(const float (*rows)[kShadeChunk], size_t k) {
 bool lane_material(const Scene& scene, MaterialId m, BsdfParams* bsdf) {
     if (m == kNone) return false;
     const Material& mat = scene.materials[m];
-    const float alpha = mat.roughness * mat.roughness;
-    if (!(mat.kind == MaterialKind::Lambertian || (mat.kind == MaterialKind::Metal && alpha > 0)) ||
-        mat.albedo == kNone)
+    if (!(mat.kind == MaterialKind::Lambertian || mat.kind == MaterialKind::Metal) ||
+        mat.albedo == kNone || scene.textures[mat.albedo].kind != TextureKind::Solid)
         return false;
-    const Texture& t = scene.textures[mat.albedo];
-    if (t.kind != TextureKind::Solid) return false;
-    bsdf->kind = mat.kind;
-    bsdf->albedo = t.color;
-    bsdf->alpha = alpha;
-    bsdf->eta = mat.ior;
-    return true;
+    *bsdf = material_bsdf(mat, scene.textures[mat.albedo].color);
+    return mat.kind == MaterialKind::Lambertian || bsdf->alpha > 0.0f;  // not a mirror
 }
 
 // A chunk's mesh hits read a triangle record and then its vertices' positions and normals, from

@@ -34,12 +34,19 @@ Vertex surface_vertex(const Scene& scene, const SurfaceHit& hit) {
     v.frame = frame_from_normal(hit.ns);
     v.interior = hit.interior;
     const Material& m = scene.materials[hit.material];
-    // A reflecting emitter scatters as a Lambertian surface of its albedo.
-    v.bsdf.kind = m.kind == MaterialKind::DiffuseLight ? MaterialKind::Lambertian : m.kind;
-    if (m.albedo != kNone) v.bsdf.albedo = eval_texture(scene, m.albedo, hit.uv, hit.p);
-    v.bsdf.alpha = m.roughness * m.roughness;
-    v.bsdf.eta = m.ior;
+    v.bsdf = material_bsdf(
+        m, m.albedo != kNone ? eval_texture(scene, m.albedo, hit.uv, hit.p) : Color(0.0f));
     return v;
+}
+
+BsdfParams material_bsdf(const Material& m, Color albedo) {
+    BsdfParams b;
+    // A reflecting emitter scatters as a Lambertian surface of its albedo.
+    b.kind = m.kind == MaterialKind::DiffuseLight ? MaterialKind::Lambertian : m.kind;
+    b.albedo = albedo;
+    b.alpha = m.roughness * m.roughness;
+    b.eta = m.ior;
+    return b;
 }
 
 Vertex medium_vertex(const Scene& scene, MediumId medium, Point3 p) {

@@ -32,6 +32,8 @@ struct Vertex {
 };
 
 Vertex surface_vertex(const Scene& scene, const SurfaceHit& hit);
+// The BSDF of a surface of material m and albedo `albedo` (its albedo texture's value there).
+BsdfParams material_bsdf(const Material& m, Color albedo);
 Vertex medium_vertex(const Scene& scene, MediumId medium, Point3 p);
 
 // Whether next-event estimation and light-sampled directions apply at this vertex.
