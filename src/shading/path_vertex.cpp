@@ -39,15 +39,6 @@ Vertex surface_vertex(const Scene& scene, const SurfaceHit& hit) {
     return v;
 }
 
-BsdfParams material_bsdf(const Material& m, Color albedo) {
-    BsdfParams b;
-    // A reflecting emitter scatters as a Lambertian surface of its albedo.
-    b.kind = m.kind == MaterialKind::DiffuseLight ? MaterialKind::Lambertian : m.kind;
-    b.albedo = albedo;
-    b.alpha = m.roughness * m.roughness;
-    b.eta = m.ior;
-    return b;
-}
 
 Vertex medium_vertex(const Scene& scene, MediumId medium, Point3 p) {
     Vertex v;

@@ -33,7 +33,15 @@ struct Vertex {
 
 Vertex surface_vertex(const Scene& scene, const SurfaceHit& hit);
 // The BSDF of a surface of material m and albedo `albedo` (its albedo texture's value there).
-BsdfParams material_bsdf(const Material& m, Color albedo);
+inline BsdfParams material_bsdf(const Material& m, Color albedo) {
+    BsdfParams b;
+    // A reflecting emitter scatters as a Lambertian surface of its albedo.
+    b.kind = m.kind == MaterialKind::DiffuseLight ? MaterialKind::Lambertian : m.kind;
+    b.albedo = albedo;
+    b.alpha = m.roughness * m.roughness;
+    b.eta = m.ior;
+    return b;
+}
 Vertex medium_vertex(const Scene& scene, MediumId medium, Point3 p);
 
 // Whether next-event estimation and light-sampled directions apply at this vertex.
