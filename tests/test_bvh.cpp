@@ -153,11 +153,14 @@ struct WideChecker {
     void visit_leaf(uint32_t code, const Aabb& box) {
         const uint32_t count = leaf_block_count(code);
         ASSERT_GE(count, 1u);
-        if (leaf_kind(code) == kMixedLeaf)
+        if (leaf_kind(code) == kMixedLeaf) {
             ASSERT_LE(leaf_first(code) + count, wide.leaf_blocks.size());
+        }
         for (uint32_t k = 0; k < count; ++k) {
             const LeafBlock b = leaf_block(wide, code, k);
-            if (leaf_kind(code) != kMixedLeaf) ASSERT_EQ(uint32_t(b.kind), leaf_kind(code));
+            if (leaf_kind(code) != kMixedLeaf) {
+                ASSERT_EQ(uint32_t(b.kind), leaf_kind(code));
+            }
             ASSERT_GE(b.count, 1u);
             ASSERT_LE(b.count, uint32_t(kLeafBlockWidth));
             const PrimRef* refs = b.kind == PrimKind::Triangle ? wide.triangles[b.index].ref
