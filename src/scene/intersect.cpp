@@ -2,31 +2,18 @@
 
 #include <cmath>
 
+#include "scene/sphere_hit-inl.h"
 #include "wavetrace/math/constants.h"
 
 namespace wavetrace {
+namespace lanes = HWY_NAMESPACE;
+using lanes::OneLane, lanes::to_lanes;
 
 bool intersect_sphere(const Ray& ray, Point3 center, float radius, PrimHit* hit) {
-    // Solve a t^2 + 2 b t + c = 0 with f = o - center, a = d.d, b = f.d, c = f.f - r^2.
-    // The quarter-discriminant b^2 - a c equals a (r^2 - |f - (b/a) d|^2), which does not
-    // cancel catastrophically when the ray passes far from the centre (RT Gems, eq. 7.5).
-    Vec3 f = ray.o - center;
-    float a = dot(ray.d, ray.d);
-    float b = dot(f, ray.d);
-    float c = dot(f, f) - radius * radius;
-    Vec3 l = f - (b / a) * ray.d;
-    float disc = a * (radius * radius - dot(l, l));
-    if (disc < 0.0f) return false;
-    // Stable roots: q = -(b + sign(b) sqrt(disc)), t0 = c / q, t1 = q / a (RT Gems, eq. 7.8).
-    float q = -(b + std::copysign(std::sqrt(disc), b));
-    float t0 = q != 0.0f ? c / q : 0.0f;
-    float t1 = q / a;
-    if (t0 > t1) std::swap(t0, t1);
-    float t = t0;
-    if (t < ray.tmin || t > ray.tmax) {
-        t = t1;
-        if (t < ray.tmin || t > ray.tmax) return false;
-    }
+    float t;
+    if (!lanes::SphereHit<OneLane>(to_lanes(ray.o), to_lanes(ray.d), to_lanes(center), radius,
+                                   ray.tmin, ray.tmax, &t))
+        return false;
     *hit = {t, 0.0f, 0.0f};
     return true;
 }

@@ -69,30 +69,67 @@ struct QuadLightNee {
     typename L::F tmax;
 };
 
+// A point sampled on a light, seen from the vertex: the unit direction to it and its distance,
+// the density of that direction (times the light's selection probability) and the radiance
+// arriving (zero from a back face), valid where all of that is usable.
 template <class L>
-HWY_INLINE QuadLightNee<L> QuadLightSample(const NeeVertex<L>& v,
-                                           const QuadLightLanes<L>& e,
-                                           bool mis,
-                                           MisHeuristic heuristic) {
+struct LightPoint {
+    typename L::M valid;
+    V3<typename L::F> wi;
+    typename L::F dist, pdf;
+    V3<typename L::F> radiance;
+};
+
+template <class L>
+HWY_INLINE LightPoint<L> SelectLightPoint(typename L::M m,
+                                          const LightPoint<L>& a,
+                                          const LightPoint<L>& b) {
+    auto sel3 = [&](V3<typename L::F> x, V3<typename L::F> y) {
+        return V3<typename L::F>{L::Select(m, x.x, y.x), L::Select(m, x.y, y.y),
+                                 L::Select(m, x.z, y.z)};
+    };
+    return {L::Or(L::And(m, a.valid), L::AndNot(m, b.valid)), sel3(a.wi, b.wi),
+            L::Select(m, a.dist, b.dist), L::Select(m, a.pdf, b.pdf), sel3(a.radiance, b.radiance)};
+}
+
+// The quad light's point, uniform by area: p_w = r^2 / (|cos theta_l| A), times the selection
+// probability.
+template <class L>
+HWY_INLINE LightPoint<L> QuadLightPoint(V3<typename L::F> ref,
+                                        const QuadLightLanes<L>& e,
+                                        typename L::F u1,
+                                        typename L::F u2) {
+    using F = typename L::F;
+    const F zero = L::Set(0.0f), one = L::Set(1.0f);
+    LightPoint<L> r;
+    const V3<F> x = e.q + e.u * u1 + e.v * u2;
+    const V3<F> d = x - ref;
+    const F dist2 = Dot(d, d);
+    r.dist = L::Sqrt(dist2);
+    r.wi = d * (one / r.dist);
+    const F cos_l = L::Abs(Dot(e.n, r.wi));
+    r.pdf = dist2 / (cos_l * e.area) * e.select_prob;
+    const auto emits = L::Or(Dot(d, e.n) < zero, e.two_sided);
+    r.radiance = {L::Select(emits, e.radiance.x, zero), L::Select(emits, e.radiance.y, zero),
+                  L::Select(emits, e.radiance.z, zero)};
+    r.valid = L::And(L::And(dist2 > zero, cos_l > zero), L::And(L::IsFinite(r.pdf), r.pdf > zero));
+    r.valid = L::And(r.valid, MaxComponent<L>(r.radiance) > zero);
+    return r;
+}
+
+// The light sample at a surface vertex towards a light point: the BSDF value and density, the
+// MIS weight and the shadow ray.
+template <class L>
+HWY_INLINE QuadLightNee<L> SurfaceLightSample(const NeeVertex<L>& v,
+                                              const LightPoint<L>& l,
+                                              bool mis,
+                                              MisHeuristic heuristic) {
     using F = typename L::F;
     const F zero = L::Set(0.0f), one = L::Set(1.0f);
     QuadLightNee<L> r;
-    // The light point, and the density of its direction: p_w = r^2 / (|cos theta_l| A), times
-    // the selection probability.
-    const V3<F> x = e.q + e.u * v.u1 + e.v * v.u2;
-    const V3<F> d = x - v.p;
-    const F dist2 = Dot(d, d);
-    const F dist = L::Sqrt(dist2);
-    r.wi = d * (one / dist);
-    const F cos_l = L::Abs(Dot(e.n, r.wi));
-    const F pdf_light = dist2 / (cos_l * e.area) * e.select_prob;
-    r.pdf_light = pdf_light;
-    const auto emits = L::Or(Dot(d, e.n) < zero, e.two_sided);
-    const V3<F> le{L::Select(emits, e.radiance.x, zero), L::Select(emits, e.radiance.y, zero),
-                   L::Select(emits, e.radiance.z, zero)};
-    auto ok = L::And(L::And(dist2 > zero, cos_l > zero),
-                     L::And(L::IsFinite(pdf_light), pdf_light > zero));
-    ok = L::And(ok, MaxComponent<L>(le) > zero);
+    r.wi = l.wi;
+    r.pdf_light = l.pdf;
+    auto ok = l.valid;
     // The BSDF's f |cos| and density, zero unless wo and wi lie on one side of the geometric
     // surface (eval_world) and of the shading surface (each lobe).
     const F wi_ng = Dot(r.wi, v.ng);
@@ -120,13 +157,21 @@ HWY_INLINE QuadLightNee<L> QuadLightSample(const NeeVertex<L>& v,
     r.pdf_bsdf = pdf_bsdf;
     ok = L::And(ok, MaxComponent<L>(f) > zero);
     r.valid = ok;
-    r.value = f * le * (one / pdf_light);
-    r.weight = mis ? MisWeight<L>(heuristic, pdf_light, pdf_bsdf) : one;
+    r.value = f * l.radiance * (one / l.pdf);
+    r.weight = mis ? MisWeight<L>(heuristic, l.pdf, pdf_bsdf) : one;
     // Stop short of the light itself: 1e-4 relative, plus the origin offset.
     const F eps = OriginOffset<L>(v.p);
     r.origin = v.p + v.ng * L::Select(wi_ng > zero, eps, L::Neg(eps));
-    r.tmax = dist * L::Set(1.0f - 1e-4f);
+    r.tmax = l.dist * L::Set(1.0f - 1e-4f);
     return r;
+}
+
+template <class L>
+HWY_INLINE QuadLightNee<L> QuadLightSample(const NeeVertex<L>& v,
+                                           const QuadLightLanes<L>& e,
+                                           bool mis,
+                                           MisHeuristic heuristic) {
+    return SurfaceLightSample(v, QuadLightPoint(v.p, e, v.u1, v.u2), mis, heuristic);
 }
 
 }  // namespace HWY_NAMESPACE
