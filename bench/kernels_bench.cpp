@@ -235,7 +235,7 @@ void BM_LambertianVertices(benchmark::State& st, bool lanes) {
     for (auto _ : st) {
         if (lanes) {
             fill(r, block);
-            surface_vertices(block, r.c.lights->quad_emitter_columns(), true, MisHeuristic::Power);
+            surface_vertices(block, *r.c.lights, true, MisHeuristic::Power);
             benchmark::DoNotOptimize(block);
         } else {
             for (size_t k = 0; k < n; ++k) {
@@ -258,7 +258,7 @@ void BM_LambertianVerticesKernel(benchmark::State& st) {
     SurfaceBlock block;
     fill(r, block);
     for (auto _ : st) {
-        surface_vertices(block, r.c.lights->quad_emitter_columns(), true, MisHeuristic::Power);
+        surface_vertices(block, *r.c.lights, true, MisHeuristic::Power);
         benchmark::DoNotOptimize(block);
     }
     st.SetItemsProcessed(st.iterations() * block.n);

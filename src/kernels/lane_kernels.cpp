@@ -12,6 +12,7 @@
 #include "scene/camera_ray-inl.h"
 #include "scene/surface_point-inl.h"
 #include "shading/quad_light_nee-inl.h"
+#include "shading/sphere_light-inl.h"
 #include "shading/surface_step-inl.h"
 
 HWY_BEFORE_NAMESPACE();
@@ -168,6 +169,7 @@ void ResolveSurfaceHits(SurfaceBlock* b) {
 
 void SurfaceVertices(SurfaceBlock* b,
                      const QuadEmitterColumns* lights,
+                     const SphereEmitterColumns* spheres,
                      bool mis,
                      MisHeuristic heuristic) {
     using D = hn::CappedTag<float, kShadeChunk>;
@@ -186,6 +188,7 @@ void SurfaceVertices(SurfaceBlock* b,
                            b->u_rr, b->roulette, b->alpha, b->metal})
             row[k] = row[0];
         b->light[k] = b->light[0];
+        b->sphere_light[k] = b->sphere_light[0];
     }
     auto load3 = [&](const float(*rows)[kShadeChunk], size_t k) {
         return V3<F>{hn::Load(d, rows[0] + k), hn::Load(d, rows[1] + k), hn::Load(d, rows[2] + k)};
@@ -206,31 +209,38 @@ void SurfaceVertices(SurfaceBlock* b,
         const F alpha = hn::Load(d, b->alpha + k);
         const auto metal = hn::Gt(hn::Load(d, b->metal + k), zero);
 
-        // The light sample, towards each row's own light: gathered from the columns, or
-        // broadcast when the rows share one light (a scene with one quad light, or a chunk
-        // whose samples picked the same), which saves 17 gathers.
+        // The light sample, towards each row's own quad or sphere light: gathered from the
+        // columns, or broadcast when the rows share one light (a scene with one light, or a
+        // chunk whose samples picked the same), which saves the gathers.
         const auto quad = hn::Load(di, b->light + k);
-        const auto has_light = hn::RebindMask(d, hn::Gt(quad, hn::Set(di, -1)));
-        const auto index = hn::Max(quad, hn::Zero(di));
-        const int32_t first = hn::GetLane(index);
-        const bool shared = hn::AllTrue(di, hn::Eq(index, hn::Set(di, first)));
-        auto fetch = [&](const std::vector<float>& column) {
-            return shared ? hn::Set(d, column[size_t(first)])
-                          : hn::GatherIndex(d, column.data(), index);
-        };
+        const auto sphere = hn::Load(di, b->sphere_light + k);
+        const auto has_quad = hn::RebindMask(d, hn::Gt(quad, hn::Set(di, -1)));
+        const auto has_sphere = hn::RebindMask(d, hn::Gt(sphere, hn::Set(di, -1)));
+        const auto has_light = hn::Or(has_quad, has_sphere);
         if (!hn::AllFalse(d, has_light)) {
-            const QuadLightLanes<L> light =
-                QuadLightFrom<L>(*lights, fetch, hn::Load(d, b->select_prob + k));
-            const NeeVertex<L> v{p,
-                                 ng,
-                                 ns,
-                                 wo,
-                                 albedo,
-                                 alpha,
-                                 metal,
-                                 hn::Load(d, b->light_u1 + k),
-                                 hn::Load(d, b->light_u2 + k)};
-            const QuadLightNee<L> r = QuadLightSample(v, light, mis, heuristic);
+            auto fetcher = [&](hn::Vec<decltype(di)> light) {
+                const auto index = hn::Max(light, hn::Zero(di));
+                const int32_t first = hn::GetLane(index);
+                const bool shared = hn::AllTrue(di, hn::Eq(index, hn::Set(di, first)));
+                return [=, &d](const std::vector<float>& column) {
+                    return shared ? hn::Set(d, column[size_t(first)])
+                                  : hn::GatherIndex(d, column.data(), index);
+                };
+            };
+            const F select_prob = hn::Load(d, b->select_prob + k);
+            const F u1 = hn::Load(d, b->light_u1 + k), u2 = hn::Load(d, b->light_u2 + k);
+            LightPoint<L> point;
+            const bool any_quad = !hn::AllFalse(d, has_quad);
+            if (any_quad)
+                point = QuadLightPoint(p, QuadLightFrom<L>(*lights, fetcher(quad), select_prob), u1,
+                                       u2);
+            if (!hn::AllFalse(d, has_sphere)) {
+                const LightPoint<L> on_sphere = SphereLightPoint(
+                    p, SphereLightFrom<L>(*spheres, fetcher(sphere), select_prob), u1, u2);
+                point = any_quad ? SelectLightPoint<L>(has_sphere, on_sphere, point) : on_sphere;
+            }
+            const NeeVertex<L> v{p, ng, ns, wo, albedo, alpha, metal, u1, u2};
+            const QuadLightNee<L> r = SurfaceLightSample(v, point, mis, heuristic);
             // As shade appends a scalar next_event's: beta (value weight), when the weight is > 0.
             store3(beta * (r.value * r.weight), b->contribution, k);
             store3(r.origin, b->shadow_origin, k);
@@ -320,11 +330,9 @@ void draw_vertex_samples(uint64_t seed,
     HWY_DYNAMIC_DISPATCH(DrawVertexSamples)(seed, sample, pixel, bounce, n, &out);
 }
 
-void surface_vertices(SurfaceBlock& b,
-                      const QuadEmitterColumns& lights,
-                      bool mis,
-                      MisHeuristic heuristic) {
-    HWY_DYNAMIC_DISPATCH(SurfaceVertices)(&b, &lights, mis, heuristic);
+void surface_vertices(SurfaceBlock& b, const LightSet& lights, bool mis, MisHeuristic heuristic) {
+    HWY_DYNAMIC_DISPATCH(SurfaceVertices)
+    (&b, &lights.quad_emitter_columns(), &lights.sphere_emitter_columns(), mis, heuristic);
 }
 
 size_t SurfaceBlock::push(size_t entry_, const Vertex& v, Vec3 wo_, Color beta_) {
@@ -346,7 +354,7 @@ void SurfaceBlock::start_row(size_t k, size_t entry_, const BsdfParams& bsdf, Co
     }
     alpha[k] = bsdf.alpha;
     metal[k] = bsdf.kind == MaterialKind::Metal ? 1.0f : 0.0f;
-    light[k] = -1;
+    light[k] = sphere_light[k] = -1;
     select_prob[k] = light_u1[k] = light_u2[k] = 0.0f;
     step[k] = dir_u1[k] = dir_u2[k] = u_rr[k] = roulette[k] = 0.0f;
     hit_kind[k] = 0;
@@ -419,6 +427,14 @@ size_t SurfaceBlock::push_triangle_hit(size_t entry_,
 void SurfaceBlock::set_light_sample(
     size_t row, int32_t quad, float probability, float u1, float u2) {
     light[row] = quad;
+    select_prob[row] = probability;
+    light_u1[row] = u1;
+    light_u2[row] = u2;
+}
+
+void SurfaceBlock::set_sphere_light_sample(
+    size_t row, int32_t sphere, float probability, float u1, float u2) {
+    sphere_light[row] = sphere;
     select_prob[row] = probability;
     light_u1[row] = u1;
     light_u2[row] = u2;

@@ -73,6 +73,7 @@ struct SurfaceBlock {
     // in: the light sample: the light's index among the LightSet's quad emitters (-1: none),
     // its selection probability and the point on it
     alignas(64) int32_t light[kShadeChunk];
+    alignas(64) int32_t sphere_light[kShadeChunk];  // or its index among the sphere emitters
     alignas(64) float select_prob[kShadeChunk], light_u1[kShadeChunk], light_u2[kShadeChunk];
     // in: the continuation (step = 1: take it here), its direction and roulette samples
     alignas(64) float step[kShadeChunk], dir_u1[kShadeChunk], dir_u2[kShadeChunk];
@@ -127,6 +128,7 @@ struct SurfaceBlock {
                              const BsdfParams& bsdf,
                              Color beta);
     void set_light_sample(size_t row, int32_t quad, float probability, float u1, float u2);
+    void set_sphere_light_sample(size_t row, int32_t sphere, float probability, float u1, float u2);
     void set_step(size_t row, const ContinuationSamples& u, float u_roulette, bool roulette);
 
   private:
@@ -139,9 +141,6 @@ void resolve_surface_hits(SurfaceBlock& b);
 
 // Rows k < b.n, whose vertices are given (resolve_surface_hits): next_event's light sample
 // (times beta) and continue_path's step, bit for bit.
-void surface_vertices(SurfaceBlock& b,
-                      const QuadEmitterColumns& lights,
-                      bool mis,
-                      MisHeuristic heuristic);
+void surface_vertices(SurfaceBlock& b, const LightSet& lights, bool mis, MisHeuristic heuristic);
 
 }  // namespace wavetrace

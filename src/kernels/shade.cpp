@@ -87,8 +87,9 @@ void prefetch_vertices(const Scene& scene, PrimRef p) {
     }
 }
 
-// A light sample of a row resolved in lanes towards a light the block does not sample (not a
-// quad): taken in scalar code once the row's vertex is known.
+// A light sample of a row resolved in lanes towards a light other than a quad: once the row's
+// vertex is known, a sphere seen from outside goes back to the block, anything else is taken in
+// scalar code.
 struct DeferredLightSample {
     size_t row;
     LightChoice light;
@@ -280,10 +281,15 @@ size_t shade(const WaveInputs& in,
             Vertex v;
             v.p = row(block.p, k);
             v.ng = row(block.ng, k);
-            v.frame = Frame::from_normal(row(block.ns, k));
             v.bsdf.kind = block.metal[k] != 0.0f ? MaterialKind::Metal : MaterialKind::Lambertian;
-            v.bsdf.albedo = row(block.albedo, k);
             v.bsdf.alpha = block.alpha[k];
+            // A sphere light seen from outside: back to the block, in lanes.
+            if (const int32_t sphere = sphere_light_sample_at(v, in.lights, l.light); sphere >= 0) {
+                block.set_sphere_light_sample(k, sphere, l.light.probability, l.u1, l.u2);
+                continue;
+            }
+            v.frame = Frame::from_normal(row(block.ns, k));
+            v.bsdf.albedo = row(block.albedo, k);
             VertexSamples u{};
             u.light_u = l.u1;
             u.light_v = l.u2;
@@ -293,8 +299,7 @@ size_t shade(const WaveInputs& in,
                 append_shadow(d.sample.shadow, row(block.beta, k) * (d.sample.value * d.weight),
                               block.entry[k], shadows, s);
         }
-        surface_vertices(block, in.lights.quad_emitter_columns(), cfg.strategy == Strategy::Mis,
-                         cfg.heuristic);
+        surface_vertices(block, in.lights, cfg.strategy == Strategy::Mis, cfg.heuristic);
         const bool counts_fully = in.lights.empty();  // the block's vertices sample lights if any
         for (size_t k = 0; k < block.n; ++k) {
             if (block.shadow[k] != 0.0f)

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "shading/sphere_light-inl.h"
 #include "shading/warp.h"
 #include "wavetrace/math/frame.h"
 #include "wavetrace/scene/intersect.h"
@@ -9,6 +10,8 @@
 #include "wavetrace/scene/surface.h"
 
 namespace wavetrace {
+namespace lanes = HWY_NAMESPACE;
+using lanes::OneLane, lanes::to_lanes, lanes::to_vec3;
 namespace {
 
 // Geometry of a sphere seen from outside: the cone of directions it subtends.
@@ -17,11 +20,10 @@ struct SphereCone {
     bool outside;
 };
 SphereCone sphere_cone(const Sphere& s, Point3 ref) {
-    float d2 = length_squared(s.center - ref), r2 = s.radius * s.radius;
-    if (d2 <= r2 * 1.0001f) return {0.0f, false};
-    float sin2 = r2 / d2;
-    // 1 - sqrt(1 - s) = s / (1 + sqrt(1 - s)): exact for tiny cones of far spheres.
-    return {sin2 / (1.0f + std::sqrt(1.0f - sin2)), true};
+    if (!lanes::SphereOutside<OneLane>(to_lanes(ref), to_lanes(s.center), s.radius))
+        return {0.0f, false};
+    return {lanes::SphereConeOneMinusCos<OneLane>(to_lanes(ref), to_lanes(s.center), s.radius),
+            true};
 }
 
 }  // namespace
@@ -50,6 +52,18 @@ LightSet::LightSet(const Scene& scene) {
                 c.radiance[a].push_back(e.color[a]);
             }
             c.area.push_back(scene.prim_area(prim));
+            c.two_sided.push_back(m.two_sided ? 1.0f : 0.0f);
+        }
+        sphere_of_.push_back(-1);
+        if (prim.kind() == PrimKind::Sphere && e.kind == TextureKind::Solid) {
+            const Sphere& sp = scene.spheres[prim.index()];
+            SphereEmitterColumns& c = sphere_columns_;
+            sphere_of_.back() = static_cast<int32_t>(c.radius.size());
+            for (int a = 0; a < 3; ++a) {
+                c.centre[a].push_back(sp.center[a]);
+                c.radiance[a].push_back(e.color[a]);
+            }
+            c.radius.push_back(sp.radius);
             c.two_sided.push_back(m.two_sided ? 1.0f : 0.0f);
         }
     }
@@ -102,6 +116,10 @@ LightChoice LightSet::select(float u_select) const {
 
 int32_t LightSet::quad_emitter_index(LightChoice choice) const {
     return choice.index < quad_of_.size() ? quad_of_[choice.index] : -1;
+}
+
+int32_t LightSet::sphere_emitter_index(LightChoice choice) const {
+    return choice.index < sphere_of_.size() ? sphere_of_[choice.index] : -1;
 }
 
 LightSample LightSet::sample(
@@ -162,21 +180,8 @@ LightSample LightSet::sample(
             const Sphere& s = scene.spheres[prim.index()];
             SphereCone cone = sphere_cone(s, ref);
             if (cone.outside) {
-                // Uniform in the cone of directions the sphere subtends (pbrt-v4 §6.2.4),
-                // then the nearest point of the sphere along that direction.
-                Vec3 axis = normalize(s.center - ref);
-                float cos_t = 1.0f - u1 * cone.one_minus_cos;
-                float sin_t = std::sqrt(
-                    std::max(0.0f, u1 * cone.one_minus_cos * (2.0f - u1 * cone.one_minus_cos)));
-                float phi = 2.0f * kPi * u2;
-                Vec3 w = Frame::from_normal(axis).to_world(
-                    {sin_t * std::cos(phi), sin_t * std::sin(phi), cos_t});
-                PrimHit ph;
-                float t = intersect_sphere(Ray{ref, w}, s.center, s.radius, &ph)
-                              ? ph.t
-                              : dot(s.center - ref, w);  // grazing: the tangent point
-                p = ref + t * w;
-                pdf_solid = 1.0f / (2.0f * kPi * cone.one_minus_cos);
+                p = to_vec3(lanes::SphereConePoint<OneLane>(to_lanes(ref), to_lanes(s.center),
+                                                            s.radius, u1, u2, &pdf_solid));
             } else {
                 p = s.center + s.radius * sample_uniform_sphere(u1, u2);
             }

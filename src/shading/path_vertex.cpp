@@ -7,6 +7,7 @@
 #include "scene/camera_ray-inl.h"
 #include "shading/mis-inl.h"
 #include "shading/quad_light_nee-inl.h"
+#include "shading/sphere_light-inl.h"
 #include "shading/surface_step-inl.h"
 #include "shading/warp.h"
 #include "wavetrace/render/sampler.h"
@@ -38,7 +39,6 @@ Vertex surface_vertex(const Scene& scene, const SurfaceHit& hit) {
         m, m.albedo != kNone ? eval_texture(scene, m.albedo, hit.uv, hit.p) : Color(0.0f));
     return v;
 }
-
 
 Vertex medium_vertex(const Scene& scene, MediumId medium, Point3 p) {
     Vertex v;
@@ -166,6 +166,17 @@ bool samples_lights(const RenderConfig& config, const Vertex& v, const LightSet&
     return nee && can_sample_lights(v, lights);
 }
 
+int32_t sphere_light_sample_at(const Vertex& v, const LightSet& lights, LightChoice choice) {
+    if (!is_lane_surface(v)) return -1;
+    const int32_t k = lights.sphere_emitter_index(choice);
+    if (k < 0) return -1;
+    const SphereEmitterColumns& c = lights.sphere_emitter_columns();
+    const lanes::V3<float> centre{c.centre[0][size_t(k)], c.centre[1][size_t(k)],
+                                  c.centre[2][size_t(k)]};
+    return lanes::SphereOutside<OneLane>(lanes::to_lanes(v.p), centre, c.radius[size_t(k)]) ? k
+                                                                                            : -1;
+}
+
 int32_t quad_light_sample_at(const Vertex& v, const LightSet& lights, LightChoice choice) {
     if (!is_lane_surface(v)) return -1;
     return lights.quad_emitter_index(choice);
@@ -189,7 +200,9 @@ WeightedDirect next_event(const Scene& scene,
                           const VertexSamples& u,
                           LightChoice choice) {
     WeightedDirect d;
-    if (const int32_t k = quad_light_sample_at(v, lights, choice); k >= 0) {
+    const int32_t quad = quad_light_sample_at(v, lights, choice);
+    const int32_t sphere = quad < 0 ? sphere_light_sample_at(v, lights, choice) : -1;
+    if (quad >= 0 || sphere >= 0) {
         using lanes::to_lanes, lanes::to_vec3;
         const lanes::NeeVertex<OneLane> lv{to_lanes(v.p),
                                            to_lanes(v.ng),
@@ -200,12 +213,21 @@ WeightedDirect next_event(const Scene& scene,
                                            v.bsdf.kind == MaterialKind::Metal,
                                            u.light_u,
                                            u.light_v};
-        const lanes::QuadLightLanes<OneLane> light = lanes::QuadLightFrom<OneLane>(
-            lights.quad_emitter_columns(),
-            [&](const std::vector<float>& column) { return column[size_t(k)]; },
-            choice.probability);
-        const lanes::QuadLightNee<OneLane> r =
-            lanes::QuadLightSample(lv, light, config.strategy == Strategy::Mis, config.heuristic);
+        const size_t k = size_t(quad >= 0 ? quad : sphere);
+        auto fetch = [&](const std::vector<float>& column) { return column[k]; };
+        const lanes::LightPoint<OneLane> point =
+            quad >= 0
+                ? lanes::QuadLightPoint(lv.p,
+                                        lanes::QuadLightFrom<OneLane>(lights.quad_emitter_columns(),
+                                                                      fetch, choice.probability),
+                                        u.light_u, u.light_v)
+                : lanes::SphereLightPoint(
+                      lv.p,
+                      lanes::SphereLightFrom<OneLane>(lights.sphere_emitter_columns(), fetch,
+                                                      choice.probability),
+                      u.light_u, u.light_v);
+        const lanes::QuadLightNee<OneLane> r = lanes::SurfaceLightSample(
+            lv, point, config.strategy == Strategy::Mis, config.heuristic);
         if (!r.valid) return d;
         d.sample.value = to_vec3(r.value);
         d.sample.pdf_light = r.pdf_light;

@@ -225,6 +225,9 @@ bool samples_lights(const RenderConfig& config, const Vertex& v, const LightSet&
 // among the LightSet's quad emitters, or -1: at a Lambertian or rough metal surface vertex
 // (is_lane_surface) that samples_lights(), a chosen quad of constant radiance.
 int32_t quad_light_sample_at(const Vertex& v, const LightSet& lights, LightChoice choice);
+// The same for a chosen sphere of constant radiance with v outside it (shading/sphere_light-inl.h),
+// as its index among the LightSet's sphere emitters, or -1.
+int32_t sphere_light_sample_at(const Vertex& v, const LightSet& lights, LightChoice choice);
 // Optical depth a segment reaching vertex `bounce` may travel before scattering in a medium.
 // Without media no segment consumes it, so it is not drawn (its log1p was 5-7% of a render).
 float segment_flight(

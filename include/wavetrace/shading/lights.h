@@ -37,6 +37,13 @@ struct QuadEmitterColumns {
     std::vector<float> q[3], u[3], v[3], n[3], radiance[3], area, two_sided;
 };
 
+// The sphere lights of constant radiance (sampled in SIMD lanes from outside the sphere,
+// src/shading/sphere_light-inl.h) as columns, entry k for sphere emitter k
+// (sphere_emitter_index()): centre, radius, radiance, and two_sided (1 or 0).
+struct SphereEmitterColumns {
+    std::vector<float> centre[3], radius, radiance[3], two_sided;
+};
+
 struct LightChoice {
     size_t index = 0;
     float probability = 0.0f;
@@ -60,6 +67,9 @@ class LightSet {
     // else -1.
     int32_t quad_emitter_index(LightChoice choice) const;
     const QuadEmitterColumns& quad_emitter_columns() const { return quad_columns_; }
+    // The same for spheres of constant radiance.
+    int32_t sphere_emitter_index(LightChoice choice) const;
+    const SphereEmitterColumns& sphere_emitter_columns() const { return sphere_columns_; }
 
     // Samples a point on the chosen light as seen from `ref` with two uniform numbers.
     LightSample sample(
@@ -82,6 +92,8 @@ class LightSet {
     std::vector<PrimRef> emitters_;  // light i < emitters_.size()
     std::vector<int32_t> quad_of_;   // light i: index into quad_columns_, or -1
     QuadEmitterColumns quad_columns_;
+    std::vector<int32_t> sphere_of_;  // light i: index into sphere_columns_, or -1
+    SphereEmitterColumns sphere_columns_;
     std::unordered_map<uint32_t, uint32_t> index_;  // PrimRef bits -> light index
     bool background_ = false;                       // the last light, if present
     size_t count_ = 0;
