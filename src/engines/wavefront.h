@@ -1,7 +1,7 @@
 // The wavefront engine's outer loop: a readable script of kernel launches (pbrt-v4's
-// WavefrontPathIntegrator::Render() is the model). A pass (one sample of every pixel) is cut
-// into waves of consecutive pixels; oneTBB hands the waves to the threads, and each thread
-// carries its wave through every stage, bounce after bounce, in queues it reuses from wave to
+// WavefrontPathIntegrator::Render() is the model). The image is cut into waves of consecutive
+// pixels; oneTBB hands the waves to the threads, and each thread carries its wave through every
+// stage, bounce after bounce and sample after sample of a pass, in queues it reuses from wave to
 // wave, so that a wave's queues stay in that core's cache (the per-thread queues of Áfra et
 // al., HPG 2016, and of MoonRay, rather than pbrt-v4's one global wave). Generic over the
 // intersector: wavefront.cpp instantiates it for our BVH, src/reference for Embree.

@@ -1,6 +1,6 @@
 // The data a wave's kernels work on: read-only inputs and one thread's queues. A wave is the
-// share of one pass (one sample of every pixel) that a thread carries through every stage
-// while it stays in that core's cache; each kernel is a free function over a range of queue
+// range of pixels that a thread carries through every stage, one sample at a time, while it
+// stays in that core's cache; each kernel is a free function over a range of queue
 // entries, taking the queues it reads const and the queues it writes mutable.
 #pragma once
 
