@@ -19,6 +19,18 @@ HWY_BEFORE_NAMESPACE();
 namespace wavetrace {
 namespace HWY_NAMESPACE {
 
+// Rows k .. k + Lanes(d) of three SoA rows (x, y, z) as one V3 of vectors, and back.
+template <class D>
+HWY_INLINE V3<hn::Vec<D>> Load3(D d, const float (*rows)[kShadeChunk], size_t k) {
+    return {hn::Load(d, rows[0] + k), hn::Load(d, rows[1] + k), hn::Load(d, rows[2] + k)};
+}
+template <class D>
+HWY_INLINE void Store3(D d, V3<hn::Vec<D>> v, float (*rows)[kShadeChunk], size_t k) {
+    hn::Store(v.x, d, rows[0] + k);
+    hn::Store(v.y, d, rows[1] + k);
+    hn::Store(v.z, d, rows[2] + k);
+}
+
 // Rows [0, n) of `in` copied to `out`, and row 0 repeated to kShadeChunk: whole vectors of
 // ordinary values.
 template <class T>
@@ -108,21 +120,10 @@ void ResolveSurfaceHits(SurfaceBlock* b) {
         }
         b->hit_kind[k] = b->hit_kind[0];
     }
-    auto load3 = [&](const float(*rows)[kShadeChunk], size_t k) {
-        return V3<F>{hn::Load(d, rows[0] + k), hn::Load(d, rows[1] + k), hn::Load(d, rows[2] + k)};
-    };
-    auto store3 = [&](V3<F> v, float(*rows)[kShadeChunk], size_t k) {
-        hn::Store(v.x, d, rows[0] + k);
-        hn::Store(v.y, d, rows[1] + k);
-        hn::Store(v.z, d, rows[2] + k);
-    };
-    auto select3 = [&](hn::Mask<D> m, V3<F> yes, V3<F> no) {
-        return V3<F>{hn::IfThenElse(m, yes.x, no.x), hn::IfThenElse(m, yes.y, no.y),
-                     hn::IfThenElse(m, yes.z, no.z)};
-    };
     const F zero = hn::Zero(d);
     for (size_t k = 0; k < b->n; k += N) {
-        V3<F> p = load3(b->p, k), ng = load3(b->ng, k), ns = load3(b->ns, k), wo = load3(b->wo, k);
+        V3<F> p = Load3(d, b->p, k), ng = Load3(d, b->ng, k), ns = Load3(d, b->ns, k),
+              wo = Load3(d, b->wo, k);
         // The vertices to resolve from their hits: surface_at's point and normals, and the
         // unit direction back along the ray, -d / |d|, as resolve_segment computes it.
         const auto kind = hn::Load(di, b->hit_kind + k);
@@ -131,36 +132,37 @@ void ResolveSurfaceHits(SurfaceBlock* b) {
         const auto sphere_hit = hn::RebindMask(d, hn::Eq(kind, hn::Set(di, 3)));
         const auto any_hit = hn::Or(hn::Or(quad_hit, triangle_hit), sphere_hit);
         if (!hn::AllFalse(d, any_hit)) {
+            // Each kind's rows take its point and normals.
+            auto take = [&](hn::Mask<D> m, const SurfacePoint<L>& s) {
+                p = Select3<L>(m, s.p, p);
+                ng = Select3<L>(m, s.ng, ng);
+                ns = Select3<L>(m, s.ns, ns);
+            };
             const F u = hn::Load(d, b->hit_u + k), v = hn::Load(d, b->hit_v + k);
-            const V3<F> c[3] = {load3(b->corner[0], k), load3(b->corner[1], k),
-                                load3(b->corner[2], k)};
+            const V3<F> c[3] = {Load3(d, b->corner[0], k), Load3(d, b->corner[1], k),
+                                Load3(d, b->corner[2], k)};
             if (!hn::AllFalse(d, quad_hit)) {
                 const SurfacePoint<L> s = QuadPoint<L>(c[0], c[1], c[2], u, v);
-                p = select3(quad_hit, s.p, p);
-                ng = select3(quad_hit, s.ng, ng);
-                ns = select3(quad_hit, s.ns, ns);
+                take(quad_hit, s);
             }
             if (!hn::AllFalse(d, triangle_hit)) {
-                const V3<F> vn[3] = {load3(b->vertex_normal[0], k), load3(b->vertex_normal[1], k),
-                                     load3(b->vertex_normal[2], k)};
+                const V3<F> vn[3] = {Load3(d, b->vertex_normal[0], k),
+                                     Load3(d, b->vertex_normal[1], k),
+                                     Load3(d, b->vertex_normal[2], k)};
                 const SurfacePoint<L> s =
                     TrianglePoint<L>(c, vn, hn::Gt(hn::Load(d, b->smooth + k), zero), u, v);
-                p = select3(triangle_hit, s.p, p);
-                ng = select3(triangle_hit, s.ng, ng);
-                ns = select3(triangle_hit, s.ns, ns);
+                take(triangle_hit, s);
             }
             if (!hn::AllFalse(d, sphere_hit)) {
                 const SurfacePoint<L> s = SpherePoint<L>(c[0], c[1], u);
-                p = select3(sphere_hit, s.p, p);
-                ng = select3(sphere_hit, s.ng, ng);
-                ns = select3(sphere_hit, s.ns, ns);
+                take(sphere_hit, s);
             }
-            const V3<F> dir = Normalize<L>(load3(b->dir, k));
-            wo = select3(any_hit, V3<F>{hn::Neg(dir.x), hn::Neg(dir.y), hn::Neg(dir.z)}, wo);
-            store3(p, b->p, k);
-            store3(ng, b->ng, k);
-            store3(ns, b->ns, k);
-            store3(wo, b->wo, k);
+            const V3<F> dir = Normalize<L>(Load3(d, b->dir, k));
+            wo = Select3<L>(any_hit, Neg3<L>(dir), wo);
+            Store3(d, p, b->p, k);
+            Store3(d, ng, b->ng, k);
+            Store3(d, ns, b->ns, k);
+            Store3(d, wo, b->wo, k);
         }
     }
     // Every vertex is given now.
@@ -190,22 +192,11 @@ void SurfaceVertices(SurfaceBlock* b,
         b->light[k] = b->light[0];
         b->sphere_light[k] = b->sphere_light[0];
     }
-    auto load3 = [&](const float(*rows)[kShadeChunk], size_t k) {
-        return V3<F>{hn::Load(d, rows[0] + k), hn::Load(d, rows[1] + k), hn::Load(d, rows[2] + k)};
-    };
-    auto store3 = [&](V3<F> v, float(*rows)[kShadeChunk], size_t k) {
-        hn::Store(v.x, d, rows[0] + k);
-        hn::Store(v.y, d, rows[1] + k);
-        hn::Store(v.z, d, rows[2] + k);
-    };
     const F zero = hn::Zero(d), one = hn::Set(d, 1.0f);
-    auto select3 = [&](hn::Mask<D> m, V3<F> yes, V3<F> no) {
-        return V3<F>{hn::IfThenElse(m, yes.x, no.x), hn::IfThenElse(m, yes.y, no.y),
-                     hn::IfThenElse(m, yes.z, no.z)};
-    };
     for (size_t k = 0; k < b->n; k += N) {
-        const V3<F> p = load3(b->p, k), ng = load3(b->ng, k), ns = load3(b->ns, k),
-                    wo = load3(b->wo, k), albedo = load3(b->albedo, k), beta = load3(b->beta, k);
+        const V3<F> p = Load3(d, b->p, k), ng = Load3(d, b->ng, k), ns = Load3(d, b->ns, k),
+                    wo = Load3(d, b->wo, k), albedo = Load3(d, b->albedo, k),
+                    beta = Load3(d, b->beta, k);
         const F alpha = hn::Load(d, b->alpha + k);
         const auto metal = hn::Gt(hn::Load(d, b->metal + k), zero);
 
@@ -242,9 +233,9 @@ void SurfaceVertices(SurfaceBlock* b,
             const NeeVertex<L> v{p, ng, ns, wo, albedo, alpha, metal, u1, u2};
             const QuadLightNee<L> r = SurfaceLightSample(v, point, mis, heuristic);
             // As shade appends a scalar next_event's: beta (value weight), when the weight is > 0.
-            store3(beta * (r.value * r.weight), b->contribution, k);
-            store3(r.origin, b->shadow_origin, k);
-            store3(r.wi, b->shadow_dir, k);
+            Store3(d, beta * (r.value * r.weight), b->contribution, k);
+            Store3(d, r.origin, b->shadow_origin, k);
+            Store3(d, r.wi, b->shadow_dir, k);
             hn::Store(r.tmax, d, b->tmax + k);
             const auto append = hn::And(has_light, hn::And(r.valid, hn::Gt(r.weight, zero)));
             hn::Store(hn::IfThenElseZero(append, one), d, b->shadow + k);
@@ -277,15 +268,15 @@ void SurfaceVertices(SurfaceBlock* b,
                     r = m;
                 } else {
                     r.alive = hn::Or(hn::And(metal, m.alive), hn::AndNot(metal, r.alive));
-                    r.origin = select3(metal, m.origin, r.origin);
-                    r.wi = select3(metal, m.wi, r.wi);
-                    r.weight = select3(metal, m.weight, r.weight);
+                    r.origin = Select3<L>(metal, m.origin, r.origin);
+                    r.wi = Select3<L>(metal, m.wi, r.wi);
+                    r.weight = Select3<L>(metal, m.weight, r.weight);
                     r.pdf = hn::IfThenElse(metal, m.pdf, r.pdf);
                 }
             }
-            store3(r.origin, b->origin, k);
-            store3(r.wi, b->wi, k);
-            store3(r.weight, b->weight, k);
+            Store3(d, r.origin, b->origin, k);
+            Store3(d, r.wi, b->wi, k);
+            Store3(d, r.weight, b->weight, k);
             hn::Store(r.pdf, d, b->pdf + k);
             hn::Store(hn::IfThenElseZero(hn::And(step, r.alive), one), d, b->alive + k);
         } else {

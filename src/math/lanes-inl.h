@@ -182,6 +182,15 @@ HWY_INLINE V3<typename L::F> Normalize(V3<typename L::F> a) {
     return a * (L::Set(1.0f) / L::Sqrt(Dot(a, a)));
 }
 template <class L>
+HWY_INLINE V3<typename L::F> Neg3(V3<typename L::F> a) {
+    return {L::Neg(a.x), L::Neg(a.y), L::Neg(a.z)};
+}
+// Per lane: yes where m, else no.
+template <class L>
+HWY_INLINE V3<typename L::F> Select3(typename L::M m, V3<typename L::F> yes, V3<typename L::F> no) {
+    return {L::Select(m, yes.x, no.x), L::Select(m, yes.y, no.y), L::Select(m, yes.z, no.z)};
+}
+template <class L>
 HWY_INLINE typename L::F MaxComponent(V3<typename L::F> a) {
     return L::Max(L::Max(a.x, a.y), a.z);
 }

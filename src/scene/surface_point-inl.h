@@ -64,11 +64,9 @@ HWY_INLINE SurfacePoint<L> TrianglePoint(const V3<typename L::F> (&p)[3],
     const V3<F> ni = n[0] * b0 + n[1] * b1 + n[2] * b2;
     const auto use = L::And(smooth, Dot(ni, ni) > zero);
     const V3<F> ns = Normalize<L>(ni);
-    s.ns = {L::Select(use, ns.x, s.ng.x), L::Select(use, ns.y, s.ng.y),
-            L::Select(use, ns.z, s.ng.z)};
+    s.ns = Select3<L>(use, ns, s.ng);
     const auto flip = Dot(s.ns, s.ng) < zero;
-    s.ns = {L::Select(flip, L::Neg(s.ns.x), s.ns.x), L::Select(flip, L::Neg(s.ns.y), s.ns.y),
-            L::Select(flip, L::Neg(s.ns.z), s.ns.z)};
+    s.ns = Select3<L>(flip, Neg3<L>(s.ns), s.ns);
     return s;
 }
 

@@ -113,7 +113,7 @@ HWY_INLINE V3<typename L::F> MetalEval(V3<typename L::F> albedo,
     *pdf = L::Select(valid, GgxG1<L>(o.z, alpha) * d / (L::Set(4.0f) * o.z), zero);
     const F g2 = one / (one + GgxLambda<L>(o.z, alpha) + GgxLambda<L>(i.z, alpha));
     const V3<F> f = Schlick<L>(albedo, Dot(i, h)) * (d * g2 / (L::Set(4.0f) * o.z));
-    return {L::Select(valid, f.x, zero), L::Select(valid, f.y, zero), L::Select(valid, f.z, zero)};
+    return Select3<L>(valid, f, V3<F>{zero, zero, zero});
 }
 
 template <class L>

@@ -32,21 +32,24 @@ struct QuadLightLanes {
     typename L::F select_prob;  // of picking this light
 };
 
+// Three columns (x, y, z) read through fetch.
+template <class L, class Fetch>
+HWY_INLINE V3<typename L::F> Fetch3(Fetch fetch, const std::vector<float>* columns) {
+    return {fetch(columns[0]), fetch(columns[1]), fetch(columns[2])};
+}
+
 // Each lane's light read from the columns: fetch(column) gives a column's value in each lane
 // (one entry in scalar code; a gather or a broadcast over vectors).
 template <class L, class Fetch>
 HWY_INLINE QuadLightLanes<L> QuadLightFrom(const QuadEmitterColumns& c,
                                            Fetch fetch,
                                            typename L::F select_prob) {
-    auto fetch3 = [&](const std::vector<float>* columns) {
-        return V3<typename L::F>{fetch(columns[0]), fetch(columns[1]), fetch(columns[2])};
-    };
-    return {fetch3(c.q),
-            fetch3(c.u),
-            fetch3(c.v),
-            fetch3(c.n),
+    return {Fetch3<L>(fetch, c.q),
+            Fetch3<L>(fetch, c.u),
+            Fetch3<L>(fetch, c.v),
+            Fetch3<L>(fetch, c.n),
             fetch(c.area),
-            fetch3(c.radiance),
+            Fetch3<L>(fetch, c.radiance),
             fetch(c.two_sided) > L::Set(0.0f),
             select_prob};
 }
@@ -84,12 +87,9 @@ template <class L>
 HWY_INLINE LightPoint<L> SelectLightPoint(typename L::M m,
                                           const LightPoint<L>& a,
                                           const LightPoint<L>& b) {
-    auto sel3 = [&](V3<typename L::F> x, V3<typename L::F> y) {
-        return V3<typename L::F>{L::Select(m, x.x, y.x), L::Select(m, x.y, y.y),
-                                 L::Select(m, x.z, y.z)};
-    };
-    return {L::Or(L::And(m, a.valid), L::AndNot(m, b.valid)), sel3(a.wi, b.wi),
-            L::Select(m, a.dist, b.dist), L::Select(m, a.pdf, b.pdf), sel3(a.radiance, b.radiance)};
+    return {L::Or(L::And(m, a.valid), L::AndNot(m, b.valid)), Select3<L>(m, a.wi, b.wi),
+            L::Select(m, a.dist, b.dist), L::Select(m, a.pdf, b.pdf),
+            Select3<L>(m, a.radiance, b.radiance)};
 }
 
 // The quad light's point, uniform by area: p_w = r^2 / (|cos theta_l| A), times the selection
@@ -110,8 +110,7 @@ HWY_INLINE LightPoint<L> QuadLightPoint(V3<typename L::F> ref,
     const F cos_l = L::Abs(Dot(e.n, r.wi));
     r.pdf = dist2 / (cos_l * e.area) * e.select_prob;
     const auto emits = L::Or(Dot(d, e.n) < zero, e.two_sided);
-    r.radiance = {L::Select(emits, e.radiance.x, zero), L::Select(emits, e.radiance.y, zero),
-                  L::Select(emits, e.radiance.z, zero)};
+    r.radiance = Select3<L>(emits, e.radiance, V3<F>{zero, zero, zero});
     r.valid = L::And(L::And(dist2 > zero, cos_l > zero), L::And(L::IsFinite(r.pdf), r.pdf > zero));
     r.valid = L::And(r.valid, MaxComponent<L>(r.radiance) > zero);
     return r;
@@ -150,8 +149,7 @@ HWY_INLINE QuadLightNee<L> SurfaceLightSample(const NeeVertex<L>& v,
         const V3<F> li{Dot(r.wi, s), Dot(r.wi, t), Dot(r.wi, v.ns)};
         F pdf_metal;
         const V3<F> f_metal = MetalEval<L>(v.albedo, v.alpha, lo, li, &pdf_metal);
-        f = {L::Select(v.metal, f_metal.x, f.x), L::Select(v.metal, f_metal.y, f.y),
-             L::Select(v.metal, f_metal.z, f.z)};
+        f = Select3<L>(v.metal, f_metal, f);
         pdf_bsdf = L::Select(v.metal, pdf_metal, pdf_bsdf);
     }
     r.pdf_bsdf = pdf_bsdf;

@@ -37,10 +37,7 @@ template <class L, class Fetch>
 HWY_INLINE SphereLightLanes<L> SphereLightFrom(const SphereEmitterColumns& c,
                                                Fetch fetch,
                                                typename L::F select_prob) {
-    auto fetch3 = [&](const std::vector<float>* columns) {
-        return V3<typename L::F>{fetch(columns[0]), fetch(columns[1]), fetch(columns[2])};
-    };
-    return {fetch3(c.centre), fetch(c.radius), fetch3(c.radiance),
+    return {Fetch3<L>(fetch, c.centre), fetch(c.radius), Fetch3<L>(fetch, c.radiance),
             fetch(c.two_sided) > L::Set(0.0f), select_prob};
 }
 
@@ -114,8 +111,7 @@ HWY_INLINE LightPoint<L> SphereLightPoint(V3<typename L::F> ref,
     // The sphere's normal at the point as surface_at gives it for the segment ref -> ref + d.
     const V3<F> ng = SpherePoint<L>(ref + d, e.centre, e.radius).ng;
     const auto emits = L::Or(Dot(d, ng) < zero, e.two_sided);
-    r.radiance = {L::Select(emits, e.radiance.x, zero), L::Select(emits, e.radiance.y, zero),
-                  L::Select(emits, e.radiance.z, zero)};
+    r.radiance = Select3<L>(emits, e.radiance, V3<F>{zero, zero, zero});
     r.pdf = pdf_solid * e.select_prob;
     r.valid = L::And(L::And(SphereOutside<L>(ref, e.centre, e.radius), dist2 > zero),
                      L::And(L::IsFinite(r.pdf), r.pdf > zero));
