@@ -48,6 +48,102 @@ Vertex surface_vertex_at(Point3 p, Dim u, bool metal) {
     return v;
 }
 
+// Lambertian and rough metal vertices around the lights of `scene`, quads and spheres (the
+// vertices outside them): the vector light samples give next_event's shadow rays and
+// contributions bit for bit, for NEE and for MIS with either heuristic. Counts in *spheres the
+// rows whose light was a sphere.
+void expect_light_samples_are_next_event(const Scene& scene, size_t* spheres) {
+    const LightSet lights(scene);
+    const size_t n = 59;
+    struct Case {
+        Vertex v;
+        Vec3 wo;
+        Color beta;
+        VertexSamples u;
+    };
+    std::vector<Case> cases;
+    for (uint32_t i = 0; i < n; ++i) {
+        auto u = [&](uint32_t d) { return sample_1d(13, i, 0, d); };
+        Case c;
+        c.v = surface_vertex_at(Vec3{4 * u(0) - 2, 4 * u(1) - 2, 4 * u(2) - 2}, u, i >= n / 2);
+        c.wo = unit(u(10), u(11));
+        c.beta = Color(2.0f * u(12));
+        c.u.light_select = u(13);
+        c.u.light_u = u(14);
+        c.u.light_v = u(15);
+        cases.push_back(c);
+    }
+    size_t appended = 0, skipped = 0;
+    *spheres = 0;
+    for (Strategy strategy : {Strategy::Nee, Strategy::Mis})
+        for (MisHeuristic heuristic : {MisHeuristic::Power, MisHeuristic::Balance})
+            for (int64_t target : wide_simd_targets()) {
+                use_wide_simd_target(target);
+                SCOPED_TRACE(wide_simd_target());
+                RenderConfig config;
+                config.strategy = strategy;
+                config.heuristic = heuristic;
+                SurfaceBlock block;
+                for (size_t k = 0; k < n; ++k) {
+                    const Case& c = cases[k];
+                    ASSERT_TRUE(samples_lights(config, c.v, lights));
+                    const LightChoice light = lights.select(c.u.light_select);
+                    const int32_t quad = quad_light_sample_at(c.v, lights, light);
+                    const int32_t sphere = sphere_light_sample_at(c.v, lights, light);
+                    ASSERT_TRUE(quad >= 0 || sphere >= 0);
+                    *spheres += sphere >= 0;
+                    const size_t row = block.push(k, c.v, c.wo, c.beta);
+                    // Every third row without a light sample: its lanes must stay out.
+                    if (k % 3 != 2 && quad >= 0)
+                        block.set_light_sample(row, quad, light.probability, c.u.light_u,
+                                               c.u.light_v);
+                    else if (k % 3 != 2)
+                        block.set_sphere_light_sample(row, sphere, light.probability, c.u.light_u,
+                                                      c.u.light_v);
+                }
+                surface_vertices(block, lights, strategy == Strategy::Mis, heuristic);
+                for (size_t k = 0; k < n; ++k) {
+                    const Case& c = cases[k];
+                    ASSERT_EQ(block.alive[k], 0.0f);  // no step asked
+                    if (k % 3 == 2) {
+                        ASSERT_EQ(block.shadow[k], 0.0f) << "row " << k;
+                        continue;
+                    }
+                    const WeightedDirect d = next_event(scene, lights, config, c.v, c.wo, c.u);
+                    ASSERT_EQ(d.weight > 0.0f, block.shadow[k] != 0.0f) << "row " << k;
+                    if (d.weight <= 0.0f) {
+                        ++skipped;
+                        continue;
+                    }
+                    ++appended;
+                    auto row = [&](const float(*rows)[kShadeChunk]) {
+                        return Vec3{rows[0][k], rows[1][k], rows[2][k]};
+                    };
+                    EXPECT_TRUE(same_bits(d.sample.shadow.o, row(block.shadow_origin)))
+                        << "row " << k;
+                    EXPECT_TRUE(same_bits(d.sample.shadow.d, row(block.shadow_dir))) << "row " << k;
+                    EXPECT_TRUE(same_bits(d.sample.shadow.tmax, block.tmax[k])) << "row " << k;
+                    EXPECT_TRUE(
+                        same_bits(c.beta * (d.sample.value * d.weight), row(block.contribution)))
+                        << "row " << k;
+                }
+            }
+    use_wide_simd_target(0);
+    EXPECT_GT(appended, 0u);
+    EXPECT_GT(skipped, 0u);  // back faces, directions below the surface
+}
+
+// Two emitting materials: one-sided and brighter, two-sided and dimmer.
+std::pair<MaterialId, MaterialId> add_emitters(Scene& scene) {
+    Material one_sided;
+    one_sided.kind = MaterialKind::DiffuseLight;
+    one_sided.emission = scene.add_solid({4, 3, 2});
+    Material two_sided = one_sided;
+    two_sided.emission = scene.add_solid({1, 1, 1});
+    two_sided.two_sided = true;
+    return {scene.add_material(one_sided), scene.add_material(two_sided)};
+}
+
 }  // namespace
 
 TEST(Lanes, SinCosOfTheWarpsIsAccurate) {
@@ -170,184 +266,27 @@ TEST(Lanes, SurfaceStepsAreContinuePathOnEverySimdTarget) {
     EXPECT_GT(dead, 0u);  // the geometric-side test and roulette were exercised
 }
 
-// Lambertian and rough metal vertices around two quad lights (one one-sided, one two-sided, of
-// different power): the vector light samples give next_event's shadow rays and contributions bit
-// for bit, for NEE and for MIS with either heuristic.
+// Around two quad lights (one one-sided, one two-sided, of different power).
 TEST(Lanes, QuadLightSamplesAreNextEventOnEverySimdTarget) {
     Scene scene;
-    Material one_sided;
-    one_sided.kind = MaterialKind::DiffuseLight;
-    one_sided.emission = scene.add_solid({4, 3, 2});
-    Material two_sided = one_sided;
-    two_sided.emission = scene.add_solid({1, 1, 1});
-    two_sided.two_sided = true;
-    const MaterialId a = scene.add_material(one_sided), b = scene.add_material(two_sided);
+    const auto [a, b] = add_emitters(scene);
     scene.add_quad({{-1, 2, -1}, {2, 0, 0}, {0, 0, 2}, a, kNone});  // faces -y
     scene.add_quad({{3, -1, -1}, {0, 2, 0}, {0, 0, 3}, b, kNone});
-    const LightSet lights(scene);
-    const size_t n = 59;
-    struct Case {
-        Vertex v;
-        Vec3 wo;
-        Color beta;
-        VertexSamples u;
-    };
-    std::vector<Case> cases;
-    for (uint32_t i = 0; i < n; ++i) {
-        auto u = [&](uint32_t d) { return sample_1d(13, i, 0, d); };
-        Case c;
-        c.v = surface_vertex_at(Vec3{4 * u(0) - 2, 4 * u(1) - 2, 4 * u(2) - 2}, u, i >= n / 2);
-        c.wo = unit(u(10), u(11));
-        c.beta = Color(2.0f * u(12));
-        c.u.light_select = u(13);
-        c.u.light_u = u(14);
-        c.u.light_v = u(15);
-        cases.push_back(c);
-    }
-    size_t appended = 0, skipped = 0;
-    for (Strategy strategy : {Strategy::Nee, Strategy::Mis})
-        for (MisHeuristic heuristic : {MisHeuristic::Power, MisHeuristic::Balance})
-            for (int64_t target : wide_simd_targets()) {
-                use_wide_simd_target(target);
-                SCOPED_TRACE(wide_simd_target());
-                RenderConfig config;
-                config.strategy = strategy;
-                config.heuristic = heuristic;
-                SurfaceBlock block;
-                for (size_t k = 0; k < n; ++k) {
-                    const Case& c = cases[k];
-                    ASSERT_TRUE(samples_lights(config, c.v, lights));
-                    const LightChoice light = lights.select(c.u.light_select);
-                    ASSERT_GE(quad_light_sample_at(c.v, lights, light), 0);
-                    const size_t row = block.push(k, c.v, c.wo, c.beta);
-                    // Every third row without a light sample: its lanes must stay out.
-                    if (k % 3 != 2)
-                        block.set_light_sample(row, lights.quad_emitter_index(light),
-                                               light.probability, c.u.light_u, c.u.light_v);
-                }
-                surface_vertices(block, lights, strategy == Strategy::Mis, heuristic);
-                for (size_t k = 0; k < n; ++k) {
-                    const Case& c = cases[k];
-                    ASSERT_EQ(block.alive[k], 0.0f);  // no step asked
-                    if (k % 3 == 2) {
-                        ASSERT_EQ(block.shadow[k], 0.0f) << "row " << k;
-                        continue;
-                    }
-                    const WeightedDirect d = next_event(scene, lights, config, c.v, c.wo, c.u);
-                    ASSERT_EQ(d.weight > 0.0f, block.shadow[k] != 0.0f) << "row " << k;
-                    if (d.weight <= 0.0f) {
-                        ++skipped;
-                        continue;
-                    }
-                    ++appended;
-                    auto row = [&](const float(*rows)[kShadeChunk]) {
-                        return Vec3{rows[0][k], rows[1][k], rows[2][k]};
-                    };
-                    EXPECT_TRUE(same_bits(d.sample.shadow.o, row(block.shadow_origin)))
-                        << "row " << k;
-                    EXPECT_TRUE(same_bits(d.sample.shadow.d, row(block.shadow_dir))) << "row " << k;
-                    EXPECT_TRUE(same_bits(d.sample.shadow.tmax, block.tmax[k])) << "row " << k;
-                    EXPECT_TRUE(
-                        same_bits(c.beta * (d.sample.value * d.weight), row(block.contribution)))
-                        << "row " << k;
-                }
-            }
-    use_wide_simd_target(0);
-    EXPECT_GT(appended, 0u);
-    EXPECT_GT(skipped, 0u);  // back faces, directions below the surface
+    size_t spheres;
+    expect_light_samples_are_next_event(scene, &spheres);
+    EXPECT_EQ(spheres, 0u);  // every row's light is a quad
 }
 
-// The same around two sphere lights (one one-sided, one two-sided) and a quad light, so that
-// vectors mix both kinds: the vector light samples give next_event's bit for bit.
+// Around two sphere lights (one one-sided, one two-sided) and a quad light, so that vectors mix
+// both kinds.
 TEST(Lanes, SphereLightSamplesAreNextEventOnEverySimdTarget) {
     Scene scene;
-    Material one_sided;
-    one_sided.kind = MaterialKind::DiffuseLight;
-    one_sided.emission = scene.add_solid({4, 3, 2});
-    Material two_sided = one_sided;
-    two_sided.emission = scene.add_solid({1, 1, 1});
-    two_sided.two_sided = true;
-    const MaterialId a = scene.add_material(one_sided), b = scene.add_material(two_sided);
+    const auto [a, b] = add_emitters(scene);
     scene.add_sphere({{0, 4, 0}, 0.7f, a, kNone});
     scene.add_sphere({{5, 0, 1}, 1.5f, b, kNone});
-    scene.add_quad({{-1, -4, -1}, {2, 0, 0}, {0, 0, 2}, a, kNone});  // rows of both kinds
-    const LightSet lights(scene);
-    const size_t n = 59;
-    struct Case {
-        Vertex v;
-        Vec3 wo;
-        Color beta;
-        VertexSamples u;
-    };
-    std::vector<Case> cases;
-    for (uint32_t i = 0; i < n; ++i) {
-        auto u = [&](uint32_t d) { return sample_1d(13, i, 0, d); };
-        Case c;
-        c.v = surface_vertex_at(Vec3{4 * u(0) - 2, 4 * u(1) - 2, 4 * u(2) - 2}, u, i >= n / 2);
-        c.wo = unit(u(10), u(11));
-        c.beta = Color(2.0f * u(12));
-        c.u.light_select = u(13);
-        c.u.light_u = u(14);
-        c.u.light_v = u(15);
-        cases.push_back(c);
-    }
-    size_t appended = 0, skipped = 0, spheres = 0;
-    for (Strategy strategy : {Strategy::Nee, Strategy::Mis})
-        for (MisHeuristic heuristic : {MisHeuristic::Power, MisHeuristic::Balance})
-            for (int64_t target : wide_simd_targets()) {
-                use_wide_simd_target(target);
-                SCOPED_TRACE(wide_simd_target());
-                RenderConfig config;
-                config.strategy = strategy;
-                config.heuristic = heuristic;
-                SurfaceBlock block;
-                for (size_t k = 0; k < n; ++k) {
-                    const Case& c = cases[k];
-                    ASSERT_TRUE(samples_lights(config, c.v, lights));
-                    const LightChoice light = lights.select(c.u.light_select);
-                    const int32_t quad = quad_light_sample_at(c.v, lights, light);
-                    const int32_t sphere = sphere_light_sample_at(c.v, lights, light);
-                    ASSERT_TRUE(quad >= 0 || sphere >= 0);
-                    spheres += sphere >= 0;
-                    const size_t row = block.push(k, c.v, c.wo, c.beta);
-                    // Every third row without a light sample: its lanes must stay out.
-                    if (k % 3 != 2 && quad >= 0)
-                        block.set_light_sample(row, quad, light.probability, c.u.light_u,
-                                               c.u.light_v);
-                    else if (k % 3 != 2)
-                        block.set_sphere_light_sample(row, sphere, light.probability, c.u.light_u,
-                                                      c.u.light_v);
-                }
-                surface_vertices(block, lights, strategy == Strategy::Mis, heuristic);
-                for (size_t k = 0; k < n; ++k) {
-                    const Case& c = cases[k];
-                    ASSERT_EQ(block.alive[k], 0.0f);  // no step asked
-                    if (k % 3 == 2) {
-                        ASSERT_EQ(block.shadow[k], 0.0f) << "row " << k;
-                        continue;
-                    }
-                    const WeightedDirect d = next_event(scene, lights, config, c.v, c.wo, c.u);
-                    ASSERT_EQ(d.weight > 0.0f, block.shadow[k] != 0.0f) << "row " << k;
-                    if (d.weight <= 0.0f) {
-                        ++skipped;
-                        continue;
-                    }
-                    ++appended;
-                    auto row = [&](const float(*rows)[kShadeChunk]) {
-                        return Vec3{rows[0][k], rows[1][k], rows[2][k]};
-                    };
-                    EXPECT_TRUE(same_bits(d.sample.shadow.o, row(block.shadow_origin)))
-                        << "row " << k;
-                    EXPECT_TRUE(same_bits(d.sample.shadow.d, row(block.shadow_dir))) << "row " << k;
-                    EXPECT_TRUE(same_bits(d.sample.shadow.tmax, block.tmax[k])) << "row " << k;
-                    EXPECT_TRUE(
-                        same_bits(c.beta * (d.sample.value * d.weight), row(block.contribution)))
-                        << "row " << k;
-                }
-            }
-    use_wide_simd_target(0);
-    EXPECT_GT(appended, 0u);
-    EXPECT_GT(skipped, 0u);  // back faces, directions below the surface
+    scene.add_quad({{-1, -4, -1}, {2, 0, 0}, {0, 0, 2}, a, kNone});
+    size_t spheres;
+    expect_light_samples_are_next_event(scene, &spheres);
     EXPECT_GT(spheres, 0u);
 }
 

@@ -67,17 +67,24 @@ TEST(Texture, EarthImageIsDecodedFromSrgb) {
     }
 }
 
-// Only image textures read uv, directly or as a checker's cell; surface_at computes a sphere's
-// uv (an acos and an atan2) only for such materials.
-TEST(Texture, OnlyImagesReadUv) {
-    Scene s;
+namespace {
+// A one-texel image texture.
+TextureId add_image_texture(Scene& s) {
     ImageData img;
     img.width = img.height = 1;
     img.texels = {Color(0.5f)};
     Texture image;
     image.kind = TextureKind::Image;
     image.image = s.add_image(img);
-    const TextureId solid = s.add_solid({1, 0, 0}), picture = s.add_texture(image);
+    return s.add_texture(image);
+}
+}  // namespace
+
+// Only image textures read uv, directly or as a checker's cell; surface_at computes a sphere's
+// uv (an acos and an atan2) only for such materials.
+TEST(Texture, OnlyImagesReadUv) {
+    Scene s;
+    const TextureId solid = s.add_solid({1, 0, 0}), picture = add_image_texture(s);
     Texture noise;
     noise.kind = TextureKind::Noise;
     Texture checker;
@@ -96,14 +103,8 @@ TEST(Texture, OnlyImagesReadUv) {
 
 TEST(Surface, SphereUvFollowsTheSeed) {
     Scene s;
-    ImageData img;
-    img.width = img.height = 1;
-    img.texels = {Color(0.5f)};
-    Texture image;
-    image.kind = TextureKind::Image;
-    image.image = s.add_image(img);
     Material textured;
-    textured.albedo = s.add_texture(image);
+    textured.albedo = add_image_texture(s);
     s.add_material(textured);
     s.add_sphere({{0, 0, 0}, 1, 0, kNone});
     Hit hit{1.0f, PrimRef::make(PrimKind::Sphere, 0)};
