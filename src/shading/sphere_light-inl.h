@@ -91,9 +91,9 @@ HWY_INLINE V3<typename L::F> SphereConePoint(V3<typename L::F> ref,
     return ref + w * L::Select(hits, th, Dot(fc, w));
 }
 
-// The light point of a sphere light for a vertex at ref outside it (LightSample's: the
-// direction, distance, density times the selection probability, and the radiance of the
-// sphere's side facing ref).
+// The light point of a sphere light for a vertex at ref outside it, which the callers check
+// first (sphere_light_sample_at): as LightSample gives it, the direction, distance, density times
+// the selection probability, and the radiance of the sphere's side facing ref.
 template <class L>
 HWY_INLINE LightPoint<L> SphereLightPoint(V3<typename L::F> ref,
                                           const SphereLightLanes<L>& e,
@@ -113,8 +113,7 @@ HWY_INLINE LightPoint<L> SphereLightPoint(V3<typename L::F> ref,
     const auto emits = L::Or(Dot(d, ng) < zero, e.two_sided);
     r.radiance = Select3<L>(emits, e.radiance, V3<F>{zero, zero, zero});
     r.pdf = pdf_solid * e.select_prob;
-    r.valid = L::And(L::And(SphereOutside<L>(ref, e.centre, e.radius), dist2 > zero),
-                     L::And(L::IsFinite(r.pdf), r.pdf > zero));
+    r.valid = L::And(dist2 > zero, L::And(L::IsFinite(r.pdf), r.pdf > zero));
     r.valid = L::And(r.valid, MaxComponent<L>(r.radiance) > zero);
     return r;
 }
