@@ -161,7 +161,7 @@ struct LambertianRows {
                 c.scene, *c.lights, c.config, ray_at(c.unsorted.rays, i),
                 hit_at(c.unsorted.hits, i), media, flight, previous_vertex(c.unsorted.paths, i));
             if (seg.event != SegmentEvent::Scatter ||
-                !takes_surface_step(c.config, seg.vertex, *c.lights))
+                !takes_lane_step(c.config, seg.vertex, *c.lights))
                 continue;
             const uint32_t p = c.unsorted.paths.pixel[i];
             v.push_back(seg.vertex);

@@ -33,23 +33,36 @@ Vec3 unit(float u1, float u2) {
     return sample_uniform_sphere(u1, u2);
 }
 
+// The lane vertices (is_lane_vertex) the tests cover, in thirds of their rows.
+enum class LaneKind { Lambertian, Metal, Medium };
+LaneKind lane_kind(size_t i, size_t n) {
+    return static_cast<LaneKind>(3 * i / n);
+}
+
 // A Lambertian or rough metal surface vertex at p, its normals, albedo and roughness from
 // dimensions 3-9 and 21 of u: the shading normal tilted off the geometric one, so that the
-// geometric-side tests reject some directions.
+// geometric-side tests reject some directions. Or a vertex in a medium of isotropic phase
+// function, as medium_vertex() makes it.
 template <class Dim>
-Vertex surface_vertex_at(Point3 p, Dim u, bool metal) {
+Vertex lane_vertex_at(Point3 p, Dim u, LaneKind kind) {
     Vertex v;
     v.p = p;
+    v.bsdf.albedo = {u(7), u(8), u(9)};
+    if (kind == LaneKind::Medium) {
+        v.frame = Frame::from_normal({0, 0, 1});
+        v.bsdf.kind = MaterialKind::Isotropic;
+        return v;
+    }
     v.ng = unit(u(3), u(4));
     v.frame = Frame::from_normal(normalize(v.ng + 0.3f * unit(u(5), u(6))));
+    const bool metal = kind == LaneKind::Metal;
     v.bsdf.kind = metal ? MaterialKind::Metal : MaterialKind::Lambertian;
-    v.bsdf.albedo = {u(7), u(8), u(9)};
     v.bsdf.alpha = metal ? 0.02f + 0.6f * u(21) : 0.0f;
     return v;
 }
 
-// Lambertian and rough metal vertices around the lights of `scene`, quads and spheres (the
-// vertices outside them): the vector light samples give next_event's shadow rays and
+// Lambertian, rough metal and medium vertices around the lights of `scene`, quads and spheres
+// (the vertices outside them): the vector light samples give next_event's shadow rays and
 // contributions bit for bit, for NEE and for MIS with either heuristic. Counts in *spheres the
 // rows whose light was a sphere.
 void expect_light_samples_are_next_event(const Scene& scene, size_t* spheres) {
@@ -65,7 +78,7 @@ void expect_light_samples_are_next_event(const Scene& scene, size_t* spheres) {
     for (uint32_t i = 0; i < n; ++i) {
         auto u = [&](uint32_t d) { return sample_1d(13, i, 0, d); };
         Case c;
-        c.v = surface_vertex_at(Vec3{4 * u(0) - 2, 4 * u(1) - 2, 4 * u(2) - 2}, u, i >= n / 2);
+        c.v = lane_vertex_at(Vec3{4 * u(0) - 2, 4 * u(1) - 2, 4 * u(2) - 2}, u, lane_kind(i, n));
         c.wo = unit(u(10), u(11));
         c.beta = Color(2.0f * u(12));
         c.u.light_select = u(13);
@@ -196,10 +209,10 @@ TEST(Lanes, VertexSamplesAreTheScalarOnesOnEverySimdTarget) {
     use_wide_simd_target(0);
 }
 
-// Lambertian vertices, then rough metal ones (so that vectors hold one kind or both), with random
-// normals (surface_vertex_at), throughputs and samples: the vector step gives continue_path's
-// result bit for bit, dead paths included.
-TEST(Lanes, SurfaceStepsAreContinuePathOnEverySimdTarget) {
+// Lambertian vertices, then rough metal ones, then medium ones (so that vectors hold one kind or
+// two), with random normals (lane_vertex_at), throughputs and samples: the vector step gives
+// continue_path's result bit for bit, dead paths included.
+TEST(Lanes, LaneStepsAreContinuePathOnEverySimdTarget) {
     RenderConfig config;
     config.strategy = Strategy::Mis;
     config.rr_depth = 3;
@@ -219,8 +232,8 @@ TEST(Lanes, SurfaceStepsAreContinuePathOnEverySimdTarget) {
     for (uint32_t i = 0; i < n; ++i) {
         auto u = [&](uint32_t d) { return sample_1d(9, i, 0, d); };
         Case c;
-        c.v =
-            surface_vertex_at(Vec3{u(0) - 0.5f, u(1) - 0.5f, u(2) - 0.5f} * 100.0f, u, i >= n / 2);
+        c.v = lane_vertex_at(Vec3{u(0) - 0.5f, u(1) - 0.5f, u(2) - 0.5f} * 100.0f, u,
+                             lane_kind(i, n));
         c.wo = unit(u(10), u(11));
         c.beta = Color(2.0f * u(12));
         c.u = {u(13), u(14), u(15), u(16), u(17), u(18), u(19)};
@@ -235,7 +248,7 @@ TEST(Lanes, SurfaceStepsAreContinuePathOnEverySimdTarget) {
         SurfaceBlock block;
         for (size_t k = 0; k < n; ++k) {
             const Case& c = cases[k];
-            ASSERT_TRUE(takes_surface_step(config, c.v, lights));
+            ASSERT_TRUE(takes_lane_step(config, c.v, lights));
             const size_t row = block.push(k, c.v, c.wo, c.beta);
             block.set_step(row, c.u, c.u_rr, c.bounce + 1 >= config.rr_depth);
         }

@@ -187,7 +187,7 @@ void SurfaceVertices(SurfaceBlock* b,
         for (auto* rows : {b->p, b->ng, b->ns, b->wo, b->albedo, b->beta})
             for (int a = 0; a < 3; ++a) rows[a][k] = rows[a][0];
         for (float* row : {b->select_prob, b->light_u1, b->light_u2, b->step, b->dir_u1, b->dir_u2,
-                           b->u_rr, b->roulette, b->alpha, b->metal})
+                           b->u_rr, b->roulette, b->alpha, b->metal, b->phase})
             row[k] = row[0];
         b->light[k] = b->light[0];
         b->sphere_light[k] = b->sphere_light[0];
@@ -199,6 +199,7 @@ void SurfaceVertices(SurfaceBlock* b,
                     beta = Load3(d, b->beta, k);
         const F alpha = hn::Load(d, b->alpha + k);
         const auto metal = hn::Gt(hn::Load(d, b->metal + k), zero);
+        const auto phase = hn::Gt(hn::Load(d, b->phase + k), zero);
 
         // The light sample, towards each row's own quad or sphere light: gathered from the
         // columns, or broadcast when the rows share one light (a scene with one light, or a
@@ -230,7 +231,7 @@ void SurfaceVertices(SurfaceBlock* b,
                     p, SphereLightFrom<L>(*spheres, fetcher(sphere), select_prob), u1, u2);
                 point = any_quad ? SelectLightPoint<L>(has_sphere, on_sphere, point) : on_sphere;
             }
-            const NeeVertex<L> v{p, ng, ns, wo, albedo, alpha, metal, u1, u2};
+            const NeeVertex<L> v{p, ng, ns, wo, albedo, alpha, metal, phase, u1, u2};
             const QuadLightNee<L> r = SurfaceLightSample(v, point, mis, heuristic);
             // As shade appends a scalar next_event's: beta (value weight), when the weight is > 0.
             Store3(d, beta * (r.value * r.weight), b->contribution, k);
@@ -257,23 +258,27 @@ void SurfaceVertices(SurfaceBlock* b,
                                   hn::Load(d, b->dir_u2 + k),
                                   hn::Load(d, b->u_rr + k),
                                   hn::Gt(hn::Load(d, b->roulette + k), zero)};
-            // Each lane's lobe: vectors of one kind run one step, mixed ones both.
+            // Each lane's lobe: vectors of one kind run one step, mixed ones each of theirs.
+            const auto lambertian = hn::Not(hn::Or(metal, phase));
             StepResult<L> r;
-            const bool any_metal = !hn::AllFalse(d, metal);
-            const bool all_metal = hn::AllTrue(d, metal);
-            if (!all_metal) r = LambertianStep(v);
-            if (any_metal) {
-                const StepResult<L> m = MetalStep(v);
-                if (all_metal) {
-                    r = m;
-                } else {
-                    r.alive = hn::Or(hn::And(metal, m.alive), hn::AndNot(metal, r.alive));
-                    r.origin = Select3<L>(metal, m.origin, r.origin);
-                    r.wi = Select3<L>(metal, m.wi, r.wi);
-                    r.weight = Select3<L>(metal, m.weight, r.weight);
-                    r.pdf = hn::IfThenElse(metal, m.pdf, r.pdf);
+            bool first = true;
+            auto take = [&](hn::Mask<D> m, auto lobe_step) {
+                if (hn::AllFalse(d, m)) return;
+                const StepResult<L> s = lobe_step(v);
+                if (first) {
+                    r = s;
+                    first = false;
+                    return;
                 }
-            }
+                r.alive = hn::Or(hn::And(m, s.alive), hn::AndNot(m, r.alive));
+                r.origin = Select3<L>(m, s.origin, r.origin);
+                r.wi = Select3<L>(m, s.wi, r.wi);
+                r.weight = Select3<L>(m, s.weight, r.weight);
+                r.pdf = hn::IfThenElse(m, s.pdf, r.pdf);
+            };
+            take(lambertian, [](const StepVertex<L>& x) { return LambertianStep(x); });
+            take(metal, [](const StepVertex<L>& x) { return MetalStep(x); });
+            take(phase, [](const StepVertex<L>& x) { return PhaseStep(x); });
             Store3(d, r.origin, b->origin, k);
             Store3(d, r.wi, b->wi, k);
             Store3(d, r.weight, b->weight, k);
@@ -345,6 +350,7 @@ void SurfaceBlock::start_row(size_t k, size_t entry_, const BsdfParams& bsdf, Co
     }
     alpha[k] = bsdf.alpha;
     metal[k] = bsdf.kind == MaterialKind::Metal ? 1.0f : 0.0f;
+    phase[k] = bsdf.kind == MaterialKind::Isotropic ? 1.0f : 0.0f;
     light[k] = sphere_light[k] = -1;
     select_prob[k] = light_u1[k] = light_u2[k] = 0.0f;
     step[k] = dir_u1[k] = dir_u2[k] = u_rr[k] = roulette[k] = 0.0f;

@@ -56,7 +56,8 @@ void draw_vertex_samples(uint64_t seed,
                          size_t n,
                          SampleBlock& out);
 
-// Lambertian and rough metal surface vertices gathered by shade (SoA, `n` rows): each row's
+// Lambertian and rough metal surface vertices, and medium vertices of isotropic phase function,
+// gathered by shade (SoA, `n` rows): each row's
 // light sample towards a quad light (next_event's, where light[k] >= 0) and its continuation
 // (continue_path's, where step[k] = 1), computed in one pass over the rows. A row's vertex is
 // either given (p, ng, ns, wo: push) or resolved from its hit on a quad, a triangle or a sphere
@@ -69,6 +70,7 @@ struct SurfaceBlock {
     alignas(64) float wo[3][kShadeChunk];
     alignas(64) float albedo[3][kShadeChunk];
     alignas(64) float alpha[kShadeChunk], metal[kShadeChunk];  // metal = 1: a rough metal
+    alignas(64) float phase[kShadeChunk];  // phase = 1: in a medium (ng = 0, ns = +z), isotropic
     alignas(64) float beta[3][kShadeChunk];
     // in: the light sample: the light's index among the LightSet's quad emitters (-1: none),
     // its selection probability and the point on it
@@ -103,8 +105,8 @@ struct SurfaceBlock {
     alignas(64) float weight[3][kShadeChunk];
     alignas(64) float pdf[kShadeChunk], alive[kShadeChunk];
 
-    // Appends the vertex of wave entry `entry` with neither a light sample nor a step; returns
-    // its row.
+    // Appends the vertex of wave entry `entry` (is_lane_vertex) with neither a light sample nor
+    // a step; returns its row.
     size_t push(size_t entry, const Vertex& v, Vec3 wo, Color beta);
     // The same for a vertex to resolve from the ray direction `d` and its hit at (u, v) on a
     // quad (q, eu, ev), a triangle (p, and vertex normals n or nullptr) or a sphere (at its point

@@ -96,10 +96,10 @@ struct DeferredLightSample {
     float u1, u2;
 };
 
-// Entry i's hit, if it is on a Lambertian or rough metal quad, triangle or sphere of constant
-// albedo (lane_material), as a row of the block to resolve there (or nothing, at the last bounce);
-// false for the scalar path. At such a hit resolve_segment finds no emission, and the vertex
-// takes the surface step.
+// Entry i's segment, if it scatters in a medium of isotropic phase function, or reaches a hit on
+// a Lambertian or rough metal quad, triangle or sphere of constant albedo (lane_material), as a
+// row of the block (or nothing, at the last bounce); false for the scalar path. At such a
+// vertex resolve_segment finds no emission, and the vertex takes the lane step.
 bool shade_in_lanes(const WaveInputs& in,
                     size_t i,
                     size_t chunk_row,
@@ -113,9 +113,38 @@ bool shade_in_lanes(const WaveInputs& in,
                     size_t& deferred_count) {
     const Scene& scene = in.scene;
     const PrimRef prim = hits.prim[i];
+    const int bounce = paths.bounce[i];
+    // The light sample (towards a quad light in the block, other lights deferred) and the
+    // continuation of the row just pushed.
+    auto sample_and_step = [&](size_t row) {
+        const VertexSamples u = samples.at(chunk_row);
+        if (nee && !in.lights.empty()) {
+            const LightChoice light = in.lights.select(u.light_select);
+            if (const int32_t quad = in.lights.quad_emitter_index(light); quad >= 0)
+                block.set_light_sample(row, quad, light.probability, u.light_u, u.light_v);
+            else
+                deferred[deferred_count++] = {row, light, u.light_u, u.light_v};
+        }
+        block.set_step(row, u.continuation, u.roulette, bounce + 1 >= in.config.rr_depth);
+    };
+    // In a medium, the path scatters on the way to the hit (resolve_segment's first event), or
+    // reaches it; the optical depth left is not needed past a scattering vertex.
+    if (!scene.media.empty()) {
+        const Ray ray{rays.origin[i], rays.dir[i]};
+        const MediumId m = paths.media[i].unpack().current();
+        const float dir_length = length(ray.d);
+        float flight = paths.flight[i], dist;
+        if (scatters_in_medium(scene, m, ray, hit_at(hits, i), dir_length, flight, &dist)) {
+            if (!may_scatter(in.config, bounce)) return true;  // the path ends here
+            const Vertex v = medium_vertex(scene, m, ray.o + (ray.tmin + dist / dir_length) * ray.d);
+            sample_and_step(block.push(i, v, -(ray.d / dir_length), paths.beta[i]));
+            return true;
+        }
+    }
+    if (!prim.valid()) return false;
     const uint32_t index = prim.index();
     const Triangle* tri = nullptr;
-    MaterialId m;
+    MaterialId m = kNone;
     switch (prim.kind()) {
         case PrimKind::Quad:
             m = scene.quads[index].material;
@@ -130,21 +159,7 @@ bool shade_in_lanes(const WaveInputs& in,
     }
     BsdfParams bsdf;
     if (!lane_material(scene, m, &bsdf)) return false;
-    // In a medium, the path reaches the hit unless it scatters on the way (then the scalar path
-    // takes it); the optical depth left is not needed past a scattering vertex.
-    if (!scene.media.empty()) {
-        const Ray ray{rays.origin[i], rays.dir[i]};
-        float flight = paths.flight[i], s;
-        if (scatters_in_medium(scene, paths.media[i].unpack().current(), ray, hit_at(hits, i),
-                               length(ray.d), flight, &s))
-            return false;
-    }
-    const int bounce = paths.bounce[i];
     if (!may_scatter(in.config, bounce)) return true;  // the path ends here, with nothing found
-    const VertexSamples u = samples.at(chunk_row);
-    const bool light_sample = nee && !in.lights.empty();
-    const LightChoice light = light_sample ? in.lights.select(u.light_select) : LightChoice{};
-    const int32_t quad = light_sample ? in.lights.quad_emitter_index(light) : -1;
     size_t row;
     if (tri) {
         const Mesh& mesh = scene.meshes[tri->mesh];
@@ -164,11 +179,7 @@ bool shade_in_lanes(const WaveInputs& in,
         row = block.push_sphere_hit(i, ray.d, ray.at(hits.t[i]), scene.spheres[index], bsdf,
                                     paths.beta[i]);
     }
-    if (light_sample && quad >= 0)
-        block.set_light_sample(row, quad, light.probability, u.light_u, u.light_v);
-    else if (light_sample)
-        deferred[deferred_count++] = {row, light, u.light_u, u.light_v};
-    block.set_step(row, u.continuation, u.roulette, bounce + 1 >= in.config.rr_depth);
+    sample_and_step(row);
     return true;
 }
 
@@ -215,7 +226,7 @@ size_t shade(const WaveInputs& in,
                 prefetch_vertices(in.scene, hits.prim[i + kVertexPrefetchDistance]);
 
             // ---- a Lambertian or rough metal surface: its vertex in lanes ----
-            if (resolve_in_lanes && hits.prim[i].valid() &&
+            if (resolve_in_lanes &&
                 shade_in_lanes(in, i, i - c, samples, hits, rays, paths, nee, block, deferred,
                                deferred_count))
                 continue;
@@ -245,13 +256,13 @@ size_t shade(const WaveInputs& in,
             const Vertex& v = seg.vertex;
             const Color beta = paths.beta[i];
             const VertexSamples u = samples.at(i - c);
-            // Lambertian and rough metal surface vertices go to the block for their light samples
-            // towards quad lights and their continuations; the rest is taken here.
-            const bool nee = samples_lights(cfg, v, in.lights);
-            const LightChoice light = nee ? in.lights.select(u.light_select) : LightChoice{};
-            const int32_t quad_index = nee ? quad_light_sample_at(v, in.lights, light) : -1;
+            // Lane vertices go to the block for their light samples towards quad lights and their
+            // continuations; the rest is taken here.
+            const bool sampled = samples_lights(cfg, v, in.lights);
+            const LightChoice light = sampled ? in.lights.select(u.light_select) : LightChoice{};
+            const int32_t quad_index = sampled ? quad_light_sample_at(v, in.lights, light) : -1;
             const bool quad = quad_index >= 0;
-            const bool surface_step = takes_surface_step(cfg, v, in.lights);
+            const bool surface_step = takes_lane_step(cfg, v, in.lights);
             if (quad || surface_step) {
                 const size_t row = block.push(i, v, seg.wo, beta);
                 if (quad)
@@ -260,7 +271,7 @@ size_t shade(const WaveInputs& in,
                 if (surface_step)
                     block.set_step(row, u.continuation, u.roulette, bounce + 1 >= cfg.rr_depth);
             }
-            if (nee && !quad) {
+            if (sampled && !quad) {
                 const WeightedDirect d = next_event(in.scene, in.lights, cfg, v, seg.wo, u, light);
                 if (d.weight > 0.0f)
                     append_shadow(d.sample.shadow, beta * (d.sample.value * d.weight), i, shadows,
@@ -281,7 +292,9 @@ size_t shade(const WaveInputs& in,
             Vertex v;
             v.p = row(block.p, k);
             v.ng = row(block.ng, k);
-            v.bsdf.kind = block.metal[k] != 0.0f ? MaterialKind::Metal : MaterialKind::Lambertian;
+            v.bsdf.kind = block.metal[k] != 0.0f   ? MaterialKind::Metal
+                          : block.phase[k] != 0.0f ? MaterialKind::Isotropic
+                                                   : MaterialKind::Lambertian;
             v.bsdf.alpha = block.alpha[k];
             // A sphere light seen from outside: back to the block, in lanes.
             if (const int32_t sphere = sphere_light_sample_at(v, in.lights, l.light); sphere >= 0) {

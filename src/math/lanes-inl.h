@@ -56,6 +56,7 @@ struct OneLane {
     static M AndNot(M not_a, M b) { return !not_a && b; }
     static M Not(M m) { return !m; }
     static bool Any(M m) { return m; }
+    static M All() { return true; }
 
     static U64 Set64(uint64_t x) { return x; }
     static U64 Widen(U32 x) { return x; }
@@ -95,6 +96,7 @@ struct FloatLanes {
     static HWY_INLINE M AndNot(M not_a, M b) { return hn::AndNot(not_a, b); }
     static HWY_INLINE M Not(M m) { return hn::Not(m); }
     static HWY_INLINE bool Any(M m) { return !hn::AllFalse(D(), m); }
+    static HWY_INLINE M All() { return hn::FirstN(D(), hn::Lanes(D())); }  // every lane set
 };
 
 // 64-bit integer lanes with floats of the same lane count (half the vector width).

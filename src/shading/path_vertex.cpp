@@ -167,7 +167,7 @@ bool samples_lights(const RenderConfig& config, const Vertex& v, const LightSet&
 }
 
 int32_t sphere_light_sample_at(const Vertex& v, const LightSet& lights, LightChoice choice) {
-    if (!is_lane_surface(v)) return -1;
+    if (!is_lane_vertex(v)) return -1;
     const int32_t k = lights.sphere_emitter_index(choice);
     if (k < 0) return -1;
     const SphereEmitterColumns& c = lights.sphere_emitter_columns();
@@ -178,7 +178,7 @@ int32_t sphere_light_sample_at(const Vertex& v, const LightSet& lights, LightCho
 }
 
 int32_t quad_light_sample_at(const Vertex& v, const LightSet& lights, LightChoice choice) {
-    if (!is_lane_surface(v)) return -1;
+    if (!is_lane_vertex(v)) return -1;
     return lights.quad_emitter_index(choice);
 }
 
@@ -211,6 +211,7 @@ WeightedDirect next_event(const Scene& scene,
                                            to_lanes(v.bsdf.albedo),
                                            v.bsdf.alpha,
                                            v.bsdf.kind == MaterialKind::Metal,
+                                           v.bsdf.kind == MaterialKind::Isotropic,
                                            u.light_u,
                                            u.light_v};
         const size_t k = size_t(quad >= 0 ? quad : sphere);
@@ -339,13 +340,14 @@ SegmentResult resolve_segment(const Scene& scene,
     return r;
 }
 
-bool is_lane_surface(const Vertex& v) {
-    return v.on_surface() && (v.bsdf.kind == MaterialKind::Lambertian ||
-                              (v.bsdf.kind == MaterialKind::Metal && v.bsdf.alpha > 0.0f));
+bool is_lane_vertex(const Vertex& v) {
+    if (!v.on_surface()) return v.bsdf.kind == MaterialKind::Isotropic;
+    return v.bsdf.kind == MaterialKind::Lambertian ||
+           (v.bsdf.kind == MaterialKind::Metal && v.bsdf.alpha > 0.0f);
 }
 
-bool takes_surface_step(const RenderConfig& config, const Vertex& v, const LightSet& lights) {
-    return is_lane_surface(v) && !one_sample_continuation(config.strategy, v, lights);
+bool takes_lane_step(const RenderConfig& config, const Vertex& v, const LightSet& lights) {
+    return is_lane_vertex(v) && !one_sample_continuation(config.strategy, v, lights);
 }
 
 PathStep continue_path(const Scene& scene,
@@ -359,7 +361,7 @@ PathStep continue_path(const Scene& scene,
                        const ContinuationSamples& u,
                        float u_roulette) {
     PathStep step;
-    if (takes_surface_step(config, v, lights)) {
+    if (takes_lane_step(config, v, lights)) {
         using lanes::to_lanes, lanes::to_vec3;
         const lanes::StepVertex<OneLane> lv{to_lanes(v.p),
                                             to_lanes(v.ng),
@@ -372,8 +374,10 @@ PathStep continue_path(const Scene& scene,
                                             u.bsdf_u2,
                                             u_roulette,
                                             bounce + 1 >= config.rr_depth};
-        const lanes::StepResult<OneLane> r =
-            v.bsdf.kind == MaterialKind::Metal ? lanes::MetalStep(lv) : lanes::LambertianStep(lv);
+        const lanes::StepResult<OneLane> r = v.bsdf.kind == MaterialKind::Metal ? lanes::MetalStep(lv)
+                                             : v.bsdf.kind == MaterialKind::Isotropic
+                                                 ? lanes::PhaseStep(lv)
+                                                 : lanes::LambertianStep(lv);
         if (!r.alive) return step;
         step.weight = to_vec3(r.weight);
         step.prev = {v.p, r.pdf, lights.empty()};

@@ -151,13 +151,14 @@ SegmentResult resolve_segment(const Scene& scene,
                               float& flight,
                               const PreviousVertex& prev);
 
-// Whether the continuation at v is a surface step (shading/surface_step-inl.h): a Lambertian or
-// rough metal surface whose direction the strategy samples from the BSDF. The wavefront runs
+// Whether the continuation at v is a lane step (shading/surface_step-inl.h): a lane vertex
+// whose direction the strategy samples from the BSDF or phase function. The wavefront runs
 // these vertices' steps in SIMD lanes, continue_path the same formula in one lane.
-bool takes_surface_step(const RenderConfig& config, const Vertex& v, const LightSet& lights);
-// A Lambertian or rough metal surface: the vertices the lane formulas of next-event estimation
-// towards quad lights and of the surface step take.
-bool is_lane_surface(const Vertex& v);
+bool takes_lane_step(const RenderConfig& config, const Vertex& v, const LightSet& lights);
+// A Lambertian or rough metal surface, or a medium's isotropic phase function: the vertices the
+// lane formulas of next-event estimation towards quad and sphere lights and of the continuation
+// take.
+bool is_lane_vertex(const Vertex& v);
 
 // The continuation of a path at a scattering vertex, Russian roulette included: the next ray,
 // the factor for the path throughput, the record for weighting emission the next segment
@@ -222,8 +223,8 @@ WeightedDirect next_event(const Scene& scene,
 // Whether next-event estimation happens at v: the strategy samples lights and v can.
 bool samples_lights(const RenderConfig& config, const Vertex& v, const LightSet& lights);
 // The light next_event samples at v in SIMD lanes (shading/quad_light_nee-inl.h), as its index
-// among the LightSet's quad emitters, or -1: at a Lambertian or rough metal surface vertex
-// (is_lane_surface) that samples_lights(), a chosen quad of constant radiance.
+// among the LightSet's quad emitters, or -1: at a lane vertex (is_lane_vertex) that
+// samples_lights(), a chosen quad of constant radiance.
 int32_t quad_light_sample_at(const Vertex& v, const LightSet& lights, LightChoice choice);
 // The same for a chosen sphere of constant radiance with v outside it (shading/sphere_light-inl.h),
 // as its index among the LightSet's sphere emitters, or -1.

@@ -1,4 +1,5 @@
-// Next-event estimation at a Lambertian or a rough metal surface vertex towards a quad light of
+// Next-event estimation at a Lambertian or a rough metal surface vertex, or a vertex in a medium
+// of isotropic phase function, towards a quad light of
 // constant radiance: the light point (uniform by area), its solid-angle density, the BSDF value and
 // density, the MIS weight and the shadow ray; what next_event computes for such a vertex and
 // light, written once over lanes. The megakernel runs it with OneLane inside next_event; the
@@ -59,6 +60,7 @@ struct NeeVertex {
     V3<typename L::F> p, ng, ns, wo, albedo;
     typename L::F alpha;   // metal: GGX roughness (> 0)
     typename L::M metal;   // a rough metal; else Lambertian
+    typename L::M phase;   // in a medium (ng = 0): the isotropic phase function
     typename L::F u1, u2;  // the point on the light
 };
 
@@ -130,9 +132,10 @@ HWY_INLINE QuadLightNee<L> SurfaceLightSample(const NeeVertex<L>& v,
     r.pdf_light = l.pdf;
     auto ok = l.valid;
     // The BSDF's f |cos| and density, zero unless wo and wi lie on one side of the geometric
-    // surface (eval_world) and of the shading surface (each lobe).
+    // surface (eval_world) and of the shading surface (each lobe); in a medium, the phase
+    // function's f = albedo / (4 pi), the density of a uniform direction.
     const F wi_ng = Dot(r.wi, v.ng);
-    ok = L::And(ok, Dot(v.wo, v.ng) * wi_ng > zero);
+    ok = L::And(ok, L::Or(v.phase, Dot(v.wo, v.ng) * wi_ng > zero));
     V3<F> f{zero, zero, zero};
     F pdf_bsdf = zero;
     if (L::Any(L::Not(v.metal))) {
@@ -151,6 +154,11 @@ HWY_INLINE QuadLightNee<L> SurfaceLightSample(const NeeVertex<L>& v,
         const V3<F> f_metal = MetalEval<L>(v.albedo, v.alpha, lo, li, &pdf_metal);
         f = Select3<L>(v.metal, f_metal, f);
         pdf_bsdf = L::Select(v.metal, pdf_metal, pdf_bsdf);
+    }
+    if (L::Any(v.phase)) {
+        const F uniform = L::Set(0.25f * kInvPi);
+        f = Select3<L>(v.phase, v.albedo * uniform, f);
+        pdf_bsdf = L::Select(v.phase, uniform, pdf_bsdf);
     }
     r.pdf_bsdf = pdf_bsdf;
     ok = L::And(ok, MaxComponent<L>(f) > zero);

@@ -1,6 +1,7 @@
-// The continuation of a path at a Lambertian or a (rough) metal surface vertex, sampled by the
-// BSDF (cosine-weighted / GGX visible normals), with Russian roulette and the next ray's
-// origin: what continue_path does at such a vertex, written once over lanes. The megakernel runs
+// The continuation of a path at a Lambertian or a (rough) metal surface vertex, or at a vertex
+// in a medium of isotropic phase function, sampled by the BSDF (cosine-weighted / GGX visible
+// normals / uniform sphere), with Russian roulette and the next ray's origin: what
+// continue_path does at such a vertex, written once over lanes. The megakernel runs
 // it with OneLane inside continue_path; the wavefront's shade kernel runs it over the surface
 // vertices of a chunk, a vector of paths at a time (kernels/lane_kernels.cpp). Per-target
 // header, see math/lanes-inl.h.
@@ -26,6 +27,8 @@ HWY_INLINE typename L::F SurvivalProbability(V3<typename L::F> beta) {
     return L::Min(L::Max(MaxComponent<L>(beta), L::Set(0.05f)), L::Set(0.95f));
 }
 
+// A medium vertex has ng = 0 (Vertex::on_surface) and ns = +z (its frame): the geometric-side
+// test then passes every direction, and the origin offset is zero.
 template <class L>
 struct StepVertex {
     V3<typename L::F> p, ng, ns;  // position, geometric and shading normals
@@ -96,6 +99,13 @@ HWY_INLINE StepResult<L> MetalStep(const StepVertex<L>& v) {
     const MetalSampleResult<L> m = MetalSample<L>(v.albedo, v.alpha, lo, v.u1, v.u2);
     const V3<F> wi = s * m.wi.x + t * m.wi.y + v.ns * m.wi.z;
     return FinishStep(v, wi, m.weight, m.pdf, m.valid);
+}
+
+// The isotropic phase function, f = albedo / (4 pi): a uniform direction of weight albedo.
+template <class L>
+HWY_INLINE StepResult<L> PhaseStep(const StepVertex<L>& v) {
+    const V3<typename L::F> wi = UniformSphere<L>(v.u1, v.u2);
+    return FinishStep(v, wi, v.albedo, L::Set(0.25f * kInvPi), L::All());
 }
 
 }  // namespace HWY_NAMESPACE

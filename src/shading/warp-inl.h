@@ -22,6 +22,16 @@ HWY_INLINE V3<typename L::F> CosineHemisphere(typename L::F u1, typename L::F u2
     const typename L::F r = L::Sqrt(u1);
     return {r * cos_phi, r * sin_phi, L::Sqrt(L::Max(L::Set(0.0f), L::Set(1.0f) - u1))};
 }
+
+// Uniform on the unit sphere (Archimedes: z uniform in [-1, 1]). pdf = 1 / (4 pi).
+template <class L>
+HWY_INLINE V3<typename L::F> UniformSphere(typename L::F u1, typename L::F u2) {
+    typename L::F sin_phi, cos_phi;
+    SinCos2Pi<L>(u2, &sin_phi, &cos_phi);
+    const typename L::F z = L::Set(1.0f) - L::Set(2.0f) * u1;
+    const typename L::F r = L::Sqrt(L::Max(L::Set(0.0f), L::Set(1.0f) - z * z));
+    return {r * cos_phi, r * sin_phi, z};
+}
 }  // namespace HWY_NAMESPACE
 }  // namespace wavetrace
 HWY_AFTER_NAMESPACE();

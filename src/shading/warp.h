@@ -21,10 +21,11 @@ inline float cosine_hemisphere_pdf(float cos_theta) {
     return std::max(0.0f, cos_theta) * kInvPi;
 }
 
-// Uniform on the unit sphere (Archimedes: z uniform in [-1, 1]). pdf = 1 / (4 pi).
+// Uniform on the unit sphere (Archimedes: z uniform in [-1, 1]). pdf = 1 / (4 pi). (The
+// one-lane instance of UniformSphere.)
 inline Vec3 sample_uniform_sphere(float u1, float u2) {
-    float z = 1.0f - 2.0f * u1, r = std::sqrt(std::max(0.0f, 1.0f - z * z)), phi = 2.0f * kPi * u2;
-    return {r * std::cos(phi), r * std::sin(phi), z};
+    namespace lanes = HWY_NAMESPACE;
+    return lanes::to_vec3(lanes::UniformSphere<lanes::OneLane>(u1, u2));
 }
 inline constexpr float uniform_sphere_pdf() {
     return 0.25f * kInvPi;
