@@ -50,8 +50,8 @@ uint64_t run_wave(const WaveInputs& in,
         if (sort) sort_by_material(in.scene, n, q.key, q.paths, q.rays, q.hits);
         const size_t shadows =
             shade(in, sample, q.hits, 0, n, q.paths, q.rays, q.keep, q.shadows, 0);
-        rays +=
-            intersect_shadow(bvh, in, q.shadows, q.paths, 0, shadows, q.transmittance, camera_rays);
+        rays += intersect_shadow(bvh, in, q.shadows, q.paths, 0, shadows, q.transmittance,
+                                 camera_rays ? &q.hits : nullptr);
         mis_combine(q.shadows, q.transmittance, 0, shadows, q.paths);
         accumulate_film(q.paths, q.keep, n, film);
         n = compact(q.keep, n, q.paths, q.rays);
