@@ -97,6 +97,7 @@ LightSet::LightSet(const Scene& scene) {
     }
     count_ = power.size();
     if (count_ > 0) select_ = Distribution1D(power);
+    if (count_ == 1) only_probability_ = select_.probability(0);
 }
 
 float LightSet::selection_probability(PrimRef prim) const {
@@ -108,7 +109,7 @@ float LightSet::background_selection_probability() const {
     return background_ ? select_.probability(count_ - 1) : 0.0f;
 }
 
-LightChoice LightSet::select(float u_select) const {
+LightChoice LightSet::select_in_table(float u_select) const {
     LightChoice c;
     c.index = select_.sample_discrete(u_select, &c.probability);
     return c;

@@ -62,7 +62,10 @@ class LightSet {
     float background_selection_probability() const;
 
     // Picks a light with selection number u_select, in proportion to power (not empty()).
-    LightChoice select(float u_select) const;
+    // Inline for the common case of one light, which needs no search of the table.
+    LightChoice select(float u_select) const {
+        return count_ == 1 ? LightChoice{0, only_probability_} : select_in_table(u_select);
+    }
     // The chosen light's index among the quad emitters if it is a quad of constant radiance,
     // else -1.
     int32_t quad_emitter_index(LightChoice choice) const;
@@ -98,6 +101,8 @@ class LightSet {
     bool background_ = false;                       // the last light, if present
     size_t count_ = 0;
     Distribution1D select_;
+    float only_probability_ = 0.0f;  // select_'s probability of light 0, when it is the only one
+    LightChoice select_in_table(float u_select) const;
     Distribution2D environment_;  // over the environment image's texels, luminance x sin(theta)
 };
 
