@@ -83,6 +83,14 @@ TEST(Kernels, PassOrderVisitsEveryPixelOnceInTiles) {
             ++seen[p];
         }
         EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), int(w * h)) << w << "x" << h;
+        // The walk gives the same pixels from any start.
+        for (uint32_t start : {0u, 1u, 5u, w * h / 2, w * h - 1}) {
+            if (start >= w * h) continue;
+            PassOrderWalk walk(start, w, h);
+            for (uint32_t k = start; k < w * h; ++k, walk.next())
+                ASSERT_EQ(walk.y() * w + walk.x(), pixel_in_pass_order(k, w, h))
+                    << w << "x" << h << " from " << start << " at " << k;
+        }
     }
     // A full 4x2 tile first: (0,0) (1,0) (2,0) (3,0) (0,1) (1,1) (2,1) (3,1), then the next.
     const uint32_t first[] = {0, 1, 2, 3, 10, 11, 12, 13, 4, 5};

@@ -6,8 +6,11 @@
 
 namespace wavetrace {
 
+namespace {
+constexpr uint32_t kTileW = 4, kTileH = 2;
+}  // namespace
+
 uint32_t pixel_in_pass_order(uint32_t k, uint32_t width, uint32_t height) {
-    constexpr uint32_t kTileW = 4, kTileH = 2;
     const uint32_t band = k / (kTileH * width), offset = k % (kTileH * width);
     const uint32_t band_h = std::min(kTileH, height - kTileH * band);
     // Every tile before the band's last is full, kTileW wide.
@@ -15,6 +18,32 @@ uint32_t pixel_in_pass_order(uint32_t k, uint32_t width, uint32_t height) {
     const uint32_t tile_w = std::min(kTileW, width - kTileW * tile);
     const uint32_t x = kTileW * tile + in_tile % tile_w, y = kTileH * band + in_tile / tile_w;
     return y * width + x;
+}
+
+PassOrderWalk::PassOrderWalk(uint32_t k, uint32_t width, uint32_t height)
+    : width_(width), height_(height) {
+    const uint32_t pixel = pixel_in_pass_order(k, width, height);
+    const uint32_t x = pixel % width, y = pixel / width;
+    band_ = y / kTileH;
+    tile_ = x / kTileW;
+    band_h_ = std::min(kTileH, height - kTileH * band_);
+    tile_w_ = std::min(kTileW, width - kTileW * tile_);
+    dx_ = x % kTileW;
+    dy_ = y % kTileH;
+}
+
+// Row by row within a tile, tile by tile along a band, band by band down the image.
+void PassOrderWalk::next() {
+    if (++dx_ < tile_w_) return;
+    dx_ = 0;
+    if (++dy_ < band_h_) return;
+    dy_ = 0;
+    if (kTileW * ++tile_ >= width_) {
+        tile_ = 0;
+        ++band_;
+        band_h_ = std::min(kTileH, height_ - std::min(height_, kTileH * band_));
+    }
+    tile_w_ = std::min(kTileW, width_ - kTileW * tile_);
 }
 
 void generate(const WaveInputs& in,
@@ -31,13 +60,14 @@ void generate(const WaveInputs& in,
     alignas(64) uint32_t pixel[kShadeChunk];
     alignas(64) float x[kShadeChunk], y[kShadeChunk];
     CameraRayBlock camera;
+    if (begin >= end) return;
+    PassOrderWalk walk(first_index + static_cast<uint32_t>(begin), width, height);
     for (size_t c = begin; c < end; c += kShadeChunk) {
         const size_t n = std::min(kShadeChunk, end - c);
-        for (size_t k = 0; k < n; ++k) {
-            pixel[k] =
-                pixel_in_pass_order(first_index + static_cast<uint32_t>(c + k), width, height);
-            x[k] = static_cast<float>(pixel[k] % width);
-            y[k] = static_cast<float>(pixel[k] / width);
+        for (size_t k = 0; k < n; ++k, walk.next()) {
+            pixel[k] = walk.y() * width + walk.x();
+            x[k] = static_cast<float>(walk.x());
+            y[k] = static_cast<float>(walk.y());
         }
         draw_camera_rays(in.camera, in.config.seed, sample, pixel, x, y, n, camera);
         for (size_t k = 0; k < n; ++k) {
