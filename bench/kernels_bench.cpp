@@ -187,7 +187,8 @@ void BM_CameraRays(benchmark::State& st, bool lanes) {
     CameraRayBlock block;
     for (auto _ : st) {
         if (lanes) {
-            draw_camera_rays(*r.c.camera, 1, 0, r.pixel.data(), r.x.data(), r.y.data(), n, block);
+            draw_camera_rays(*r.c.camera, 1, 0, r.pixel.data(), r.x.data(), r.y.data(), n, false,
+                             block);
             benchmark::DoNotOptimize(block);
         } else {
             for (size_t k = 0; k < n; ++k)
@@ -204,7 +205,7 @@ void BM_VertexSamples(benchmark::State& st, bool lanes) {
     SampleBlock block;
     for (auto _ : st) {
         if (lanes) {
-            draw_vertex_samples(1, 0, r.pixel.data(), r.bounce.data(), n, block);
+            draw_vertex_samples(1, 0, r.pixel.data(), r.bounce.data(), n, false, block);
             benchmark::DoNotOptimize(block);
         } else {
             for (size_t k = 0; k < n; ++k)

@@ -56,6 +56,7 @@ void generate(const WaveInputs& in,
     const uint32_t width = static_cast<uint32_t>(in.config.width),
                    height = static_cast<uint32_t>(in.config.height);
     const PackedMedia media = PackedMedia::pack(in.camera_media);
+    const bool flights = !in.scene.media.empty();
     // Chunk by chunk: the pixels, their camera rays in SIMD lanes, then the path entries.
     alignas(64) uint32_t pixel[kShadeChunk];
     alignas(64) float x[kShadeChunk], y[kShadeChunk];
@@ -69,7 +70,7 @@ void generate(const WaveInputs& in,
             x[k] = static_cast<float>(walk.x());
             y[k] = static_cast<float>(walk.y());
         }
-        draw_camera_rays(in.camera, in.config.seed, sample, pixel, x, y, n, camera);
+        draw_camera_rays(in.camera, in.config.seed, sample, pixel, x, y, n, flights, camera);
         for (size_t k = 0; k < n; ++k) {
             const size_t i = c + k;
             const Ray ray{{camera.o[0][k], camera.o[1][k], camera.o[2][k]},
@@ -81,7 +82,7 @@ void generate(const WaveInputs& in,
             paths.radiance[i] = Color(0.0f);
             set_previous_vertex(paths, i, PreviousVertex{ray.o});
             paths.media[i] = media;
-            paths.flight[i] = segment_flight(in.scene, in.config.seed, pixel[k], sample, 0);
+            paths.flight[i] = flights ? camera.flight[k] : 0.0f;  // as segment_flight()
             set_ray(rays, i, ray);
         }
     }

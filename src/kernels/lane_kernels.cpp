@@ -46,6 +46,7 @@ void DrawCameraRays(const CameraFrame* camera,
                     const float* x,
                     const float* y,
                     size_t n,
+                    bool flights,
                     CameraRayBlock* out) {
     using D64 = hn::ScalableTag<uint64_t>;
     using L = HashLanes<D64>;
@@ -60,8 +61,12 @@ void DrawCameraRays(const CameraFrame* camera,
     PadRows(y, n, fy);
     for (size_t k = 0; k < n; k += N) {
         V3<hn::Vec<decltype(df)>> o, d;
-        SampledCameraRay<L>(*camera, PathState<L>(seed, hn::Load(d32, px + k), sample),
-                            hn::Load(df, fx + k), hn::Load(df, fy + k), &o, &d);
+        const auto state = PathState<L>(seed, hn::Load(d32, px + k), sample);
+        SampledCameraRay<L>(*camera, state, hn::Load(df, fx + k), hn::Load(df, fy + k), &o, &d);
+        if (flights)
+            hn::Store(OpticalDepth<L>(SampleDim<L>(
+                          state, hn::Set(d64, uint64_t(bounce_dim(0, kDimMediumDistance))))),
+                      df, out->flight + k);
         for (int a = 0; a < 3; ++a) {
             hn::Store(a == 0 ? o.x : a == 1 ? o.y : o.z, df, out->o[a] + k);
             hn::Store(a == 0 ? d.x : a == 1 ? d.y : d.z, df, out->d[a] + k);
@@ -74,6 +79,7 @@ void DrawVertexSamples(uint64_t seed,
                        const uint32_t* pixel,
                        const uint16_t* bounce,
                        size_t n,
+                       bool flights,
                        SampleBlock* out) {
     using D64 = hn::ScalableTag<uint64_t>;
     using L = HashLanes<D64>;
@@ -92,6 +98,11 @@ void DrawVertexSamples(uint64_t seed,
         const auto first = hn::PromoteTo(d64, hn::Load(d32, first_dim + k));
         for (uint32_t d = kDimLightSelect; d < kBounceDims; ++d)
             hn::Store(SampleDim<L>(state, hn::Add(first, hn::Set(d64, d))), df, out->u[d] + k);
+        // The next bounce's first dimension is its medium distance.
+        static_assert(kDimMediumDistance == 0);
+        if (flights)
+            hn::Store(OpticalDepth<L>(SampleDim<L>(state, hn::Add(first, hn::Set(d64, kBounceDims)))),
+                      df, out->next_flight + k);
     }
 }
 
@@ -313,8 +324,10 @@ void draw_camera_rays(const CameraRays& camera,
                       const float* x,
                       const float* y,
                       size_t n,
+                      bool flights,
                       CameraRayBlock& out) {
-    HWY_DYNAMIC_DISPATCH(DrawCameraRays)(&camera.frame(), seed, sample, pixel, x, y, n, &out);
+    HWY_DYNAMIC_DISPATCH(DrawCameraRays)
+    (&camera.frame(), seed, sample, pixel, x, y, n, flights, &out);
 }
 
 void draw_vertex_samples(uint64_t seed,
@@ -322,8 +335,9 @@ void draw_vertex_samples(uint64_t seed,
                          const uint32_t* pixel,
                          const uint16_t* bounce,
                          size_t n,
+                         bool flights,
                          SampleBlock& out) {
-    HWY_DYNAMIC_DISPATCH(DrawVertexSamples)(seed, sample, pixel, bounce, n, &out);
+    HWY_DYNAMIC_DISPATCH(DrawVertexSamples)(seed, sample, pixel, bounce, n, flights, &out);
 }
 
 void surface_vertices(SurfaceBlock& b, const LightSet& lights, bool mis, MisHeuristic heuristic) {

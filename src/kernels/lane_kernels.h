@@ -25,10 +25,12 @@ inline constexpr size_t kShadeChunk = 64;
 struct CameraRayBlock {
     alignas(64) float o[3][kShadeChunk];
     alignas(64) float d[3][kShadeChunk];
+    alignas(64) float flight[kShadeChunk];  // segment_flight(.., 0), where drawn
 };
 
 // Rows k < n of `out`: generate_camera_ray(camera, seed, pixel[k], sample, x[k], y[k]), bit for
-// bit.
+// bit, and with `flights` (a scene with media) the camera segment's optical depth
+// segment_flight(scene, seed, pixel[k], sample, 0).
 void draw_camera_rays(const CameraRays& camera,
                       uint64_t seed,
                       uint32_t sample,
@@ -36,24 +38,29 @@ void draw_camera_rays(const CameraRays& camera,
                       const float* x,
                       const float* y,
                       size_t n,
+                      bool flights,
                       CameraRayBlock& out);
 
 // The bounce's uniform numbers of kShadeChunk paths, one row per BounceDim (the medium
-// distance row is not drawn: segment_flight draws it when the scene has media).
+// distance row of this bounce is not drawn: its segment has been traced), and the optical depth
+// of the segment each vertex starts.
 struct SampleBlock {
     alignas(64) float u[kBounceDims][kShadeChunk];
+    alignas(64) float next_flight[kShadeChunk];  // segment_flight(.., bounce + 1), where drawn
 
     VertexSamples at(size_t k) const {
         return vertex_samples_of([&](BounceDim d) { return u[d][k]; });
     }
 };
 
-// Rows k < n of `out`: vertex_samples(seed, pixel[k], sample, bounce[k]), bit for bit.
+// Rows k < n of `out`: vertex_samples(seed, pixel[k], sample, bounce[k]), bit for bit, and with
+// `flights` (a scene with media) segment_flight(scene, seed, pixel[k], sample, bounce[k] + 1).
 void draw_vertex_samples(uint64_t seed,
                          uint32_t sample,
                          const uint32_t* pixel,
                          const uint16_t* bounce,
                          size_t n,
+                         bool flights,
                          SampleBlock& out);
 
 // Lambertian and rough metal surface vertices, and medium vertices of isotropic phase function,

@@ -18,22 +18,21 @@ void append_shadow(
 }
 
 // Entry i goes on from its scattering vertex: throughput, the record for weighting emission the
-// next segment finds, the next ray. Vertices that sample lights never transmit, so the entry's
-// media stay what its shadow ray (which reads its path's media) needs.
-void advance(const WaveInputs& in,
-             uint32_t sample,
-             size_t i,
+// next segment finds, the next ray and the optical depth it may travel in media (`flight`: the
+// SampleBlock's). Vertices that sample lights never transmit, so the entry's media stay what its
+// shadow ray (which reads its path's media) needs.
+void advance(size_t i,
              Color weight,
              const PreviousVertex& prev,
              const Ray& next,
+             float flight,
              PathQueue& paths,
              RayQueue& rays,
              std::span<uint8_t> keep) {
-    const int bounce = paths.bounce[i];
     paths.beta[i] = paths.beta[i] * weight;
     set_previous_vertex(paths, i, prev);
-    paths.bounce[i] = static_cast<uint16_t>(bounce + 1);
-    paths.flight[i] = segment_flight(in.scene, in.config.seed, paths.pixel[i], sample, bounce + 1);
+    paths.bounce[i] = static_cast<uint16_t>(paths.bounce[i] + 1);
+    paths.flight[i] = flight;
     paths.crossings[i] = 0;
     set_ray(rays, i, next);
     keep[i] = 1;
@@ -207,6 +206,8 @@ size_t shade(const WaveInputs& in,
     SurfaceBlock block;
     DeferredLightSample deferred[kShadeChunk];
     const bool prefetch = prefetches_meshes(in.scene);
+    const bool flights = !in.scene.media.empty();  // else segment_flight() is 0
+    if (!flights) std::fill(std::begin(samples.next_flight), std::end(samples.next_flight), 0.0f);
     // Hits on Lambertian and rough metal surfaces of constant albedo skip resolve_segment: their
     // vertex is resolved in lanes with the block. That takes a strategy whose continuation
     // there is the surface step (not the one-sample light/mixture choice).
@@ -216,7 +217,7 @@ size_t shade(const WaveInputs& in,
     for (size_t c = begin; c < end; c += kShadeChunk) {
         const size_t chunk_end = std::min(end, c + kShadeChunk);
         draw_vertex_samples(cfg.seed, sample, &paths.pixel[c], &paths.bounce[c], chunk_end - c,
-                            samples);
+                            flights, samples);
         block.n = 0;
         size_t deferred_count = 0;
         if (prefetch) prefetch_triangles(in.scene, hits, c, chunk_end);
@@ -282,7 +283,8 @@ size_t shade(const WaveInputs& in,
                                                 media, u.continuation, u.roulette);
             if (!step.alive) continue;
             paths.media[i] = PackedMedia::pack(media);
-            advance(in, sample, i, step.weight, step.prev, step.next, paths, rays, keep);
+            advance(i, step.weight, step.prev, step.next, samples.next_flight[i - c], paths, rays,
+                    keep);
         }
 
         resolve_surface_hits(block);
@@ -320,9 +322,10 @@ size_t shade(const WaveInputs& in,
                     Ray{row(block.shadow_origin, k), row(block.shadow_dir, k), 0.0f, block.tmax[k]},
                     row(block.contribution, k), block.entry[k], shadows, s);
             if (block.alive[k] != 0.0f)
-                advance(in, sample, block.entry[k], row(block.weight, k),
+                advance(block.entry[k], row(block.weight, k),
                         {row(block.p, k), block.pdf[k], counts_fully},
-                        Ray{row(block.origin, k), row(block.wi, k)}, paths, rays, keep);
+                        Ray{row(block.origin, k), row(block.wi, k)},
+                        samples.next_flight[block.entry[k] - c], paths, rays, keep);
         }
     }
     return s - first_shadow;

@@ -24,6 +24,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 
 #include "wavetrace/math/vec3.h"
 
@@ -57,6 +58,14 @@ struct OneLane {
     static M Not(M m) { return !m; }
     static bool Any(M m) { return m; }
     static M All() { return true; }
+    // x = m 2^e for a positive normal x, m in [1, 2): returns e, sets *m (exact).
+    static F SplitExponent(F x, F* m) {
+        uint32_t bits;
+        std::memcpy(&bits, &x, sizeof bits);
+        const uint32_t m_bits = (bits & 0x007fffffu) | 0x3f800000u;
+        std::memcpy(m, &m_bits, sizeof m_bits);
+        return static_cast<float>(static_cast<int32_t>(bits >> 23) - 127);
+    }
 
     static U64 Set64(uint64_t x) { return x; }
     static U64 Widen(U32 x) { return x; }
@@ -97,6 +106,13 @@ struct FloatLanes {
     static HWY_INLINE M Not(M m) { return hn::Not(m); }
     static HWY_INLINE bool Any(M m) { return !hn::AllFalse(D(), m); }
     static HWY_INLINE M All() { return hn::FirstN(D(), hn::Lanes(D())); }  // every lane set
+    static HWY_INLINE F SplitExponent(F x, F* m) {
+        const hn::RebindToSigned<D> di;
+        const auto bits = hn::BitCast(di, x);
+        *m = hn::BitCast(D(), hn::Or(hn::And(bits, hn::Set(di, 0x007fffff)),
+                                     hn::Set(di, 0x3f800000)));
+        return hn::ConvertTo(D(), hn::Sub(hn::ShiftRight<23>(bits), hn::Set(di, 127)));
+    }
 };
 
 // 64-bit integer lanes with floats of the same lane count (half the vector width).
@@ -230,6 +246,49 @@ HWY_INLINE void SinCos2Pi(typename L::F u, typename L::F* sin_out, typename L::F
     const F sin_r = L::Select(odd, c, s), cos_r = L::Select(odd, s, c);
     *sin_out = L::Select(L::Or(is(2.0f), is(3.0f)), L::Neg(sin_r), sin_r);
     *cos_out = L::Select(L::Or(is(1.0f), is(2.0f)), L::Neg(cos_r), cos_r);
+}
+
+// Natural logarithm of a positive normal x: x = m 2^e with m in [sqrt(1/2), sqrt(2)), then
+// log(m) = log(1 + f) from Cephes' logf polynomial (S. Moshier; relative error below 2e-7),
+// and e log 2 added in two parts (0.693359375 is exact in float) so that it loses nothing.
+template <class L>
+HWY_INLINE typename L::F Log(typename L::F x) {
+    using F = typename L::F;
+    F m;
+    F e = L::SplitExponent(x, &m);
+    const auto high = m > L::Set(1.41421356f);
+    m = L::Select(high, m * L::Set(0.5f), m);
+    e = L::Select(high, e + L::Set(1.0f), e);
+    const F f = m - L::Set(1.0f);
+    const F z = f * f;
+    F p = L::Set(7.0376836292e-2f);
+    for (const float c : {-1.1514610310e-1f, 1.1676998740e-1f, -1.2420140846e-1f,
+                          1.4249322787e-1f, -1.6668057665e-1f, 2.0000714765e-1f,
+                          -2.4999993993e-1f, 3.3333331174e-1f})
+        p = p * f + L::Set(c);
+    F y = p * f * z;
+    y = y + L::Set(-2.12194440e-4f) * e;
+    y = y + L::Set(-0.5f) * z;
+    return f + y + L::Set(0.693359375f) * e;
+}
+
+// log(1 + x) for x > -1, accurate for small x too: with w = 1 + x rounded, log(w) x / (w - 1)
+// cancels the rounding of w (Goldberg, "What Every Computer Scientist Should Know About
+// Floating-Point Arithmetic", 1991, Theorem 4); x itself where w rounds to 1.
+template <class L>
+HWY_INLINE typename L::F Log1p(typename L::F x) {
+    using F = typename L::F;
+    const F w = L::Set(1.0f) + x;
+    const auto tiny = w == L::Set(1.0f);
+    const F d = L::Select(tiny, L::Set(1.0f), w - L::Set(1.0f));
+    return L::Select(tiny, x, Log<L>(L::Select(tiny, L::Set(1.0f), w)) * x / d);
+}
+
+// -log(1 - u): an exponentially distributed optical depth from a uniform u in [0, 1), by
+// inversion (the free flight of a path in a medium; pbrt-v4 SampleExponential).
+template <class L>
+HWY_INLINE typename L::F OpticalDepth(typename L::F u) {
+    return L::Neg(Log1p<L>(L::Neg(u)));
 }
 
 // Orthonormal basis (s, t) completing the unit normal n, without branches on n's direction:

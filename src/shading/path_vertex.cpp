@@ -418,7 +418,8 @@ float segment_flight(
     const Scene& scene, uint64_t seed, uint32_t pixel, uint32_t sample, int bounce) {
     if (scene.media.empty()) return 0.0f;
     const uint64_t state = lanes::PathState<OneLane>(seed, pixel, sample);
-    return -std::log1p(-lanes::SampleDim<OneLane>(state, bounce_dim(bounce, kDimMediumDistance)));
+    return lanes::OpticalDepth<OneLane>(
+        lanes::SampleDim<OneLane>(state, bounce_dim(bounce, kDimMediumDistance)));
 }
 
 float survival_probability(Color beta) {
@@ -426,7 +427,7 @@ float survival_probability(Color beta) {
 }
 
 float sample_free_flight(float density, float u) {
-    return -std::log1p(-u) / density;
+    return lanes::OpticalDepth<OneLane>(u) / density;
 }
 
 }  // namespace wavetrace
