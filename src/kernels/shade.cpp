@@ -95,21 +95,41 @@ struct DeferredLightSample {
     float u1, u2;
 };
 
-// Entry i's segment, if it scatters in a medium of isotropic phase function, or reaches a hit on
-// a Lambertian or rough metal quad, triangle or sphere of constant albedo (lane_material), as a
-// row of the block (or nothing, at the last bounce); false for the scalar path. At such a
-// vertex resolve_segment finds no emission, and the vertex takes the lane step.
-bool shade_in_lanes(const WaveInputs& in,
-                    size_t i,
-                    size_t chunk_row,
-                    const SampleBlock& samples,
-                    const HitQueue& hits,
-                    const RayQueue& rays,
-                    const PathQueue& paths,
-                    bool nee,
-                    SurfaceBlock& block,
-                    DeferredLightSample* deferred,
-                    size_t& deferred_count) {
+// Entry i goes straight on past a medium boundary: `media` and `flight` after it, the next ray;
+// or ends, after too many crossings in one segment.
+void cross(size_t i,
+           const MediumStack& media,
+           float flight,
+           const Ray& next,
+           PathQueue& paths,
+           RayQueue& rays,
+           std::span<uint8_t> keep) {
+    if (++paths.crossings[i] >= kMaxBoundaryCrossings) return;
+    paths.media[i] = PackedMedia::pack(media);
+    paths.flight[i] = flight;
+    set_ray(rays, i, next);
+    keep[i] = 1;
+}
+
+// Shades entry i without resolve_segment where its segment needs none of it: where the path
+// scatters in a medium of isotropic phase function, or reaches a hit on a Lambertian or rough
+// metal quad, triangle or sphere of constant albedo (lane_material), the vertex becomes a row of
+// the block (or nothing, at the last bounce: there resolve_segment finds no emission, and the
+// vertex takes the lane step) when `lanes`; where it escapes into a black background it ends;
+// where it reaches a medium boundary it crosses. False for the scalar path.
+bool shade_quickly(const WaveInputs& in,
+                   size_t i,
+                   size_t chunk_row,
+                   const SampleBlock& samples,
+                   const HitQueue& hits,
+                   bool lanes,
+                   bool nee,
+                   RayQueue& rays,
+                   PathQueue& paths,
+                   std::span<uint8_t> keep,
+                   SurfaceBlock& block,
+                   DeferredLightSample* deferred,
+                   size_t& deferred_count) {
     const Scene& scene = in.scene;
     const PrimRef prim = hits.prim[i];
     const int bounce = paths.bounce[i];
@@ -127,12 +147,15 @@ bool shade_in_lanes(const WaveInputs& in,
         block.set_step(row, u.continuation, u.roulette, bounce + 1 >= in.config.rr_depth);
     };
     // In a medium, the path scatters on the way to the hit (resolve_segment's first event), or
-    // reaches it; the optical depth left is not needed past a scattering vertex.
+    // reaches it with `flight` left; the optical depth left is not needed past a scattering
+    // vertex.
+    float flight = paths.flight[i];
     if (!scene.media.empty()) {
+        if (!lanes) return false;
         const Ray ray{rays.origin[i], rays.dir[i]};
         const MediumId m = paths.media[i].unpack().current();
         const float dir_length = length(ray.d);
-        float flight = paths.flight[i], dist;
+        float dist;
         if (scatters_in_medium(scene, m, ray, hit_at(hits, i), dir_length, flight, &dist)) {
             if (!may_scatter(in.config, bounce)) return true;  // the path ends here
             const Vertex v = medium_vertex(scene, m, ray.o + (ray.tmin + dist / dir_length) * ray.d);
@@ -140,7 +163,7 @@ bool shade_in_lanes(const WaveInputs& in,
             return true;
         }
     }
-    if (!prim.valid()) return false;
+    if (!prim.valid()) return scene.background.is_black();  // nothing found: the path ends
     const uint32_t index = prim.index();
     const Triangle* tri = nullptr;
     MaterialId m = kNone;
@@ -156,8 +179,16 @@ bool shade_in_lanes(const WaveInputs& in,
             m = scene.spheres[index].material;
             break;
     }
+    if (m != kNone && scene.materials[m].kind == MaterialKind::Interface) {
+        const Ray ray = ray_at(rays, i);
+        MediumStack media = paths.media[i].unpack();
+        const Ray next = cross_boundary(surface_at(scene, ray, hit_at(hits, i)),
+                                        ray.d / length(ray.d), media);
+        cross(i, media, flight, next, paths, rays, keep);
+        return true;
+    }
     BsdfParams bsdf;
-    if (!lane_material(scene, m, &bsdf)) return false;
+    if (!lanes || !lane_material(scene, m, &bsdf)) return false;
     if (!may_scatter(in.config, bounce)) return true;  // the path ends here, with nothing found
     size_t row;
     if (tri) {
@@ -226,10 +257,9 @@ size_t shade(const WaveInputs& in,
             if (prefetch && i + kVertexPrefetchDistance < chunk_end)
                 prefetch_vertices(in.scene, hits.prim[i + kVertexPrefetchDistance]);
 
-            // ---- a Lambertian or rough metal surface: its vertex in lanes ----
-            if (resolve_in_lanes &&
-                shade_in_lanes(in, i, i - c, samples, hits, rays, paths, nee, block, deferred,
-                               deferred_count))
+            // ---- a vertex in lanes, a boundary crossed, an escape into the dark ----
+            if (shade_quickly(in, i, i - c, samples, hits, resolve_in_lanes, nee, rays, paths, keep,
+                              block, deferred, deferred_count))
                 continue;
 
             // ---- the segment: medium, emission, boundary or surface ----
@@ -239,11 +269,7 @@ size_t shade(const WaveInputs& in,
                 resolve_segment(in.scene, in.lights, cfg, ray_at(rays, i), hit_at(hits, i), media,
                                 flight, previous_vertex(paths, i));
             if (seg.event == SegmentEvent::Cross) {
-                if (++paths.crossings[i] >= kMaxBoundaryCrossings) continue;
-                paths.media[i] = PackedMedia::pack(media);
-                paths.flight[i] = flight;
-                set_ray(rays, i, seg.next);
-                keep[i] = 1;
+                cross(i, media, flight, seg.next, paths, rays, keep);
                 continue;
             }
             // Emission found; at an emitter that also reflects, the path scatters on from it.

@@ -281,6 +281,11 @@ bool scatters_in_medium(const Scene& scene,
     return false;
 }
 
+Ray cross_boundary(const SurfaceHit& s, Vec3 dir, MediumStack& media) {
+    media.cross(s.interior, s.front_face);
+    return Ray{s.p + origin_offset(s.p) * dir, dir};
+}
+
 SegmentResult resolve_segment(const Scene& scene,
                               const LightSet& lights,
                               const RenderConfig& config,
@@ -318,9 +323,8 @@ SegmentResult resolve_segment(const Scene& scene,
     SurfaceHit s = surface_at(scene, ray, hit);
     const MaterialKind kind = scene.materials[s.material].kind;
     if (kind == MaterialKind::Interface) {
-        media.cross(s.interior, s.front_face);
         r.event = SegmentEvent::Cross;
-        r.next = Ray{s.p + origin_offset(s.p) * dir, dir};
+        r.next = cross_boundary(s, dir, media);
         return r;
     }
     if (kind == MaterialKind::DiffuseLight) {

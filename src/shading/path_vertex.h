@@ -139,6 +139,10 @@ bool scatters_in_medium(const Scene& scene,
                         float& flight,
                         float* s);
 
+// A segment of unit direction dir reaches s, a medium boundary (an Interface surface): the path
+// crosses into or out of its interior (`media`) and goes straight on, from just past it.
+Ray cross_boundary(const SurfaceHit& s, Vec3 dir, MediumStack& media);
+
 // Resolves one ray segment given its closest hit: medium scattering before the hit (consuming
 // `flight`, the optical depth left, drawn once per segment), escaping, emitters, medium
 // boundaries (updating `media`), or a surface to scatter at.
