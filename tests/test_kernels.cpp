@@ -264,6 +264,7 @@ TEST(Kernels, PackedMediaRoundTrip) {
         EXPECT_EQ(back.size, s.size);
         for (int k = 0; k < MediumStack::kMaxNesting; ++k) EXPECT_EQ(back.entries[k], s.entries[k]);
         EXPECT_EQ(back.current(), s.current());
+        EXPECT_EQ(PackedMedia::pack(s).current(), s.current());
     }
 }
 

@@ -153,7 +153,7 @@ bool shade_quickly(const WaveInputs& in,
     if (!scene.media.empty()) {
         if (!lanes) return false;
         const Ray ray{rays.origin[i], rays.dir[i]};
-        const MediumId m = paths.media[i].unpack().current();
+        const MediumId m = paths.media[i].current();
         const float dir_length = length(ray.d);
         float dist;
         if (scatters_in_medium(scene, m, ray, hit_at(hits, i), dir_length, flight, &dist)) {

@@ -24,6 +24,13 @@ struct PackedMedia {
         }
         return {b};
     }
+    // unpack().current(), without unpacking the rest.
+    MediumId current() const {
+        const uint32_t size = static_cast<uint32_t>(bits & 7);
+        if (size == 0) return kNone;
+        const uint32_t id = static_cast<uint32_t>(bits >> (3 + 15 * (size - 1))) & 0x7fff;
+        return id == 0x7fff ? kNone : id;
+    }
     MediumStack unpack() const {
         MediumStack s;
         s.size = static_cast<int8_t>(bits & 7);
