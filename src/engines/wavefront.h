@@ -25,8 +25,11 @@ namespace wavetrace {
 namespace wavefront_detail {
 
 // Waves per thread that an image is cut into, for balance: a wave carries its pixels through
-// all the samples of a pass, so the last waves of a pass decide when the threads meet again.
-constexpr size_t kWavesPerThread = 16;
+// all the samples of a pass, so the last waves of a pass decide when the threads meet again,
+// and a thread waits on average half a wave at the end (1 / (2 kWavesPerThread) of the pass).
+// 64 rather than 16: the dragon at 2 threads +4.5%, `everything` +2% (320², 16 spp, medians of
+// four); at one thread, where nothing waits, the smaller waves cost nothing measurable.
+constexpr size_t kWavesPerThread = 64;
 
 // Carries the wave of the pass's pixels [first, first + n) (in pass order) through all its
 // bounces and adds its paths to the film; returns the rays traced.
