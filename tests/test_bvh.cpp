@@ -264,9 +264,10 @@ TEST(Bvh, ClosestHitMatchesBruteForceOnEverySimdTarget) {
     use_wide_simd_target(0);
 }
 
-// Packets against single rays on the same rays, on every SIMD target: camera rays in 4 x 2
-// pixel tiles (coherent, one Woop permutation per packet), random rays (incoherent, mixed
-// permutations), and shadow rays from a tile's hits towards one point.
+// Packets, and streams of single rays in one call, against single rays on the same rays, on
+// every SIMD target: camera rays in 4 x 2 pixel tiles (coherent, one Woop permutation per
+// packet), random rays (incoherent, mixed permutations), and shadow rays from a tile's hits
+// towards one point.
 TEST(Bvh, PacketsGiveTheSingleRayResultsOnEverySimdTarget) {
     for (const char* name : {"cornell", "everything", "bunny"}) {
         Scene scene = load_scene(scene_path(name));
@@ -324,6 +325,16 @@ TEST(Bvh, PacketsGiveTheSingleRayResultsOnEverySimdTarget) {
             }
             EXPECT_GT(occluded, 0u);
             EXPECT_LT(occluded, shadows.size());
+            // A stream of rays in one call: each ray's own single-ray result, bit for bit.
+            std::vector<Hit> each(rays.size());
+            bvh.intersect_each(rays, each);
+            for (size_t i = 0; i < rays.size(); ++i) {
+                const Hit one = bvh.intersect(rays[i]);
+                ASSERT_EQ(std::memcmp(&each[i], &one, sizeof one), 0) << "ray " << i;
+            }
+            bvh.occluded_each(shadows, std::span<bool>(blocked.get(), shadows.size()));
+            for (size_t i = 0; i < shadows.size(); ++i)
+                ASSERT_EQ(blocked[i], bvh.occluded(shadows[i])) << "shadow ray " << i;
         }
         use_wide_simd_target(0);
     }

@@ -8,11 +8,36 @@
 
 namespace wavetrace {
 
+// An intersector that also traces a stream of rays one by one in one call (our BVH), with the
+// hits of one call per ray.
+template <class T>
+concept StreamIntersector = Intersector<T> && requires(const T& t,
+                                                        std::span<const Ray> rays,
+                                                        std::span<Hit> hits,
+                                                        std::span<bool> occluded) {
+    t.intersect_each(rays, hits);
+    t.occluded_each(rays, occluded);
+};
+
+// Rays gathered from the queue kBatch at a time, for the batch calls below.
+inline constexpr size_t kRayBatch = 64;
+
 // Closest hit of rays[i] into hits[i].
 template <Intersector Tracer>
 void intersect(
     const Tracer& tracer, const RayQueue& rays, size_t begin, size_t end, HitQueue& hits) {
-    for (size_t i = begin; i < end; ++i) set_hit(hits, i, tracer.intersect(ray_at(rays, i)));
+    if constexpr (StreamIntersector<Tracer>) {
+        Ray batch[kRayBatch];
+        Hit found[kRayBatch];
+        for (size_t b = begin; b < end; b += kRayBatch) {
+            const size_t m = std::min(kRayBatch, end - b);
+            for (size_t k = 0; k < m; ++k) batch[k] = ray_at(rays, b + k);
+            tracer.intersect_each(std::span<const Ray>(batch, m), std::span<Hit>(found, m));
+            for (size_t k = 0; k < m; ++k) set_hit(hits, b + k, found[k]);
+        }
+    } else {
+        for (size_t i = begin; i < end; ++i) set_hit(hits, i, tracer.intersect(ray_at(rays, i)));
+    }
 }
 
 // An intersector that also traces packets of rays together, with the same hits as one by one
@@ -30,11 +55,10 @@ template <Intersector Tracer>
 void intersect_coherent(
     const Tracer& tracer, const RayQueue& rays, size_t begin, size_t end, HitQueue& hits) {
     if constexpr (PacketIntersector<Tracer>) {
-        constexpr size_t kBatch = 64;
-        Ray batch[kBatch];
-        Hit found[kBatch];
-        for (size_t b = begin; b < end; b += kBatch) {
-            const size_t m = std::min(kBatch, end - b);
+        Ray batch[kRayBatch];
+        Hit found[kRayBatch];
+        for (size_t b = begin; b < end; b += kRayBatch) {
+            const size_t m = std::min(kRayBatch, end - b);
             for (size_t k = 0; k < m; ++k) batch[k] = ray_at(rays, b + k);
             tracer.intersect_packet(std::span<const Ray>(batch, m), std::span<Hit>(found, m));
             for (size_t k = 0; k < m; ++k) set_hit(hits, b + k, found[k]);

@@ -25,32 +25,39 @@ uint64_t intersect_shadow(const Tracer& tracer,
                           size_t end,
                           std::span<float> transmittance,
                           const HitQueue* origins = nullptr) {
-    if constexpr (PacketIntersector<Tracer>) {
-        if (origins && in.scene.media.empty()) {
+    if (in.scene.media.empty()) {  // a blocker or not: no medium stack to read
+        if constexpr (StreamIntersector<Tracer> && PacketIntersector<Tracer>) {
             constexpr size_t kPacket = 8;
-            Ray batch[kPacket];
-            bool blocked[kPacket];
-            for (size_t b = begin; b < end; b += kPacket) {
-                const size_t m = std::min(kPacket, end - b);
-                const PrimRef first = origins->prim[shadows.path[b]];
-                bool one_primitive = true;
-                for (size_t k = 1; k < m; ++k)
-                    one_primitive = one_primitive && origins->prim[shadows.path[b + k]] == first;
-                if (!one_primitive) {
-                    for (size_t k = b; k < b + m; ++k)
-                        transmittance[k] = tracer.occluded(shadow_ray_at(shadows, k)) ? 0.0f : 1.0f;
-                    continue;
-                }
+            Ray batch[kRayBatch];
+            bool blocked[kRayBatch];
+            for (size_t b = begin; b < end; b += kRayBatch) {
+                const size_t m = std::min(kRayBatch, end - b);
                 for (size_t k = 0; k < m; ++k) batch[k] = shadow_ray_at(shadows, b + k);
-                tracer.occluded_packet(std::span<const Ray>(batch, m), std::span<bool>(blocked, m));
+                if (!origins) {
+                    tracer.occluded_each(std::span<const Ray>(batch, m),
+                                         std::span<bool>(blocked, m));
+                } else {
+                    for (size_t g = 0; g < m; g += kPacket) {
+                        const size_t gm = std::min(kPacket, m - g);
+                        const PrimRef first = origins->prim[shadows.path[b + g]];
+                        bool one_primitive = true;
+                        for (size_t k = 1; k < gm; ++k)
+                            one_primitive =
+                                one_primitive && origins->prim[shadows.path[b + g + k]] == first;
+                        const std::span<const Ray> group(batch + g, gm);
+                        const std::span<bool> out(blocked + g, gm);
+                        if (one_primitive)
+                            tracer.occluded_packet(group, out);
+                        else
+                            tracer.occluded_each(group, out);
+                    }
+                }
                 for (size_t k = 0; k < m; ++k) transmittance[b + k] = blocked[k] ? 0.0f : 1.0f;
             }
-            return end - begin;
+        } else {
+            for (size_t i = begin; i < end; ++i)
+                transmittance[i] = tracer.occluded(shadow_ray_at(shadows, i)) ? 0.0f : 1.0f;
         }
-    }
-    if (in.scene.media.empty()) {  // a blocker or not: no medium stack to read
-        for (size_t i = begin; i < end; ++i)
-            transmittance[i] = tracer.occluded(shadow_ray_at(shadows, i)) ? 0.0f : 1.0f;
         return end - begin;
     }
     uint64_t rays = 0;

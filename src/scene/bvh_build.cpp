@@ -210,6 +210,15 @@ bool Bvh::occluded(const Ray& ray) const {
     return wide_occluded(*wide_, ray);
 }
 
+void Bvh::intersect_each(std::span<const Ray> rays, std::span<Hit> hits) const {
+    wide_intersect_each(*wide_, rays.data(), std::min(rays.size(), hits.size()), hits.data());
+}
+
+void Bvh::occluded_each(std::span<const Ray> rays, std::span<bool> occluded) const {
+    wide_occluded_each(*wide_, rays.data(), std::min(rays.size(), occluded.size()),
+                       occluded.data());
+}
+
 void Bvh::intersect_packet(std::span<const Ray> rays, std::span<Hit> hits) const {
     wide_intersect_packet(*wide_, rays.data(), std::min(rays.size(), hits.size()), hits.data());
 }

@@ -115,6 +115,9 @@ bool wide_occluded(const WideBvh& bvh, const Ray& ray);
 // shadow rays towards one light.
 void wide_intersect_packet(const WideBvh& bvh, const Ray* rays, size_t n, Hit* hits);
 void wide_occluded_packet(const WideBvh& bvh, const Ray* rays, size_t n, bool* occluded);
+// wide_intersect / wide_occluded of n rays, one after the other, in one call.
+void wide_intersect_each(const WideBvh& bvh, const Ray* rays, size_t n, Hit* hits);
+void wide_occluded_each(const WideBvh& bvh, const Ray* rays, size_t n, bool* occluded);
 // The name of the SIMD target the traversal dispatches to on this CPU, e.g. "AVX2".
 const char* wide_simd_target();
 // For tests: the targets compiled in and supported by this CPU (Highway's HWY_* bits), and

@@ -685,6 +685,22 @@ bool OccludedWide(const WideBvh& bvh, const Ray& ray) {
     return Traverse<true>(bvh, ray, &unused);
 }
 
+// Rays one after the other in one call: the stream of a wave's incoherent rays without a
+// dispatch per ray.
+void IntersectEach(const WideBvh& bvh, const Ray* rays, size_t n, Hit* hits) {
+    for (size_t i = 0; i < n; ++i) {
+        hits[i] = Hit{};
+        Traverse<false>(bvh, rays[i], &hits[i]);
+    }
+}
+
+void OccludedEach(const WideBvh& bvh, const Ray* rays, size_t n, bool* occluded) {
+    for (size_t i = 0; i < n; ++i) {
+        Hit unused;
+        occluded[i] = Traverse<true>(bvh, rays[i], &unused);
+    }
+}
+
 const char* TargetName() {
     return hwy::TargetName(HWY_TARGET);
 }
@@ -701,6 +717,16 @@ HWY_EXPORT(OccludedWide);
 HWY_EXPORT(TargetName);
 HWY_EXPORT(IntersectPacket);
 HWY_EXPORT(OccludedPacket);
+HWY_EXPORT(IntersectEach);
+HWY_EXPORT(OccludedEach);
+
+void wide_intersect_each(const WideBvh& bvh, const Ray* rays, size_t n, Hit* hits) {
+    HWY_DYNAMIC_DISPATCH(IntersectEach)(bvh, rays, n, hits);
+}
+
+void wide_occluded_each(const WideBvh& bvh, const Ray* rays, size_t n, bool* occluded) {
+    HWY_DYNAMIC_DISPATCH(OccludedEach)(bvh, rays, n, occluded);
+}
 
 void wide_intersect_packet(const WideBvh& bvh, const Ray* rays, size_t n, Hit* hits) {
     HWY_DYNAMIC_DISPATCH(IntersectPacket)(bvh, rays, n, hits);

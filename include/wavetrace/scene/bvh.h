@@ -81,6 +81,10 @@ class Bvh {
     // rays (a pixel tile's camera rays, its shadow rays towards one light), the same results.
     void intersect_packet(std::span<const Ray> rays, std::span<Hit> hits) const;
     void occluded_packet(std::span<const Ray> rays, std::span<bool> occluded) const;
+    // intersect / occluded of each of rays.size() rays (incoherent: no packets), in one call:
+    // a stream of rays pays for the choice of SIMD target once, not once per ray.
+    void intersect_each(std::span<const Ray> rays, std::span<Hit> hits) const;
+    void occluded_each(std::span<const Ray> rays, std::span<bool> occluded) const;
 
     std::span<const BvhNode> nodes() const { return nodes_; }
     std::span<const PrimRef> prims() const { return prims_; }  // in leaf order
