@@ -36,8 +36,8 @@ set logscale x 2
 set title "Wavefront / megakernel against wave size (all threads)"
 set xlabel "paths per wave (per thread)"
 set ylabel "wavefront / megakernel"
-plot dir."/waves.csv" using (strcol(1) eq "cornell" ? column(2) : 1/0):6 title "cornell", \
-     "" using (strcol(1) eq "dragon" ? column(2) : 1/0):6 title "dragon"
+plot dir."/waves.csv" using (strcol(1) eq "cornell" ? column(7) : 1/0):6 title "cornell", \
+     "" using (strcol(1) eq "dragon" ? column(7) : 1/0):6 title "dragon"
 unset logscale x
 unset xlabel
 set style data histograms

@@ -114,9 +114,10 @@ void bench_engines(const Options& o, Results& r) {
             Spread s = spread(ratio);
             const double pixels = double(cfg.width) * cfg.height;
             // Each thread carries one wave at a time.
-            const double queue_mib = double(wavefront_bytes_per_path()) *
-                                     std::min<double>(double(wf_cfg.wave_size), pixels) * threads /
-                                     (1 << 20);
+            const double queue_mib =
+                double(wavefront_bytes_per_path()) *
+                double(wavefront_wave_size(size_t(pixels), size_t(threads), wf_cfg)) * threads /
+                (1 << 20);
             const double film_mib = pixels * Film::kBytesPerPixel / (1 << 20);
             r.row("engines", {c.scene,
                               threads,
@@ -152,10 +153,13 @@ void bench_engines(const Options& o, Results& r) {
 }
 
 // The wavefront's speed against its wave size (paths a thread carries at once), with the
-// megakernel interleaved as the yardstick; all threads.
+// megakernel interleaved as the yardstick; all threads. The image is large enough (1024²) that
+// the waves an image is cut into for balance do not cap the sizes up to 8192 on two threads;
+// `effective_wave` is the size the engine used (wavefront_wave_size).
 void bench_waves(const Options& o, Results& r) {
     r.table("waves", {"scene", "wave_size", "queue_kib_per_thread", "wavefront_mpaths",
-                      "megakernel_mpaths", "ratio_median"});
+                      "megakernel_mpaths", "ratio_median", "effective_wave"});
+    const size_t threads = static_cast<size_t>(tbb::this_task_arena::max_concurrency());
     const std::vector<size_t> sizes =
         o.quick ? std::vector<size_t>{64, 256}
                 : std::vector<size_t>{256, 1024, 2048, 4096, 8192, 16384, 65536};
@@ -163,12 +167,14 @@ void bench_waves(const Options& o, Results& r) {
         Scene scene = load_scene((o.scenes / (std::string(name) + ".json")).string());
         Bvh bvh = Bvh::build(scene);
         RenderConfig cfg;
-        cfg.width = o.quick ? 16 : 320;
-        cfg.height = o.quick ? 16 : 320;
-        cfg.spp = o.quick ? 1 : 8;
+        cfg.width = o.quick ? 16 : 1024;
+        cfg.height = o.quick ? 16 : 1024;
+        cfg.spp = o.quick ? 1 : 2;
         cfg.seed = 1;
         cfg.max_depth = scene.render.max_depth;
         for (size_t size : sizes) {
+            const size_t effective = wavefront_wave_size(
+                size_t(cfg.width) * size_t(cfg.height), threads, WavefrontConfig{size});
             std::vector<double> wf_paths, mk_paths, ratio;
             for (int rep = 0; rep < (o.quick ? 1 : 3); ++rep) {
                 RenderStats mk, wf;
@@ -179,11 +185,13 @@ void bench_waves(const Options& o, Results& r) {
                 ratio.push_back(mk.seconds / wf.seconds);
             }
             r.row("waves",
-                  {name, double(size), wavefront_bytes_per_path() * size / 1024.0,
-                   spread(wf_paths).median, spread(mk_paths).median, spread(ratio).median});
+                  {name, double(size), wavefront_bytes_per_path() * effective / 1024.0,
+                   spread(wf_paths).median, spread(mk_paths).median, spread(ratio).median,
+                   double(effective)});
             std::printf(
-                "waves %-8s wave %6zu: wavefront %6.3f Mpaths/s, wavefront/megakernel %.2f\n", name,
-                size, spread(wf_paths).median, spread(ratio).median);
+                "waves %-8s wave %6zu (effective %6zu): wavefront %6.3f Mpaths/s, "
+                "wavefront/megakernel %.2f\n",
+                name, size, effective, spread(wf_paths).median, spread(ratio).median);
             std::fflush(stdout);
         }
     }

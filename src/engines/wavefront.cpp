@@ -1,9 +1,24 @@
 #include "engines/wavefront.h"
 
+#include <algorithm>
+
 #include "wavetrace/render/wavefront.h"
 #include "wavetrace/scene/bvh.h"
 
 namespace wavetrace {
+
+// Waves per thread that an image is cut into, for balance: a wave carries its pixels through
+// all the samples of a pass, so the last waves of a pass decide when the threads meet again,
+// and a thread waits on average half a wave at the end (1 / (2 kWavesPerThread) of the pass).
+// 64 rather than 16: the dragon at 2 threads +4.5%, `everything` +2% (320², 16 spp, medians of
+// four); at one thread, where nothing waits, the smaller waves cost nothing measurable.
+constexpr size_t kWavesPerThread = 64;
+
+size_t wavefront_wave_size(size_t pixels, size_t threads, const WavefrontConfig& wavefront) {
+    const size_t waves = kWavesPerThread * std::max<size_t>(threads, 1);
+    const size_t share = (pixels + waves - 1) / waves;
+    return std::max<size_t>(1, std::min({wavefront.wave_size, pixels, std::max<size_t>(share, 64)}));
+}
 
 size_t wavefront_bytes_per_path() {
     return WaveQueues::bytes_per_path();

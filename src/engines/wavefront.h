@@ -24,13 +24,6 @@
 namespace wavetrace {
 namespace wavefront_detail {
 
-// Waves per thread that an image is cut into, for balance: a wave carries its pixels through
-// all the samples of a pass, so the last waves of a pass decide when the threads meet again,
-// and a thread waits on average half a wave at the end (1 / (2 kWavesPerThread) of the pass).
-// 64 rather than 16: the dragon at 2 threads +4.5%, `everything` +2% (320², 16 spp, medians of
-// four); at one thread, where nothing waits, the smaller waves cost nothing measurable.
-constexpr size_t kWavesPerThread = 64;
-
 // Carries the wave of the pass's pixels [first, first + n) (in pass order) through all its
 // bounces and adds its paths to the film; returns the rays traced.
 template <Intersector Tracer>
@@ -72,19 +65,15 @@ void wavefront(const Scene& scene,
                const WavefrontConfig& wavefront,
                RenderStats* stats,
                const ProgressCallback& progress) {
-    using wavefront_detail::kWavesPerThread;
     auto start = std::chrono::steady_clock::now();
     const LightSet lights(scene);
     const CameraRays camera(scene.camera, config.width, config.height);
     const WaveInputs in{scene, lights, config, camera,
                         media_at(scene, bvh, scene.camera.look_from)};
     const size_t pixels = static_cast<size_t>(config.width) * config.height;
-    // Waves small enough that every thread gets several (the image does not depend on the wave
-    // size, so this may follow the thread count).
-    const size_t threads = static_cast<size_t>(tbb::this_task_arena::max_concurrency());
-    const size_t share = (pixels + kWavesPerThread * threads - 1) / (kWavesPerThread * threads);
-    const size_t wave_size =
-        std::max<size_t>(1, std::min({wavefront.wave_size, pixels, std::max<size_t>(share, 64)}));
+    // The image does not depend on the wave size, so it may follow the thread count.
+    const size_t wave_size = wavefront_wave_size(
+        pixels, static_cast<size_t>(tbb::this_task_arena::max_concurrency()), wavefront);
     const size_t waves = (pixels + wave_size - 1) / wave_size;
     tbb::enumerable_thread_specific<WaveQueues> queues([&] {
         WaveQueues q;

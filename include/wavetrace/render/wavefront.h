@@ -43,5 +43,9 @@ void render_wavefront(const Scene& scene,
 
 // Queue memory per path in flight, from the queue declarations.
 size_t wavefront_bytes_per_path();
+// The paths each thread carries at once in a render of `pixels` pixels on `threads` threads:
+// wave_size, or less where the image is cut into waves enough to keep every thread busy to the
+// end of a pass (at least 64 per thread, of at least 64 paths).
+size_t wavefront_wave_size(size_t pixels, size_t threads, const WavefrontConfig& wavefront);
 
 }  // namespace wavetrace
