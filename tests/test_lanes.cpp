@@ -309,6 +309,69 @@ TEST(Lanes, SphereLightSamplesAreNextEventOnEverySimdTarget) {
     EXPECT_GT(spheres, 0u);
 }
 
+// Segments through media of two densities and none, hits and misses: the vector free flights
+// scatter where scatters_in_medium says, at its distance, and leave it the same optical depth.
+TEST(Lanes, MediumSegmentsAreScattersInMediumOnEverySimdTarget) {
+    Scene scene;
+    Material phase;
+    phase.kind = MaterialKind::Isotropic;
+    phase.albedo = scene.add_solid({0.5f, 0.5f, 0.5f});
+    const MaterialId phase_id = scene.add_material(phase);
+    scene.media.push_back({"thick", 0.3f, phase_id});
+    scene.media.push_back({"thin", 0.01f, phase_id});
+    const size_t n = 59;
+    struct Case {
+        Ray ray;
+        Hit hit;
+        MediumId medium;
+        float flight;
+    };
+    std::vector<Case> cases;
+    for (uint32_t i = 0; i < n; ++i) {
+        auto u = [&](uint32_t d) { return sample_1d(21, i, 0, d); };
+        Case c;
+        c.ray = Ray{{u(0), u(1), u(2)}, unit(u(3), u(4)) * (0.5f + 2.0f * u(5))};
+        if (i % 4 != 3) c.hit = Hit{20.0f * u(6), PrimRef::make(PrimKind::Quad, i), 0.0f, 0.0f};
+        c.medium = i % 3 == 2 ? kNone : MediumId(i % 3);
+        c.flight = sample_free_flight(1.0f, u(7));
+        cases.push_back(c);
+    }
+    size_t scattered = 0, through = 0;
+    for (int64_t target : wide_simd_targets()) {
+        use_wide_simd_target(target);
+        SCOPED_TRACE(wide_simd_target());
+        MediumSegmentBlock b;
+        for (size_t k = 0; k < n; ++k) {
+            const Case& c = cases[k];
+            for (int a = 0; a < 3; ++a) b.dir[a][k] = c.ray.d[a];
+            b.t[k] = c.hit.found() ? c.hit.t : kInfinity;
+            b.medium[k] = c.medium != kNone ? 1.0f : 0.0f;
+            b.density[k] = c.medium != kNone ? scene.media[c.medium].density : 0.0f;
+            b.flight[k] = c.flight;
+        }
+        medium_segments(b, n);
+        for (size_t k = 0; k < n; ++k) {
+            const Case& c = cases[k];
+            const float dir_length = length(c.ray.d);
+            float flight = c.flight, dist = 0.0f;
+            const bool scatters =
+                scatters_in_medium(scene, c.medium, c.ray, c.hit, dir_length, flight, &dist);
+            ASSERT_TRUE(same_bits(b.dir_length[k], dir_length)) << "row " << k;
+            ASSERT_EQ(b.scatters[k] != 0.0f, scatters) << "row " << k;
+            if (scatters) {
+                ASSERT_TRUE(same_bits(b.dist[k], dist)) << "row " << k;
+                ++scattered;
+            } else {
+                ASSERT_TRUE(same_bits(b.flight[k], flight)) << "row " << k;
+                ++through;
+            }
+        }
+    }
+    use_wide_simd_target(0);
+    EXPECT_GT(scattered, 0u);
+    EXPECT_GT(through, 0u);
+}
+
 // The free flights' logarithm (Log1p, one formula in every lane and in scalar code) against the
 // C library's: within 2 ulp-sized relative errors over [-1 + 2^-24, 1], exact near 0, and the
 // optical depth of u -> 1 finite and large.

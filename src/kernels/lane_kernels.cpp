@@ -11,6 +11,7 @@
 #include "render/sampler-inl.h"
 #include "scene/camera_ray-inl.h"
 #include "scene/surface_point-inl.h"
+#include "shading/medium_flight-inl.h"
 #include "shading/quad_light_nee-inl.h"
 #include "shading/sphere_light-inl.h"
 #include "shading/surface_step-inl.h"
@@ -103,6 +104,35 @@ void DrawVertexSamples(uint64_t seed,
         if (flights)
             hn::Store(OpticalDepth<L>(SampleDim<L>(state, hn::Add(first, hn::Set(d64, kBounceDims)))),
                       df, out->next_flight + k);
+    }
+}
+
+void MediumSegments(MediumSegmentBlock* b, size_t n) {
+    using D = hn::CappedTag<float, kShadeChunk>;
+    using L = FloatLanes<D>;
+    using F = hn::Vec<D>;
+    const D d;
+    const size_t N = hn::Lanes(d);
+    // Pad the last vector with copies of row 0, so that every lane computes on real numbers.
+    const size_t padded = (n + N - 1) / N * N;
+    for (size_t k = n; k < padded; ++k) {
+        for (float* row : {b->t, b->medium, b->density, b->flight}) row[k] = row[0];
+        for (int a = 0; a < 3; ++a) b->dir[a][k] = b->dir[a][0];
+    }
+    const F zero = hn::Zero(d), one = hn::Set(d, 1.0f);
+    for (size_t k = 0; k < n; k += N) {
+        const V3<F> dir = Load3(d, b->dir, k);
+        const F dir_length = hn::Sqrt(Dot(dir, dir));
+        // scatters_in_medium's segment: (t - tmin) |dir| with tmin = 0, infinite for a miss.
+        const F seg = hn::Mul(hn::Load(d, b->t + k), dir_length);
+        F flight = hn::Load(d, b->flight + k), dist;
+        const auto in_medium = hn::Gt(hn::Load(d, b->medium + k), zero);
+        const auto scatters = hn::And(
+            in_medium, ScattersInMedium<L>(seg, hn::Load(d, b->density + k), &flight, &dist));
+        hn::Store(dir_length, d, b->dir_length + k);
+        hn::Store(hn::IfThenElse(in_medium, flight, hn::Load(d, b->flight + k)), d, b->flight + k);
+        hn::Store(dist, d, b->dist + k);
+        hn::Store(hn::IfThenElseZero(scatters, one), d, b->scatters + k);
     }
 }
 
@@ -311,6 +341,11 @@ namespace wavetrace {
 HWY_EXPORT(DrawCameraRays);
 HWY_EXPORT(DrawVertexSamples);
 HWY_EXPORT(ResolveSurfaceHits);
+HWY_EXPORT(MediumSegments);
+
+void medium_segments(MediumSegmentBlock& b, size_t n) {
+    HWY_DYNAMIC_DISPATCH(MediumSegments)(&b, n);
+}
 HWY_EXPORT(SurfaceVertices);
 
 void resolve_surface_hits(SurfaceBlock& b) {

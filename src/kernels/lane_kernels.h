@@ -63,6 +63,24 @@ void draw_vertex_samples(uint64_t seed,
                          bool flights,
                          SampleBlock& out);
 
+// The segments of a chunk's paths through their media (SoA, rows k < n): where each path
+// scatters on the way to its hit, as scatters_in_medium finds it.
+struct MediumSegmentBlock {
+    // in: the ray's direction, the hit distance t in units of its length (infinity: a miss),
+    // whether the path is in a medium (medium = 1) and its density there
+    alignas(64) float dir[3][kShadeChunk];
+    alignas(64) float t[kShadeChunk], medium[kShadeChunk], density[kShadeChunk];
+    // in: the optical depth left to travel; out: what is left past the segment's end, for the
+    // rows that do not scatter
+    alignas(64) float flight[kShadeChunk];
+    // out: |dir|, whether the path scatters (scatters = 1) and where: the world distance from
+    // the ray's origin
+    alignas(64) float dir_length[kShadeChunk], scatters[kShadeChunk], dist[kShadeChunk];
+};
+
+// Rows k < n of b: scatters_in_medium's result, bit for bit.
+void medium_segments(MediumSegmentBlock& b, size_t n);
+
 // Lambertian and rough metal surface vertices, and medium vertices of isotropic phase function,
 // gathered by shade (SoA, `n` rows): each row's
 // light sample towards a quad light (next_event's, where light[k] >= 0) and its continuation

@@ -121,6 +121,7 @@ bool shade_quickly(const WaveInputs& in,
                    size_t i,
                    size_t chunk_row,
                    const SampleBlock& samples,
+                   const MediumSegmentBlock& segments,
                    const HitQueue& hits,
                    bool lanes,
                    bool nee,
@@ -146,19 +147,20 @@ bool shade_quickly(const WaveInputs& in,
         }
         block.set_step(row, u.continuation, u.roulette, bounce + 1 >= in.config.rr_depth);
     };
-    // In a medium, the path scatters on the way to the hit (resolve_segment's first event), or
-    // reaches it with `flight` left; the optical depth left is not needed past a scattering
-    // vertex.
+    // In a medium, the path scatters on the way to the hit (resolve_segment's first event:
+    // `segments`, drawn for the chunk in lanes), or reaches it with `flight` left; the optical
+    // depth left is not needed past a scattering vertex.
     float flight = paths.flight[i];
     if (!scene.media.empty()) {
         if (!lanes) return false;
-        const Ray ray{rays.origin[i], rays.dir[i]};
-        const MediumId m = paths.media[i].current();
-        const float dir_length = length(ray.d);
-        float dist;
-        if (scatters_in_medium(scene, m, ray, hit_at(hits, i), dir_length, flight, &dist)) {
+        flight = segments.flight[chunk_row];
+        if (segments.scatters[chunk_row] != 0.0f) {
             if (!may_scatter(in.config, bounce)) return true;  // the path ends here
-            const Vertex v = medium_vertex(scene, m, ray.o + (ray.tmin + dist / dir_length) * ray.d);
+            const Ray ray{rays.origin[i], rays.dir[i]};
+            const float dir_length = segments.dir_length[chunk_row];
+            const float dist = segments.dist[chunk_row];
+            const Vertex v = medium_vertex(scene, paths.media[i].current(),
+                                           ray.o + (ray.tmin + dist / dir_length) * ray.d);
             sample_and_step(block.push(i, v, -(ray.d / dir_length), paths.beta[i]));
             return true;
         }
@@ -237,6 +239,7 @@ size_t shade(const WaveInputs& in,
     SurfaceBlock block;
     DeferredLightSample deferred[kShadeChunk];
     const bool prefetch = prefetches_meshes(in.scene);
+    MediumSegmentBlock segments;
     const bool flights = !in.scene.media.empty();  // else segment_flight() is 0
     if (!flights) std::fill(std::begin(samples.next_flight), std::end(samples.next_flight), 0.0f);
     // Hits on Lambertian and rough metal surfaces of constant albedo skip resolve_segment: their
@@ -245,10 +248,24 @@ size_t shade(const WaveInputs& in,
     const bool nee = cfg.strategy == Strategy::Nee || cfg.strategy == Strategy::Mis;
     const bool resolve_in_lanes =
         (cfg.strategy != Strategy::Light && cfg.strategy != Strategy::Mixture) || in.lights.empty();
+    const bool segments_in_lanes = resolve_in_lanes && !in.scene.media.empty();
     for (size_t c = begin; c < end; c += kShadeChunk) {
         const size_t chunk_end = std::min(end, c + kShadeChunk);
         draw_vertex_samples(cfg.seed, sample, &paths.pixel[c], &paths.bounce[c], chunk_end - c,
                             flights, samples);
+        if (segments_in_lanes) {
+            for (size_t i = c; i < chunk_end; ++i) {
+                const size_t k = i - c;
+                const Vec3 d = rays.dir[i];
+                for (int a = 0; a < 3; ++a) segments.dir[a][k] = d[a];
+                segments.t[k] = hits.prim[i].valid() ? hits.t[i] : kInfinity;
+                const MediumId m = paths.media[i].current();
+                segments.medium[k] = m != kNone ? 1.0f : 0.0f;
+                segments.density[k] = m != kNone ? in.scene.media[m].density : 0.0f;
+                segments.flight[k] = paths.flight[i];
+            }
+            medium_segments(segments, chunk_end - c);
+        }
         block.n = 0;
         size_t deferred_count = 0;
         if (prefetch) prefetch_triangles(in.scene, hits, c, chunk_end);
@@ -258,8 +275,8 @@ size_t shade(const WaveInputs& in,
                 prefetch_vertices(in.scene, hits.prim[i + kVertexPrefetchDistance]);
 
             // ---- a vertex in lanes, a boundary crossed, an escape into the dark ----
-            if (shade_quickly(in, i, i - c, samples, hits, resolve_in_lanes, nee, rays, paths, keep,
-                              block, deferred, deferred_count))
+            if (shade_quickly(in, i, i - c, samples, segments, hits, resolve_in_lanes, nee, rays,
+                              paths, keep, block, deferred, deferred_count))
                 continue;
 
             // ---- the segment: medium, emission, boundary or surface ----

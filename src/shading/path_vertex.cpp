@@ -5,6 +5,7 @@
 
 #include "render/sampler-inl.h"
 #include "scene/camera_ray-inl.h"
+#include "shading/medium_flight-inl.h"
 #include "shading/mis-inl.h"
 #include "shading/quad_light_nee-inl.h"
 #include "shading/sphere_light-inl.h"
@@ -273,12 +274,8 @@ bool scatters_in_medium(const Scene& scene,
                         float& flight,
                         float* s) {
     if (m == kNone) return false;
-    const float density = scene.media[m].density;
     const float seg = hit.found() ? (hit.t - ray.tmin) * dir_length : kInfinity;
-    *s = flight / density;  // world distance to the scattering event
-    if (*s < seg) return true;
-    flight -= density * seg;  // memoryless: the rest carries over past the boundary
-    return false;
+    return lanes::ScattersInMedium<OneLane>(seg, scene.media[m].density, &flight, s);
 }
 
 Ray cross_boundary(const SurfaceHit& s, Vec3 dir, MediumStack& media) {
