@@ -32,8 +32,11 @@ float transmittance(
             tr *= std::exp(-scene.media[m].density * (end - ray.tmin) * length(ray.d));
         }
         if (!hit.found()) return tr;
+        // A surface blocks it; only a boundary needs the point, to step over it.
+        const MaterialId material = scene.prim_material(hit.prim);
+        if (material == kNone || scene.materials[material].kind != MaterialKind::Interface)
+            return 0.0f;
         SurfaceHit s = surface_at(scene, ray, hit);
-        if (scene.materials[s.material].kind != MaterialKind::Interface) return 0.0f;
         media.cross(s.interior, s.front_face);
         ray.tmin = hit.t;
         // Step over the boundary: restart just past it along the same line.
