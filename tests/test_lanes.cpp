@@ -208,8 +208,10 @@ TEST(Lanes, VertexSamplesAreTheScalarOnesOnEverySimdTarget) {
                 same_bits(one.light_select,
                           sample_1d(42, pixel[k], 17, bounce_dim(bounce[k], kDimLightSelect))));
             // The optical depth of the segment the vertex starts: segment_flight's.
-            const float u = sample_1d(42, pixel[k], 17, bounce_dim(bounce[k] + 1, kDimMediumDistance));
-            ASSERT_TRUE(same_bits(block.next_flight[k], sample_free_flight(1.0f, u))) << "row " << k;
+            const float u =
+                sample_1d(42, pixel[k], 17, bounce_dim(bounce[k] + 1, kDimMediumDistance));
+            ASSERT_TRUE(same_bits(block.next_flight[k], sample_free_flight(1.0f, u)))
+                << "row " << k;
         }
     }
     use_wide_simd_target(0);

@@ -173,8 +173,8 @@ void bench_waves(const Options& o, Results& r) {
         cfg.seed = 1;
         cfg.max_depth = scene.render.max_depth;
         for (size_t size : sizes) {
-            const size_t effective = wavefront_wave_size(
-                size_t(cfg.width) * size_t(cfg.height), threads, WavefrontConfig{size});
+            const size_t effective = wavefront_wave_size(size_t(cfg.width) * size_t(cfg.height),
+                                                         threads, WavefrontConfig{size});
             std::vector<double> wf_paths, mk_paths, ratio;
             for (int rep = 0; rep < (o.quick ? 1 : 3); ++rep) {
                 RenderStats mk, wf;
@@ -184,10 +184,9 @@ void bench_waves(const Options& o, Results& r) {
                 mk_paths.push_back(mk.paths / mk.seconds * 1e-6);
                 ratio.push_back(mk.seconds / wf.seconds);
             }
-            r.row("waves",
-                  {name, double(size), wavefront_bytes_per_path() * effective / 1024.0,
-                   spread(wf_paths).median, spread(mk_paths).median, spread(ratio).median,
-                   double(effective)});
+            r.row("waves", {name, double(size), wavefront_bytes_per_path() * effective / 1024.0,
+                            spread(wf_paths).median, spread(mk_paths).median, spread(ratio).median,
+                            double(effective)});
             std::printf(
                 "waves %-8s wave %6zu (effective %6zu): wavefront %6.3f Mpaths/s, "
                 "wavefront/megakernel %.2f\n",

@@ -17,7 +17,8 @@ constexpr size_t kWavesPerThread = 64;
 size_t wavefront_wave_size(size_t pixels, size_t threads, const WavefrontConfig& wavefront) {
     const size_t waves = kWavesPerThread * std::max<size_t>(threads, 1);
     const size_t share = (pixels + waves - 1) / waves;
-    return std::max<size_t>(1, std::min({wavefront.wave_size, pixels, std::max<size_t>(share, 64)}));
+    return std::max<size_t>(1,
+                            std::min({wavefront.wave_size, pixels, std::max<size_t>(share, 64)}));
 }
 
 size_t wavefront_bytes_per_path() {

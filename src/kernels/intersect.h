@@ -11,10 +11,8 @@ namespace wavetrace {
 // An intersector that also traces a stream of rays one by one in one call (our BVH), with the
 // hits of one call per ray.
 template <class T>
-concept StreamIntersector = Intersector<T> && requires(const T& t,
-                                                        std::span<const Ray> rays,
-                                                        std::span<Hit> hits,
-                                                        std::span<bool> occluded) {
+concept StreamIntersector = Intersector<T> &&
+    requires(const T& t, std::span<const Ray> rays, std::span<Hit> hits, std::span<bool> occluded) {
     t.intersect_each(rays, hits);
     t.occluded_each(rays, occluded);
 };

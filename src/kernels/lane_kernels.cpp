@@ -102,8 +102,9 @@ void DrawVertexSamples(uint64_t seed,
         // The next bounce's first dimension is its medium distance.
         static_assert(kDimMediumDistance == 0);
         if (flights)
-            hn::Store(OpticalDepth<L>(SampleDim<L>(state, hn::Add(first, hn::Set(d64, kBounceDims)))),
-                      df, out->next_flight + k);
+            hn::Store(
+                OpticalDepth<L>(SampleDim<L>(state, hn::Add(first, hn::Set(d64, kBounceDims)))), df,
+                out->next_flight + k);
     }
 }
 

@@ -184,8 +184,8 @@ bool shade_quickly(const WaveInputs& in,
     if (m != kNone && scene.materials[m].kind == MaterialKind::Interface) {
         const Ray ray = ray_at(rays, i);
         MediumStack media = paths.media[i].unpack();
-        const Ray next = cross_boundary(surface_at(scene, ray, hit_at(hits, i)),
-                                        ray.d / length(ray.d), media);
+        const Ray next =
+            cross_boundary(surface_at(scene, ray, hit_at(hits, i)), ray.d / length(ray.d), media);
         cross(i, media, flight, next, paths, rays, keep);
         return true;
     }
@@ -217,12 +217,13 @@ bool shade_quickly(const WaveInputs& in,
 
 }  // namespace
 
-// Chunk by chunk: the vertices' uniform numbers in SIMD lanes; hits on Lambertian and rough
-// metal surfaces gathered into a block whose vertices, light samples towards quad lights and
-// continuations run in SIMD lanes at the end of the chunk (light samples towards other lights
-// in scalar code from the resolved vertices); every other segment in scalar code. Shadow rays
-// are appended in a fixed order (scalar ones, then the deferred ones, then the block's), so
-// the queue, and the image, do not depend on the target.
+// Chunk by chunk: the vertices' uniform numbers and the free flights through media in SIMD
+// lanes; hits on Lambertian and rough metal surfaces and scatterings in media gathered into a
+// block whose vertices, light samples towards quad and sphere lights and continuations run in
+// SIMD lanes at the end of the chunk (light samples towards other lights in scalar code from
+// the resolved vertices); escapes and boundary crossings directly; every other segment in
+// scalar code. Shadow rays are appended in a fixed order (scalar ones, then the deferred ones,
+// then the block's), so the queue, and the image, do not depend on the target.
 size_t shade(const WaveInputs& in,
              uint32_t sample,
              const HitQueue& hits,
@@ -242,9 +243,10 @@ size_t shade(const WaveInputs& in,
     MediumSegmentBlock segments;
     const bool flights = !in.scene.media.empty();  // else segment_flight() is 0
     if (!flights) std::fill(std::begin(samples.next_flight), std::end(samples.next_flight), 0.0f);
-    // Hits on Lambertian and rough metal surfaces of constant albedo skip resolve_segment: their
-    // vertex is resolved in lanes with the block. That takes a strategy whose continuation
-    // there is the surface step (not the one-sample light/mixture choice).
+    // Hits on Lambertian and rough metal surfaces of constant albedo, and scattering in media,
+    // skip resolve_segment: their vertex is resolved in lanes with the block. That takes a
+    // strategy whose continuation there is the lane step (not the one-sample light/mixture
+    // choice).
     const bool nee = cfg.strategy == Strategy::Nee || cfg.strategy == Strategy::Mis;
     const bool resolve_in_lanes =
         (cfg.strategy != Strategy::Light && cfg.strategy != Strategy::Mixture) || in.lights.empty();

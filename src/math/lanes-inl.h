@@ -109,8 +109,8 @@ struct FloatLanes {
     static HWY_INLINE F SplitExponent(F x, F* m) {
         const hn::RebindToSigned<D> di;
         const auto bits = hn::BitCast(di, x);
-        *m = hn::BitCast(D(), hn::Or(hn::And(bits, hn::Set(di, 0x007fffff)),
-                                     hn::Set(di, 0x3f800000)));
+        *m = hn::BitCast(D(),
+                         hn::Or(hn::And(bits, hn::Set(di, 0x007fffff)), hn::Set(di, 0x3f800000)));
         return hn::ConvertTo(D(), hn::Sub(hn::ShiftRight<23>(bits), hn::Set(di, 127)));
     }
 };
@@ -262,9 +262,8 @@ HWY_INLINE typename L::F Log(typename L::F x) {
     const F f = m - L::Set(1.0f);
     const F z = f * f;
     F p = L::Set(7.0376836292e-2f);
-    for (const float c : {-1.1514610310e-1f, 1.1676998740e-1f, -1.2420140846e-1f,
-                          1.4249322787e-1f, -1.6668057665e-1f, 2.0000714765e-1f,
-                          -2.4999993993e-1f, 3.3333331174e-1f})
+    for (const float c : {-1.1514610310e-1f, 1.1676998740e-1f, -1.2420140846e-1f, 1.4249322787e-1f,
+                          -1.6668057665e-1f, 2.0000714765e-1f, -2.4999993993e-1f, 3.3333331174e-1f})
         p = p * f + L::Set(c);
     F y = p * f * z;
     y = y + L::Set(-2.12194440e-4f) * e;

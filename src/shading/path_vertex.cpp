@@ -375,10 +375,10 @@ PathStep continue_path(const Scene& scene,
                                             u.bsdf_u2,
                                             u_roulette,
                                             bounce + 1 >= config.rr_depth};
-        const lanes::StepResult<OneLane> r = v.bsdf.kind == MaterialKind::Metal ? lanes::MetalStep(lv)
-                                             : v.bsdf.kind == MaterialKind::Isotropic
-                                                 ? lanes::PhaseStep(lv)
-                                                 : lanes::LambertianStep(lv);
+        const lanes::StepResult<OneLane> r =
+            v.bsdf.kind == MaterialKind::Metal       ? lanes::MetalStep(lv)
+            : v.bsdf.kind == MaterialKind::Isotropic ? lanes::PhaseStep(lv)
+                                                     : lanes::LambertianStep(lv);
         if (!r.alive) return step;
         step.weight = to_vec3(r.weight);
         step.prev = {v.p, r.pdf, lights.empty()};
