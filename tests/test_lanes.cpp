@@ -132,15 +132,13 @@ void expect_light_samples_are_next_event(const Scene& scene, size_t* spheres) {
                         continue;
                     }
                     ++appended;
-                    auto row = [&](const float(*rows)[kShadeChunk]) {
-                        return Vec3{rows[0][k], rows[1][k], rows[2][k]};
-                    };
-                    EXPECT_TRUE(same_bits(d.sample.shadow.o, row(block.shadow_origin)))
+                    EXPECT_TRUE(same_bits(d.sample.shadow.o, block_row(block.shadow_origin, k)))
                         << "row " << k;
-                    EXPECT_TRUE(same_bits(d.sample.shadow.d, row(block.shadow_dir))) << "row " << k;
+                    EXPECT_TRUE(same_bits(d.sample.shadow.d, block_row(block.shadow_dir, k)))
+                        << "row " << k;
                     EXPECT_TRUE(same_bits(d.sample.shadow.tmax, block.tmax[k])) << "row " << k;
-                    EXPECT_TRUE(
-                        same_bits(c.beta * (d.sample.value * d.weight), row(block.contribution)))
+                    EXPECT_TRUE(same_bits(c.beta * (d.sample.value * d.weight),
+                                          block_row(block.contribution, k)))
                         << "row " << k;
                 }
             }
@@ -273,12 +271,9 @@ TEST(Lanes, LaneStepsAreContinuePathOnEverySimdTarget) {
                 continue;
             }
             ++alive;
-            auto row = [&](const float(*rows)[kShadeChunk]) {
-                return Vec3{rows[0][k], rows[1][k], rows[2][k]};
-            };
-            EXPECT_TRUE(same_bits(one.next.o, row(block.origin))) << "row " << k;
-            EXPECT_TRUE(same_bits(one.next.d, row(block.wi))) << "row " << k;
-            EXPECT_TRUE(same_bits(one.weight, row(block.weight))) << "row " << k;
+            EXPECT_TRUE(same_bits(one.next.o, block_row(block.origin, k))) << "row " << k;
+            EXPECT_TRUE(same_bits(one.next.d, block_row(block.wi, k))) << "row " << k;
+            EXPECT_TRUE(same_bits(one.weight, block_row(block.weight, k))) << "row " << k;
             EXPECT_TRUE(same_bits(one.prev.pdf_bsdf, block.pdf[k])) << "row " << k;
         }
     }
@@ -512,9 +507,6 @@ TEST(Lanes, HitsResolvedInLanesAreSurfaceAtOnEverySimdTarget) {
         c.u_rr = u(20);
         cases.push_back(c);
     }
-    auto row = [](const float(*rows)[kShadeChunk], size_t k) {
-        return Vec3{rows[0][k], rows[1][k], rows[2][k]};
-    };
     size_t flipped = 0;
     for (int64_t target : wide_simd_targets()) {
         use_wide_simd_target(target);
@@ -560,11 +552,13 @@ TEST(Lanes, HitsResolvedInLanesAreSurfaceAtOnEverySimdTarget) {
         for (size_t k = 0; k < n; ++k) {
             for (auto rows :
                  {&SurfaceBlock::p, &SurfaceBlock::ng, &SurfaceBlock::ns, &SurfaceBlock::wo})
-                ASSERT_TRUE(same_bits(row(hits.*rows, k), row(given.*rows, k))) << "row " << k;
+                ASSERT_TRUE(same_bits(block_row(hits.*rows, k), block_row(given.*rows, k)))
+                    << "row " << k;
             ASSERT_EQ(hits.alive[k], given.alive[k]) << "row " << k;
             if (given.alive[k] == 0.0f) continue;
             for (auto rows : {&SurfaceBlock::origin, &SurfaceBlock::wi, &SurfaceBlock::weight})
-                ASSERT_TRUE(same_bits(row(hits.*rows, k), row(given.*rows, k))) << "row " << k;
+                ASSERT_TRUE(same_bits(block_row(hits.*rows, k), block_row(given.*rows, k)))
+                    << "row " << k;
             ASSERT_TRUE(same_bits(hits.pdf[k], given.pdf[k])) << "row " << k;
         }
     }

@@ -6,6 +6,7 @@
 #include <hwy/highway.h>
 
 #include <algorithm>
+#include <initializer_list>
 
 #include "math/lanes-inl.h"
 #include "render/sampler-inl.h"
@@ -38,6 +39,22 @@ template <class T>
 HWY_INLINE void PadRows(const T* in, size_t n, T* out) {
     std::copy(in, in + n, out);
     std::fill(out + n, out + kShadeChunk, in[0]);
+}
+
+// n rounded up to whole vectors of N lanes, and entries [n, padded) of each of `rows` set to
+// entry 0: the last vector then computes on ordinary values.
+HWY_INLINE size_t Padded(size_t n, size_t N) {
+    return (n + N - 1) / N * N;
+}
+template <class T>
+HWY_INLINE void PadTail(std::initializer_list<T*> rows, size_t n, size_t padded) {
+    for (T* row : rows) std::fill(row + n, row + padded, row[0]);
+}
+// The same for rows of three (x, y, z).
+HWY_INLINE void PadTail3(std::initializer_list<float (*)[kShadeChunk]> rows,
+                         size_t n,
+                         size_t padded) {
+    for (float(*xyz)[kShadeChunk] : rows) PadTail<float>({xyz[0], xyz[1], xyz[2]}, n, padded);
 }
 
 void DrawCameraRays(const CameraFrame* camera,
@@ -114,12 +131,9 @@ void MediumSegments(MediumSegmentBlock* b, size_t n) {
     using F = hn::Vec<D>;
     const D d;
     const size_t N = hn::Lanes(d);
-    // Pad the last vector with copies of row 0, so that every lane computes on real numbers.
-    const size_t padded = (n + N - 1) / N * N;
-    for (size_t k = n; k < padded; ++k) {
-        for (float* row : {b->t, b->medium, b->density, b->flight}) row[k] = row[0];
-        for (int a = 0; a < 3; ++a) b->dir[a][k] = b->dir[a][0];
-    }
+    const size_t padded = Padded(n, N);
+    PadTail<float>({b->t, b->medium, b->density, b->flight}, n, padded);
+    PadTail3({b->dir}, n, padded);
     const F zero = hn::Zero(d), one = hn::Set(d, 1.0f);
     for (size_t k = 0; k < n; k += N) {
         const V3<F> dir = Load3(d, b->dir, k);
@@ -145,23 +159,12 @@ void ResolveSurfaceHits(SurfaceBlock* b) {
     const hn::RebindToSigned<D> di;
     const size_t N = hn::Lanes(d);
     if (b->n == 0) return;
-    // Pad the last vector with copies of row 0, so that every lane computes on real numbers.
-    const size_t padded = (b->n + N - 1) / N * N;
-    for (size_t k = b->n; k < padded; ++k) {
-        for (float* row : {b->hit_u, b->hit_v, b->smooth}) row[k] = row[0];
-        for (int a = 0; a < 3; ++a) {
-            b->p[a][k] = b->p[a][0];
-            b->ng[a][k] = b->ng[a][0];
-            b->ns[a][k] = b->ns[a][0];
-            b->wo[a][k] = b->wo[a][0];
-            b->dir[a][k] = b->dir[a][0];
-            for (int c = 0; c < 3; ++c) {
-                b->corner[c][a][k] = b->corner[c][a][0];
-                b->vertex_normal[c][a][k] = b->vertex_normal[c][a][0];
-            }
-        }
-        b->hit_kind[k] = b->hit_kind[0];
-    }
+    const size_t padded = Padded(b->n, N);
+    PadTail<float>({b->hit_u, b->hit_v, b->smooth}, b->n, padded);
+    PadTail3({b->p, b->ng, b->ns, b->wo, b->dir, b->corner[0], b->corner[1], b->corner[2],
+              b->vertex_normal[0], b->vertex_normal[1], b->vertex_normal[2]},
+             b->n, padded);
+    PadTail<int32_t>({b->hit_kind}, b->n, padded);
     const F zero = hn::Zero(d);
     for (size_t k = 0; k < b->n; k += N) {
         V3<F> p = Load3(d, b->p, k), ng = Load3(d, b->ng, k), ns = Load3(d, b->ns, k),
@@ -223,17 +226,12 @@ void SurfaceVertices(SurfaceBlock* b,
     const hn::RebindToSigned<D> di;
     const size_t N = hn::Lanes(d);
     if (b->n == 0) return;
-    // Pad the last vector with copies of row 0, so that every lane computes on real numbers.
-    const size_t padded = (b->n + N - 1) / N * N;
-    for (size_t k = b->n; k < padded; ++k) {
-        for (auto* rows : {b->p, b->ng, b->ns, b->wo, b->albedo, b->beta})
-            for (int a = 0; a < 3; ++a) rows[a][k] = rows[a][0];
-        for (float* row : {b->select_prob, b->light_u1, b->light_u2, b->step, b->dir_u1, b->dir_u2,
-                           b->u_rr, b->roulette, b->alpha, b->metal, b->phase})
-            row[k] = row[0];
-        b->light[k] = b->light[0];
-        b->sphere_light[k] = b->sphere_light[0];
-    }
+    const size_t padded = Padded(b->n, N);
+    PadTail3({b->p, b->ng, b->ns, b->wo, b->albedo, b->beta}, b->n, padded);
+    PadTail<float>({b->select_prob, b->light_u1, b->light_u2, b->step, b->dir_u1, b->dir_u2,
+                    b->u_rr, b->roulette, b->alpha, b->metal, b->phase},
+                   b->n, padded);
+    PadTail<int32_t>({b->light, b->sphere_light}, b->n, padded);
     const F zero = hn::Zero(d), one = hn::Set(d, 1.0f);
     for (size_t k = 0; k < b->n; k += N) {
         const V3<F> p = Load3(d, b->p, k), ng = Load3(d, b->ng, k), ns = Load3(d, b->ns, k),

@@ -21,6 +21,11 @@ namespace wavetrace {
 // target's lane count, and small enough that the blocks below stay in L1.
 inline constexpr size_t kShadeChunk = 64;
 
+// Row k of three SoA rows (x, y, z) of a block, as a Vec3.
+inline Vec3 block_row(const float (*rows)[kShadeChunk], size_t k) {
+    return {rows[0][k], rows[1][k], rows[2][k]};
+}
+
 // Camera rays of kShadeChunk pixels.
 struct CameraRayBlock {
     alignas(64) float o[3][kShadeChunk];

@@ -38,10 +38,6 @@ void advance(size_t i,
     keep[i] = 1;
 }
 
-Vec3 row(const float (*rows)[kShadeChunk], size_t k) {
-    return {rows[0][k], rows[1][k], rows[2][k]};
-}
-
 // The BSDF surface_vertex gives material m, if it is Lambertian or a rough metal of constant
 // albedo (a Solid texture): the materials whose surface vertices shade needs nothing of but the
 // hit's point and normals.
@@ -158,9 +154,9 @@ bool shade_quickly(const WaveInputs& in,
             if (!may_scatter(in.config, bounce)) return true;  // the path ends here
             const Ray ray{rays.origin[i], rays.dir[i]};
             const float dir_length = segments.dir_length[chunk_row];
-            const float dist = segments.dist[chunk_row];
-            const Vertex v = medium_vertex(scene, paths.media[i].current(),
-                                           ray.o + (ray.tmin + dist / dir_length) * ray.d);
+            const Vertex v =
+                medium_vertex(scene, paths.media[i].current(),
+                              scattering_point(ray, segments.dist[chunk_row], dir_length));
             sample_and_step(block.push(i, v, -(ray.d / dir_length), paths.beta[i]));
             return true;
         }
@@ -337,8 +333,8 @@ size_t shade(const WaveInputs& in,
             const DeferredLightSample& l = deferred[j];
             const size_t k = l.row;
             Vertex v;
-            v.p = row(block.p, k);
-            v.ng = row(block.ng, k);
+            v.p = block_row(block.p, k);
+            v.ng = block_row(block.ng, k);
             v.bsdf.kind = block.metal[k] != 0.0f   ? MaterialKind::Metal
                           : block.phase[k] != 0.0f ? MaterialKind::Isotropic
                                                    : MaterialKind::Lambertian;
@@ -348,28 +344,29 @@ size_t shade(const WaveInputs& in,
                 block.set_sphere_light_sample(k, sphere, l.light.probability, l.u1, l.u2);
                 continue;
             }
-            v.frame = Frame::from_normal(row(block.ns, k));
-            v.bsdf.albedo = row(block.albedo, k);
+            v.frame = Frame::from_normal(block_row(block.ns, k));
+            v.bsdf.albedo = block_row(block.albedo, k);
             VertexSamples u{};
             u.light_u = l.u1;
             u.light_v = l.u2;
             const WeightedDirect d =
-                next_event(in.scene, in.lights, cfg, v, row(block.wo, k), u, l.light);
+                next_event(in.scene, in.lights, cfg, v, block_row(block.wo, k), u, l.light);
             if (d.weight > 0.0f)
-                append_shadow(d.sample.shadow, row(block.beta, k) * (d.sample.value * d.weight),
+                append_shadow(d.sample.shadow,
+                              block_row(block.beta, k) * (d.sample.value * d.weight),
                               block.entry[k], shadows, s);
         }
         surface_vertices(block, in.lights, cfg.strategy == Strategy::Mis, cfg.heuristic);
         const bool counts_fully = in.lights.empty();  // the block's vertices sample lights if any
         for (size_t k = 0; k < block.n; ++k) {
             if (block.shadow[k] != 0.0f)
-                append_shadow(
-                    Ray{row(block.shadow_origin, k), row(block.shadow_dir, k), 0.0f, block.tmax[k]},
-                    row(block.contribution, k), block.entry[k], shadows, s);
+                append_shadow(Ray{block_row(block.shadow_origin, k), block_row(block.shadow_dir, k),
+                                  0.0f, block.tmax[k]},
+                              block_row(block.contribution, k), block.entry[k], shadows, s);
             if (block.alive[k] != 0.0f)
-                advance(block.entry[k], row(block.weight, k),
-                        {row(block.p, k), block.pdf[k], counts_fully},
-                        Ray{row(block.origin, k), row(block.wi, k)},
+                advance(block.entry[k], block_row(block.weight, k),
+                        {block_row(block.p, k), block.pdf[k], counts_fully},
+                        Ray{block_row(block.origin, k), block_row(block.wi, k)},
                         samples.next_flight[block.entry[k] - c], paths, rays, keep);
         }
     }

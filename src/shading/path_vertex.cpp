@@ -297,7 +297,7 @@ SegmentResult resolve_segment(const Scene& scene,
     const MediumId m = media.current();
     if (float s; scatters_in_medium(scene, m, ray, hit, dir_length, flight, &s)) {
         r.event = SegmentEvent::Scatter;
-        r.vertex = medium_vertex(scene, m, ray.o + (ray.tmin + s / dir_length) * ray.d);
+        r.vertex = medium_vertex(scene, m, scattering_point(ray, s, dir_length));
         r.wo = -dir;
         return r;
     }

@@ -43,6 +43,11 @@ inline BsdfParams material_bsdf(const Material& m, Color albedo) {
     return b;
 }
 Vertex medium_vertex(const Scene& scene, MediumId medium, Point3 p);
+// Where a path scatters in a medium: world distance `dist` along `ray` from its origin, for a
+// direction of length dir_length.
+inline Point3 scattering_point(const Ray& ray, float dist, float dir_length) {
+    return ray.o + (ray.tmin + dist / dir_length) * ray.d;
+}
 
 // Whether next-event estimation and light-sampled directions apply at this vertex.
 bool can_sample_lights(const Vertex& v, const LightSet& lights);

@@ -48,7 +48,7 @@ struct StepResult {
     typename L::F pdf;             // BSDF density of wi (for MIS at the emitter it may hit)
 };
 
-// The part both lobes share, for a sampled wi of throughput factor `weight` (ok: a valid
+// The part every lobe shares, for a sampled wi of throughput factor `weight` (ok: a valid
 // sample): reflection stays on wo's side of the geometric surface, so that light does not leak
 // through it where the shading normal disagrees; Russian roulette on the throughput after this
 // vertex; the origin just off the surface on wi's side.
