@@ -2,6 +2,7 @@
 // image up to rounding), and its determinism.
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
+#include <tbb/task_arena.h>
 
 #include <cmath>
 #include <numeric>
@@ -74,12 +75,15 @@ TEST(Wavefront, BitIdenticalForAnyThreadCountAndWaveSize) {
     Scene scene = load_scene(scene_path("cornell-smoke"));
     Bvh bvh = Bvh::build(scene);
     RenderConfig c = config(Strategy::Mis, 37, 23, 5);  // 851 pixels
+    // Fewer threads than the machine has through a global_control limit (as --threads does),
+    // more through an arena of that many (oversubscribed here, but every thread takes waves).
     auto render = [&](int threads, size_t wave, bool sort) {
-        tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
         WavefrontConfig wf;
         wf.wave_size = wave;
         wf.sort_by_material = sort;
-        return render_wavefront(scene, bvh, c, wf).mean();
+        tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+        tbb::task_arena arena(threads);
+        return arena.execute([&] { return render_wavefront(scene, bvh, c, wf).mean(); });
     };
     Image ref = render(1, 851, false);
     struct Run {
@@ -95,4 +99,39 @@ TEST(Wavefront, BitIdenticalForAnyThreadCountAndWaveSize) {
             ASSERT_EQ(ref.pixels[i], img.pixels[i]) << "threads " << r.threads << " wave " << r.wave
                                                     << " sort " << r.sort << " pixel " << i;
     }
+}
+
+// The guided schedule: the waves cover the pixels once, in order; none is larger than
+// wave_size, none smaller than 128 but where less is left; they shrink, and each takes at most
+// a share 1 / (2 threads) of what is left, so the last ones started are small.
+TEST(Wavefront, WavesCoverThePixelsOnceAndShrinkTowardsTheEnd) {
+    for (size_t pixels : {size_t(1), size_t(100), size_t(851), size_t(320 * 320),
+                          size_t(1920 * 1080)})
+        for (size_t threads : {1, 2, 7, 16})
+            for (size_t wave_size : {64, 300, 4096}) {
+                WavefrontConfig wf;
+                wf.wave_size = wave_size;
+                const std::vector<WaveRange> waves = wavefront_waves(pixels, threads, wf);
+                const std::string at = "pixels " + std::to_string(pixels) + " threads " +
+                                       std::to_string(threads) + " wave " +
+                                       std::to_string(wave_size);
+                ASSERT_FALSE(waves.empty()) << at;
+                EXPECT_EQ(wavefront_wave_size(pixels, threads, wf), waves.front().n) << at;
+                const size_t most = std::min(wave_size, pixels);
+                size_t first = 0;
+                for (size_t w = 0; w < waves.size(); ++w) {
+                    const size_t left = pixels - first;
+                    ASSERT_EQ(waves[w].first, first) << at << " wave " << w;
+                    ASSERT_GE(waves[w].n, std::min({size_t(128), most, left})) << at;
+                    ASSERT_LE(waves[w].n, most) << at;
+                    ASSERT_LE(waves[w].n, std::max<size_t>(128, (left + 2 * threads - 1) /
+                                                                    (2 * threads)))
+                        << at << " wave " << w;
+                    if (w > 0) ASSERT_LE(waves[w].n, waves[w - 1].n) << at;
+                    first += waves[w].n;
+                }
+                EXPECT_EQ(first, pixels) << at;
+            }
+    // A 320² image on 16 threads starts with waves of 3,200 paths, not 100 (102,400 / 1,024).
+    EXPECT_EQ(wavefront_wave_size(320 * 320, 16, WavefrontConfig{}), size_t(3200));
 }

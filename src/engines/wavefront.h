@@ -1,6 +1,7 @@
 // The wavefront engine's outer loop: a readable script of kernel launches (pbrt-v4's
 // WavefrontPathIntegrator::Render() is the model). The image is cut into waves of consecutive
-// pixels; oneTBB hands the waves to the threads, and each thread carries its wave through every
+// pixels that shrink towards the end of a pass (wavefront_waves); the threads take them in
+// order, and each thread carries its wave through every
 // stage, bounce after bounce and sample after sample of a pass, in queues it reuses from wave to
 // wave, so that a wave's queues stay in that core's cache (the per-thread queues of Áfra et
 // al., HPG 2016, and of MoonRay, rather than pbrt-v4's one global wave). Generic over the
@@ -9,12 +10,14 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
+#include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <vector>
 
 #include "kernels/kernels.h"
 #include "scene/intersector.h"
@@ -71,47 +74,54 @@ void wavefront(const Scene& scene,
     const WaveInputs in{scene, lights, config, camera,
                         media_at(scene, bvh, scene.camera.look_from)};
     const size_t pixels = static_cast<size_t>(config.width) * config.height;
-    // The image does not depend on the wave size, so it may follow the thread count.
-    const size_t wave_size = wavefront_wave_size(
-        pixels, static_cast<size_t>(tbb::this_task_arena::max_concurrency()), wavefront);
-    const size_t waves = (pixels + wave_size - 1) / wave_size;
+    // The threads this render may use: the arena's, or fewer under a tbb::global_control limit
+    // (--threads). The image depends on neither, so the waves may follow them.
+    const size_t threads = static_cast<size_t>(std::max(
+        1, std::min<int>(tbb::this_task_arena::max_concurrency(),
+                         static_cast<int>(tbb::global_control::active_value(
+                             tbb::global_control::max_allowed_parallelism)))));
+    const std::vector<WaveRange> waves = wavefront_waves(pixels, threads, wavefront);
     tbb::enumerable_thread_specific<WaveQueues> queues([&] {
         WaveQueues q;
-        q.resize(wave_size);
+        q.resize(waves.empty() ? 1 : waves.front().n);
         return q;
     });
     std::atomic<uint64_t> rays{0};
-    std::atomic<uint64_t> wave_samples_done{0};  // waves times the samples they carried
+    std::atomic<uint64_t> paths_done{0};  // pixels times the samples carried for them
 
     // Passes of samples over all waves, as in the megakernel: each wave carries its pixels
     // through the pass's samples in order, so every pixel receives its samples in sample order
     // whatever the wave size, the thread count or which thread ran which wave, and a stop
     // between passes leaves every pixel with the same number of samples. Without a stop
     // function the render is one pass (the threads meet once, at the end); with one, passes
-    // last about config.pass_seconds.
+    // last about config.pass_seconds. The waves are taken in their order (one counter), so
+    // that the small ones at the end of the schedule are the last to start.
     int done = 0, chunk = 1;
     while (done < config.spp) {
         if (config.stop && config.stop(done)) break;
         const int count = config.stop ? std::min(chunk, config.spp - done) : config.spp - done;
         const uint32_t first_sample = static_cast<uint32_t>(config.first_sample + done);
         const auto pass_start = std::chrono::steady_clock::now();
+        std::atomic<size_t> next{0};
         tbb::parallel_for(
-            tbb::blocked_range<size_t>(0, waves, 1), [&](const tbb::blocked_range<size_t>& r) {
+            tbb::blocked_range<size_t>(0, threads, 1),
+            [&](const tbb::blocked_range<size_t>&) {
                 WaveQueues& q = queues.local();
                 uint64_t traced = 0;
-                for (size_t w = r.begin(); w < r.end(); ++w) {
-                    const size_t first = w * wave_size;
-                    const size_t n = std::min(wave_size, pixels - first);
+                for (size_t w; (w = next.fetch_add(1, std::memory_order_relaxed)) < waves.size();) {
+                    const WaveRange wave = waves[w];
                     for (uint32_t sample = first_sample; sample < first_sample + uint32_t(count);
                          ++sample)
-                        traced += wavefront_detail::run_wave(in, bvh, sample,
-                                                             static_cast<uint32_t>(first), n,
-                                                             wavefront.sort_by_material, q, film);
-                    const double finished = double(wave_samples_done.fetch_add(count) + count);
-                    if (progress) progress(finished / (double(waves) * config.spp));
+                        traced += wavefront_detail::run_wave(
+                            in, bvh, sample, static_cast<uint32_t>(wave.first), wave.n,
+                            wavefront.sort_by_material, q, film);
+                    const uint64_t carried = uint64_t(wave.n) * uint64_t(count);
+                    const double finished = double(paths_done.fetch_add(carried) + carried);
+                    if (progress) progress(finished / (double(pixels) * config.spp));
                 }
                 rays.fetch_add(traced, std::memory_order_relaxed);
-            });
+            },
+            tbb::simple_partitioner());
         done += count;
         const double seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - pass_start).count();

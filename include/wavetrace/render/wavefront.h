@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstddef>
+#include <vector>
 
 #include "wavetrace/render/film.h"
 #include "wavetrace/render/megakernel.h"
@@ -16,7 +17,7 @@ class Bvh;
 
 struct WavefrontConfig {
     // Most paths a thread carries through the stages at once (a wave holds one sample of
-    // consecutive pixels; small images are cut into smaller waves, a few per thread). 4096
+    // consecutive pixels; the waves shrink towards the end of a pass: wavefront_waves). 4096
     // paths keep a wave's queues (wavefront_bytes_per_path() each) within a core's L2 cache.
     size_t wave_size = 4096;
     // Whether each bounce's entries are reordered by material kind before shading (the
@@ -43,9 +44,18 @@ void render_wavefront(const Scene& scene,
 
 // Queue memory per path in flight, from the queue declarations.
 size_t wavefront_bytes_per_path();
-// The paths each thread carries at once in a render of `pixels` pixels on `threads` threads:
-// wave_size, or less where the image is cut into waves enough to keep every thread busy to the
-// end of a pass (at least 64 per thread, of at least 64 paths).
+// The waves a render of `pixels` pixels on `threads` threads is cut into, in the order the
+// threads take them: consecutive pixel ranges [first, first + n) of the pass order that cover
+// it once, guided self-scheduling (Polychronopoulos & Kuck, 1987): each wave takes a share
+// 1 / (2 threads) of the pixels left, at most wave_size and at least 128 (fewer only where
+// fewer are left), so waves start large and shrink towards the end of a pass, where the
+// threads wait for the last ones.
+struct WaveRange {
+    size_t first, n;
+};
+std::vector<WaveRange> wavefront_waves(size_t pixels, size_t threads,
+                                       const WavefrontConfig& wavefront);
+// The most paths a thread carries at once in such a render: its first wave's size.
 size_t wavefront_wave_size(size_t pixels, size_t threads, const WavefrontConfig& wavefront);
 
 }  // namespace wavetrace
