@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <cstring>
 #include <memory>
 #include <vector>
@@ -213,8 +214,10 @@ TEST(Bvh, ClosestHitMatchesBruteForceOnEverySimdTarget) {
             PrimHit best_hit{};
             PrimRef best_ref;
             int at_best = 0;
+            std::vector<Hit> all;  // every primitive the ray hits
             auto test = [&](bool h, const PrimHit& ph, PrimRef ref) {
                 if (!h) return;
+                all.push_back({ph.t, ref, ph.u, ph.v});
                 if (ph.t < best) {
                     best = ph.t;
                     best_hit = ph;
@@ -245,6 +248,16 @@ TEST(Bvh, ClosestHitMatchesBruteForceOnEverySimdTarget) {
             Hit hit = bvh.intersect(ray);
             ASSERT_EQ(hit.found(), best < kInfinity) << "ray " << i;
             ASSERT_EQ(bvh.occluded(ray), best < kInfinity) << "ray " << i;
+            // any_hit: one of the ray's hits, with that primitive's own numbers.
+            const Hit any = bvh.any_hit(ray);
+            ASSERT_EQ(any.found(), best < kInfinity) << "ray " << i;
+            if (any.found())
+                ASSERT_TRUE(std::any_of(all.begin(), all.end(),
+                                        [&](const Hit& h) {
+                                            return h.prim == any.prim && h.t == any.t &&
+                                                   h.u == any.u && h.v == any.v;
+                                        }))
+                    << "ray " << i;
             if (!hit.found()) continue;
             ++hits;
             ASSERT_EQ(hit.t, best) << "ray " << i;

@@ -210,6 +210,12 @@ bool Bvh::occluded(const Ray& ray) const {
     return wide_occluded(*wide_, ray);
 }
 
+Hit Bvh::any_hit(const Ray& ray) const {
+    Hit hit;
+    wide_any_hit(*wide_, ray, &hit);
+    return hit;
+}
+
 void Bvh::intersect_each(std::span<const Ray> rays, std::span<Hit> hits) const {
     wide_intersect_each(*wide_, rays.data(), std::min(rays.size(), hits.size()), hits.data());
 }

@@ -17,4 +17,11 @@ concept Intersector = requires(const T& t, const Ray& ray) {
     { t.occluded(ray) } -> std::same_as<bool>;
 };
 
+// One that also says which primitive an occlusion test stopped at (our BVH; Embree's
+// rtcOccluded1 does not): shadow rays through media use it to skip their closest-hit walk.
+template <class T>
+concept AnyHitIntersector = Intersector<T> && requires(const T& t, const Ray& ray) {
+    { t.any_hit(ray) } -> std::same_as<Hit>;
+};
+
 }  // namespace wavetrace

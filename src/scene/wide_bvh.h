@@ -110,6 +110,8 @@ WideBvh collapse_to_wide(const Scene& scene,
 // both; it runs on the best SIMD target this CPU supports (Highway's dynamic dispatch).
 bool wide_intersect(const WideBvh& bvh, const Ray& ray, Hit* hit);
 bool wide_occluded(const WideBvh& bvh, const Ray& ray);
+// The first hit the occlusion test finds, in [ray.tmin, ray.tmax] (any one, not the closest).
+bool wide_any_hit(const WideBvh& bvh, const Ray& ray, Hit* hit);
 // The same for n rays, traversed as packets of up to 8 (a vector's worth of rays: 8 on AVX2 and
 // AVX-512, 4 on SSE4 and NEON). For coherent rays, such as a pixel tile's camera rays or its
 // shadow rays towards one light.

@@ -428,7 +428,11 @@ HWY_INLINE bool Traverse(const WideBvh& bvh, const Ray& ray, Hit* hit) {
                         break;
                 }
                 if (hits.bits == 0) continue;
-                if constexpr (AnyHit) return true;
+                if constexpr (AnyHit) {  // the first lane that hits: which one blocks the ray
+                    const uint32_t l = static_cast<uint32_t>(__builtin_ctz(hits.bits));
+                    *hit = {hits.t[l], refs[l], hits.u[l], hits.v[l]};
+                    return true;
+                }
                 // The nearest lane; lanes are tested in order and a later one at equal t
                 // wins, as in a scalar loop with an inclusive tmax (a repeat of lane 0 gives
                 // lane 0's hit again).
@@ -685,6 +689,10 @@ bool OccludedWide(const WideBvh& bvh, const Ray& ray) {
     return Traverse<true>(bvh, ray, &unused);
 }
 
+bool AnyHitWide(const WideBvh& bvh, const Ray& ray, Hit* hit) {
+    return Traverse<true>(bvh, ray, hit);
+}
+
 // Rays one after the other in one call: the stream of a wave's incoherent rays without a
 // dispatch per ray.
 void IntersectEach(const WideBvh& bvh, const Ray* rays, size_t n, Hit* hits) {
@@ -714,6 +722,7 @@ namespace wavetrace {
 
 HWY_EXPORT(IntersectWide);
 HWY_EXPORT(OccludedWide);
+HWY_EXPORT(AnyHitWide);
 HWY_EXPORT(TargetName);
 HWY_EXPORT(IntersectPacket);
 HWY_EXPORT(OccludedPacket);
@@ -742,6 +751,10 @@ bool wide_intersect(const WideBvh& bvh, const Ray& ray, Hit* hit) {
 
 bool wide_occluded(const WideBvh& bvh, const Ray& ray) {
     return HWY_DYNAMIC_DISPATCH(OccludedWide)(bvh, ray);
+}
+
+bool wide_any_hit(const WideBvh& bvh, const Ray& ray, Hit* hit) {
+    return HWY_DYNAMIC_DISPATCH(AnyHitWide)(bvh, ray, hit);
 }
 
 const char* wide_simd_target() {

@@ -21,6 +21,23 @@ float transmittance(
         ++*rays;
         return bvh.occluded(ray) ? 0.0f : 1.0f;
     }
+    // Most shadow rays are blocked by a surface or cross no boundary at all: an occlusion test
+    // that says what it stopped at (where the intersector has one) settles both without the
+    // closest-hit walk below, which only a ray that meets a boundary first needs.
+    if constexpr (AnyHitIntersector<Tracer>) {
+        ++*rays;
+        const Hit any = bvh.any_hit(ray);
+        if (any.found()) {
+            const MaterialId material = scene.prim_material(any.prim);
+            if (material == kNone || scene.materials[material].kind != MaterialKind::Interface)
+                return 0.0f;
+        } else {
+            const MediumId m = media.current();
+            if (m == kNone) return 1.0f;
+            if (std::isinf(ray.tmax)) return 0.0f;  // an unbounded medium absorbs everything
+            return std::exp(-scene.media[m].density * (ray.tmax - ray.tmin) * length(ray.d));
+        }
+    }
     float tr = 1.0f;
     for (int crossing = 0; crossing < kMaxBoundaryCrossings; ++crossing) {
         ++*rays;

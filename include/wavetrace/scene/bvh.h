@@ -77,6 +77,9 @@ class Bvh {
     Hit intersect(const Ray& ray) const;
     // Whether anything is hit in [ray.tmin, ray.tmax].
     bool occluded(const Ray& ray) const;
+    // The hit that the occlusion test stops at: one in [ray.tmin, ray.tmax], the first found,
+    // not necessarily the closest (none if nothing is hit). Says what blocks a shadow ray.
+    Hit any_hit(const Ray& ray) const;
     // The same for rays.size() rays, traversed as packets of up to 8 rays: faster for coherent
     // rays (a pixel tile's camera rays, its shadow rays towards one light), the same results.
     void intersect_packet(std::span<const Ray> rays, std::span<Hit> hits) const;
