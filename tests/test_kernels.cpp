@@ -255,6 +255,50 @@ TEST(Kernels, CompactKeepsTheLiveEntriesInOrderAndWhole) {
     EXPECT_EQ(compact(std::vector<uint8_t>(n, 0), n, w.q.paths, w.q.rays), 0u);
 }
 
+// Over several of compact's blocks of entries: a block whose entries all stay where they are,
+// blocks that lose some, a block that keeps none; every field of every kept entry arrives.
+TEST(Kernels, CompactMovesEveryFieldAcrossBlocks) {
+    const size_t n = 1000;
+    PathQueue paths;
+    RayQueue rays;
+    paths.resize(n);
+    rays.resize(n);
+    std::vector<uint8_t> keep(n);
+    std::vector<size_t> expect;
+    for (size_t i = 0; i < n; ++i) {
+        const float f = float(i);
+        paths.store(i, PathQueue::Entry{.pixel = uint32_t(i),
+                                        .bounce = uint16_t(i % 40),
+                                        .crossings = uint8_t(i % 7),
+                                        .counts_fully = uint8_t(i % 2),
+                                        .beta = Color(f, f + 0.25f, f + 0.5f),
+                                        .radiance = Color(-f),
+                                        .prev_p = {f, 2 * f, 3 * f},
+                                        .prev_pdf = f + 0.125f,
+                                        .media = {},
+                                        .flight = f * 0.5f});
+        set_ray(rays, i, Ray{{f, -f, 1}, {0, 1, f}});
+        keep[i] = i < 300 ? 1 : i >= 768 ? 0 : (i * 7919) % 5 < 3;
+        if (keep[i]) expect.push_back(i);
+    }
+    ASSERT_EQ(compact(keep, n, paths, rays), expect.size());
+    for (size_t k = 0; k < expect.size(); ++k) {
+        const size_t i = expect[k];
+        const float f = float(i);
+        ASSERT_EQ(paths.pixel[k], uint32_t(i)) << k;
+        EXPECT_EQ(paths.bounce[k], uint16_t(i % 40)) << k;
+        EXPECT_EQ(paths.crossings[k], uint8_t(i % 7)) << k;
+        EXPECT_EQ(paths.counts_fully[k], uint8_t(i % 2)) << k;
+        EXPECT_EQ(paths.beta[k], Color(f, f + 0.25f, f + 0.5f)) << k;
+        EXPECT_EQ(paths.radiance[k], Color(-f)) << k;
+        EXPECT_EQ(paths.prev_p[k], (Point3{f, 2 * f, 3 * f})) << k;
+        EXPECT_EQ(paths.prev_pdf[k], f + 0.125f) << k;
+        EXPECT_EQ(paths.flight[k], f * 0.5f) << k;
+        EXPECT_EQ(rays.origin[k], (Point3{f, -f, 1})) << k;
+        EXPECT_EQ(rays.dir[k], (Vec3{0, 1, f})) << k;
+    }
+}
+
 TEST(Kernels, PackedMediaRoundTrip) {
     for (int size = 0; size <= MediumStack::kMaxNesting; ++size) {
         MediumStack s;

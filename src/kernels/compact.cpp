@@ -1,17 +1,29 @@
+#include <algorithm>
+#include <cstdint>
+
 #include "kernels/kernels.h"
 
 namespace wavetrace {
 
-// In place and stable: entry i only ever moves down to k <= i.
+// In place and stable: entry i only ever moves down to k <= i. A block of entries at a time:
+// first where each kept entry comes from, then each field moved for the whole block (a tight
+// loop per array rather than every array per entry).
 size_t compact(std::span<const uint8_t> keep, size_t n, PathQueue& paths, RayQueue& rays) {
+    constexpr size_t kBlock = 256;
     size_t k = 0;
-    for (size_t i = 0; i < n; ++i) {
-        if (!keep[i]) continue;
-        if (k != i) {
-            paths.move(k, i);
-            rays.move(k, i);
+    for (size_t b = 0; b < n; b += kBlock) {
+        const size_t end = std::min(n, b + kBlock);
+        uint32_t from[kBlock];
+        size_t m = 0;
+        for (size_t i = b; i < end; ++i) {
+            from[m] = static_cast<uint32_t>(i);
+            m += keep[i] != 0;
         }
-        ++k;
+        if (m > 0 && from[m - 1] != k + m - 1) {  // else every kept entry stays where it is
+            paths.gather(k, from, m);
+            rays.gather(k, from, m);
+        }
+        k += m;
     }
     return k;
 }

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <utility>
 #include <vector>
 
@@ -15,7 +16,11 @@
 #define WAVETRACE_SOA_BYTES_(type, name, comment) +sizeof(type)
 #define WAVETRACE_SOA_LOAD_(type, name, comment) e.name = name[i];
 #define WAVETRACE_SOA_STORE_(type, name, comment) name[i] = e.name;
-#define WAVETRACE_SOA_MOVE_(type, name, comment) name[to] = name[from];
+#define WAVETRACE_SOA_GATHER_(type, name, comment)                         \
+    {                                                                      \
+        type* field = name.data();                                         \
+        for (size_t j = 0; j < count; ++j) field[to + j] = field[from[j]]; \
+    }
 #define WAVETRACE_SOA_SWAP_(type, name, comment) std::swap(name[a], name[b]);
 
 #define WAVETRACE_SOA(Name, FIELDS)                                              \
@@ -36,6 +41,10 @@
             return e;                                                            \
         }                                                                        \
         void store(size_t i, const Entry& e) { FIELDS(WAVETRACE_SOA_STORE_) }    \
-        void move(size_t to, size_t from) { FIELDS(WAVETRACE_SOA_MOVE_) }        \
+        /* entries from[0..count) to to, to + 1, ...: one field at a time, in    \
+           place, from[j] >= to + j increasing */                                \
+        void gather(size_t to, const uint32_t* from, size_t count) {             \
+            FIELDS(WAVETRACE_SOA_GATHER_)                                        \
+        }                                                                        \
         void swap(size_t a, size_t b) { FIELDS(WAVETRACE_SOA_SWAP_) }            \
     }
