@@ -348,6 +348,12 @@ TEST(Bvh, PacketsGiveTheSingleRayResultsOnEverySimdTarget) {
             bvh.occluded_each(shadows, std::span<bool>(blocked.get(), shadows.size()));
             for (size_t i = 0; i < shadows.size(); ++i)
                 ASSERT_EQ(blocked[i], bvh.occluded(shadows[i])) << "shadow ray " << i;
+            std::vector<Hit> any(shadows.size());
+            bvh.any_hit_each(shadows, any);
+            for (size_t i = 0; i < shadows.size(); ++i) {
+                const Hit one = bvh.any_hit(shadows[i]);
+                ASSERT_EQ(std::memcmp(&any[i], &one, sizeof one), 0) << "shadow ray " << i;
+            }
         }
         use_wide_simd_target(0);
     }

@@ -225,6 +225,10 @@ void Bvh::occluded_each(std::span<const Ray> rays, std::span<bool> occluded) con
                        occluded.data());
 }
 
+void Bvh::any_hit_each(std::span<const Ray> rays, std::span<Hit> hits) const {
+    wide_any_hit_each(*wide_, rays.data(), std::min(rays.size(), hits.size()), hits.data());
+}
+
 void Bvh::intersect_packet(std::span<const Ray> rays, std::span<Hit> hits) const {
     wide_intersect_packet(*wide_, rays.data(), std::min(rays.size(), hits.size()), hits.data());
 }

@@ -120,6 +120,7 @@ void wide_occluded_packet(const WideBvh& bvh, const Ray* rays, size_t n, bool* o
 // wide_intersect / wide_occluded of n rays, one after the other, in one call.
 void wide_intersect_each(const WideBvh& bvh, const Ray* rays, size_t n, Hit* hits);
 void wide_occluded_each(const WideBvh& bvh, const Ray* rays, size_t n, bool* occluded);
+void wide_any_hit_each(const WideBvh& bvh, const Ray* rays, size_t n, Hit* hits);
 // The name of the SIMD target the traversal dispatches to on this CPU, e.g. "AVX2".
 const char* wide_simd_target();
 // For tests: the targets compiled in and supported by this CPU (Highway's HWY_* bits), and

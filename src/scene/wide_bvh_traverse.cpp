@@ -709,6 +709,13 @@ void OccludedEach(const WideBvh& bvh, const Ray* rays, size_t n, bool* occluded)
     }
 }
 
+void AnyHitEach(const WideBvh& bvh, const Ray* rays, size_t n, Hit* hits) {
+    for (size_t i = 0; i < n; ++i) {
+        hits[i] = Hit{};
+        Traverse<true>(bvh, rays[i], &hits[i]);
+    }
+}
+
 const char* TargetName() {
     return hwy::TargetName(HWY_TARGET);
 }
@@ -728,6 +735,7 @@ HWY_EXPORT(IntersectPacket);
 HWY_EXPORT(OccludedPacket);
 HWY_EXPORT(IntersectEach);
 HWY_EXPORT(OccludedEach);
+HWY_EXPORT(AnyHitEach);
 
 void wide_intersect_each(const WideBvh& bvh, const Ray* rays, size_t n, Hit* hits) {
     HWY_DYNAMIC_DISPATCH(IntersectEach)(bvh, rays, n, hits);
@@ -735,6 +743,10 @@ void wide_intersect_each(const WideBvh& bvh, const Ray* rays, size_t n, Hit* hit
 
 void wide_occluded_each(const WideBvh& bvh, const Ray* rays, size_t n, bool* occluded) {
     HWY_DYNAMIC_DISPATCH(OccludedEach)(bvh, rays, n, occluded);
+}
+
+void wide_any_hit_each(const WideBvh& bvh, const Ray* rays, size_t n, Hit* hits) {
+    HWY_DYNAMIC_DISPATCH(AnyHitEach)(bvh, rays, n, hits);
 }
 
 void wide_intersect_packet(const WideBvh& bvh, const Ray* rays, size_t n, Hit* hits) {

@@ -11,33 +11,29 @@
 
 namespace wavetrace {
 
-// Fraction of light that gets through along a shadow ray: 0 if a surface blocks it, else the
-// product of exp(-density * length) over the media it crosses (boundaries without a surface
-// let it through). `media` is the stack at the ray's origin. Counts the rays it traces.
+// transmittance (below) once an occlusion test has said what it stopped at (`any`, none if
+// nothing): 0 for a surface, that of the one medium crossed for nothing at all, or -1 for a medium
+// boundary, where only the closest-hit walk can tell.
+inline float transmittance_after_any_hit(const Scene& scene,
+                                         const Ray& ray,
+                                         const MediumStack& media,
+                                         const Hit& any) {
+    if (any.found()) {
+        const MaterialId material = scene.prim_material(any.prim);
+        return material == kNone || scene.materials[material].kind != MaterialKind::Interface
+                   ? 0.0f
+                   : -1.0f;
+    }
+    const MediumId m = media.current();
+    if (m == kNone) return 1.0f;
+    if (std::isinf(ray.tmax)) return 0.0f;  // an unbounded medium absorbs everything
+    return std::exp(-scene.media[m].density * (ray.tmax - ray.tmin) * length(ray.d));
+}
+
+// transmittance (below) by walking from closest hit to closest hit, stepping over boundaries.
 template <Intersector Tracer>
-float transmittance(
+float transmittance_walk(
     const Scene& scene, const Tracer& bvh, Ray ray, MediumStack media, uint64_t* rays) {
-    if (scene.media.empty()) {
-        ++*rays;
-        return bvh.occluded(ray) ? 0.0f : 1.0f;
-    }
-    // Most shadow rays are blocked by a surface or cross no boundary at all: an occlusion test
-    // that says what it stopped at (where the intersector has one) settles both without the
-    // closest-hit walk below, which only a ray that meets a boundary first needs.
-    if constexpr (AnyHitIntersector<Tracer>) {
-        ++*rays;
-        const Hit any = bvh.any_hit(ray);
-        if (any.found()) {
-            const MaterialId material = scene.prim_material(any.prim);
-            if (material == kNone || scene.materials[material].kind != MaterialKind::Interface)
-                return 0.0f;
-        } else {
-            const MediumId m = media.current();
-            if (m == kNone) return 1.0f;
-            if (std::isinf(ray.tmax)) return 0.0f;  // an unbounded medium absorbs everything
-            return std::exp(-scene.media[m].density * (ray.tmax - ray.tmin) * length(ray.d));
-        }
-    }
     float tr = 1.0f;
     for (int crossing = 0; crossing < kMaxBoundaryCrossings; ++crossing) {
         ++*rays;
@@ -62,6 +58,28 @@ float transmittance(
         ray.tmin = 0.0f;
     }
     return 0.0f;
+}
+
+// Fraction of light that gets through along a shadow ray: 0 if a surface blocks it, else the
+// product of exp(-density * length) over the media it crosses (boundaries without a surface
+// let it through). `media` is the stack at the ray's origin. Counts the rays it traces.
+template <Intersector Tracer>
+float transmittance(
+    const Scene& scene, const Tracer& bvh, Ray ray, MediumStack media, uint64_t* rays) {
+    if (scene.media.empty()) {
+        ++*rays;
+        return bvh.occluded(ray) ? 0.0f : 1.0f;
+    }
+    // Most shadow rays are blocked by a surface or cross no boundary at all: an occlusion test
+    // that says what it stopped at (where the intersector has one) settles both without the
+    // closest-hit walk, which only a ray that meets a boundary first needs.
+    if constexpr (AnyHitIntersector<Tracer>) {
+        ++*rays;
+        if (const float tr = transmittance_after_any_hit(scene, ray, media, bvh.any_hit(ray));
+            tr >= 0.0f)
+            return tr;
+    }
+    return transmittance_walk(scene, bvh, ray, media, rays);
 }
 
 // The media containing point p, found by walking a ray out of the scene and pairing the

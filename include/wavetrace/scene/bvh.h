@@ -88,6 +88,7 @@ class Bvh {
     // a stream of rays pays for the choice of SIMD target once, not once per ray.
     void intersect_each(std::span<const Ray> rays, std::span<Hit> hits) const;
     void occluded_each(std::span<const Ray> rays, std::span<bool> occluded) const;
+    void any_hit_each(std::span<const Ray> rays, std::span<Hit> hits) const;
 
     std::span<const BvhNode> nodes() const { return nodes_; }
     std::span<const PrimRef> prims() const { return prims_; }  // in leaf order
