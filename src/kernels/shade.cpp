@@ -51,6 +51,37 @@ bool lane_material(const Scene& scene, MaterialId m, BsdfParams* bsdf) {
     return mat.kind == MaterialKind::Lambertian || bsdf->alpha > 0.0f;  // not a mirror
 }
 
+// The same for a Lambertian or rough metal material whose albedo is another texture (an image,
+// a noise, a checker): its vertices go through the lanes as well, with their albedo looked up
+// once the block has resolved the hit's point and normal (textured_albedo).
+bool lane_textured_material(const Scene& scene, MaterialId m) {
+    if (m == kNone) return false;
+    const Material& mat = scene.materials[m];
+    if (!(mat.kind == MaterialKind::Lambertian || mat.kind == MaterialKind::Metal) ||
+        mat.albedo == kNone)
+        return false;
+    return mat.kind == MaterialKind::Lambertian || material_bsdf(mat, Color(0.0f)).alpha > 0.0f;
+}
+
+// A block row of material m resolved from a hit on a sphere or a quad: surface_vertex's BSDF,
+// from surface_at's texture coordinates (the sphere's from its outward normal, the quad's the
+// hit's (u, v)) and the resolved point.
+struct TexturedRow {
+    size_t row;
+    MaterialId material;
+    bool sphere;
+};
+void textured_albedo(const Scene& scene, const TexturedRow& t, SurfaceBlock& block) {
+    const size_t k = t.row;
+    const Point3 p = block_row(block.p, k);
+    const Vec2 uv =
+        t.sphere ? sphere_uv(block_row(block.ng, k)) : Vec2{block.hit_u[k], block.hit_v[k]};
+    const Material& mat = scene.materials[t.material];
+    const BsdfParams bsdf = material_bsdf(mat, eval_texture(scene, mat.albedo, uv, p));
+    for (int a = 0; a < 3; ++a) block.albedo[a][k] = bsdf.albedo[a];
+    block.alpha[k] = bsdf.alpha;
+}
+
 // A chunk's mesh hits read a triangle record and then its vertices' positions and normals, from
 // arrays that outgrow the L2 on a large mesh (the dragon's: 3 MiB). The wavefront knows every hit
 // before it shades one, so it asks for them ahead: the chunk's triangle records at its start,
@@ -126,7 +157,9 @@ bool shade_quickly(const WaveInputs& in,
                    std::span<uint8_t> keep,
                    SurfaceBlock& block,
                    DeferredLightSample* deferred,
-                   size_t& deferred_count) {
+                   size_t& deferred_count,
+                   TexturedRow* textured,
+                   size_t& textured_count) {
     const Scene& scene = in.scene;
     const PrimRef prim = hits.prim[i];
     const int bounce = paths.bounce[i];
@@ -186,7 +219,13 @@ bool shade_quickly(const WaveInputs& in,
         return true;
     }
     BsdfParams bsdf;
-    if (!lanes || !lane_material(scene, m, &bsdf)) return false;
+    bool texture = false;
+    if (!lanes) return false;
+    if (!lane_material(scene, m, &bsdf)) {
+        if (tri || !lane_textured_material(scene, m)) return false;
+        texture = true;
+        bsdf = material_bsdf(scene.materials[m], Color(0.0f));  // the albedo comes later
+    }
     if (!may_scatter(in.config, bounce)) return true;  // the path ends here, with nothing found
     size_t row;
     if (tri) {
@@ -207,6 +246,7 @@ bool shade_quickly(const WaveInputs& in,
         row = block.push_sphere_hit(i, ray.d, ray.at(hits.t[i]), scene.spheres[index], bsdf,
                                     paths.beta[i]);
     }
+    if (texture) textured[textured_count++] = {row, m, prim.kind() == PrimKind::Sphere};
     sample_and_step(row);
     return true;
 }
@@ -235,6 +275,7 @@ size_t shade(const WaveInputs& in,
     SampleBlock samples;
     SurfaceBlock block;
     DeferredLightSample deferred[kShadeChunk];
+    TexturedRow textured[kShadeChunk];
     const bool prefetch = prefetches_meshes(in.scene);
     MediumSegmentBlock segments;
     const bool flights = !in.scene.media.empty();  // else segment_flight() is 0
@@ -265,7 +306,7 @@ size_t shade(const WaveInputs& in,
             medium_segments(segments, chunk_end - c);
         }
         block.n = 0;
-        size_t deferred_count = 0;
+        size_t deferred_count = 0, textured_count = 0;
         if (prefetch) prefetch_triangles(in.scene, hits, c, chunk_end);
         for (size_t i = c; i < chunk_end; ++i) {
             keep[i] = 0;
@@ -274,7 +315,8 @@ size_t shade(const WaveInputs& in,
 
             // ---- a vertex in lanes, a boundary crossed, an escape into the dark ----
             if (shade_quickly(in, i, i - c, samples, segments, hits, resolve_in_lanes, nee, rays,
-                              paths, keep, block, deferred, deferred_count))
+                              paths, keep, block, deferred, deferred_count, textured,
+                              textured_count))
                 continue;
 
             // ---- the segment: medium, emission, boundary or surface ----
@@ -329,6 +371,7 @@ size_t shade(const WaveInputs& in,
         }
 
         resolve_surface_hits(block);
+        for (size_t j = 0; j < textured_count; ++j) textured_albedo(in.scene, textured[j], block);
         for (size_t j = 0; j < deferred_count; ++j) {
             const DeferredLightSample& l = deferred[j];
             const size_t k = l.row;

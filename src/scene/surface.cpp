@@ -11,6 +11,13 @@ namespace wavetrace {
 namespace lanes = HWY_NAMESPACE;
 using lanes::OneLane, lanes::to_lanes, lanes::to_vec3;
 
+// The seed's sphere mapping: u = phi / 2 pi around -x..+z.., v = theta / pi from -y.
+Vec2 sphere_uv(Normal3 ng) {
+    const float theta = std::acos(std::fmax(-1.0f, std::fmin(1.0f, -ng.y)));
+    const float phi = std::atan2(-ng.z, ng.x) + kPi;
+    return {phi * (0.5f * kInvPi), theta * kInvPi};
+}
+
 SurfaceHit surface_at(const Scene& scene, const Ray& ray, const Hit& hit) {
     SurfaceHit s;
     s.p = ray.at(hit.t);
@@ -56,15 +63,12 @@ SurfaceHit surface_at(const Scene& scene, const Ray& ray, const Hit& hit) {
             const Sphere& sp = scene.spheres[i];
             s.ng = s.ns = to_vec3(
                 lanes::SpherePoint<OneLane>(to_lanes(s.p), to_lanes(sp.center), sp.radius).ng);
-            // The seed's sphere mapping: u = phi / 2 pi around -x..+z.., v = theta / pi from -y.
-            // An acos and an atan2 (7% of a render of spheres lit by spheres), so only where a
-            // texture of the sphere's material reads it.
+            // sphere_uv: an acos and an atan2 (7% of a render of spheres lit by spheres), so only
+            // where a texture of the sphere's material reads it.
             if (sp.material != kNone &&
                 (texture_reads_uv(scene, scene.materials[sp.material].albedo) ||
                  texture_reads_uv(scene, scene.materials[sp.material].emission))) {
-                float theta = std::acos(std::fmax(-1.0f, std::fmin(1.0f, -s.ng.y)));
-                float phi = std::atan2(-s.ng.z, s.ng.x) + kPi;
-                s.uv = {phi * (0.5f * kInvPi), theta * kInvPi};
+                s.uv = sphere_uv(s.ng);
             }
             s.material = sp.material;
             s.interior = sp.interior;
