@@ -16,24 +16,32 @@ namespace wavetrace {
 constexpr size_t kGuidedShare = 2;
 constexpr size_t kMinWave = 128;
 
-std::vector<WaveRange> wavefront_waves(size_t pixels, size_t threads,
-                                       const WavefrontConfig& wavefront) {
+namespace {
+
+// The size of the wave taken when `left` of `pixels` pixels are left.
+size_t guided_wave(size_t left, size_t pixels, size_t threads, const WavefrontConfig& wavefront) {
     const size_t most = std::max<size_t>(1, std::min(wavefront.wave_size, pixels));
     const size_t parts = kGuidedShare * std::max<size_t>(threads, 1);
+    return std::min(left, std::clamp((left + parts - 1) / parts, std::min(kMinWave, most), most));
+}
+
+}  // namespace
+
+std::vector<WaveRange> wavefront_waves(size_t pixels,
+                                       size_t threads,
+                                       const WavefrontConfig& wavefront) {
     std::vector<WaveRange> waves;
     for (size_t first = 0; first < pixels;) {
-        const size_t left = pixels - first;
-        const size_t n =
-            std::min(left, std::clamp((left + parts - 1) / parts, std::min(kMinWave, most), most));
+        const size_t n = guided_wave(pixels - first, pixels, threads, wavefront);
         waves.push_back({first, n});
         first += n;
     }
     return waves;
 }
 
+// The first wave is the largest: the share of what is left only shrinks.
 size_t wavefront_wave_size(size_t pixels, size_t threads, const WavefrontConfig& wavefront) {
-    const std::vector<WaveRange> waves = wavefront_waves(pixels, threads, wavefront);
-    return waves.empty() ? 1 : waves.front().n;
+    return pixels == 0 ? 1 : guided_wave(pixels, pixels, threads, wavefront);
 }
 
 size_t wavefront_bytes_per_path() {

@@ -20,19 +20,29 @@ concept StreamIntersector = Intersector<T> &&
 // Rays gathered from the queue kBatch at a time, for the batch calls below.
 inline constexpr size_t kRayBatch = 64;
 
+// Rays [begin, end) of the queue gathered kRayBatch at a time, each batch's hits from
+// trace(rays, hits) stored back: the loop of the batch calls below.
+template <class Trace>
+void trace_in_batches(
+    const RayQueue& rays, size_t begin, size_t end, HitQueue& hits, const Trace& trace) {
+    Ray batch[kRayBatch];
+    Hit found[kRayBatch];
+    for (size_t b = begin; b < end; b += kRayBatch) {
+        const size_t m = std::min(kRayBatch, end - b);
+        for (size_t k = 0; k < m; ++k) batch[k] = ray_at(rays, b + k);
+        trace(std::span<const Ray>(batch, m), std::span<Hit>(found, m));
+        for (size_t k = 0; k < m; ++k) set_hit(hits, b + k, found[k]);
+    }
+}
+
 // Closest hit of rays[i] into hits[i].
 template <Intersector Tracer>
 void intersect(
     const Tracer& tracer, const RayQueue& rays, size_t begin, size_t end, HitQueue& hits) {
     if constexpr (StreamIntersector<Tracer>) {
-        Ray batch[kRayBatch];
-        Hit found[kRayBatch];
-        for (size_t b = begin; b < end; b += kRayBatch) {
-            const size_t m = std::min(kRayBatch, end - b);
-            for (size_t k = 0; k < m; ++k) batch[k] = ray_at(rays, b + k);
-            tracer.intersect_each(std::span<const Ray>(batch, m), std::span<Hit>(found, m));
-            for (size_t k = 0; k < m; ++k) set_hit(hits, b + k, found[k]);
-        }
+        trace_in_batches(rays, begin, end, hits, [&](std::span<const Ray> r, std::span<Hit> h) {
+            tracer.intersect_each(r, h);
+        });
     } else {
         for (size_t i = begin; i < end; ++i) set_hit(hits, i, tracer.intersect(ray_at(rays, i)));
     }
@@ -53,14 +63,9 @@ template <Intersector Tracer>
 void intersect_coherent(
     const Tracer& tracer, const RayQueue& rays, size_t begin, size_t end, HitQueue& hits) {
     if constexpr (PacketIntersector<Tracer>) {
-        Ray batch[kRayBatch];
-        Hit found[kRayBatch];
-        for (size_t b = begin; b < end; b += kRayBatch) {
-            const size_t m = std::min(kRayBatch, end - b);
-            for (size_t k = 0; k < m; ++k) batch[k] = ray_at(rays, b + k);
-            tracer.intersect_packet(std::span<const Ray>(batch, m), std::span<Hit>(found, m));
-            for (size_t k = 0; k < m; ++k) set_hit(hits, b + k, found[k]);
-        }
+        trace_in_batches(rays, begin, end, hits, [&](std::span<const Ray> r, std::span<Hit> h) {
+            tracer.intersect_packet(r, h);
+        });
     } else {
         intersect(tracer, rays, begin, end, hits);
     }

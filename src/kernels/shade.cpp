@@ -38,29 +38,21 @@ void advance(size_t i,
     keep[i] = 1;
 }
 
-// The BSDF surface_vertex gives material m, if it is Lambertian or a rough metal of constant
-// albedo (a Solid texture): the materials whose surface vertices shade needs nothing of but the
-// hit's point and normals.
-bool lane_material(const Scene& scene, MaterialId m, BsdfParams* bsdf) {
-    if (m == kNone) return false;
-    const Material& mat = scene.materials[m];
-    if (!(mat.kind == MaterialKind::Lambertian || mat.kind == MaterialKind::Metal) ||
-        mat.albedo == kNone || scene.textures[mat.albedo].kind != TextureKind::Solid)
-        return false;
-    *bsdf = material_bsdf(mat, scene.textures[mat.albedo].color);
-    return mat.kind == MaterialKind::Lambertian || bsdf->alpha > 0.0f;  // not a mirror
-}
-
-// The same for a Lambertian or rough metal material whose albedo is another texture (an image,
-// a noise, a checker): its vertices go through the lanes as well, with their albedo looked up
-// once the block has resolved the hit's point and normal (textured_albedo).
-bool lane_textured_material(const Scene& scene, MaterialId m) {
+// The BSDF surface_vertex gives material m, if it is Lambertian or a rough metal: the materials
+// whose surface vertices shade needs nothing of but the hit's point and normals, and, where the
+// albedo is a texture other than a Solid one (an image, a noise, a checker; *textured), its
+// texture coordinates: that albedo is looked up once the block has resolved the hit
+// (textured_albedo), and *bsdf holds albedo 0 until then.
+bool lane_material(const Scene& scene, MaterialId m, BsdfParams* bsdf, bool* textured) {
     if (m == kNone) return false;
     const Material& mat = scene.materials[m];
     if (!(mat.kind == MaterialKind::Lambertian || mat.kind == MaterialKind::Metal) ||
         mat.albedo == kNone)
         return false;
-    return mat.kind == MaterialKind::Lambertian || material_bsdf(mat, Color(0.0f)).alpha > 0.0f;
+    const Texture& albedo = scene.textures[mat.albedo];
+    *textured = albedo.kind != TextureKind::Solid;
+    *bsdf = material_bsdf(mat, *textured ? Color(0.0f) : albedo.color);
+    return mat.kind == MaterialKind::Lambertian || bsdf->alpha > 0.0f;  // not a mirror
 }
 
 // A block row of material m resolved from a hit on a sphere or a quad: surface_vertex's BSDF,
@@ -140,7 +132,8 @@ void cross(size_t i,
 
 // Shades entry i without resolve_segment where its segment needs none of it: where the path
 // scatters in a medium of isotropic phase function, or reaches a hit on a Lambertian or rough
-// metal quad, triangle or sphere of constant albedo (lane_material), the vertex becomes a row of
+// metal quad, triangle or sphere (lane_material; of textured albedo only a quad or a sphere),
+// the vertex becomes a row of
 // the block (or nothing, at the last bounce: there resolve_segment finds no emission, and the
 // vertex takes the lane step) when `lanes`; where it escapes into a black background it ends;
 // where it reaches a medium boundary it crosses. False for the scalar path.
@@ -220,12 +213,8 @@ bool shade_quickly(const WaveInputs& in,
     }
     BsdfParams bsdf;
     bool texture = false;
-    if (!lanes) return false;
-    if (!lane_material(scene, m, &bsdf)) {
-        if (tri || !lane_textured_material(scene, m)) return false;
-        texture = true;
-        bsdf = material_bsdf(scene.materials[m], Color(0.0f));  // the albedo comes later
-    }
+    // Textured meshes stay scalar: their texture coordinates come from the mesh's vertices.
+    if (!lanes || !lane_material(scene, m, &bsdf, &texture) || (texture && tri)) return false;
     if (!may_scatter(in.config, bounce)) return true;  // the path ends here, with nothing found
     size_t row;
     if (tri) {
