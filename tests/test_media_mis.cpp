@@ -81,3 +81,31 @@ TEST(Media, TransmittanceIsAnalyticThroughNestedBoundaries) {
     float across = transmittance(s, bvh, Ray{{0, 0.5f, -30}, {0, 0, 1}, 0, 60}, outside, &rays);
     EXPECT_NEAR(across, std::exp(-0.1f * 18 - 0.5f * 2), 1e-4f);
 }
+
+TEST(Media, UnboundedShadowRaysAbsorbUnlessTheMediumIsEmpty) {
+    // A shadow ray to the environment (tmax infinity) from inside a medium that fills the scene
+    // with nothing around it: a medium that extinguishes anything absorbs it all; one of
+    // density 0 (possible from the C++ API) lets it all through, as the free-flight sampling
+    // does, which never scatters there and lets the path reach the background.
+    for (float density : {0.0f, 0.3f}) {
+        Scene s;
+        const MediumId m = s.add_medium("m", density, s.add_solid(Color(1.0f)));
+        MediumStack media;
+        media.push(m);
+        Material wall;
+        wall.kind = MaterialKind::Lambertian;
+        wall.albedo = s.add_solid(Color(0.5f));
+        s.add_quad({{20, -5, -5}, {0, 10, 0}, {0, 0, 10}, s.add_material(wall), kNone});
+        Bvh bvh = Bvh::build(s);
+        uint64_t rays = 0;
+        const Ray escape{{0, 0, 0}, {0, 1, 0}, 0, kInfinity};
+        const float expected = density > 0 ? 0.0f : 1.0f;
+        EXPECT_EQ(transmittance(s, bvh, escape, media, &rays), expected) << density;
+        EXPECT_EQ(transmittance_walk(s, bvh, escape, media, &rays), expected) << density;
+        // A bounded one: exp(-density * 4) either way.
+        EXPECT_FLOAT_EQ(transmittance(s, bvh, Ray{{0, 0, 0}, {0, 2, 0}, 0, 2}, media, &rays),
+                        std::exp(-density * 4));
+        float flight = 1.0f, dist = 0;
+        EXPECT_EQ(scatters_in_medium(s, m, escape, Hit{}, 1.0f, flight, &dist), density > 0);
+    }
+}

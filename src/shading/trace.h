@@ -11,6 +11,15 @@
 
 namespace wavetrace {
 
+// Beer-Lambert transmittance exp(-density * length) through one homogeneous medium. An
+// unbounded segment (length infinity) in a medium that extinguishes anything absorbs
+// everything; one of density 0 lets everything through (exp(-0 * inf) would be NaN), as the
+// free-flight sampling does, which never scatters there.
+inline float medium_transmittance(float density, float length) {
+    if (!(density > 0.0f)) return 1.0f;
+    return std::isinf(length) ? 0.0f : std::exp(-density * length);
+}
+
 // transmittance (below) once an occlusion test has said what it stopped at (`any`, none if
 // nothing): 0 for a surface, that of the one medium crossed for nothing at all, or -1 for a medium
 // boundary, where only the closest-hit walk can tell.
@@ -26,8 +35,7 @@ inline float transmittance_after_any_hit(const Scene& scene,
     }
     const MediumId m = media.current();
     if (m == kNone) return 1.0f;
-    if (std::isinf(ray.tmax)) return 0.0f;  // an unbounded medium absorbs everything
-    return std::exp(-scene.media[m].density * (ray.tmax - ray.tmin) * length(ray.d));
+    return medium_transmittance(scene.media[m].density, (ray.tmax - ray.tmin) * length(ray.d));
 }
 
 // transmittance (below) by walking from closest hit to closest hit, stepping over boundaries.
@@ -40,10 +48,9 @@ float transmittance_walk(
         Hit hit = bvh.intersect(ray);
         float end = hit.found() ? hit.t : ray.tmax;
         MediumId m = media.current();
-        if (m != kNone) {
-            if (std::isinf(end)) return 0.0f;  // an unbounded medium absorbs everything
-            tr *= std::exp(-scene.media[m].density * (end - ray.tmin) * length(ray.d));
-        }
+        if (m != kNone)
+            tr *= medium_transmittance(scene.media[m].density, (end - ray.tmin) * length(ray.d));
+        if (tr == 0.0f) return 0.0f;
         if (!hit.found()) return tr;
         // A surface blocks it; only a boundary needs the point, to step over it.
         const MaterialId material = scene.prim_material(hit.prim);
