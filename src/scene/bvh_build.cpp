@@ -292,7 +292,9 @@ Bvh Bvh::build(const Scene& scene, const BvhBuildConfig& config) {
     flatten(flatten, *root, 1);
     bvh.nodes_.shrink_to_fit();
 
-    *bvh.wide_ = collapse_to_wide(scene, bvh.nodes_, bvh.prims_);
+    *bvh.wide_ = collapse_to_wide(scene, bvh.nodes_, bvh.prims_,
+                                  {config.traversal_cost, config.intersection_cost,
+                                   static_cast<uint32_t>(std::max(config.max_leaf_size, 1))});
 
     stats.nodes = bvh.nodes_.size();
     stats.bytes = bvh.nodes_.size() * sizeof(BvhNode) + bvh.prims_.size() * sizeof(PrimRef);

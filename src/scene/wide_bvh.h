@@ -101,10 +101,19 @@ inline LeafBlock leaf_block(const WideBvh& bvh, uint32_t code, uint32_t j) {
     return {static_cast<PrimKind>(kind), used, index};
 }
 
+// The SAH costs the collapse weighs (BvhBuildConfig's), and the most primitives a leaf of the
+// wide tree may hold.
+struct WideCollapseCosts {
+    float traversal = 1.0f;
+    float intersection = 1.0f;
+    uint32_t max_leaf_size = 16;
+};
+
 // Collapses a built binary tree (nodes in depth-first order, leaves indexing `prims`).
 WideBvh collapse_to_wide(const Scene& scene,
                          std::span<const BvhNode> nodes,
-                         std::span<const PrimRef> prims);
+                         std::span<const PrimRef> prims,
+                         const WideCollapseCosts& costs);
 
 // Closest hit in [ray.tmin, ray.tmax] / whether anything is hit there. One traversal serves
 // both; it runs on the best SIMD target this CPU supports (Highway's dynamic dispatch).

@@ -1,5 +1,7 @@
-// Collapsing the binary SAH tree into the wide traversal layout.
+// Collapsing the binary SAH tree into the wide traversal layout: which binary subtrees become
+// wide nodes, which become leaves, and which share their parent's slots.
 #include <algorithm>
+#include <array>
 #include <limits>
 #include <stdexcept>
 
@@ -11,44 +13,122 @@ namespace {
 
 class Collapser {
   public:
-    Collapser(const Scene& scene, std::span<const BvhNode> nodes, std::span<const PrimRef> prims)
-        : scene_(scene), nodes_(nodes), prims_(prims) {}
+    Collapser(const Scene& scene,
+              std::span<const BvhNode> nodes,
+              std::span<const PrimRef> prims,
+              const WideCollapseCosts& costs)
+        : scene_(scene), nodes_(nodes), prims_(prims), costs_(costs) {}
 
     WideBvh run() {
-        if (!nodes_.empty()) node(0);
+        if (nodes_.empty()) return std::move(out_);
+        plan();
+        // The root is a wide node even where the whole scene is one leaf.
+        const Choice& root = choice_[0];
+        if (!root.leaf) {
+            wide_node(0);
+        } else {
+            out_.nodes.push_back(empty_node());
+            const uint32_t code = leaf(first_[0], count_[0]);
+            set_child(0, 0, 0, code);
+        }
         return std::move(out_);
     }
 
   private:
-    // A wide node's children are the binary subtree's frontier after opening, largest surface
-    // area first, interior binary nodes until kWideNodeWidth children are reached: big boxes are
-    // the ones most rays enter, so they are the ones worth testing side by side (Embree's
-    // BVH8 collapse). A binary leaf at the root becomes a wide root with one leaf child.
-    uint32_t node(uint32_t binary) {
-        std::vector<uint32_t> children;
-        if (nodes_[binary].is_leaf()) {
-            children.push_back(binary);
-        } else {
-            children = {binary + 1, nodes_[binary].offset};
-        }
-        while (children.size() < size_t(kWideNodeWidth)) {
-            int open = -1;
-            float largest = -1.0f;
-            for (size_t i = 0; i < children.size(); ++i) {
-                const BvhNode& c = nodes_[children[i]];
-                if (!c.is_leaf() && c.bounds().half_area() > largest) {
-                    largest = c.bounds().half_area();
-                    open = static_cast<int>(i);
+    // ---- the collapse: which binary subtrees become wide nodes, leaves, or share a parent ----
+    // Dynamic programming over the binary tree (Ylitie, Karras and Laine, "Efficient Incoherent
+    // Ray Traversal on GPUs Through Compressed Wide BVHs", HPG 2017, §4.1), with the SAH as the
+    // cost: cost[n][i] is the least expected cost of binary subtree n spread over at most i
+    // slots of a wide node (i = 1: n itself in one slot, as a leaf or as a wide node of its
+    // own). A wide node costs its box's area times the traversal cost (one visit tests all its
+    // children's boxes); a leaf its area times the blocks it holds. Unlike opening the largest
+    // child first until 8 are found, this fills nodes where that pays and makes whole subtrees
+    // leaves where their primitives share blocks.
+    struct Choice {
+        float cost[kWideNodeWidth + 1];     // [i], i = 1 .. kWideNodeWidth
+        uint8_t split[kWideNodeWidth + 1];  // [i >= 2]: slots of the left child; 0: use i - 1
+        uint8_t node_split;                 // as a wide node: slots of the left child
+        bool leaf;                          // [1]: a leaf rather than a wide node
+    };
+
+    float leaf_cost(uint32_t n, const uint32_t kinds[3]) const {
+        float blocks = 0;
+        for (int k = 0; k < 3; ++k)
+            blocks += static_cast<float>((kinds[k] + kLeafBlockWidth - 1) / kLeafBlockWidth);
+        return nodes_[n].bounds().half_area() * costs_.intersection * blocks;
+    }
+
+    void plan() {
+        const size_t n_nodes = nodes_.size();
+        choice_.assign(n_nodes, {});
+        first_.assign(n_nodes, 0);
+        count_.assign(n_nodes, 0);
+        std::vector<std::array<uint32_t, 3>> kinds(n_nodes, {0, 0, 0});
+        // Children come after their parent in the depth-first order: go backwards.
+        for (size_t idx = n_nodes; idx-- > 0;) {
+            const uint32_t n = static_cast<uint32_t>(idx);
+            const BvhNode& b = nodes_[n];
+            Choice& c = choice_[n];
+            if (b.is_leaf()) {
+                for (uint32_t i = b.offset; i < b.offset + b.count; ++i)
+                    kinds[n][static_cast<size_t>(prims_[i].kind())]++;
+                first_[n] = b.offset;
+                count_[n] = b.count;
+                c.leaf = true;
+                c.cost[1] = leaf_cost(n, kinds[n].data());
+                for (int i = 2; i <= kWideNodeWidth; ++i) {
+                    c.cost[i] = c.cost[1];
+                    c.split[i] = 0;
+                }
+                continue;
+            }
+            const uint32_t l = n + 1, r = b.offset;
+            for (int k = 0; k < 3; ++k) kinds[n][k] = kinds[l][k] + kinds[r][k];
+            first_[n] = first_[l];
+            count_[n] = count_[l] + count_[r];
+            // The two children over j slots.
+            float spread[kWideNodeWidth + 1];
+            uint8_t best_split[kWideNodeWidth + 1];
+            for (int j = 2; j <= kWideNodeWidth; ++j) {
+                spread[j] = std::numeric_limits<float>::infinity();
+                best_split[j] = 1;  // stays valid where every cost is infinite
+                for (int k = 1; k < j; ++k) {
+                    const float cost = choice_[l].cost[k] + choice_[r].cost[j - k];
+                    if (cost < spread[j]) {
+                        spread[j] = cost;
+                        best_split[j] = static_cast<uint8_t>(k);
+                    }
                 }
             }
-            if (open < 0) break;
-            uint32_t b = children[open];
-            children[open] = b + 1;
-            children.push_back(nodes_[b].offset);
+            const float as_node =
+                b.bounds().half_area() * costs_.traversal + spread[kWideNodeWidth];
+            const float as_leaf = count_[n] <= costs_.max_leaf_size
+                                      ? leaf_cost(n, kinds[n].data())
+                                      : std::numeric_limits<float>::infinity();
+            c.leaf = as_leaf <= as_node;
+            c.node_split = best_split[kWideNodeWidth];
+            c.cost[1] = std::min(as_leaf, as_node);
+            for (int i = 2; i <= kWideNodeWidth; ++i) {
+                const bool fewer = c.cost[i - 1] <= spread[i];
+                c.cost[i] = fewer ? c.cost[i - 1] : spread[i];
+                c.split[i] = fewer ? 0 : best_split[i];
+            }
         }
+    }
 
-        uint32_t index = static_cast<uint32_t>(out_.nodes.size());
-        out_.nodes.emplace_back();
+    // The binary nodes that take the slots of subtree n spread over at most i slots.
+    void slots(uint32_t n, int i, std::vector<uint32_t>& out) const {
+        while (i > 1 && choice_[n].split[i] == 0) --i;
+        if (i == 1) {
+            out.push_back(n);
+            return;
+        }
+        const int k = choice_[n].split[i];
+        slots(n + 1, k, out);
+        slots(nodes_[n].offset, i - k, out);
+    }
+
+    static WideNode empty_node() {
         WideNode init;
         for (int i = 0; i < kWideNodeWidth; ++i) {
             for (int a = 0; a < 3; ++a) {
@@ -57,26 +137,41 @@ class Collapser {
             }
             init.child[i] = kEmptyChild;
         }
-        out_.nodes[index] = init;
+        return init;
+    }
+
+    void set_child(uint32_t index, int slot, uint32_t binary, uint32_t code) {
+        const BvhNode& c = nodes_[binary];
+        WideNode& w = out_.nodes[index];
+        for (int a = 0; a < 3; ++a) {
+            w.bounds[2 * a][slot] = c.lo[a];
+            w.bounds[2 * a + 1][slot] = c.hi[a];
+        }
+        w.child[slot] = code;
+    }
+
+    // The wide node of binary node n (chosen as a node): its children are n's children spread
+    // over all slots.
+    uint32_t wide_node(uint32_t n) {
+        std::vector<uint32_t> children;
+        slots(n + 1, choice_[n].node_split, children);
+        slots(nodes_[n].offset, kWideNodeWidth - choice_[n].node_split, children);
+        const uint32_t index = static_cast<uint32_t>(out_.nodes.size());
+        out_.nodes.push_back(empty_node());
         for (size_t i = 0; i < children.size(); ++i) {
-            const BvhNode& c = nodes_[children[i]];
-            uint32_t code = c.is_leaf() ? leaf(c) : node(children[i]);
-            WideNode& w = out_.nodes[index];  // node() may have grown the vector
-            for (int a = 0; a < 3; ++a) {
-                w.bounds[2 * a][i] = c.lo[a];
-                w.bounds[2 * a + 1][i] = c.hi[a];
-            }
-            w.child[i] = code;
+            const uint32_t c = children[i];
+            const uint32_t code = choice_[c].leaf ? leaf(first_[c], count_[c]) : wide_node(c);
+            set_child(index, static_cast<int>(i), c, code);
         }
         return index;
     }
 
     // A binary leaf's primitives, grouped by kind into blocks of up to kLeafBlockWidth.
-    uint32_t leaf(const BvhNode& leaf) {
+    uint32_t leaf(uint32_t offset, uint32_t count_prims) {
         std::vector<LeafBlock> blocks;
         for (PrimKind kind : {PrimKind::Triangle, PrimKind::Quad, PrimKind::Sphere}) {
             std::vector<PrimRef> refs;
-            for (uint32_t i = leaf.offset; i < leaf.offset + leaf.count; ++i)
+            for (uint32_t i = offset; i < offset + count_prims; ++i)
                 if (prims_[i].kind() == kind) refs.push_back(prims_[i]);
             for (size_t start = 0; start < refs.size(); start += kLeafBlockWidth) {
                 size_t n = std::min(refs.size() - start, size_t(kLeafBlockWidth));
@@ -146,6 +241,9 @@ class Collapser {
     const Scene& scene_;
     std::span<const BvhNode> nodes_;
     std::span<const PrimRef> prims_;
+    WideCollapseCosts costs_;
+    std::vector<Choice> choice_;
+    std::vector<uint32_t> first_, count_;  // each binary subtree's primitives in prims_
     WideBvh out_;
 };
 
@@ -153,8 +251,9 @@ class Collapser {
 
 WideBvh collapse_to_wide(const Scene& scene,
                          std::span<const BvhNode> nodes,
-                         std::span<const PrimRef> prims) {
-    return Collapser(scene, nodes, prims).run();
+                         std::span<const PrimRef> prims,
+                         const WideCollapseCosts& costs) {
+    return Collapser(scene, nodes, prims, costs).run();
 }
 
 }  // namespace wavetrace
