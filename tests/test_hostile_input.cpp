@@ -127,6 +127,20 @@ TEST(HostileInput, PlyElementWithANumericNameIsRefused) {
     expect_refused(dir, mesh_scene("numeric.ply"), "PLY header: bad element line");
 }
 
+// Found by tests/fuzz/fuzz_mesh (seed 3): Assimp's PLY reader also ends a header line at a NUL
+// or a form feed, so an element line hidden behind a NUL on the format line made it allocate
+// 26 GB (out of memory under the sanitizers; std::bad_alloc otherwise) past the check above.
+TEST(HostileInput, PlyElementLineAfterANulIsRefused) {
+    for (char end : {'\0', '\f', '\r'}) {
+        TempDir dir;
+        dir.write("hidden.ply", std::string("ply\nformat binary_little_endian 1.0") + end +
+                                    "element 111111111111111101756035000 4\n"
+                                    "property float x\nend_header\n" +
+                                    std::string(16, '\0'));
+        expect_refused(dir, mesh_scene("hidden.ply"), "PLY header: bad element line");
+    }
+}
+
 TEST(HostileInput, BrokenPlyUnderAnotherExtensionIsRefused) {
     TempDir dir;
     dir.write("m.gltf", "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\n");
