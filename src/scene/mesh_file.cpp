@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <assimp/Importer.hpp>
 #include <cctype>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -38,8 +39,12 @@ size_t ply_type_size(const std::string& t) {
 // element counts in the header say (faces of at least 3 indices each).
 void check_ply(const std::filesystem::path& path) {
     // Assimp's PLY reader ends a header line at '\n', '\r', '\0' or '\f' (IsLineEnd in its
-    // ParsingUtils.h), so the lines are cut here where it cuts them: an element line hidden
-    // behind a NUL on the line before is still an element line (found by tests/fuzz/fuzz_mesh).
+    // ParsingUtils.h), and hangs or crashes where such ends follow one another oddly ("1.0\0\0"
+    // or "1.0\r\r" before end_header hang it, a NUL after a property line crashes it; an
+    // element line hidden behind a NUL made it allocate 26 GB: all found by tests/fuzz/fuzz_mesh).
+    // A PLY header is text, so it is refused here with any control character but a tab, and any
+    // line end but "\n" and "\r\n"; the lines are cut where Assimp cuts them, so that the
+    // end_header it would find is the one found here.
     std::ifstream in(path, std::ios::binary);
     std::string raw(65536, '\0');
     in.read(raw.data(), static_cast<std::streamsize>(raw.size()));
@@ -47,13 +52,26 @@ void check_ply(const std::filesystem::path& path) {
     static const std::string kLineEnds("\n\r\0\f", 4);
     std::string header_lines;
     size_t header_bytes = 0;  // up to the end of the end_header line, its \r\n included
+    auto refuse_byte = [&](size_t at) {
+        char hex[8];
+        std::snprintf(hex, sizeof hex, "0x%02x", static_cast<unsigned char>(raw[at]));
+        throw std::runtime_error("PLY header: control character " + std::string(hex) +
+                                 " at byte " + std::to_string(at) + " (a header is text)");
+    };
     for (size_t pos = 0; pos < raw.size();) {
         const size_t end = raw.find_first_of(kLineEnds, pos);
         if (end == std::string::npos) break;  // a line without its end: truncated
+        for (size_t k = pos; k < end; ++k)
+            if (static_cast<unsigned char>(raw[k]) < 0x20 && raw[k] != '\t') refuse_byte(k);
         const std::string_view line(raw.data() + pos, end - pos);
         pos = end + 1;
+        if (raw[end] == '\r') {
+            if (pos >= raw.size() || raw[pos] != '\n') refuse_byte(end);
+            ++pos;
+        } else if (raw[end] != '\n') {
+            refuse_byte(end);
+        }
         if (line == "end_header") {
-            if (raw[end] == '\r' && pos < raw.size() && raw[pos] == '\n') ++pos;
             header_bytes = pos;
             break;
         }
