@@ -127,7 +127,9 @@ TEST(Wavefront, WavesCoverThePixelsOnceAndShrinkTowardsTheEnd) {
                     ASSERT_LE(waves[w].n, std::max<size_t>(128, (left + 2 * threads - 1) /
                                                                     (2 * threads)))
                         << at << " wave " << w;
-                    if (w > 0) ASSERT_LE(waves[w].n, waves[w - 1].n) << at;
+                    if (w > 0) {
+                        ASSERT_LE(waves[w].n, waves[w - 1].n) << at;
+                    }
                     first += waves[w].n;
                 }
                 EXPECT_EQ(first, pixels) << at;

@@ -166,7 +166,8 @@ class Collapser {
         return index;
     }
 
-    // A binary leaf's primitives, grouped by kind into blocks of up to kLeafBlockWidth.
+    // A leaf of primitives [offset, offset + count_prims) (a binary subtree's), grouped by kind
+    // into blocks of up to kLeafBlockWidth.
     uint32_t leaf(uint32_t offset, uint32_t count_prims) {
         std::vector<LeafBlock> blocks;
         for (PrimKind kind : {PrimKind::Triangle, PrimKind::Quad, PrimKind::Sphere}) {
