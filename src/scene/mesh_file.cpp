@@ -9,14 +9,17 @@
 
 #include <algorithm>
 #include <assimp/Importer.hpp>
+#include <bit>
 #include <cctype>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "io/input_file.h"
 
@@ -31,6 +34,108 @@ size_t ply_type_size(const std::string& t) {
         return 4;
     if (t == "double" || t == "float64") return 8;
     throw std::runtime_error("PLY header: unknown property type '" + t + "'");
+}
+
+// One property of a PLY element as the header declares it: a scalar of `size` bytes, or a
+// list whose count takes `count_size` bytes and whose items take `size` each.
+struct PlyProperty {
+    bool list = false;
+    size_t count_size = 0;
+    size_t size = 0;
+};
+struct PlyElement {
+    uint64_t count = 0;
+    std::vector<PlyProperty> properties;
+};
+
+// Assimp 5.2's PLY reader allocates what a list's count asks for before reading its items, so
+// a face announcing 2^30 indices made it allocate 8 GB in a file of 150 bytes (binary), and one
+// announcing 10^54 in ASCII ran out of memory (found by tests/fuzz/fuzz_mesh at seed 34). The
+// body is walked here as the reader will walk it, and a list refused where the rest of the file
+// cannot hold its items (an item takes its size in a binary file, and a digit and a separator
+// in an ASCII one).
+void check_ply_lists(const std::string& body,
+                     bool ascii,
+                     bool big_endian,
+                     const std::vector<PlyElement>& elements) {
+    auto refuse = [](uint64_t count, uint64_t left) {
+        throw std::runtime_error("PLY body: a list of " + std::to_string(count) +
+                                 " items where " + std::to_string(left) +
+                                 " bytes are left (damaged?)");
+    };
+    size_t pos = 0;
+    if (ascii) {
+        // Whether Assimp reads an instance as one line or as the next tokens, wherever their
+        // lines end, is not something to rely on: both walks are made, and either refuses.
+        auto parse_count = [](std::string_view token) {
+            uint64_t count = 0;
+            for (char c : token) {
+                if (c < '0' || c > '9') break;
+                count = count > (UINT64_MAX - 9) / 10 ? UINT64_MAX : count * 10 + uint64_t(c - '0');
+            }
+            return count;
+        };
+        auto token_at = [&](size_t& at, size_t end) -> std::string_view {
+            while (at < end && static_cast<unsigned char>(body[at]) <= ' ') ++at;
+            const size_t start = at;
+            while (at < end && static_cast<unsigned char>(body[at]) > ' ') ++at;
+            return std::string_view(body.data() + start, at - start);
+        };
+        for (const bool by_lines : {false, true}) {
+            pos = 0;
+            for (const PlyElement& e : elements)
+                for (uint64_t i = 0; i < e.count; ++i) {
+                    size_t end = body.size();
+                    if (by_lines) {  // the next line that holds a token
+                        while (pos < body.size() && static_cast<unsigned char>(body[pos]) <= ' ')
+                            ++pos;
+                        end = std::min(body.find('\n', pos), body.size());
+                    }
+                    if (pos >= body.size()) break;
+                    for (const PlyProperty& p : e.properties) {
+                        const std::string_view token = token_at(pos, end);
+                        if (token.empty()) break;
+                        if (!p.list) continue;
+                        const uint64_t count = parse_count(token);
+                        const uint64_t left = body.size() - pos;
+                        if (count > left / 2) refuse(count, left);
+                        for (uint64_t k = 0; k < count && pos < end; ++k) token_at(pos, end);
+                    }
+                    if (by_lines) pos = end;
+                }
+        }
+        return;
+    }
+    const bool swap = big_endian != (std::endian::native == std::endian::big);
+    for (const PlyElement& e : elements) {
+        bool lists = false;
+        size_t row = 0;
+        for (const PlyProperty& p : e.properties) {
+            lists = lists || p.list;
+            row += p.size;
+        }
+        if (!lists) {  // fixed-size rows: skip them all at once
+            pos += static_cast<size_t>(std::min<uint64_t>(e.count * row, body.size() - pos));
+            continue;
+        }
+        for (uint64_t i = 0; i < e.count; ++i)
+            for (const PlyProperty& p : e.properties) {
+                if (!p.list) {
+                    pos += p.size;
+                    continue;
+                }
+                if (pos + p.count_size > body.size()) return;  // truncated: checked above
+                uint64_t count = 0;
+                for (size_t b = 0; b < p.count_size; ++b) {
+                    const size_t byte = swap ? b : p.count_size - 1 - b;  // most significant first
+                    count = count << 8 | static_cast<unsigned char>(body[pos + byte]);
+                }
+                pos += p.count_size;
+                const uint64_t left = body.size() - std::min(pos, body.size());
+                if (count * p.size > left) refuse(count, left);
+                pos += static_cast<size_t>(count * p.size);
+            }
+    }
 }
 
 // Assimp 5.2's PLY reader hangs on a file that holds only the header's first lines, and reads
@@ -85,8 +190,9 @@ void check_ply(const std::filesystem::path& path) {
     std::string line;
     std::error_code size_error;
     const uint64_t file_size = std::filesystem::file_size(path, size_error);
-    bool binary = false;
+    bool binary = false, big_endian = false;
     uint64_t min_body = 0, count = 0;
+    std::vector<PlyElement> elements;
     while (std::getline(lines, line)) {
         std::istringstream words(line);
         std::string word;
@@ -95,6 +201,7 @@ void check_ply(const std::filesystem::path& path) {
             std::string format;
             words >> format;
             binary = format != "ascii";
+            big_endian = format == "binary_big_endian";
         } else if (word == "element") {
             std::string name;
             words >> name >> count;
@@ -114,26 +221,34 @@ void check_ply(const std::filesystem::path& path) {
                 throw std::runtime_error("PLY header announces " + std::to_string(count) +
                                          " elements, more than a file of " +
                                          std::to_string(file_size) + " bytes can hold");
+            elements.push_back({count, {}});
         } else if (word == "property") {
             std::string type, count_type, index_type, name;
             words >> type;
+            PlyProperty property;
             if (type == "list") {
                 words >> count_type >> index_type >> name;
                 bool indices = name == "vertex_indices" || name == "vertex_index";
                 min_body += count * (ply_type_size(count_type) +
                                      (indices ? 3 * ply_type_size(index_type) : 0));
+                property = {true, ply_type_size(count_type), ply_type_size(index_type)};
             } else {
                 min_body += count * ply_type_size(type);
+                property.size = ply_type_size(type);
             }
+            if (!elements.empty()) elements.back().properties.push_back(property);
         }
     }
-    if (!binary) return;
     std::error_code ec;
     uint64_t size = std::filesystem::file_size(path, ec);
-    if (!ec && size < header_bytes + min_body)
+    if (binary && !ec && size < header_bytes + min_body)
         throw std::runtime_error("binary PLY body is " + std::to_string(size - header_bytes) +
                                  " bytes, but its header announces at least " +
                                  std::to_string(min_body) + " (truncated?)");
+    in.clear();
+    in.seekg(static_cast<std::streamoff>(header_bytes));
+    const std::string body((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    check_ply_lists(body, !binary, big_endian, elements);
 }
 
 // Assimp 5.2's OFF reader allocates what the header's vertex and face counts ask for before
