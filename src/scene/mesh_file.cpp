@@ -132,7 +132,7 @@ void check_ply_lists(const std::string& body,
                 }
                 pos += p.count_size;
                 const uint64_t left = body.size() - std::min(pos, body.size());
-                if (count * p.size > left) refuse(count, left);
+                if (count > left / p.size) refuse(count, left);  // no overflow: size >= 1
                 pos += static_cast<size_t>(count * p.size);
             }
     }
