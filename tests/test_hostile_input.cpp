@@ -171,10 +171,13 @@ TEST(HostileInput, PlyListLongerThanTheFileIsRefused) {
     const std::string head =
         "element vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
         "element face 1\nproperty list uint int vertex_indices\nend_header\n";
-    TempDir dir;
-    dir.write("ascii.ply", "ply\nformat ascii 1.0\n" + head +
-                               "0 0 0\n1 0 0\n0 1 0\n2222222222222222222222222222222223 0 2 1\n");
-    expect_refused(dir, mesh_scene("ascii.ply"), "PLY body: a list of");
+    // A negative count is read as an unsigned one: "-2147483647" took 8.6 GB.
+    for (const char* count : {"2222222222222222222222222222222223", "-2147483647", "+2147483647"}) {
+        TempDir dir;
+        dir.write("ascii.ply", "ply\nformat ascii 1.0\n" + head + "0 0 0\n1 0 0\n0 1 0\n" + count +
+                                   " 0 2 1\n");
+        expect_refused(dir, mesh_scene("ascii.ply"), "PLY body: a list of");
+    }
     std::string binary = "ply\nformat binary_little_endian 1.0\n" + head;
     binary += std::string(36, '\0');                                  // three vertices
     binary += std::string("\x00\x00\x00\x40", 4);                     // 2^30 indices ...

@@ -59,21 +59,28 @@ void check_ply_lists(const std::string& body,
                      bool big_endian,
                      const std::vector<PlyElement>& elements) {
     auto refuse = [](uint64_t count, uint64_t left) {
-        throw std::runtime_error("PLY body: a list of " + std::to_string(count) +
-                                 " items where " + std::to_string(left) +
+        const std::string items = count == UINT64_MAX ? "a list of a negative or endless count"
+                                                      : "a list of " + std::to_string(count) +
+                                                            " items";
+        throw std::runtime_error("PLY body: " + items + " where " + std::to_string(left) +
                                  " bytes are left (damaged?)");
     };
     size_t pos = 0;
     if (ascii) {
         // Whether Assimp reads an instance as one line or as the next tokens, wherever their
         // lines end, is not something to rely on: both walks are made, and either refuses.
+        // The leading integer of a token, with its sign: Assimp reads "-2147483647" into an
+        // unsigned count (8.6 GB allocated, found testing this check), so a negative count is
+        // as good as infinite here.
         auto parse_count = [](std::string_view token) {
+            size_t k = 0;
+            bool negative = false;
+            if (!token.empty() && (token[0] == '+' || token[0] == '-')) negative = token[k++] == '-';
             uint64_t count = 0;
-            for (char c : token) {
-                if (c < '0' || c > '9') break;
-                count = count > (UINT64_MAX - 9) / 10 ? UINT64_MAX : count * 10 + uint64_t(c - '0');
-            }
-            return count;
+            for (; k < token.size() && token[k] >= '0' && token[k] <= '9'; ++k)
+                count = count > (UINT64_MAX - 9) / 10 ? UINT64_MAX
+                                                       : count * 10 + uint64_t(token[k] - '0');
+            return negative && count != 0 ? UINT64_MAX : count;
         };
         auto token_at = [&](size_t& at, size_t end) -> std::string_view {
             while (at < end && static_cast<unsigned char>(body[at]) <= ' ') ++at;
