@@ -203,7 +203,7 @@ bool shade_quickly(const WaveInputs& in,
             m = scene.spheres[index].material;
             break;
     }
-    if (m != kNone && scene.materials[m].kind == MaterialKind::Interface) {
+    if (scene.is_boundary(m)) {
         const Ray ray = ray_at(rays, i);
         MediumStack media = paths.media[i].unpack();
         const Ray next =

@@ -54,7 +54,7 @@ struct PlyElement {
 // body is walked here as the reader will walk it, and a list refused where the rest of the file
 // cannot hold its items (an item takes its size in a binary file, and a digit and a separator
 // in an ASCII one).
-void check_ply_lists(const std::string& body,
+void check_ply_lists(std::string_view body,
                      bool ascii,
                      bool big_endian,
                      const std::vector<PlyElement>& elements) {
@@ -157,10 +157,11 @@ void check_ply(const std::filesystem::path& path) {
     // A PLY header is text, so it is refused here with any control character but a tab, and any
     // line end but "\n" and "\r\n"; the lines are cut where Assimp cuts them, so that the
     // end_header it would find is the one found here.
+    // The whole file, read once: the header is looked for in its first 64 KiB, and the body
+    // is walked for its lists (check_ply_lists).
     std::ifstream in(path, std::ios::binary);
-    std::string raw(65536, '\0');
-    in.read(raw.data(), static_cast<std::streamsize>(raw.size()));
-    raw.resize(static_cast<size_t>(in.gcount()));
+    const std::string raw((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const size_t header_window = std::min<size_t>(raw.size(), 65536);
     static const std::string kLineEnds("\n\r\0\f", 4);
     std::string header_lines;
     size_t header_bytes = 0;  // up to the end of the end_header line, its \r\n included
@@ -170,9 +171,9 @@ void check_ply(const std::filesystem::path& path) {
         throw std::runtime_error("PLY header: control character " + std::string(hex) +
                                  " at byte " + std::to_string(at) + " (a header is text)");
     };
-    for (size_t pos = 0; pos < raw.size();) {
+    for (size_t pos = 0; pos < header_window;) {
         const size_t end = raw.find_first_of(kLineEnds, pos);
-        if (end == std::string::npos) break;  // a line without its end: truncated
+        if (end == std::string::npos || end >= header_window) break;  // no end: truncated
         for (size_t k = pos; k < end; ++k)
             if (static_cast<unsigned char>(raw[k]) < 0x20 && raw[k] != '\t') refuse_byte(k);
         const std::string_view line(raw.data() + pos, end - pos);
@@ -195,8 +196,7 @@ void check_ply(const std::filesystem::path& path) {
             "PLY header has no end_header line in its first 64 KiB (truncated?)");
     std::istringstream lines(header_lines);
     std::string line;
-    std::error_code size_error;
-    const uint64_t file_size = std::filesystem::file_size(path, size_error);
+    const uint64_t file_size = raw.size();
     bool binary = false, big_endian = false;
     uint64_t min_body = 0, count = 0;
     std::vector<PlyElement> elements;
@@ -246,15 +246,11 @@ void check_ply(const std::filesystem::path& path) {
             if (!elements.empty()) elements.back().properties.push_back(property);
         }
     }
-    std::error_code ec;
-    uint64_t size = std::filesystem::file_size(path, ec);
-    if (binary && !ec && size < header_bytes + min_body)
-        throw std::runtime_error("binary PLY body is " + std::to_string(size - header_bytes) +
+    const std::string_view body = std::string_view(raw).substr(header_bytes);
+    if (binary && body.size() < min_body)
+        throw std::runtime_error("binary PLY body is " + std::to_string(body.size()) +
                                  " bytes, but its header announces at least " +
                                  std::to_string(min_body) + " (truncated?)");
-    in.clear();
-    in.seekg(static_cast<std::streamoff>(header_bytes));
-    const std::string body((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     check_ply_lists(body, !binary, big_endian, elements);
 }
 

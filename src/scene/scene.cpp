@@ -81,10 +81,6 @@ float Scene::boundary_margin(const Aabb& world_bounds) {
     return origin_offset(corner) + 1e-5f * length(world_bounds.hi - world_bounds.lo);
 }
 
-bool Scene::is_boundary(MaterialId material) const {
-    return material < materials.size() && materials[material].kind == MaterialKind::Interface;
-}
-
 void Scene::add_sphere(Sphere sphere, const Transform& to_world) {
     float s = 1.0f;
     if (!to_world.preserves_shape(&s))

@@ -27,12 +27,7 @@ inline float transmittance_after_any_hit(const Scene& scene,
                                          const Ray& ray,
                                          const MediumStack& media,
                                          const Hit& any) {
-    if (any.found()) {
-        const MaterialId material = scene.prim_material(any.prim);
-        return material == kNone || scene.materials[material].kind != MaterialKind::Interface
-                   ? 0.0f
-                   : -1.0f;
-    }
+    if (any.found()) return scene.is_boundary(scene.prim_material(any.prim)) ? -1.0f : 0.0f;
     const MediumId m = media.current();
     if (m == kNone) return 1.0f;
     return medium_transmittance(scene.media[m].density, (ray.tmax - ray.tmin) * length(ray.d));
@@ -53,9 +48,7 @@ float transmittance_walk(
         if (tr == 0.0f) return 0.0f;
         if (!hit.found()) return tr;
         // A surface blocks it; only a boundary needs the point, to step over it.
-        const MaterialId material = scene.prim_material(hit.prim);
-        if (material == kNone || scene.materials[material].kind != MaterialKind::Interface)
-            return 0.0f;
+        if (!scene.is_boundary(scene.prim_material(hit.prim))) return 0.0f;
         SurfaceHit s = surface_at(scene, ray, hit);
         media.cross(s.interior, s.front_face);
         ray.tmin = hit.t;

@@ -98,9 +98,12 @@ struct Scene {
     MaterialId prim_material(PrimRef prim) const;
     MediumId prim_interior(PrimRef prim) const;
     float prim_area(PrimRef prim) const;
+    // Whether `material` (kNone: no) marks a medium boundary, an Interface with no surface.
+    bool is_boundary(MaterialId material) const {
+        return material < materials.size() && materials[material].kind == MaterialKind::Interface;
+    }
 
   private:
-    bool is_boundary(MaterialId material) const;
     void add_box_faces(
         Point3 lo, Point3 hi, MaterialId material, MediumId interior, const Transform& to_world);
 };
