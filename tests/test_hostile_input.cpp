@@ -187,6 +187,45 @@ TEST(HostileInput, PlyListLongerThanTheFileIsRefused) {
     expect_refused(dir2, mesh_scene("binary.ply"), "PLY body: a list of 1073741824 items");
 }
 
+// Found by tests/fuzz/fuzz_mesh (seed 29, without ASan): Assimp sizes its vertex array from the
+// first `vertex` element and its faces from the first `face` or `tristrips` element, then fills
+// them from every such element, so a second, longer one writes past the heap block (valgrind:
+// "Invalid write ... 0 bytes after a block of size 36"; the release CLI aborted in free(), or
+// loaded the file with its heap damaged).
+TEST(HostileInput, PlyElementDeclaredTwiceIsRefused) {
+    const std::string vertex3 =
+        "element vertex 3\nproperty float x\nproperty float y\nproperty float z\n";
+    const std::string vertex7 =
+        "element vertex 7\nproperty float x\nproperty float y\nproperty float z\n";
+    const std::string face1 = "element face 1\nproperty list uchar int vertex_indices\n";
+    const std::string face3 = "element face 3\nproperty list uchar int vertex_indices\n";
+    const std::string strip1 = "element tristrips 1\nproperty list int int vertex_indices\n";
+    const std::string vertices3 = "0 0 0\n1 0 0\n0 1 0\n";
+    const std::string vertices7 = vertices3 + "0 0 1\n1 0 1\n0 1 1\n1 1 1\n";
+    const struct {
+        std::string header, body, message;
+    } cases[] = {
+        {vertex3 + vertex7 + face1, vertices3 + vertices7 + "3 0 1 2\n",
+         "element 'vertex' at line 7 is declared again (first at line 3)"},
+        {vertex3 + face1 + face3, vertices3 + "3 0 1 2\n3 0 1 2\n3 0 1 2\n3 0 1 2\n",
+         "element 'face' at line 9 gives faces again (faces first at line 7)"},
+        {vertex3 + strip1 + face3, vertices3 + "3 0 1 2\n3 0 1 2\n3 0 1 2\n3 0 1 2\n",
+         "element 'face' at line 9 gives faces again (faces first at line 7)"},
+    };
+    for (const auto& c : cases) {
+        TempDir dir;
+        dir.write("twice.ply", "ply\nformat ascii 1.0\n" + c.header + "end_header\n" + c.body);
+        expect_refused(dir, mesh_scene("twice.ply"), c.message);
+    }
+    // Either element alone loads.
+    TempDir dir;
+    dir.write("once.ply", "ply\nformat ascii 1.0\n" + vertex7 + face1 + "end_header\n" +
+                              vertices7 + "3 0 1 2\n");
+    const fs::path p = dir.write("x.json", mesh_scene("once.ply"));
+    const CliResult r = run_guarded(dir, "info '" + p.string() + "'");
+    EXPECT_EQ(r.code, 0) << r.err;
+}
+
 TEST(HostileInput, BrokenPlyUnderAnotherExtensionIsRefused) {
     TempDir dir;
     dir.write("m.gltf", "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\n");

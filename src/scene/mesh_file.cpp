@@ -15,6 +15,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -200,7 +201,16 @@ void check_ply(const std::filesystem::path& path) {
     bool binary = false, big_endian = false;
     uint64_t min_body = 0, count = 0;
     std::vector<PlyElement> elements;
+    // Assimp 5.2's PLY reader sizes its vertex array from the first `vertex` element and its
+    // face array from the first `face` or `tristrips` one, then fills them from every such
+    // element: a second, longer one writes past the end of the heap block (found by
+    // tests/fuzz/fuzz_mesh at seed 29; the heap damage ASan kept reporting far from its cause).
+    // An element is known by its name, so a name declared twice is refused, and so are faces
+    // given both as `face` and as `tristrips`.
+    std::map<std::string, int> element_lines;  // name -> header line
+    int line_number = 0;                        // of the line read last; "ply" is line 1
     while (std::getline(lines, line)) {
+        ++line_number;
         std::istringstream words(line);
         std::string word;
         words >> word;
@@ -228,6 +238,14 @@ void check_ply(const std::filesystem::path& path) {
                 throw std::runtime_error("PLY header announces " + std::to_string(count) +
                                          " elements, more than a file of " +
                                          std::to_string(file_size) + " bytes can hold");
+            const std::string semantic = name == "tristrips" ? "face" : name;
+            if (const auto [it, fresh] = element_lines.try_emplace(semantic, line_number); !fresh)
+                throw std::runtime_error(
+                    "PLY header: element '" + name + "' at line " + std::to_string(line_number) +
+                    (semantic == name && name != "face"
+                         ? " is declared again (first at line "
+                         : " gives faces again (faces first at line ") +
+                    std::to_string(it->second) + ")");
             elements.push_back({count, {}});
         } else if (word == "property") {
             std::string type, count_type, index_type, name;
