@@ -226,6 +226,28 @@ TEST(HostileInput, PlyElementDeclaredTwiceIsRefused) {
     EXPECT_EQ(r.code, 0) << r.err;
 }
 
+// Found by tests/fuzz/fuzz_mesh (seed 40): Assimp ends an element's properties at a property
+// line it cannot parse ("property float", no name) and skips the property lines after it, and
+// past the last line of an ASCII body it reads that line again for every element left, so a
+// list count on it ("2222222222222222") made it allocate 21 GB in a minute.
+TEST(HostileInput, PlyWithABadPropertyLineOrTooFewLinesIsRefused) {
+    const std::string tail = "element face 2\nproperty list uchar int vertex_indices\nend_header\n";
+    TempDir dir;
+    dir.write("noname.ply",
+              "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float\n"
+              "property float z\n" +
+                  tail + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 0 2 1\n");
+    expect_refused(dir, mesh_scene("noname.ply"),
+                   "bad property line 'property float' at line 5");
+    // Three vertices of x only, then the faces' lines are missing: the last line, read again
+    // as a face, announces 2222222222222222 indices.
+    dir.write("short.ply",
+              "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n" + tail +
+                  "0\n1\n2222222222222222\n");
+    expect_refused(dir, mesh_scene("short.ply"),
+                   "the file ends 2 element lines short of the 5 its header announces");
+}
+
 TEST(HostileInput, BrokenPlyUnderAnotherExtensionIsRefused) {
     TempDir dir;
     dir.write("m.gltf", "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\n");
