@@ -248,6 +248,22 @@ TEST(HostileInput, PlyWithABadPropertyLineOrTooFewLinesIsRefused) {
                    "the file ends 2 element lines short of the 5 its header announces");
 }
 
+// Found by tests/fuzz/fuzz_mesh (seed 50): Assimp leaves a real number whose integer part
+// overflows 64 bits where it is, so the next property reads the same digits, and a list count
+// read from them wraps to 32 bits (a vertex line "<55 digits> 0 2": 13 GB in 15 s).
+TEST(HostileInput, PlyRealTooLongForAssimpBeforeAListIsRefused) {
+    const std::string head =
+        "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+        "property list uchar int idx\nelement face 1\nproperty list uchar int vertex_indices\n"
+        "end_header\n0 0 0\n1 0 0\n";
+    TempDir dir;
+    dir.write("long.ply", head + "99999999999999999999999 5 0\n3 0 1 2\n");
+    expect_refused(dir, mesh_scene("long.ply"), "PLY body: a list of a negative or endless count");
+    // 2^64 - 1 fits Assimp's integer part: the line reads as x, y and an empty list.
+    dir.write("fits.ply", head + "18446744073709551615 5 0\n3 0 1 2\n");
+    expect_refused(dir, mesh_scene("fits.ply"), "reaches beyond +-1e7");
+}
+
 TEST(HostileInput, BrokenPlyUnderAnotherExtensionIsRefused) {
     TempDir dir;
     dir.write("m.gltf", "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\n");

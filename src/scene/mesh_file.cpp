@@ -37,13 +37,32 @@ size_t ply_type_size(const std::string& t) {
     throw std::runtime_error("PLY header: unknown property type '" + t + "'");
 }
 
-// One property of a PLY element as the header declares it: a scalar of `size` bytes, or a
-// list whose count takes `count_size` bytes and whose items take `size` each.
+// One property of a PLY element as the header declares it: a scalar of `size` bytes (`real`:
+// a float or a double), or a list whose count takes `count_size` bytes and whose items take
+// `size` each.
 struct PlyProperty {
     bool list = false;
+    bool real = false;
     size_t count_size = 0;
     size_t size = 0;
 };
+
+// Whether Assimp 5.2 leaves an ASCII real number where it is: its fast_atoreal_move reads the
+// integer part with strtoul10_64, which on an overflow it detects (the value falling as a digit
+// is added, in 64-bit arithmetic) returns 0 without moving on, so the next property reads the
+// same digits again; a list count read from them wraps to 32 bits ("99999999999999999999999"
+// in a vertex line before a list property: std::bad_alloc; found by tests/fuzz/fuzz_mesh at
+// seed 50, where a count of 10^54 left that way took 13 GB in 15 s).
+bool assimp_real_stays(std::string_view token) {
+    size_t k = !token.empty() && (token[0] == '+' || token[0] == '-') ? 1 : 0;
+    uint64_t value = 0;
+    for (; k < token.size() && token[k] >= '0' && token[k] <= '9'; ++k) {
+        const uint64_t next = value * 10 + uint64_t(token[k] - '0');
+        if (next < value) return true;
+        value = next;
+    }
+    return false;
+}
 struct PlyElement {
     uint64_t count = 0;
     std::vector<PlyProperty> properties;
@@ -113,9 +132,13 @@ void check_ply_lists(std::string_view body,
                         break;
                     }
                     for (const PlyProperty& p : e.properties) {
+                        const size_t start = pos;
                         const std::string_view token = token_at(pos, end);
                         if (token.empty()) break;
-                        if (!p.list) continue;
+                        if (!p.list) {
+                            if (p.real && assimp_real_stays(token)) pos = start;
+                            continue;
+                        }
                         const uint64_t count = parse_count(token);
                         const uint64_t left = body.size() - pos;
                         if (count > left / 2) refuse(count, left);
@@ -276,13 +299,15 @@ void check_ply(const std::filesystem::path& path) {
                 bool indices = name == "vertex_indices" || name == "vertex_index";
                 min_body += count * (ply_type_size(count_type) +
                                      (indices ? 3 * ply_type_size(index_type) : 0));
-                property = {true, ply_type_size(count_type), ply_type_size(index_type)};
+                property = {true, false, ply_type_size(count_type), ply_type_size(index_type)};
             } else {
                 if (!(words >> name))
                     throw std::runtime_error("PLY header: bad property line '" + line +
                                              "' at line " + std::to_string(line_number));
                 min_body += count * ply_type_size(type);
                 property.size = ply_type_size(type);
+                property.real = type == "float" || type == "float32" || type == "double" ||
+                                type == "float64";
             }
             if (!elements.empty()) elements.back().properties.push_back(property);
         }
