@@ -37,47 +37,92 @@ size_t ply_type_size(const std::string& t) {
     throw std::runtime_error("PLY header: unknown property type '" + t + "'");
 }
 
-// One property of a PLY element as the header declares it: a scalar of `size` bytes (`real`:
-// a float or a double), or a list whose count takes `count_size` bytes and whose items take
-// `size` each.
+// How Assimp reads a number of a PLY type in an ASCII body: strtoul10, strtol10 or
+// fast_atoreal_move.
+enum class PlyNumber { Unsigned, Signed, Real };
+PlyNumber ply_number(const std::string& t) {
+    if (t == "float" || t == "float32" || t == "double" || t == "float64") return PlyNumber::Real;
+    if (t == "char" || t == "int8" || t == "short" || t == "int16" || t == "int" || t == "int32")
+        return PlyNumber::Signed;
+    return PlyNumber::Unsigned;
+}
+
+// One property of a PLY element as the header declares it: a scalar of `size` bytes, or a
+// list whose count takes `count_size` bytes and whose items take `size` each; `type` and
+// `count_type` say how Assimp reads them in ASCII.
 struct PlyProperty {
     bool list = false;
-    bool real = false;
     size_t count_size = 0;
     size_t size = 0;
+    PlyNumber count_type = PlyNumber::Unsigned;
+    PlyNumber type = PlyNumber::Real;
 };
-
-// Whether Assimp 5.2 leaves an ASCII real number where it is: its fast_atoreal_move reads the
-// integer part with strtoul10_64, which on an overflow it detects (the value falling as a digit
-// is added, in 64-bit arithmetic) returns 0 without moving on, so the next property reads the
-// same digits again; a list count read from them wraps to 32 bits ("99999999999999999999999"
-// in a vertex line before a list property: std::bad_alloc; found by tests/fuzz/fuzz_mesh at
-// seed 50, where a count of 10^54 left that way took 13 GB in 15 s).
-bool assimp_real_stays(std::string_view token) {
-    size_t k = !token.empty() && (token[0] == '+' || token[0] == '-') ? 1 : 0;
-    uint64_t value = 0;
-    for (; k < token.size() && token[k] >= '0' && token[k] <= '9'; ++k) {
-        const uint64_t next = value * 10 + uint64_t(token[k] - '0');
-        if (next < value) return true;
-        value = next;
-    }
-    return false;
-}
 struct PlyElement {
     uint64_t count = 0;
     std::vector<PlyProperty> properties;
 };
+
+// Whether Assimp 5.2 reads all of `token` as a number of `type`, so that the next property
+// starts at the next token: its readers stop at the first character they do not take and the
+// next property is read from there, which a walk by tokens would not follow. Assimp takes
+// more forms than these (a trailing '.', a ',' for the decimal point), but every number a PLY
+// writer prints is one of them: digits for unsigned types, a sign and digits for signed ones,
+// and for reals a sign, digits with a fraction and an exponent, or nan / inf / infinity. A
+// real's integer part must not overflow 64 bits: fast_atoreal_move then returns 0 where it is,
+// so the next property reads the same digits again, and a list count read from them wraps to
+// 32 bits ("99999999999999999999999" before a list: std::bad_alloc; a 55-digit one took 13 GB
+// in 15 s: found by tests/fuzz/fuzz_mesh at seed 50).
+bool assimp_reads_whole(std::string_view t, PlyNumber type) {
+    size_t k = 0;
+    auto sign = [&] {
+        if (k < t.size() && (t[k] == '+' || t[k] == '-')) ++k;
+    };
+    auto digits = [&] {
+        const size_t start = k;
+        while (k < t.size() && t[k] >= '0' && t[k] <= '9') ++k;
+        return k - start;
+    };
+    if (type == PlyNumber::Unsigned) return digits() > 0 && k == t.size();
+    sign();
+    if (type == PlyNumber::Signed) return digits() > 0 && k == t.size();
+    std::string word(t.substr(k));
+    for (char& c : word) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (word == "nan" || word == "inf" || word == "infinity") return true;
+    uint64_t value = 0;  // strtoul10_64: an overflow is a value that falls
+    for (size_t j = k; j < t.size() && t[j] >= '0' && t[j] <= '9'; ++j) {
+        const uint64_t next = value * 10 + uint64_t(t[j] - '0');
+        if (next < value) return false;
+        value = next;
+    }
+    size_t mantissa = digits();
+    if (k < t.size() && t[k] == '.') {
+        ++k;
+        const size_t fraction = digits();
+        if (fraction == 0) return false;
+        mantissa += fraction;
+    }
+    if (mantissa == 0) return false;
+    if (k < t.size() && (t[k] == 'e' || t[k] == 'E')) {
+        ++k;
+        sign();
+        if (digits() == 0) return false;
+    }
+    return k == t.size();
+}
 
 // Assimp 5.2's PLY reader allocates what a list's count asks for before reading its items, so
 // a face announcing 2^30 indices made it allocate 8 GB in a file of 150 bytes (binary), and one
 // announcing 10^54 in ASCII ran out of memory (found by tests/fuzz/fuzz_mesh at seed 34). The
 // body is walked here as the reader will walk it, and a list refused where the rest of the file
 // cannot hold its items (an item takes its size in a binary file, and a digit and a separator
-// in an ASCII one).
+// in an ASCII one). An ASCII body's first line is line `first_line` of the file; `after_crlf`:
+// the end_header line ended with "\r\n" (where Assimp's stream then stands matters, below).
 void check_ply_lists(std::string_view body,
                      bool ascii,
                      bool big_endian,
-                     const std::vector<PlyElement>& elements) {
+                     const std::vector<PlyElement>& elements,
+                     bool after_crlf,
+                     size_t first_line) {
     auto refuse = [](uint64_t count, uint64_t left) {
         const std::string items = count == UINT64_MAX ? "a list of a negative or endless count"
                                                       : "a list of " + std::to_string(count) +
@@ -87,11 +132,41 @@ void check_ply_lists(std::string_view body,
     };
     size_t pos = 0;
     if (ascii) {
-        // Whether Assimp reads an instance as one line or as the next tokens, wherever their
-        // lines end, is not something to rely on: both walks are made, and either refuses.
-        // The leading integer of a token, with its sign: Assimp reads "-2147483647" into an
-        // unsigned count (8.6 GB allocated, found testing this check), so a negative count is
-        // as good as infinite here.
+        // Assimp reads an ASCII element from one line (IOStreamBuffer::getNextLine, taken
+        // here as it is): at a line end it first skips to past the next '\n', so one blank
+        // line is passed over and a second is read as an element; and past the last line it
+        // reads what its line buffer held before (the previous line again: a face count of
+        // 2222222222222222 there took 21 GB in 60 s, fuzz_mesh at seed 40), so the body must
+        // hold a line for every element. Within
+        // a line it skips spaces and tabs and reads each property where the previous one
+        // stopped, so every number it reads must be one it reads whole (assimp_reads_whole).
+        // check_ply has refused control characters other than tabs and line ends.
+        uint64_t announced = 0;
+        for (const PlyElement& e : elements) announced += e.count;
+        uint64_t read = 0;
+        auto is_end = [&](size_t at) { return body[at] == '\n' || body[at] == '\r'; };
+        // After "end_header\r\n" Assimp stands on the '\n', and its first skip passes it.
+        bool skips = !after_crlf;
+        auto next_line = [&](size_t& begin, size_t& end) {
+            if (skips && pos < body.size() && is_end(pos)) {
+                while (pos < body.size() && body[pos] != '\n') ++pos;
+                ++pos;
+            }
+            skips = true;
+            begin = pos;
+            while (pos < body.size() && !is_end(pos)) ++pos;
+            end = pos;
+            if (begin >= body.size())
+                throw std::runtime_error("PLY body: the file ends " +
+                                         std::to_string(announced - read) +
+                                         " element lines short of the " +
+                                         std::to_string(announced) +
+                                         " its header announces (truncated?)");
+            ++pos;
+            return end >= body.size();  // the file's last line, without its line end
+        };
+        // The leading integer of a count, with its sign: Assimp reads "-2147483647" into an
+        // unsigned count (8.6 GB allocated), so a negative count is as good as infinite here.
         auto parse_count = [](std::string_view token) {
             size_t k = 0;
             bool negative = false;
@@ -102,51 +177,52 @@ void check_ply_lists(std::string_view body,
                                                        : count * 10 + uint64_t(token[k] - '0');
             return negative && count != 0 ? UINT64_MAX : count;
         };
-        auto token_at = [&](size_t& at, size_t end) -> std::string_view {
-            while (at < end && static_cast<unsigned char>(body[at]) <= ' ') ++at;
-            const size_t start = at;
-            while (at < end && static_cast<unsigned char>(body[at]) > ' ') ++at;
-            return std::string_view(body.data() + start, at - start);
-        };
-        uint64_t announced = 0;
-        for (const PlyElement& e : elements) announced += e.count;
-        auto refuse_short = [&](uint64_t missing) {
-            throw std::runtime_error("PLY body: the file ends " + std::to_string(missing) +
-                                     " element lines short of the " + std::to_string(announced) +
-                                     " its header announces (truncated?)");
-        };
-        for (const bool by_lines : {false, true}) {
-            pos = 0;
-            for (const PlyElement& e : elements)
-                for (uint64_t i = 0; i < e.count; ++i) {
-                    size_t end = body.size();
-                    if (by_lines) {  // the next line that holds a token
-                        while (pos < body.size() && static_cast<unsigned char>(body[pos]) <= ' ')
-                            ++pos;
-                        end = std::min(body.find('\n', pos), body.size());
+        for (const PlyElement& e : elements)
+            for (uint64_t i = 0; i < e.count; ++i) {
+                size_t at = 0, end = 0;
+                const bool cut = next_line(at, end);
+                ++read;
+                const size_t line_begin = at;
+                auto where = [&] {
+                    return "PLY body, line " +
+                           std::to_string(first_line + std::count(body.begin(),
+                                                                  body.begin() + line_begin, '\n')) +
+                           ": ";
+                };
+                auto token = [&](PlyNumber type) {
+                    while (at < end && (body[at] == ' ' || body[at] == '\t')) ++at;
+                    const size_t start = at;
+                    while (at < end && body[at] != ' ' && body[at] != '\t') ++at;
+                    const std::string_view t(body.data() + start, at - start);
+                    // What a line lacks Assimp reads as defaults, but in the file's last line
+                    // without its line end it would read on into its buffer's older contents.
+                    if (t.empty() && cut)
+                        throw std::runtime_error(where() +
+                                                 "the file's last line is cut short (truncated?)");
+                    if (!t.empty() && !assimp_reads_whole(t, type))
+                        throw std::runtime_error(
+                            where() + "'" + std::string(t.substr(0, 40)) +
+                            "' is not a number the reader takes whole (" +
+                            (type == PlyNumber::Real     ? "a real"
+                             : type == PlyNumber::Signed ? "a signed integer"
+                                                         : "an unsigned integer") +
+                            ")");
+                    return t;
+                };
+                for (const PlyProperty& p : e.properties) {
+                    if (!p.list) {
+                        if (token(p.type).empty()) break;  // the rest of the line: defaults
+                        continue;
                     }
-                    if (pos >= body.size()) {
-                        // Past its last line Assimp reads that line again for every element
-                        // left (a list count there is read as often: seed 40 again).
-                        if (by_lines) refuse_short(e.count - i);
-                        break;
-                    }
-                    for (const PlyProperty& p : e.properties) {
-                        const size_t start = pos;
-                        const std::string_view token = token_at(pos, end);
-                        if (token.empty()) break;
-                        if (!p.list) {
-                            if (p.real && assimp_real_stays(token)) pos = start;
-                            continue;
-                        }
-                        const uint64_t count = parse_count(token);
-                        const uint64_t left = body.size() - pos;
-                        if (count > left / 2) refuse(count, left);
-                        for (uint64_t k = 0; k < count && pos < end; ++k) token_at(pos, end);
-                    }
-                    if (by_lines) pos = end;
+                    const std::string_view count_token = token(p.count_type);
+                    if (count_token.empty()) break;
+                    const uint64_t count = parse_count(count_token);
+                    const uint64_t left = body.size() - at;
+                    if (count > left / 2) refuse(count, left);
+                    for (uint64_t k = 0; k < count; ++k)
+                        if (token(p.type).empty()) break;
                 }
-        }
+            }
         return;
     }
     const bool swap = big_endian != (std::endian::native == std::endian::big);
@@ -201,11 +277,13 @@ void check_ply(const std::filesystem::path& path) {
     static const std::string kLineEnds("\n\r\0\f", 4);
     std::string header_lines;
     size_t header_bytes = 0;  // up to the end of the end_header line, its \r\n included
-    auto refuse_byte = [&](size_t at) {
+    auto refuse_byte = [&](size_t at, bool body = false) {
         char hex[8];
         std::snprintf(hex, sizeof hex, "0x%02x", static_cast<unsigned char>(raw[at]));
-        throw std::runtime_error("PLY header: control character " + std::string(hex) +
-                                 " at byte " + std::to_string(at) + " (a header is text)");
+        throw std::runtime_error(std::string(body ? "PLY body" : "PLY header") +
+                                 ": control character " + hex + " at byte " +
+                                 std::to_string(at) +
+                                 (body ? " (an ASCII body is text)" : " (a header is text)"));
     };
     for (size_t pos = 0; pos < header_window;) {
         const size_t end = raw.find_first_of(kLineEnds, pos);
@@ -244,6 +322,7 @@ void check_ply(const std::filesystem::path& path) {
     // given both as `face` and as `tristrips`.
     std::map<std::string, int> element_lines;  // name -> header line
     int line_number = 0;                        // of the line read last; "ply" is line 1
+    bool in_properties = false;                 // the lines since the last element line
     while (std::getline(lines, line)) {
         ++line_number;
         std::istringstream words(line);
@@ -282,6 +361,7 @@ void check_ply(const std::filesystem::path& path) {
                          : " gives faces again (faces first at line ") +
                     std::to_string(it->second) + ")");
             elements.push_back({count, {}});
+            in_properties = true;
         } else if (word == "property") {
             std::string type, count_type, index_type, name;
             words >> type;
@@ -299,17 +379,26 @@ void check_ply(const std::filesystem::path& path) {
                 bool indices = name == "vertex_indices" || name == "vertex_index";
                 min_body += count * (ply_type_size(count_type) +
                                      (indices ? 3 * ply_type_size(index_type) : 0));
-                property = {true, false, ply_type_size(count_type), ply_type_size(index_type)};
+                property = {true, ply_type_size(count_type), ply_type_size(index_type),
+                            ply_number(count_type), ply_number(index_type)};
             } else {
                 if (!(words >> name))
                     throw std::runtime_error("PLY header: bad property line '" + line +
                                              "' at line " + std::to_string(line_number));
                 min_body += count * ply_type_size(type);
                 property.size = ply_type_size(type);
-                property.real = type == "float" || type == "float32" || type == "double" ||
-                                type == "float64";
+                property.type = ply_number(type);
             }
-            if (!elements.empty()) elements.back().properties.push_back(property);
+            // Assimp reads an element's properties from the lines right after it, and skips a
+            // property line anywhere else (after a comment line too: Assimp 5.2 then fails
+            // with "Vertices should be declared before faces").
+            if (!in_properties)
+                throw std::runtime_error("PLY header: property line '" + line + "' at line " +
+                                         std::to_string(line_number) +
+                                         " does not follow an element line or its properties");
+            elements.back().properties.push_back(property);
+        } else {
+            in_properties = false;
         }
     }
     const std::string_view body = std::string_view(raw).substr(header_bytes);
@@ -317,7 +406,14 @@ void check_ply(const std::filesystem::path& path) {
         throw std::runtime_error("binary PLY body is " + std::to_string(body.size()) +
                                  " bytes, but its header announces at least " +
                                  std::to_string(min_body) + " (truncated?)");
-    check_ply_lists(body, !binary, big_endian, elements);
+    if (!binary)  // an ASCII body is text, its lines ended as the header's are
+        for (size_t k = 0; k < body.size(); ++k)
+            if (static_cast<unsigned char>(body[k]) < 0x20 && body[k] != '\t' && body[k] != '\n' &&
+                !(body[k] == '\r' && k + 1 < body.size() && body[k + 1] == '\n'))
+                refuse_byte(header_bytes + k, true);
+    const bool after_crlf = raw[header_bytes - 2] == '\r';
+    check_ply_lists(body, !binary, big_endian, elements, after_crlf,
+                    static_cast<size_t>(line_number) + 2);
 }
 
 // Assimp 5.2's OFF reader allocates what the header's vertex and face counts ask for before
