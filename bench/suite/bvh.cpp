@@ -1,6 +1,7 @@
 // Our BVH against Embree on the same captured ray batches: coherent primary rays, incoherent
 // diffuse bounces, and shadow rays; single rays on one thread and on all threads, Embree's
-// 8- and 16-wide packets on the primary batch; and build times.
+// 8- and 16-wide packets on the primary batch; and build times. Each row times its tracers in
+// interleaved rounds and reports medians, the ratios as medians of the rounds' ratios.
 #include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
@@ -54,26 +55,49 @@ Batches capture(const Scene& scene, const Bvh& bvh, int side) {
     return b;
 }
 
-// Mrays/s of `trace` over all rays, median of three runs; `threads` 1 runs serially.
-double mrays(const std::vector<Ray>& rays,
-             int threads,
-             size_t step,
-             const std::function<void(size_t)>& trace) {
-    std::vector<double> rates;
-    for (int run = 0; run < 3; ++run) {
-        auto start = std::chrono::steady_clock::now();
-        if (threads == 1) {
-            for (size_t i = 0; i + step <= rays.size(); i += step) trace(i);
-        } else {
-            tbb::parallel_for(tbb::blocked_range<size_t>(0, rays.size() / step, 64),
-                              [&](const tbb::blocked_range<size_t>& r) {
-                                  for (size_t k = r.begin(); k < r.end(); ++k) trace(k * step);
-                              });
-        }
-        double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        rates.push_back(double(rays.size() / step * step) / s * 1e-6);
+// How a batch is traced: `step` rays per call of `trace(first ray)`.
+struct Tracer {
+    size_t step;
+    std::function<void(size_t)> trace;
+};
+
+// Mrays/s of one pass of `t` over all rays; `threads` 1 runs serially.
+double mrays_once(const std::vector<Ray>& rays, int threads, const Tracer& t) {
+    const size_t calls = rays.size() / t.step;
+    auto start = std::chrono::steady_clock::now();
+    if (threads == 1) {
+        for (size_t k = 0; k < calls; ++k) t.trace(k * t.step);
+    } else {
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, calls, 64),
+                          [&](const tbb::blocked_range<size_t>& r) {
+                              for (size_t k = r.begin(); k < r.end(); ++k) t.trace(k * t.step);
+                          });
     }
-    return spread(rates).median;
+    double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return double(calls * t.step) / s * 1e-6;
+}
+
+// Passes of every tracer over the same rays, interleaved (A B C A B C ...) so that a shared
+// machine's drift falls on all of them alike: runs[k][j] is tracer j's Mrays/s in round k.
+std::vector<std::vector<double>> interleaved(const std::vector<Ray>& rays,
+                                             int threads,
+                                             const std::vector<Tracer>& tracers) {
+    std::vector<std::vector<double>> runs(kRepetitions);
+    for (auto& round : runs)
+        for (const Tracer& t : tracers) round.push_back(mrays_once(rays, threads, t));
+    return runs;
+}
+
+// Tracer j's median rate, and the median over rounds of tracer a's rate over tracer b's.
+double median_rate(const std::vector<std::vector<double>>& runs, size_t j) {
+    std::vector<double> v;
+    for (const auto& round : runs) v.push_back(round[j]);
+    return spread(v).median;
+}
+double median_ratio(const std::vector<std::vector<double>>& runs, size_t a, size_t b) {
+    std::vector<double> v;
+    for (const auto& round : runs) v.push_back(round[a] / round[b]);
+    return spread(v).median;
 }
 
 double median_ms(const std::function<double()>& build) {
@@ -99,44 +123,52 @@ void bench_bvh(const Options& o, Results& r) {
             tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
             auto row = [&](const char* batch, const std::vector<Ray>& rays, bool shadow,
                            bool packets) {
-                double ours = mrays(rays, threads, 1, [&](size_t i) {
-                    if (shadow)
-                        (void)bvh.occluded(rays[i]);
-                    else
-                        (void)bvh.intersect(rays[i]);
-                });
-                double ref = mrays(rays, threads, 1, [&](size_t i) {
-                    if (shadow)
-                        (void)embree.occluded(rays[i]);
-                    else
-                        (void)embree.intersect(rays[i]);
-                });
+                // Ours and Embree's single rays; on coherent batches also our 8-ray packets
+                // (a 4 x 2 pixel tile; 4 rays each on SSE4/NEON) and Embree's 8- and 16-wide.
+                std::vector<Hit> hits(rays.size());
+                std::vector<Tracer> tracers{
+                    {1,
+                     [&](size_t i) {
+                         if (shadow)
+                             (void)bvh.occluded(rays[i]);
+                         else
+                             (void)bvh.intersect(rays[i]);
+                     }},
+                    {1, [&](size_t i) {
+                         if (shadow)
+                             (void)embree.occluded(rays[i]);
+                         else
+                             (void)embree.intersect(rays[i]);
+                     }}};
+                if (packets) {
+                    tracers.push_back({8, [&](size_t i) {
+                                           bvh.intersect_packet(std::span(&rays[i], 8),
+                                                                std::span(&hits[i], 8));
+                                       }});
+                    tracers.push_back({8, [&](size_t i) { embree.intersect_packet(&rays[i], 8); }});
+                    tracers.push_back(
+                        {16, [&](size_t i) { embree.intersect_packet(&rays[i], 16); }});
+                }
+                const auto runs = interleaved(rays, threads, tracers);
+                const double ours = median_rate(runs, 0), ref = median_rate(runs, 1);
+                const double ratio = median_ratio(runs, 0, 1);
                 nlohmann::json p8 = nullptr, p16 = nullptr, ours_p = nullptr, ratio_p = nullptr;
                 if (packets) {
-                    // Our packets: 8 rays, a 4 x 2 pixel tile (4 rays each on SSE4/NEON).
-                    std::vector<Hit> hits(rays.size());
-                    double ours_packet = mrays(rays, threads, 8, [&](size_t i) {
-                        bvh.intersect_packet(std::span(&rays[i], 8), std::span(&hits[i], 8));
-                    });
-                    ours_p = ours_packet;
-                    p8 = mrays(rays, threads, 8,
-                               [&](size_t i) { embree.intersect_packet(&rays[i], 8); });
-                    double embree16 = mrays(rays, threads, 16, [&](size_t i) {
-                        embree.intersect_packet(&rays[i], 16);
-                    });
-                    p16 = embree16;
-                    ratio_p = ours_packet / embree16;
+                    ours_p = median_rate(runs, 2);
+                    p8 = median_rate(runs, 3);
+                    p16 = median_rate(runs, 4);
+                    ratio_p = median_ratio(runs, 2, 4);
                     std::printf(
                         "bvh %-10s packets  %d thread(s): ours %7.2f Mrays/s, embree "
                         "16-wide %7.2f, ours/embree %.2f\n",
-                        name, threads, ours_packet, embree16, ours_packet / embree16);
+                        name, threads, double(ours_p), double(p16), double(ratio_p));
                 }
-                r.row("bvh", {name, batch, threads, rays.size(), ours, ref, ours / ref, p8, p16,
+                r.row("bvh", {name, batch, threads, rays.size(), ours, ref, ratio, p8, p16,
                               ours_p, ratio_p});
                 std::printf(
                     "bvh %-10s %-8s %d thread(s): ours %7.2f Mrays/s, embree %7.2f, ours/embree "
                     "%.2f\n",
-                    name, batch, threads, ours, ref, ours / ref);
+                    name, batch, threads, ours, ref, ratio);
                 std::fflush(stdout);
             };
             row("primary", b.primary, false, true);

@@ -47,7 +47,7 @@ void bench_scaling(const Options& o, Results& r) {
             cfg.spp = o.quick ? 1 : 16 * ((t + 1) / 2);
             // Interleaved (A B A B ...), medians, to damp the noise of a shared machine.
             std::vector<double> mk, wf, ratio;
-            for (int rep = 0; rep < (o.quick ? 1 : 3); ++rep) {
+            for (int rep = 0; rep < (o.quick ? 1 : kRepetitions); ++rep) {
                 RenderStats a, b;
                 render_megakernel(scene, bvh, cfg, &a);
                 render_wavefront(scene, bvh, cfg, {}, &b);

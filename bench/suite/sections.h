@@ -11,6 +11,11 @@
 
 namespace wavetrace::bench {
 
+// Interleaved repetitions of each measurement that the engines, scaling and BVH sections take
+// medians of: five, since with three single rows moved by up to ±5% between runs on the 2-core
+// machine (docs/benchmarks.md).
+inline constexpr int kRepetitions = 5;
+
 struct Options {
     bool quick = false;   // tiny settings: checks the harness, measures nothing useful
     int max_threads = 0;  // scaling goes 1 .. this (0: all hardware threads)
