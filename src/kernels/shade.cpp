@@ -75,33 +75,53 @@ void textured_albedo(const Scene& scene, const TexturedRow& t, SurfaceBlock& blo
 }
 
 // A chunk's mesh hits read a triangle record and then its vertices' positions and normals, from
-// arrays that outgrow the L2 on a large mesh (the dragon's: 3 MiB). The wavefront knows every hit
-// before it shades one, so it asks for them ahead: the chunk's triangle records at its start,
-// each triangle's vertices a few entries before their turn, once its record has arrived. Only
-// where the mesh data outgrows the L1: elsewhere the loop over the chunk's hits costs more than
-// it saves. (Wavefront Mpaths/s without / with, medians of five interleaved runs at one thread:
-// the bunny 1.83 / 1.92, the dragon 1.26 / 1.30, cornell 2.67 / 2.68.)
-constexpr size_t kVertexPrefetchDistance = 4;
-constexpr size_t kPrefetchMeshBytes = 64 * 1024;
+// arrays that outgrow the L2 on a large mesh (the dragon's: 3 MiB). Read entry by entry, among
+// each entry's shading, those loads wait one after the other, and prefetching them a few entries
+// ahead did not hide them (45% of `shade`'s samples on the dragon stayed on them). So where the
+// mesh data outgrows the L1, a chunk's triangle vertices are gathered first, in two tight loops
+// whose loads do not depend on one another (the records, then the vertices), so that the core
+// has many of them in flight at once; the entries then read them from the chunk's copy (the
+// dragon's wavefront 2-3% faster than with the prefetches, its `shade` 12% fewer samples; the
+// bunny as fast: `wavetrace render scenes/S.json --width 320 --height 320 --spp 16 --threads 1`,
+// medians of five and seven interleaved runs). Below that size the data stays in the L1, and
+// the gather would only copy it.
+constexpr size_t kGatherMeshBytes = 64 * 1024;
 
-bool prefetches_meshes(const Scene& scene) {
+bool gathers_meshes(const Scene& scene) {
     return scene.triangles.size() * sizeof(Triangle) +
                scene.positions.size() * (sizeof(Point3) + sizeof(Normal3)) >
-           kPrefetchMeshBytes;
+           kGatherMeshBytes;
 }
 
-void prefetch_triangles(const Scene& scene, const HitQueue& hits, size_t begin, size_t end) {
+// The vertices of a chunk's triangle hits, by chunk row (rows of other hits are left as they
+// are).
+struct ChunkTriangles {
+    Triangle tri[kShadeChunk];
+    Point3 p[kShadeChunk][3];
+    Normal3 n[kShadeChunk][3];
+};
+
+void gather_triangles(const Scene& scene,
+                      const HitQueue& hits,
+                      size_t begin,
+                      size_t end,
+                      ChunkTriangles& out) {
+    uint32_t rows[kShadeChunk];
+    size_t count = 0;
     for (size_t i = begin; i < end; ++i)
-        if (const PrimRef p = hits.prim[i]; p.valid() && p.kind() == PrimKind::Triangle)
-            __builtin_prefetch(&scene.triangles[p.index()]);
-}
-
-void prefetch_vertices(const Scene& scene, PrimRef p) {
-    if (!p.valid() || p.kind() != PrimKind::Triangle) return;
-    const Triangle& t = scene.triangles[p.index()];
-    for (int k = 0; k < 3; ++k) {
-        __builtin_prefetch(&scene.positions[t.v[k]]);
-        __builtin_prefetch(&scene.normals[t.v[k]]);
+        if (const PrimRef p = hits.prim[i]; p.valid() && p.kind() == PrimKind::Triangle) {
+            out.tri[i - begin] = scene.triangles[p.index()];
+            rows[count++] = static_cast<uint32_t>(i - begin);
+        }
+    for (size_t j = 0; j < count; ++j) {
+        const size_t k = rows[j];
+        for (int v = 0; v < 3; ++v) out.p[k][v] = scene.positions[out.tri[k].v[v]];
+    }
+    if (scene.normals.empty()) return;
+    for (size_t j = 0; j < count; ++j) {
+        const size_t k = rows[j];
+        if (scene.meshes[out.tri[k].mesh].has_normals)
+            for (int v = 0; v < 3; ++v) out.n[k][v] = scene.normals[out.tri[k].v[v]];
     }
 }
 
@@ -152,7 +172,8 @@ bool shade_quickly(const WaveInputs& in,
                    DeferredLightSample* deferred,
                    size_t& deferred_count,
                    TexturedRow* textured,
-                   size_t& textured_count) {
+                   size_t& textured_count,
+                   const ChunkTriangles* gathered) {
     const Scene& scene = in.scene;
     const PrimRef prim = hits.prim[i];
     const int bounce = paths.bounce[i];
@@ -219,11 +240,13 @@ bool shade_quickly(const WaveInputs& in,
     size_t row;
     if (tri) {
         const Mesh& mesh = scene.meshes[tri->mesh];
-        const Point3 p[3] = {scene.positions[tri->v[0]], scene.positions[tri->v[1]],
-                             scene.positions[tri->v[2]]};
+        Point3 p[3];
         Normal3 n[3];
-        if (mesh.has_normals)
-            for (int k = 0; k < 3; ++k) n[k] = scene.normals[tri->v[k]];
+        for (int k = 0; k < 3; ++k) {
+            p[k] = gathered ? gathered->p[chunk_row][k] : scene.positions[tri->v[k]];
+            if (mesh.has_normals)
+                n[k] = gathered ? gathered->n[chunk_row][k] : scene.normals[tri->v[k]];
+        }
         row = block.push_triangle_hit(i, rays.dir[i], hits.u[i], hits.v[i], p,
                                       mesh.has_normals ? n : nullptr, bsdf, paths.beta[i]);
     } else if (prim.kind() == PrimKind::Quad) {
@@ -265,7 +288,8 @@ size_t shade(const WaveInputs& in,
     SurfaceBlock block;
     DeferredLightSample deferred[kShadeChunk];
     TexturedRow textured[kShadeChunk];
-    const bool prefetch = prefetches_meshes(in.scene);
+    const bool gather = gathers_meshes(in.scene);
+    ChunkTriangles gathered;
     MediumSegmentBlock segments;
     const bool flights = !in.scene.media.empty();  // else segment_flight() is 0
     if (!flights) std::fill(std::begin(samples.next_flight), std::end(samples.next_flight), 0.0f);
@@ -296,16 +320,14 @@ size_t shade(const WaveInputs& in,
         }
         block.n = 0;
         size_t deferred_count = 0, textured_count = 0;
-        if (prefetch) prefetch_triangles(in.scene, hits, c, chunk_end);
+        if (gather) gather_triangles(in.scene, hits, c, chunk_end, gathered);
         for (size_t i = c; i < chunk_end; ++i) {
             keep[i] = 0;
-            if (prefetch && i + kVertexPrefetchDistance < chunk_end)
-                prefetch_vertices(in.scene, hits.prim[i + kVertexPrefetchDistance]);
 
             // ---- a vertex in lanes, a boundary crossed, an escape into the dark ----
             if (shade_quickly(in, i, i - c, samples, segments, hits, resolve_in_lanes, nee, rays,
                               paths, keep, block, deferred, deferred_count, textured,
-                              textured_count))
+                              textured_count, gather ? &gathered : nullptr))
                 continue;
 
             // ---- the segment: medium, emission, boundary or surface ----
