@@ -76,53 +76,48 @@ void textured_albedo(const Scene& scene, const TexturedRow& t, SurfaceBlock& blo
 
 // A chunk's mesh hits read a triangle record and then its vertices' positions and normals, from
 // arrays that outgrow the L2 on a large mesh (the dragon's: 3 MiB). Read entry by entry, among
-// each entry's shading, those loads wait one after the other, and prefetching them a few entries
-// ahead did not hide them (45% of `shade`'s samples on the dragon stayed on them). So where the
-// mesh data outgrows the L1, a chunk's triangle vertices are gathered first, in two tight loops
-// whose loads do not depend on one another (the records, then the vertices), so that the core
-// has many of them in flight at once; the entries then read them from the chunk's copy (the
-// dragon's wavefront 2-3% faster than with the prefetches, its `shade` 12% fewer samples; the
-// bunny as fast: `wavetrace render scenes/S.json --width 320 --height 320 --spp 16 --threads 1`,
-// medians of five and seven interleaved runs). Below that size the data stays in the L1, and
-// the gather would only copy it.
-constexpr size_t kGatherMeshBytes = 64 * 1024;
+// each entry's branchy shading, those loads wait one after the other: prefetched a few entries
+// ahead (records at the chunk's start, vertices four entries ahead) they still held 45% of
+// `shade`'s samples on the dragon (`perf annotate -l`), and prefetching further ahead did not
+// help. So where the mesh data outgrows the L1, a chunk first reads its triangle records in a
+// tight loop of loads that do not depend on one another, so that the core has many in flight
+// at once, then asks for all their vertices; the entries find them arrived. (`shade`'s samples
+// on the dragon 1,474 -> 1,085, the wavefront 1.29 -> 1.34 Mpaths/s; the bunny 956 -> 829 and
+// 2.02 -> 2.04: `perf record -F 4000` of `wavetrace render scenes/S.json --width 320 --height
+// 320 --spp 32 --threads 1 --engine wavefront`, medians of five interleaved runs. Copying the
+// vertices into a chunk array instead: 1,187 and 1.33 on the dragon.) Below that size the data
+// stays in the L1, and the loop over the chunk's hits would cost more than it saves.
+constexpr size_t kPrefetchMeshBytes = 64 * 1024;
 
-bool gathers_meshes(const Scene& scene) {
+bool prefetches_meshes(const Scene& scene) {
     return scene.triangles.size() * sizeof(Triangle) +
                scene.positions.size() * (sizeof(Point3) + sizeof(Normal3)) >
-           kGatherMeshBytes;
+           kPrefetchMeshBytes;
 }
 
-// The vertices of a chunk's triangle hits, by chunk row (rows of other hits are left as they
-// are).
+// The triangle records of a chunk's mesh hits, by chunk row (rows of other hits are left as
+// they are).
 struct ChunkTriangles {
     Triangle tri[kShadeChunk];
-    Point3 p[kShadeChunk][3];
-    Normal3 n[kShadeChunk][3];
 };
 
-void gather_triangles(const Scene& scene,
-                      const HitQueue& hits,
-                      size_t begin,
-                      size_t end,
-                      ChunkTriangles& out) {
+void prefetch_chunk_vertices(const Scene& scene,
+                             const HitQueue& hits,
+                             size_t begin,
+                             size_t end,
+                             ChunkTriangles& records) {
     uint32_t rows[kShadeChunk];
     size_t count = 0;
     for (size_t i = begin; i < end; ++i)
         if (const PrimRef p = hits.prim[i]; p.valid() && p.kind() == PrimKind::Triangle) {
-            out.tri[i - begin] = scene.triangles[p.index()];
+            records.tri[i - begin] = scene.triangles[p.index()];
             rows[count++] = static_cast<uint32_t>(i - begin);
         }
-    for (size_t j = 0; j < count; ++j) {
-        const size_t k = rows[j];
-        for (int v = 0; v < 3; ++v) out.p[k][v] = scene.positions[out.tri[k].v[v]];
-    }
-    if (scene.normals.empty()) return;
-    for (size_t j = 0; j < count; ++j) {
-        const size_t k = rows[j];
-        if (scene.meshes[out.tri[k].mesh].has_normals)
-            for (int v = 0; v < 3; ++v) out.n[k][v] = scene.normals[out.tri[k].v[v]];
-    }
+    for (size_t j = 0; j < count; ++j)
+        for (int v = 0; v < 3; ++v) {
+            __builtin_prefetch(&scene.positions[records.tri[rows[j]].v[v]]);
+            __builtin_prefetch(&scene.normals[records.tri[rows[j]].v[v]]);
+        }
 }
 
 // A light sample of a row resolved in lanes towards a light other than a quad: once the row's
@@ -172,8 +167,7 @@ bool shade_quickly(const WaveInputs& in,
                    DeferredLightSample* deferred,
                    size_t& deferred_count,
                    TexturedRow* textured,
-                   size_t& textured_count,
-                   const ChunkTriangles* gathered) {
+                   size_t& textured_count) {
     const Scene& scene = in.scene;
     const PrimRef prim = hits.prim[i];
     const int bounce = paths.bounce[i];
@@ -243,9 +237,8 @@ bool shade_quickly(const WaveInputs& in,
         Point3 p[3];
         Normal3 n[3];
         for (int k = 0; k < 3; ++k) {
-            p[k] = gathered ? gathered->p[chunk_row][k] : scene.positions[tri->v[k]];
-            if (mesh.has_normals)
-                n[k] = gathered ? gathered->n[chunk_row][k] : scene.normals[tri->v[k]];
+            p[k] = scene.positions[tri->v[k]];
+            if (mesh.has_normals) n[k] = scene.normals[tri->v[k]];
         }
         row = block.push_triangle_hit(i, rays.dir[i], hits.u[i], hits.v[i], p,
                                       mesh.has_normals ? n : nullptr, bsdf, paths.beta[i]);
@@ -288,8 +281,8 @@ size_t shade(const WaveInputs& in,
     SurfaceBlock block;
     DeferredLightSample deferred[kShadeChunk];
     TexturedRow textured[kShadeChunk];
-    const bool gather = gathers_meshes(in.scene);
-    ChunkTriangles gathered;
+    const bool prefetch = prefetches_meshes(in.scene);
+    ChunkTriangles records;
     MediumSegmentBlock segments;
     const bool flights = !in.scene.media.empty();  // else segment_flight() is 0
     if (!flights) std::fill(std::begin(samples.next_flight), std::end(samples.next_flight), 0.0f);
@@ -320,14 +313,14 @@ size_t shade(const WaveInputs& in,
         }
         block.n = 0;
         size_t deferred_count = 0, textured_count = 0;
-        if (gather) gather_triangles(in.scene, hits, c, chunk_end, gathered);
+        if (prefetch) prefetch_chunk_vertices(in.scene, hits, c, chunk_end, records);
         for (size_t i = c; i < chunk_end; ++i) {
             keep[i] = 0;
 
             // ---- a vertex in lanes, a boundary crossed, an escape into the dark ----
             if (shade_quickly(in, i, i - c, samples, segments, hits, resolve_in_lanes, nee, rays,
                               paths, keep, block, deferred, deferred_count, textured,
-                              textured_count, gather ? &gathered : nullptr))
+                              textured_count))
                 continue;
 
             // ---- the segment: medium, emission, boundary or surface ----
