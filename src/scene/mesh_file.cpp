@@ -137,10 +137,10 @@ void check_ply_lists(std::string_view body,
         // line is passed over and a second is read as an element; and past the last line it
         // reads what its line buffer held before (the previous line again: a face count of
         // 2222222222222222 there took 21 GB in 60 s, fuzz_mesh at seed 40), so the body must
-        // hold a line for every element. Within
-        // a line it skips spaces and tabs and reads each property where the previous one
-        // stopped, so every number it reads must be one it reads whole (assimp_reads_whole).
-        // check_ply has refused control characters other than tabs and line ends.
+        // hold a line for every element. Within a line it skips spaces and tabs and reads each
+        // property where the previous one stopped, so every number it reads must be one it
+        // reads whole (assimp_reads_whole). check_ply has refused control characters other
+        // than tabs and line ends.
         uint64_t announced = 0;
         for (const PlyElement& e : elements) announced += e.count;
         uint64_t read = 0;
