@@ -32,14 +32,17 @@ test: build
 # loader, CLI, BVH and engine tests under the sanitizers, then each fuzz target for a fixed
 # number of executions. `make fuzz FUZZ_SECONDS=600`: explore longer and grow the corpus.
 SAN_DIR ?= build-sanitize
+FUZZ_HEAP_DIR ?= build-fuzz-heap
+# clang with the system's binutils, for the sanitized and the fuzz-heap builds
+CLANG_CMAKE = -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
+  -DCMAKE_AR=/usr/bin/ar -DCMAKE_RANLIB=/usr/bin/ranlib -DCMAKE_LINKER=/usr/bin/ld \
+  -DWAVETRACE_FUZZ=ON --log-level=WARNING
 SAN_TESTS ?= SceneLoader.*:Cli.*:Hostile*:Bvh.*:Triangle.*:Sphere.*:Quad.*:MeshFiles.*:Wavefront.*:Megakernel.*:Kernels.*:Lanes.*:Films.*:CompareImages.*
 FUZZ_RUNS ?= 20000
 FUZZ_SECONDS ?= 600
 
 sanitize-build: deps
-	@cmake -S . -B $(SAN_DIR) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
-	  -DCMAKE_AR=/usr/bin/ar -DCMAKE_RANLIB=/usr/bin/ranlib -DCMAKE_LINKER=/usr/bin/ld \
-	  -DWAVETRACE_SANITIZE=ON -DWAVETRACE_FUZZ=ON --log-level=WARNING
+	@cmake -S . -B $(SAN_DIR) $(CLANG_CMAKE) -DWAVETRACE_SANITIZE=ON
 	@cmake --build $(SAN_DIR) -j $(JOBS) --target wavetrace_cli wavetrace_tests fuzz_scene fuzz_mesh fuzz_film
 
 sanitize: sanitize-build
@@ -55,7 +58,9 @@ fuzz: sanitize-build
 # built without ASan, under glibc's heap checks, FUZZ_RUNS executions from each seed in SEEDS.
 SEEDS ?= 2 3 4 5 6 7 8 9
 fuzz-heap: deps
-	@tools/fuzz-heap.sh build-fuzz-heap $(FUZZ_RUNS) $(SEEDS)
+	@cmake -S . -B $(FUZZ_HEAP_DIR) $(CLANG_CMAKE)
+	@cmake --build $(FUZZ_HEAP_DIR) -j $(JOBS) --target fuzz_mesh >/dev/null
+	@tools/fuzz-heap.sh $(FUZZ_HEAP_DIR) $(FUZZ_RUNS) $(SEEDS)
 
 # The benchmark suite: both engines side by side, our BVH vs Embree, thread scaling,
 # convergence, kernel micro-benchmarks; results/ gets JSON, CSV and SVG plots.

@@ -1,14 +1,15 @@
 #!/usr/bin/env bash
-# Fuzzes the mesh reader for heap damage inside Assimp (make fuzz-heap SEEDS="2 3 ...").
+# Fuzzes the mesh reader for heap damage inside Assimp (make fuzz-heap SEEDS="2 3 ...", which
+# first builds fuzz_mesh without sanitizers in build-fuzz-heap/).
 #
 #   tools/fuzz-heap.sh BUILD_DIR RUNS SEED...
 #
 # Assimp is not built with AddressSanitizer, so ASan (make sanitize) sees Assimp's writes past
 # a heap block only when its allocator later reuses the damaged chunk, runs or a whole process
-# later, with no input to show for it. Here fuzz_mesh is built without ASan and run under
-# glibc's heap checks (libc_malloc_debug, MALLOC_CHECK_=3), which check a chunk when it is freed,
-# inside the import that damaged it: the run aborts while the file being read is still the
-# harness's temporary file, which is kept. Each seed runs RUNS executions on a copy of the
+# later, with no input to show for it. Here BUILD_DIR's fuzz_mesh, built without ASan, runs
+# under glibc's heap checks (libc_malloc_debug, MALLOC_CHECK_=3), which check a chunk when it is
+# freed, inside the import that damaged it: the run aborts while the file being read is still
+# the harness's temporary file, which is kept. Each seed runs RUNS executions on a copy of the
 # committed corpus; a crash, an abort, a hang (over 10 s on one input) or a memory blow-up
 # (over 4 GiB) fails it. See docs/architecture.md, "Sanitizers and fuzzing".
 set -euo pipefail
@@ -16,12 +17,7 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=$1 runs=$2
 shift 2
-cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
-  -DCMAKE_AR=/usr/bin/ar -DCMAKE_RANLIB=/usr/bin/ranlib -DCMAKE_LINKER=/usr/bin/ld \
-  -DWAVETRACE_FUZZ=ON --log-level=WARNING
 build=$(cd "$build" && pwd)
-cmake --build "$build" -j "$(nproc)" --target fuzz_mesh >"$build/fuzz-heap-build.log" 2>&1 ||
-  { tail -30 "$build/fuzz-heap-build.log" >&2; exit 1; }
 debug=$(ls /usr/lib/*/libc_malloc_debug.so.0 | head -1)
 artifacts="$build/fuzz-heap-artifacts"
 mkdir -p "$artifacts"

@@ -285,19 +285,19 @@ void check_ply(const std::filesystem::path& path) {
                                  std::to_string(at) +
                                  (body ? " (an ASCII body is text)" : " (a header is text)"));
     };
+    // Text, header or ASCII body: no control character but a tab, lines ended by "\n" or "\r\n".
+    auto is_text = [&](size_t k) {
+        const char c = raw[k];
+        return static_cast<unsigned char>(c) >= 0x20 || c == '\t' || c == '\n' ||
+               (c == '\r' && k + 1 < raw.size() && raw[k + 1] == '\n');
+    };
     for (size_t pos = 0; pos < header_window;) {
         const size_t end = raw.find_first_of(kLineEnds, pos);
         if (end == std::string::npos || end >= header_window) break;  // no end: truncated
-        for (size_t k = pos; k < end; ++k)
-            if (static_cast<unsigned char>(raw[k]) < 0x20 && raw[k] != '\t') refuse_byte(k);
+        for (size_t k = pos; k <= end; ++k)
+            if (!is_text(k)) refuse_byte(k);
         const std::string_view line(raw.data() + pos, end - pos);
-        pos = end + 1;
-        if (raw[end] == '\r') {
-            if (pos >= raw.size() || raw[pos] != '\n') refuse_byte(end);
-            ++pos;
-        } else if (raw[end] != '\n') {
-            refuse_byte(end);
-        }
+        pos = end + (raw[end] == '\r' ? 2 : 1);
         if (line == "end_header") {
             header_bytes = pos;
             break;
@@ -406,11 +406,9 @@ void check_ply(const std::filesystem::path& path) {
         throw std::runtime_error("binary PLY body is " + std::to_string(body.size()) +
                                  " bytes, but its header announces at least " +
                                  std::to_string(min_body) + " (truncated?)");
-    if (!binary)  // an ASCII body is text, its lines ended as the header's are
-        for (size_t k = 0; k < body.size(); ++k)
-            if (static_cast<unsigned char>(body[k]) < 0x20 && body[k] != '\t' && body[k] != '\n' &&
-                !(body[k] == '\r' && k + 1 < body.size() && body[k + 1] == '\n'))
-                refuse_byte(header_bytes + k, true);
+    if (!binary)
+        for (size_t k = header_bytes; k < raw.size(); ++k)
+            if (!is_text(k)) refuse_byte(k, true);
     const bool after_crlf = raw[header_bytes - 2] == '\r';
     check_ply_lists(body, !binary, big_endian, elements, after_crlf,
                     static_cast<size_t>(line_number) + 2);
