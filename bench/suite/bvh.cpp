@@ -81,8 +81,9 @@ double mrays_once(const std::vector<Ray>& rays, int threads, const Tracer& t) {
 // machine's drift falls on all of them alike: runs[k][j] is tracer j's Mrays/s in round k.
 std::vector<std::vector<double>> interleaved(const std::vector<Ray>& rays,
                                              int threads,
-                                             const std::vector<Tracer>& tracers) {
-    std::vector<std::vector<double>> runs(kRepetitions);
+                                             const std::vector<Tracer>& tracers,
+                                             int rounds) {
+    std::vector<std::vector<double>> runs(rounds);
     for (auto& round : runs)
         for (const Tracer& t : tracers) round.push_back(mrays_once(rays, threads, t));
     return runs;
@@ -149,7 +150,7 @@ void bench_bvh(const Options& o, Results& r) {
                     tracers.push_back(
                         {16, [&](size_t i) { embree.intersect_packet(&rays[i], 16); }});
                 }
-                const auto runs = interleaved(rays, threads, tracers);
+                const auto runs = interleaved(rays, threads, tracers, o.repetitions());
                 const double ours = median_rate(runs, 0), ref = median_rate(runs, 1);
                 const double ratio = median_ratio(runs, 0, 1);
                 nlohmann::json p8 = nullptr, p16 = nullptr, ours_p = nullptr, ratio_p = nullptr;

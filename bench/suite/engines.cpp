@@ -71,7 +71,7 @@ void bench_engines(const Options& o, Results& r) {
                          {"bunny", 320, 320, 16},
                          {"dragon", 320, 320, 16},
                          {"veach-mis", 384, 288, 16}};
-    const int reps = o.quick ? 1 : kRepetitions;
+    const int reps = o.repetitions();
     const int all = tbb::this_task_arena::max_concurrency();
     std::vector<int> thread_counts = {1};
     if (all > 1) thread_counts.push_back(all);

@@ -23,6 +23,10 @@ int main(int argc, char** argv) {
         ->check(CLI::IsMember({"engines", "waves", "bvh", "scaling", "convergence"}));
     app.add_option("--max-threads", o.max_threads,
                    "scaling: up to this many threads (default: all)");
+    app.add_option("--repetitions", o.reps,
+                   "engines, bvh, scaling: interleaved repetitions to take medians of")
+        ->capture_default_str()
+        ->check(CLI::PositiveNumber);
     app.add_option("--scene", o.only, "engines, scaling: only these bench scenes (repeatable)")
         ->check(CLI::IsMember({"cornell", "everything", "bunny", "dragon", "veach-mis"}));
     CLI11_PARSE(app, argc, argv);

@@ -4,10 +4,19 @@
 // threads (16 spp per two threads) so that every render lasts about as long: a render of a
 // fixed size would shrink to a tenth of a second at 16 threads, where starting and draining
 // the threads weigh on the figure.
+//
+// Beside each engine's speed-up, the machine's own: t one-thread renders of the same engine run
+// at once, each in its own thread and task arena of one, sharing nothing but the scene (8 spp
+// each, so that they do the work of the t-thread render between them). Their combined
+// throughput over one render alone is what t cores give work that never synchronises (shared
+// caches and memory bandwidth, clocks that fall as more cores run, SMT siblings); an engine's
+// speed-up over that one is the part of its parallel efficiency that is its own.
 #include <tbb/global_control.h>
 #include <tbb/task_arena.h>
 
+#include <chrono>
 #include <cstdio>
+#include <thread>
 
 #include "sections.h"
 #include "wavetrace/wavetrace.h"
@@ -16,20 +25,41 @@ namespace wavetrace::bench {
 
 namespace {
 
-// 1, 2, 4, 8, then steps of 4 up to max (and max itself): enough points for a curve at a
-// fraction of the time of every count.
+// Powers of two up to max (and max itself): enough points for a curve at a fraction of the
+// time of every count.
 std::vector<int> thread_counts(int max) {
     std::vector<int> t;
-    for (int n = 1; n <= max; n = n < 8 ? n * 2 : n + 4) t.push_back(n);
+    for (int n = 1; n <= max; n *= 2) t.push_back(n);
     if (t.back() != max) t.push_back(max);
     return t;
+}
+
+// Mpaths/s of `threads` one-thread renders run at once, each with its own seed.
+template <class Render>
+double independent_mpaths(int threads, RenderConfig cfg, const Render& render) {
+    std::vector<RenderStats> stats(threads);
+    std::vector<std::thread> workers;
+    const auto start = std::chrono::steady_clock::now();
+    for (int i = 0; i < threads; ++i)
+        workers.emplace_back([&, i, cfg]() mutable {
+            cfg.seed += static_cast<uint64_t>(i);
+            tbb::task_arena one(1);
+            one.execute([&] { render(cfg, &stats[i]); });
+        });
+    for (std::thread& w : workers) w.join();
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    double paths = 0;
+    for (const RenderStats& s : stats) paths += s.paths;
+    return paths / seconds * 1e-6;
 }
 
 }  // namespace
 
 void bench_scaling(const Options& o, Results& r) {
     r.table("scaling", {"scene", "engine", "threads", "spp", "mpaths", "speedup", "efficiency",
-                        "wavefront_over_megakernel"});
+                        "wavefront_over_megakernel", "independent_speedup",
+                        "speedup_over_independent"});
     const int max_threads =
         o.max_threads > 0 ? o.max_threads : tbb::this_task_arena::max_concurrency();
     for (const char* name : {"cornell", "everything", "bunny", "dragon", "veach-mis"}) {
@@ -41,19 +71,31 @@ void bench_scaling(const Options& o, Results& r) {
         cfg.height = o.quick ? 16 : 320;
         cfg.seed = 1;
         cfg.max_depth = scene.render.max_depth;
+        const auto megakernel = [&](const RenderConfig& c, RenderStats* s) {
+            render_megakernel(scene, bvh, c, s);
+        };
+        const auto wavefront = [&](const RenderConfig& c, RenderStats* s) {
+            render_wavefront(scene, bvh, c, {}, s);
+        };
         double base_mk = 0, base_wf = 0;  // Mpaths/s at one thread
         for (int t : thread_counts(max_threads)) {
             tbb::global_control limit(tbb::global_control::max_allowed_parallelism, t);
             cfg.spp = o.quick ? 1 : 16 * ((t + 1) / 2);
+            RenderConfig each = cfg;
+            each.spp = std::max(1, cfg.spp / t);
             // Interleaved (A B A B ...), medians, to damp the noise of a shared machine.
-            std::vector<double> mk, wf, ratio;
-            for (int rep = 0; rep < (o.quick ? 1 : kRepetitions); ++rep) {
+            std::vector<double> mk, wf, ratio, mk_alone, wf_alone;
+            for (int rep = 0; rep < o.repetitions(); ++rep) {
                 RenderStats a, b;
-                render_megakernel(scene, bvh, cfg, &a);
-                render_wavefront(scene, bvh, cfg, {}, &b);
+                megakernel(cfg, &a);
+                wavefront(cfg, &b);
                 mk.push_back(a.paths / a.seconds * 1e-6);
                 wf.push_back(b.paths / b.seconds * 1e-6);
                 ratio.push_back(a.seconds / b.seconds);
+                if (t > 1) {
+                    mk_alone.push_back(independent_mpaths(t, each, megakernel));
+                    wf_alone.push_back(independent_mpaths(t, each, wavefront));
+                }
             }
             const double mk_p = spread(mk).median, wf_p = spread(wf).median;
             const double q = spread(ratio).median;
@@ -62,12 +104,18 @@ void bench_scaling(const Options& o, Results& r) {
                 base_wf = wf_p;
             }
             const double mk_up = mk_p / base_mk, wf_up = wf_p / base_wf;
-            r.row("scaling", {name, "megakernel", t, cfg.spp, mk_p, mk_up, mk_up / t, q});
-            r.row("scaling", {name, "wavefront", t, cfg.spp, wf_p, wf_up, wf_up / t, q});
+            const double mk_ceiling = t > 1 ? spread(mk_alone).median / base_mk : 1;
+            const double wf_ceiling = t > 1 ? spread(wf_alone).median / base_wf : 1;
+            r.row("scaling", {name, "megakernel", t, cfg.spp, mk_p, mk_up, mk_up / t, q,
+                              mk_ceiling, mk_up / mk_ceiling});
+            r.row("scaling", {name, "wavefront", t, cfg.spp, wf_p, wf_up, wf_up / t, q,
+                              wf_ceiling, wf_up / wf_ceiling});
             std::printf(
                 "scaling %-10s %2d threads %3d spp: speed-up megakernel %5.2fx, wavefront %5.2fx "
-                "(efficiency %.2f, %.2f); wavefront/megakernel %.2f\n",
-                name, t, cfg.spp, mk_up, wf_up, mk_up / t, wf_up / t, q);
+                "(efficiency %.2f, %.2f); %d renders alone at once %5.2fx, %5.2fx; "
+                "wavefront/megakernel %.2f\n",
+                name, t, cfg.spp, mk_up, wf_up, mk_up / t, wf_up / t, t, mk_ceiling, wf_ceiling,
+                q);
             std::fflush(stdout);
         }
     }
