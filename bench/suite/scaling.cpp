@@ -7,10 +7,11 @@
 //
 // Beside each engine's speed-up, the machine's own: t one-thread renders of the same engine run
 // at once, each in its own thread and task arena of one, sharing nothing but the scene (8 spp
-// each, so that they do the work of the t-thread render between them). Their combined
-// throughput over one render alone is what t cores give work that never synchronises (shared
-// caches and memory bandwidth, clocks that fall as more cores run, SMT siblings); an engine's
-// speed-up over that one is the part of its parallel efficiency that is its own.
+// each, so that they do the work of the t-thread render between them). Timed until the last
+// one ends, they are the simplest parallel renderer (a static split of the samples), and an
+// engine's speed-up over theirs is what its own scheduling wins or loses; the sum of each
+// one's own rate is what t busy cores give work that never synchronises (shared caches and
+// memory bandwidth, clocks that fall as more cores run, neighbours), stragglers left out.
 #include <tbb/global_control.h>
 #include <tbb/task_arena.h>
 
@@ -34,9 +35,15 @@ std::vector<int> thread_counts(int max) {
     return t;
 }
 
-// Mpaths/s of `threads` one-thread renders run at once, each with its own seed.
+// Mpaths/s of `threads` one-thread renders run at once, each with its own seed: all their
+// paths over the time until the last one ends, and the sum of each one's own rate.
+struct Independent {
+    double until_last = 0;
+    double own_rates = 0;
+};
+
 template <class Render>
-double independent_mpaths(int threads, RenderConfig cfg, const Render& render) {
+Independent independent_mpaths(int threads, RenderConfig cfg, const Render& render) {
     std::vector<RenderStats> stats(threads);
     std::vector<std::thread> workers;
     const auto start = std::chrono::steady_clock::now();
@@ -49,9 +56,12 @@ double independent_mpaths(int threads, RenderConfig cfg, const Render& render) {
     for (std::thread& w : workers) w.join();
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    double paths = 0;
-    for (const RenderStats& s : stats) paths += s.paths;
-    return paths / seconds * 1e-6;
+    Independent r;
+    for (const RenderStats& s : stats) {
+        r.until_last += s.paths / seconds * 1e-6;
+        r.own_rates += s.paths / s.seconds * 1e-6;
+    }
+    return r;
 }
 
 }  // namespace
@@ -59,7 +69,7 @@ double independent_mpaths(int threads, RenderConfig cfg, const Render& render) {
 void bench_scaling(const Options& o, Results& r) {
     r.table("scaling", {"scene", "engine", "threads", "spp", "mpaths", "speedup", "efficiency",
                         "wavefront_over_megakernel", "independent_speedup",
-                        "speedup_over_independent"});
+                        "speedup_over_independent", "independent_own_speedup"});
     const int max_threads =
         o.max_threads > 0 ? o.max_threads : tbb::this_task_arena::max_concurrency();
     for (const char* name : {"cornell", "everything", "bunny", "dragon", "veach-mis"}) {
@@ -84,7 +94,7 @@ void bench_scaling(const Options& o, Results& r) {
             RenderConfig each = cfg;
             each.spp = std::max(1, cfg.spp / t);
             // Interleaved (A B A B ...), medians, to damp the noise of a shared machine.
-            std::vector<double> mk, wf, ratio, mk_alone, wf_alone;
+            std::vector<double> mk, wf, ratio, mk_alone, wf_alone, mk_own, wf_own;
             for (int rep = 0; rep < o.repetitions(); ++rep) {
                 RenderStats a, b;
                 megakernel(cfg, &a);
@@ -93,8 +103,12 @@ void bench_scaling(const Options& o, Results& r) {
                 wf.push_back(b.paths / b.seconds * 1e-6);
                 ratio.push_back(a.seconds / b.seconds);
                 if (t > 1) {
-                    mk_alone.push_back(independent_mpaths(t, each, megakernel));
-                    wf_alone.push_back(independent_mpaths(t, each, wavefront));
+                    const Independent m = independent_mpaths(t, each, megakernel);
+                    const Independent w = independent_mpaths(t, each, wavefront);
+                    mk_alone.push_back(m.until_last);
+                    wf_alone.push_back(w.until_last);
+                    mk_own.push_back(m.own_rates);
+                    wf_own.push_back(w.own_rates);
                 }
             }
             const double mk_p = spread(mk).median, wf_p = spread(wf).median;
@@ -104,18 +118,20 @@ void bench_scaling(const Options& o, Results& r) {
                 base_wf = wf_p;
             }
             const double mk_up = mk_p / base_mk, wf_up = wf_p / base_wf;
-            const double mk_ceiling = t > 1 ? spread(mk_alone).median / base_mk : 1;
-            const double wf_ceiling = t > 1 ? spread(wf_alone).median / base_wf : 1;
+            const double mk_split = t > 1 ? spread(mk_alone).median / base_mk : 1;
+            const double wf_split = t > 1 ? spread(wf_alone).median / base_wf : 1;
+            const double mk_busy = t > 1 ? spread(mk_own).median / base_mk : 1;
+            const double wf_busy = t > 1 ? spread(wf_own).median / base_wf : 1;
             r.row("scaling", {name, "megakernel", t, cfg.spp, mk_p, mk_up, mk_up / t, q,
-                              mk_ceiling, mk_up / mk_ceiling});
+                              mk_split, mk_up / mk_split, mk_busy});
             r.row("scaling", {name, "wavefront", t, cfg.spp, wf_p, wf_up, wf_up / t, q,
-                              wf_ceiling, wf_up / wf_ceiling});
+                              wf_split, wf_up / wf_split, wf_busy});
             std::printf(
                 "scaling %-10s %2d threads %3d spp: speed-up megakernel %5.2fx, wavefront %5.2fx "
-                "(efficiency %.2f, %.2f); %d renders alone at once %5.2fx, %5.2fx; "
-                "wavefront/megakernel %.2f\n",
-                name, t, cfg.spp, mk_up, wf_up, mk_up / t, wf_up / t, t, mk_ceiling, wf_ceiling,
-                q);
+                "(efficiency %.2f, %.2f); %d renders alone at once %5.2fx, %5.2fx "
+                "(their own rates %5.2fx, %5.2fx); wavefront/megakernel %.2f\n",
+                name, t, cfg.spp, mk_up, wf_up, mk_up / t, wf_up / t, t, mk_split, wf_split,
+                mk_busy, wf_busy, q);
             std::fflush(stdout);
         }
     }
