@@ -6,8 +6,8 @@
 // the threads weigh on the figure.
 //
 // Beside each engine's speed-up, the machine's own: t one-thread renders of the same engine run
-// at once, each in its own thread and task arena of one, sharing nothing but the scene (8 spp
-// each, so that they do the work of the t-thread render between them). Timed until the last
+// at once, each in its own thread and task arena of one, sharing nothing but the scene (the
+// t-thread render's spp / t each: 8 at even counts, so that between them they do its work). Timed until the last
 // one ends, they are the simplest parallel renderer (a static split of the samples), and an
 // engine's speed-up over theirs is what its own scheduling wins or loses; the sum of each
 // one's own rate is what t busy cores give work that never synchronises (shared caches and
