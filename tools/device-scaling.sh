@@ -8,8 +8,8 @@
 # It writes to $OUT: machine.txt (CPU, cores, SMT siblings, caches), scaling/ and engines/
 # (the suite's CSV and JSON) and their logs. `everything` is left out: its earth texture needs
 # OpenImageIO, which the bundle does not carry. On 2026-11-28 the scaling section needed more
-# than 330 s for the four scenes (it was cut during veach-mis) and the engines section ~90 s:
-# run it with a timeout_s of about 520, or set SCALING_SECONDS / ENGINES_SECONDS.
+# than 330 s for the four scenes (cut during veach-mis; ~110 s a scene) and the engines section ~90 s:
+# run it with a timeout_s of about 570 (a start took ~40 s of the device time), or set SCALING_SECONDS / ENGINES_SECONDS.
 set -uo pipefail
 out=${OUT:?OUT must name the folder the results go to}
 mkdir -p /tmp/wt && tar -xJf .device/bundle.tar.xz -C /tmp/wt
@@ -21,7 +21,7 @@ mkdir -p /tmp/wt && tar -xJf .device/bundle.tar.xz -C /tmp/wt
     free -g
 } >"$out/machine.txt" 2>&1
 scenes=(--scene cornell --scene bunny --scene dragon --scene veach-mis)
-timeout "${SCALING_SECONDS:-400}" /tmp/wt/run.sh wavetrace_bench --sections scaling \
+timeout "${SCALING_SECONDS:-450}" /tmp/wt/run.sh wavetrace_bench --sections scaling \
     --max-threads 16 --repetitions 5 --scenes scenes "${scenes[@]}" --out "$out/scaling" 2>&1 |
     tee "$out/scaling.log"
 timeout "${ENGINES_SECONDS:-100}" /tmp/wt/run.sh wavetrace_bench --sections engines \
