@@ -8,8 +8,9 @@
 # It writes to $OUT: machine.txt (CPU, cores, SMT siblings, caches), scaling/ and engines/
 # (the suite's CSV and JSON) and their logs. `everything` is left out: its earth texture needs
 # OpenImageIO, which the bundle does not carry. On 2026-11-28 the scaling section needed more
-# than 330 s for the four scenes (cut during veach-mis; ~110 s a scene) and the engines section ~90 s:
-# run it with a timeout_s of about 570 (a start took ~40 s of the device time), or set SCALING_SECONDS / ENGINES_SECONDS.
+# than 330 s for the four scenes (cut during veach-mis; ~110 s a scene) and the engines section
+# ~90 s: give the run a timeout_s of about 570 (a start took ~40 s of the device time), or set
+# SCALING_SECONDS / ENGINES_SECONDS.
 set -uo pipefail
 out=${OUT:?OUT must name the folder the results go to}
 mkdir -p /tmp/wt && tar -xJf .device/bundle.tar.xz -C /tmp/wt
