@@ -7,11 +7,12 @@
 //
 // Beside each engine's speed-up, the machine's own: t one-thread renders of the same engine run
 // at once, each in its own thread and task arena of one, sharing nothing but the scene (the
-// t-thread render's spp / t each: 8 at even counts, so that between them they do its work). Timed until the last
-// one ends, they are the simplest parallel renderer (a static split of the samples), and an
-// engine's speed-up over theirs is what its own scheduling wins or loses; the sum of each
-// one's own rate is what t busy cores give work that never synchronises (shared caches and
-// memory bandwidth, clocks that fall as more cores run, neighbours), stragglers left out.
+// t-thread render's spp / t each: 8 at even counts, so that between them they do its work).
+// Timed until the last one ends, they are the simplest parallel renderer (a static split of
+// the samples), and an engine's speed-up over theirs is what its own scheduling wins or loses;
+// the sum of each one's own rate is what t busy cores give work that never synchronises
+// (shared caches and memory bandwidth, clocks that fall as more cores run, neighbours),
+// stragglers left out.
 #include <tbb/global_control.h>
 #include <tbb/task_arena.h>
 

@@ -17,9 +17,9 @@ namespace wavetrace::bench {
 inline constexpr int kRepetitions = 5;
 
 struct Options {
-    bool quick = false;   // tiny settings: checks the harness, measures nothing useful
+    bool quick = false;       // tiny settings: checks the harness, measures nothing useful
     int reps = kRepetitions;  // interleaved repetitions (--repetitions)
-    int max_threads = 0;  // scaling goes 1 .. this (0: all hardware threads)
+    int max_threads = 0;      // scaling goes 1 .. this (0: all hardware threads)
     std::filesystem::path scenes;
     std::vector<std::string> only;  // engines and scaling: these bench scenes only (empty: all)
 
