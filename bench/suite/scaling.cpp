@@ -65,6 +65,15 @@ Independent independent_mpaths(int threads, RenderConfig cfg, const Render& rend
     return r;
 }
 
+// One of the independent renders' figures over the one-thread rate `base`, median over the
+// repetitions (none at one thread, where a render alone is the baseline).
+double speedup_of(const std::vector<Independent>& runs, double Independent::*figure, double base) {
+    if (runs.empty()) return 1;
+    std::vector<double> v;
+    for (const Independent& run : runs) v.push_back(run.*figure);
+    return spread(v).median / base;
+}
+
 }  // namespace
 
 void bench_scaling(const Options& o, Results& r) {
@@ -95,7 +104,8 @@ void bench_scaling(const Options& o, Results& r) {
             RenderConfig each = cfg;
             each.spp = std::max(1, cfg.spp / t);
             // Interleaved (A B A B ...), medians, to damp the noise of a shared machine.
-            std::vector<double> mk, wf, ratio, mk_alone, wf_alone, mk_own, wf_own;
+            std::vector<double> mk, wf, ratio;
+            std::vector<Independent> mk_alone, wf_alone;
             for (int rep = 0; rep < o.repetitions(); ++rep) {
                 RenderStats a, b;
                 megakernel(cfg, &a);
@@ -104,12 +114,8 @@ void bench_scaling(const Options& o, Results& r) {
                 wf.push_back(b.paths / b.seconds * 1e-6);
                 ratio.push_back(a.seconds / b.seconds);
                 if (t > 1) {
-                    const Independent m = independent_mpaths(t, each, megakernel);
-                    const Independent w = independent_mpaths(t, each, wavefront);
-                    mk_alone.push_back(m.until_last);
-                    wf_alone.push_back(w.until_last);
-                    mk_own.push_back(m.own_rates);
-                    wf_own.push_back(w.own_rates);
+                    mk_alone.push_back(independent_mpaths(t, each, megakernel));
+                    wf_alone.push_back(independent_mpaths(t, each, wavefront));
                 }
             }
             const double mk_p = spread(mk).median, wf_p = spread(wf).median;
@@ -119,14 +125,14 @@ void bench_scaling(const Options& o, Results& r) {
                 base_wf = wf_p;
             }
             const double mk_up = mk_p / base_mk, wf_up = wf_p / base_wf;
-            const double mk_split = t > 1 ? spread(mk_alone).median / base_mk : 1;
-            const double wf_split = t > 1 ? spread(wf_alone).median / base_wf : 1;
-            const double mk_busy = t > 1 ? spread(mk_own).median / base_mk : 1;
-            const double wf_busy = t > 1 ? spread(wf_own).median / base_wf : 1;
-            r.row("scaling", {name, "megakernel", t, cfg.spp, mk_p, mk_up, mk_up / t, q,
-                              mk_split, mk_up / mk_split, mk_busy});
-            r.row("scaling", {name, "wavefront", t, cfg.spp, wf_p, wf_up, wf_up / t, q,
-                              wf_split, wf_up / wf_split, wf_busy});
+            const double mk_split = speedup_of(mk_alone, &Independent::until_last, base_mk);
+            const double wf_split = speedup_of(wf_alone, &Independent::until_last, base_wf);
+            const double mk_busy = speedup_of(mk_alone, &Independent::own_rates, base_mk);
+            const double wf_busy = speedup_of(wf_alone, &Independent::own_rates, base_wf);
+            r.row("scaling", {name, "megakernel", t, cfg.spp, mk_p, mk_up, mk_up / t, q, mk_split,
+                              mk_up / mk_split, mk_busy});
+            r.row("scaling", {name, "wavefront", t, cfg.spp, wf_p, wf_up, wf_up / t, q, wf_split,
+                              wf_up / wf_split, wf_busy});
             std::printf(
                 "scaling %-10s %2d threads %3d spp: speed-up megakernel %5.2fx, wavefront %5.2fx "
                 "(efficiency %.2f, %.2f); %d renders alone at once %5.2fx, %5.2fx "

@@ -74,12 +74,19 @@ struct PlyElement {
 // in 15 s: found by tests/fuzz/fuzz_mesh at seed 50).
 bool assimp_reads_whole(std::string_view t, PlyNumber type) {
     size_t k = 0;
+    bool wrapped = false;  // the last run of digits overflows 64 bits, as strtoul10_64 reads it
     auto sign = [&] {
         if (k < t.size() && (t[k] == '+' || t[k] == '-')) ++k;
     };
     auto digits = [&] {
         const size_t start = k;
-        while (k < t.size() && t[k] >= '0' && t[k] <= '9') ++k;
+        uint64_t value = 0;  // an overflow is a value that falls
+        wrapped = false;
+        for (; k < t.size() && t[k] >= '0' && t[k] <= '9'; ++k) {
+            const uint64_t next = value * 10 + uint64_t(t[k] - '0');
+            wrapped = wrapped || next < value;
+            value = next;
+        }
         return k - start;
     };
     if (type == PlyNumber::Unsigned) return digits() > 0 && k == t.size();
@@ -88,13 +95,8 @@ bool assimp_reads_whole(std::string_view t, PlyNumber type) {
     std::string word(t.substr(k));
     for (char& c : word) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     if (word == "nan" || word == "inf" || word == "infinity") return true;
-    uint64_t value = 0;  // strtoul10_64: an overflow is a value that falls
-    for (size_t j = k; j < t.size() && t[j] >= '0' && t[j] <= '9'; ++j) {
-        const uint64_t next = value * 10 + uint64_t(t[j] - '0');
-        if (next < value) return false;
-        value = next;
-    }
     size_t mantissa = digits();
+    if (wrapped) return false;
     if (k < t.size() && t[k] == '.') {
         ++k;
         const size_t fraction = digits();
