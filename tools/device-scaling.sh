@@ -19,6 +19,7 @@ mkdir -p /tmp/wt && tar -xJf .device/bundle.tar.xz -C /tmp/wt
     lscpu
     echo "thread siblings of cpu0: $(cat /sys/devices/system/cpu/cpu0/topology/thread_siblings_list)"
     echo "core ids: $(cat /sys/devices/system/cpu/cpu*/topology/core_id | sort -n | uniq -c | tr '\n' ' ')"
+    grep -m1 MHz /proc/cpuinfo
     free -g
 } >"$out/machine.txt" 2>&1
 scenes=(--scene cornell --scene bunny --scene dragon --scene veach-mis)

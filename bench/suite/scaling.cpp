@@ -12,7 +12,10 @@
 // the samples), and an engine's speed-up over theirs is what its own scheduling wins or loses;
 // the sum of each one's own rate is what t busy cores give work that never synchronises
 // (shared caches and memory bandwidth, clocks that fall as more cores run, neighbours),
-// stragglers left out.
+// stragglers left out. Under both, the machine's ceiling for work that touches no memory:
+// t threads each running the same chains of arithmetic, the sum of their own rates over one
+// thread's (clocks that fall as more cores run, cores shared by two of the guest's threads or
+// with another guest's).
 #include <tbb/global_control.h>
 #include <tbb/task_arena.h>
 
@@ -74,14 +77,60 @@ double speedup_of(const std::vector<Independent>& runs, double Independent::*fig
     return spread(v).median / base;
 }
 
+// Iterations a second of 24 independent chains of multiply-adds in registers: more independent
+// operations than the pipes' latency needs, so the core's arithmetic throughput bounds it (a
+// core shared by two threads halves each one's rate), and no memory, so nothing else does:
+// the rate follows only the core's clock and whatever shares the core.
+double arithmetic_rate(uint64_t iterations) {
+    double x[24];
+    for (int i = 0; i < 24; ++i) x[i] = i + 1;
+    const auto start = std::chrono::steady_clock::now();
+    for (uint64_t i = 0; i < iterations; ++i)
+        for (double& v : x) v = v * 0.999999 + 1e-7;
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    volatile double sink = 0;  // the chains' results are used, so they are computed
+    for (double v : x) sink = sink + v;
+    return double(iterations) / seconds;
+}
+
+// The sum of `threads` threads' own arithmetic rates, each thread's alone.
+double arithmetic_rates(int threads, uint64_t iterations) {
+    std::vector<double> rate(threads);
+    std::vector<std::thread> workers;
+    for (int i = 0; i < threads; ++i)
+        workers.emplace_back([&, i] { rate[i] = arithmetic_rate(iterations); });
+    for (std::thread& w : workers) w.join();
+    double sum = 0;
+    for (double r : rate) sum += r;
+    return sum;
+}
+
 }  // namespace
 
 void bench_scaling(const Options& o, Results& r) {
     r.table("scaling", {"scene", "engine", "threads", "spp", "mpaths", "speedup", "efficiency",
                         "wavefront_over_megakernel", "independent_speedup",
-                        "speedup_over_independent", "independent_own_speedup"});
+                        "speedup_over_independent", "independent_own_speedup", "arithmetic_speedup"});
     const int max_threads =
         o.max_threads > 0 ? o.max_threads : tbb::this_task_arena::max_concurrency();
+    // The arithmetic ceiling at each count, medians of the repetitions, measured once for all
+    // scenes (about 0.2 s a run on this project's machine).
+    const std::vector<int> counts = thread_counts(max_threads);
+    const uint64_t iterations = o.quick ? 100'000 : 50'000'000;
+    std::vector<double> arithmetic;  // speed-up over one thread, per count
+    for (int t : counts) {
+        std::vector<double> runs;
+        for (int rep = 0; rep < o.repetitions(); ++rep)
+            runs.push_back(arithmetic_rates(t, iterations));
+        arithmetic.push_back(spread(runs).median);
+    }
+    const double one_thread = arithmetic.front();
+    for (size_t i = 0; i < counts.size(); ++i) {
+        arithmetic[i] /= one_thread;
+        std::printf("scaling arithmetic %2d threads: %5.2fx one thread's rate\n", counts[i],
+                    arithmetic[i]);
+    }
     for (const char* name : {"cornell", "everything", "bunny", "dragon", "veach-mis"}) {
         if (!o.wants(name)) continue;
         Scene scene = load_scene(o.scenes / (std::string(name) + ".json"));
@@ -98,7 +147,8 @@ void bench_scaling(const Options& o, Results& r) {
             render_wavefront(scene, bvh, c, {}, s);
         };
         double base_mk = 0, base_wf = 0;  // Mpaths/s at one thread
-        for (int t : thread_counts(max_threads)) {
+        for (size_t c = 0; c < counts.size(); ++c) {
+            const int t = counts[c];
             tbb::global_control limit(tbb::global_control::max_allowed_parallelism, t);
             cfg.spp = o.quick ? 1 : 16 * ((t + 1) / 2);
             RenderConfig each = cfg;
@@ -130,9 +180,9 @@ void bench_scaling(const Options& o, Results& r) {
             const double mk_busy = speedup_of(mk_alone, &Independent::own_rates, base_mk);
             const double wf_busy = speedup_of(wf_alone, &Independent::own_rates, base_wf);
             r.row("scaling", {name, "megakernel", t, cfg.spp, mk_p, mk_up, mk_up / t, q, mk_split,
-                              mk_up / mk_split, mk_busy});
+                              mk_up / mk_split, mk_busy, arithmetic[c]});
             r.row("scaling", {name, "wavefront", t, cfg.spp, wf_p, wf_up, wf_up / t, q, wf_split,
-                              wf_up / wf_split, wf_busy});
+                              wf_up / wf_split, wf_busy, arithmetic[c]});
             std::printf(
                 "scaling %-10s %2d threads %3d spp: speed-up megakernel %5.2fx, wavefront %5.2fx "
                 "(efficiency %.2f, %.2f); %d renders alone at once %5.2fx, %5.2fx "
