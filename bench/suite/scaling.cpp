@@ -109,9 +109,10 @@ double arithmetic_rates(int threads, uint64_t iterations) {
 }  // namespace
 
 void bench_scaling(const Options& o, Results& r) {
-    r.table("scaling", {"scene", "engine", "threads", "spp", "mpaths", "speedup", "efficiency",
-                        "wavefront_over_megakernel", "independent_speedup",
-                        "speedup_over_independent", "independent_own_speedup", "arithmetic_speedup"});
+    r.table("scaling",
+            {"scene", "engine", "threads", "spp", "mpaths", "speedup", "efficiency",
+             "wavefront_over_megakernel", "independent_speedup", "speedup_over_independent",
+             "independent_own_speedup", "arithmetic_speedup"});
     const int max_threads =
         o.max_threads > 0 ? o.max_threads : tbb::this_task_arena::max_concurrency();
     // The arithmetic ceiling at each count, medians of the repetitions, measured once for all
