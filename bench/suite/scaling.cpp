@@ -39,6 +39,15 @@ std::vector<int> thread_counts(int max) {
     return t;
 }
 
+// Runs job(0), ..., job(threads - 1) at once, each on a thread of its own, and waits for all:
+// the independent renders and the arithmetic ceiling below.
+template <class Job>
+void at_once(int threads, const Job& job) {
+    std::vector<std::thread> workers;
+    for (int i = 0; i < threads; ++i) workers.emplace_back(job, i);
+    for (std::thread& w : workers) w.join();
+}
+
 // Mpaths/s of `threads` one-thread renders run at once, each with its own seed: all their
 // paths over the time until the last one ends, and the sum of each one's own rate.
 struct Independent {
@@ -49,15 +58,13 @@ struct Independent {
 template <class Render>
 Independent independent_mpaths(int threads, RenderConfig cfg, const Render& render) {
     std::vector<RenderStats> stats(threads);
-    std::vector<std::thread> workers;
     const auto start = std::chrono::steady_clock::now();
-    for (int i = 0; i < threads; ++i)
-        workers.emplace_back([&, i, cfg]() mutable {
-            cfg.seed += static_cast<uint64_t>(i);
-            tbb::task_arena one(1);
-            one.execute([&] { render(cfg, &stats[i]); });
-        });
-    for (std::thread& w : workers) w.join();
+    at_once(threads, [&](int i) {
+        RenderConfig own = cfg;
+        own.seed += static_cast<uint64_t>(i);
+        tbb::task_arena one(1);
+        one.execute([&] { render(own, &stats[i]); });
+    });
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     Independent r;
@@ -97,10 +104,7 @@ double arithmetic_rate(uint64_t iterations) {
 // The sum of `threads` threads' own arithmetic rates, each thread's alone.
 double arithmetic_rates(int threads, uint64_t iterations) {
     std::vector<double> rate(threads);
-    std::vector<std::thread> workers;
-    for (int i = 0; i < threads; ++i)
-        workers.emplace_back([&, i] { rate[i] = arithmetic_rate(iterations); });
-    for (std::thread& w : workers) w.join();
+    at_once(threads, [&](int i) { rate[i] = arithmetic_rate(iterations); });
     double sum = 0;
     for (double r : rate) sum += r;
     return sum;
