@@ -26,7 +26,7 @@ struct Captured {
     Scene scene;
     Bvh bvh;
     std::unique_ptr<LightSet> lights;
-    RenderConfig config;
+    RenderRequest config;
     std::unique_ptr<CameraRays> camera;
     std::unique_ptr<WaveInputs> in;
     WaveQueues unsorted;  // after generate + intersect
@@ -44,7 +44,8 @@ struct Captured {
         config.spp = 1;
         config.seed = 1;
         camera = std::make_unique<CameraRays>(scene.camera, config.width, config.height);
-        in = std::make_unique<WaveInputs>(WaveInputs{scene, *lights, config, *camera,
+        in = std::make_unique<WaveInputs>(WaveInputs{scene, *lights, config.estimator, config.seed,
+                                                     config.width, config.height, *camera,
                                                      media_at(scene, bvh, scene.camera.look_from)});
         n = kWave;
         q.resize(n);
@@ -158,10 +159,10 @@ struct LambertianRows {
             MediumStack media;
             float flight = 0;
             const SegmentResult seg = resolve_segment(
-                c.scene, *c.lights, c.config, ray_at(c.unsorted.rays, i),
+                c.scene, *c.lights, c.config.estimator, ray_at(c.unsorted.rays, i),
                 hit_at(c.unsorted.hits, i), media, flight, previous_vertex(c.unsorted.paths, i));
             if (seg.event != SegmentEvent::Scatter ||
-                !takes_lane_step(c.config, seg.vertex, *c.lights))
+                !takes_lane_step(c.config.estimator, seg.vertex, *c.lights))
                 continue;
             const uint32_t p = c.unsorted.paths.pixel[i];
             v.push_back(seg.vertex);
@@ -240,11 +241,11 @@ void BM_LambertianVertices(benchmark::State& st, bool lanes) {
             benchmark::DoNotOptimize(block);
         } else {
             for (size_t k = 0; k < n; ++k) {
-                benchmark::DoNotOptimize(
-                    next_event(r.c.scene, *r.c.lights, r.c.config, r.v[k], r.wo[k], r.u[k]));
+                benchmark::DoNotOptimize(next_event(r.c.scene, *r.c.lights, r.c.config.estimator,
+                                                    r.v[k], r.wo[k], r.u[k]));
                 MediumStack media;
-                benchmark::DoNotOptimize(continue_path(r.c.scene, *r.c.lights, r.c.config, r.v[k],
-                                                       r.wo[k], 4, r.beta[k], media,
+                benchmark::DoNotOptimize(continue_path(r.c.scene, *r.c.lights, r.c.config.estimator,
+                                                       r.v[k], r.wo[k], 4, r.beta[k], media,
                                                        r.u[k].continuation, r.u[k].roulette));
             }
         }

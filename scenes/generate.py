@@ -70,7 +70,7 @@ def cornell_scene(description, objects, materials=None, media=None, light_quad=N
 
 
 def everything():
-    # RTNW §10 final scene. The seed's moving sphere is static here (no motion blur).
+    # RTNW §10 final scene. The book's moving sphere is static here (no motion blur).
     rng = random.Random(1)
     objects = []
     w = 100.0
@@ -100,7 +100,7 @@ def everything():
     objects.append({"type": "group", "objects": cluster,
                     "transform": [rotate_y(15), {"translate": [-100, 270, 395]}]})
     return {
-        "description": "The seed's final scene (Ray Tracing: The Next Week, section 10)",
+        "description": "The final scene of Ray Tracing: The Next Week (section 10)",
         "render": {"width": 800, "height": 800, "spp": 256, "max_depth": 40},
         "camera": {"look_from": [478, 278, -600], "look_at": [278, 278, 0], "up": [0, 1, 0],
                    "vfov": 40},

@@ -4,7 +4,7 @@
 #include <assimp/version.h>
 #include <oneapi/tbb/version.h>
 
-#include "wavetrace/scene/bvh.h"
+#include "wavetrace/accel/bvh.h"
 
 namespace wavetrace {
 

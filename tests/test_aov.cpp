@@ -2,10 +2,11 @@
 #include <tbb/global_control.h>
 
 #include "test_paths.h"
-#include "wavetrace/render/aov.h"
-#include "wavetrace/scene/bvh.h"
+#include "wavetrace/accel/bvh.h"
+#include "wavetrace/engines/aov.h"
+#include "wavetrace/loaders/load_scene.h"
 #include "wavetrace/scene/scene.h"
-#include "wavetrace/scene/surface.h"
+#include "wavetrace/shading/surface.h"
 
 using namespace wavetrace;
 

@@ -5,9 +5,9 @@
 #include <cmath>
 
 #include "chi2.h"
-#include "wavetrace/render/sampler.h"
-#include "wavetrace/shading/bsdf.h"
-#include "shading/warp.h"
+#include "sampling/sampler.h"
+#include "sampling/warp.h"
+#include "shading/bsdf.h"
 
 using namespace wavetrace;
 

@@ -7,12 +7,13 @@
 #include <memory>
 #include <vector>
 
-#include "scene/wide_bvh.h"
+#include "accel/bvh_layout.h"
+#include "accel/intersect.h"
+#include "sampling/sampler.h"
 #include "test_paths.h"
-#include "wavetrace/render/sampler.h"
-#include "wavetrace/scene/bvh.h"
+#include "wavetrace/accel/bvh.h"
+#include "wavetrace/loaders/load_scene.h"
 #include "wavetrace/scene/camera.h"
-#include "wavetrace/scene/intersect.h"
 #include "wavetrace/scene/scene.h"
 
 using namespace wavetrace;
@@ -57,12 +58,12 @@ struct Checker {
     int max_depth = 0;
 
     void visit(uint32_t index, int depth) {
-        const BvhNode& node = bvh.nodes()[index];
+        const BvhNode& node = bvh.layout().nodes[index];
         max_depth = std::max(max_depth, depth);
         if (node.is_leaf()) {
             for (uint32_t i = node.offset; i < node.offset + node.count; ++i) {
-                ASSERT_LT(i, bvh.prims().size());
-                PrimRef p = bvh.prims()[i];
+                ASSERT_LT(i, bvh.layout().prims.size());
+                PrimRef p = bvh.layout().prims[i];
                 ASSERT_TRUE(node.bounds().contains(scene.prim_bounds(p)));
                 ++seen[i];
             }
@@ -70,9 +71,9 @@ struct Checker {
         }
         uint32_t a = index + 1, b = node.offset;
         ASSERT_GT(b, a) << "children must follow their parent depth-first";
-        ASSERT_LT(b, bvh.nodes().size());
-        EXPECT_TRUE(node.bounds().contains(bvh.nodes()[a].bounds()));
-        EXPECT_TRUE(node.bounds().contains(bvh.nodes()[b].bounds()));
+        ASSERT_LT(b, bvh.layout().nodes.size());
+        EXPECT_TRUE(node.bounds().contains(bvh.layout().nodes[a].bounds()));
+        EXPECT_TRUE(node.bounds().contains(bvh.layout().nodes[b].bounds()));
         visit(a, depth + 1);
         visit(b, depth + 1);
     }
@@ -83,14 +84,14 @@ struct Checker {
 TEST(Bvh, EachPrimitiveInExactlyOneLeafAndBoundsNest) {
     Scene scene = mixed_scene(6000);
     Bvh bvh = Bvh::build(scene);
-    ASSERT_EQ(bvh.prims().size(), scene.primitive_count());
-    Checker check{bvh, scene, std::vector<int>(bvh.prims().size(), 0)};
+    ASSERT_EQ(bvh.layout().prims.size(), scene.primitive_count());
+    Checker check{bvh, scene, std::vector<int>(bvh.layout().prims.size(), 0)};
     check.visit(0, 1);
     for (int count : check.seen) ASSERT_EQ(count, 1);
     // The permutation covers every primitive once.
     std::vector<int> refs_seen(scene.primitive_count(), 0);
     size_t tri = scene.triangles.size(), quad = scene.quads.size();
-    for (PrimRef p : bvh.prims()) {
+    for (PrimRef p : bvh.layout().prims) {
         size_t flat = p.kind() == PrimKind::Triangle ? p.index()
                       : p.kind() == PrimKind::Quad   ? tri + p.index()
                                                      : tri + quad + p.index();
@@ -99,9 +100,9 @@ TEST(Bvh, EachPrimitiveInExactlyOneLeafAndBoundsNest) {
     for (int count : refs_seen) ASSERT_EQ(count, 1);
     EXPECT_EQ(check.max_depth, bvh.stats().depth);
     EXPECT_LT(bvh.stats().depth, Bvh::kStackSize);
-    EXPECT_EQ(bvh.stats().nodes, bvh.nodes().size());
+    EXPECT_EQ(bvh.stats().nodes, bvh.layout().nodes.size());
     EXPECT_EQ(bvh.stats().leaves * 2 - 1, bvh.stats().nodes);
-    for (const BvhNode& n : bvh.nodes()) {
+    for (const BvhNode& n : bvh.layout().nodes) {
         if (n.is_leaf()) {
             EXPECT_LE(n.count, static_cast<uint32_t>(BvhBuildConfig{}.max_leaf_size));
         }
@@ -184,11 +185,11 @@ TEST(Bvh, WideLayoutHoldsEachPrimitiveOnceAndBoundsNest) {
     for (int n : {1, 7, 6000}) {
         Scene scene = mixed_scene(n);
         Bvh bvh = Bvh::build(scene);
-        WideChecker check{bvh.wide(), scene, std::vector<int>(scene.primitive_count(), 0)};
+        WideChecker check{bvh.layout().wide, scene, std::vector<int>(scene.primitive_count(), 0)};
         check.visit_node(0, 1);
         for (int count : check.seen) ASSERT_EQ(count, 1) << n << " primitives";
         EXPECT_LE(check.max_depth, bvh.stats().depth);
-        EXPECT_EQ(bvh.stats().wide_nodes, bvh.wide().nodes.size());
+        EXPECT_EQ(bvh.stats().wide_nodes, bvh.layout().wide.nodes.size());
     }
 }
 
@@ -221,8 +222,8 @@ double wide_sah_cost(const WideBvh& wide) {
 // The same cost for the collapse that opens the largest interior child until a node has 8
 // children (Embree's BVH8 collapse), computed from the binary tree alone.
 double largest_first_sah_cost(const Bvh& bvh) {
-    const auto nodes = bvh.nodes();
-    const auto prims = bvh.prims();
+    const auto& nodes = bvh.layout().nodes;
+    const auto& prims = bvh.layout().prims;
     auto blocks = [&](const BvhNode& leaf) {
         int per_kind[3] = {0, 0, 0};
         for (uint32_t i = leaf.offset; i < leaf.offset + leaf.count; ++i)
@@ -266,12 +267,12 @@ TEST(Bvh, WideCollapseCostsNoMoreThanOpeningTheLargestChildFirst) {
     for (int n : {7, 6000}) {
         Scene scene = mixed_scene(n);
         Bvh bvh = Bvh::build(scene);
-        ASSERT_FALSE(bvh.nodes()[0].is_leaf());
-        EXPECT_LE(wide_sah_cost(bvh.wide()), largest_first_sah_cost(bvh) * (1 + 1e-5)) << n;
+        ASSERT_FALSE(bvh.layout().nodes[0].is_leaf());
+        EXPECT_LE(wide_sah_cost(bvh.layout().wide), largest_first_sah_cost(bvh) * (1 + 1e-5)) << n;
     }
     Scene dragon = load_scene(scene_path("dragon"));
     Bvh bvh = Bvh::build(dragon);
-    const double dp = wide_sah_cost(bvh.wide()), largest = largest_first_sah_cost(bvh);
+    const double dp = wide_sah_cost(bvh.layout().wide), largest = largest_first_sah_cost(bvh);
     std::printf("dragon: wide SAH cost %.4g, largest child first %.4g\n", dp, largest);
     EXPECT_LT(dp, 0.99 * largest);
 }
@@ -454,11 +455,11 @@ TEST(Bvh, BuildDoesNotDependOnThreadCount) {
     };
     Bvh one = build_with(1), two = build_with(2), eight = build_with(8);
     for (const Bvh* other : {&two, &eight}) {
-        ASSERT_EQ(one.nodes().size(), other->nodes().size());
-        EXPECT_EQ(0, std::memcmp(one.nodes().data(), other->nodes().data(),
-                                 one.nodes().size() * sizeof(BvhNode)));
-        EXPECT_EQ(0, std::memcmp(one.prims().data(), other->prims().data(),
-                                 one.prims().size() * sizeof(PrimRef)));
+        ASSERT_EQ(one.layout().nodes.size(), other->layout().nodes.size());
+        EXPECT_EQ(0, std::memcmp(one.layout().nodes.data(), other->layout().nodes.data(),
+                                 one.layout().nodes.size() * sizeof(BvhNode)));
+        EXPECT_EQ(0, std::memcmp(one.layout().prims.data(), other->layout().prims.data(),
+                                 one.layout().prims.size() * sizeof(PrimRef)));
     }
 }
 
@@ -476,7 +477,7 @@ TEST(Bvh, ShippedScenesHaveSaneTrees) {
         const BvhStats& s = bvh.stats();
         std::printf("%-10s %8zu prims %8zu nodes depth %2d SAH %.2f\n", name,
                     scene.primitive_count(), s.nodes, s.depth, s.sah_cost);
-        EXPECT_EQ(bvh.prims().size(), scene.primitive_count());
+        EXPECT_EQ(bvh.layout().prims.size(), scene.primitive_count());
         EXPECT_LT(s.depth, Bvh::kStackSize);
         EXPECT_GT(s.sah_cost, 0.0f);
     }

@@ -9,13 +9,15 @@
 #include <fstream>
 #include <vector>
 
-#include "reference/embree_engines.h"
-#include "reference/embree_mirror.h"
+#include "embree/embree_engines.h"
+#include "embree/embree_mirror.h"
+#include "render_film.h"
+#include "sampling/sampler.h"
 #include "test_paths.h"
+#include "wavetrace/accel/bvh.h"
+#include "wavetrace/loaders/load_scene.h"
 #include "wavetrace/math/constants.h"
 #include "wavetrace/math/frame.h"
-#include "wavetrace/render/sampler.h"
-#include "wavetrace/scene/bvh.h"
 #include "wavetrace/scene/scene.h"
 
 using namespace wavetrace;
@@ -242,17 +244,17 @@ TEST(EmbreeEngines, SameImagesAsWithOurBvh) {
         Scene scene = load_scene(scene_path(name));
         Bvh bvh = Bvh::build(scene);
         EmbreeMirror embree(scene);
-        RenderConfig c;
+        RenderRequest c;
         c.width = 40;
         c.height = 40;
         c.spp = 4;
         c.seed = 5;
-        c.max_depth = scene.render.max_depth;
-        WavefrontConfig wf;
+        c.estimator.max_depth = scene.render.max_depth;
+        WavefrontOptions wf;
         wf.wave_size = 700;
-        Image mk_ours = render_megakernel(scene, bvh, c).mean();
-        Image mk_embree = render_megakernel(scene, embree, c).mean();
-        Image wf_embree = render_wavefront(scene, embree, c, wf).mean();
+        Image mk_ours = megakernel_film(scene, bvh, c).mean();
+        Image mk_embree = megakernel_film(scene, embree, c).mean();
+        Image wf_embree = wavefront_film(scene, embree, c, wf).mean();
         ImageDiff engines = diff_images(mk_embree, wf_embree, 1e-4);
         ImageDiff intersectors = diff_images(mk_ours, mk_embree, 1e-3);
         std::printf(

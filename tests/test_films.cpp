@@ -11,8 +11,8 @@
 #include <sstream>
 
 #include "cli_run.h"
+#include "wavetrace/film/film_file.h"
 #include "wavetrace/image/image.h"
-#include "wavetrace/render/film_file.h"
 
 using namespace wavetrace;
 

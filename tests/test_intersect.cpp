@@ -4,9 +4,9 @@
 #include <cmath>
 #include <vector>
 
-#include "wavetrace/render/sampler.h"
-#include "wavetrace/scene/bvh.h"
-#include "wavetrace/scene/intersect.h"
+#include "accel/intersect.h"
+#include "sampling/sampler.h"
+#include "wavetrace/accel/bvh.h"
 #include "wavetrace/scene/scene.h"
 
 using namespace wavetrace;

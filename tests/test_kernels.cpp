@@ -5,11 +5,11 @@
 #include <algorithm>
 #include <memory>
 
+#include "engines/wavefront.h"
 #include "kernels/kernels.h"
+#include "sampling/sampler.h"
 #include "shading/path_vertex.h"
-#include "wavetrace/render/sampler.h"
-#include "wavetrace/render/wavefront.h"
-#include "wavetrace/scene/bvh.h"
+#include "wavetrace/accel/bvh.h"
 
 using namespace wavetrace;
 
@@ -18,7 +18,7 @@ namespace {
 struct World {
     Scene scene;
     Bvh bvh;
-    RenderConfig config;
+    RenderRequest config;
     std::unique_ptr<LightSet> lights;
     std::unique_ptr<CameraRays> camera;
     std::unique_ptr<WaveInputs> in;
@@ -46,12 +46,13 @@ struct World {
         config.width = 4;
         config.height = 3;
         config.seed = 7;
-        config.max_depth = 5;
-        config.strategy = Strategy::Nee;
+        config.estimator.max_depth = 5;
+        config.estimator.strategy = Strategy::Nee;
         lights = std::make_unique<LightSet>(scene);
         camera = std::make_unique<CameraRays>(scene.camera, config.width, config.height);
-        in = std::make_unique<WaveInputs>(
-            WaveInputs{scene, *lights, config, *camera, MediumStack{}});
+        in = std::make_unique<WaveInputs>(WaveInputs{scene, *lights, config.estimator, config.seed,
+                                                     config.width, config.height, *camera,
+                                                     MediumStack{}});
         q.resize(16);
     }
 

@@ -7,17 +7,17 @@
 #include <cstdio>
 #include <cstring>
 
+#include "accel/wide_bvh.h"
 #include "kernels/lane_kernels.h"
-#include "scene/wide_bvh.h"
+#include "sampling/sampler.h"
+#include "sampling/warp.h"
+#include "shading/lights.h"
+#include "shading/mis.h"
 #include "shading/path_vertex.h"
-#include "shading/warp.h"
 #include "wavetrace/math/frame.h"
 #include "wavetrace/math/ray.h"
-#include "wavetrace/render/sampler.h"
 #include "wavetrace/scene/camera.h"
 #include "wavetrace/scene/scene.h"
-#include "wavetrace/shading/lights.h"
-#include "wavetrace/shading/mis.h"
 
 using namespace wavetrace;
 namespace lanes = wavetrace::HWY_NAMESPACE;  // the one-lane instances (static target)
@@ -96,7 +96,7 @@ void expect_light_samples_are_next_event(const Scene& scene, size_t* spheres) {
             for (int64_t target : wide_simd_targets()) {
                 use_wide_simd_target(target);
                 SCOPED_TRACE(wide_simd_target());
-                RenderConfig config;
+                Estimator config;
                 config.strategy = strategy;
                 config.heuristic = heuristic;
                 SurfaceBlock block;
@@ -219,7 +219,7 @@ TEST(Lanes, VertexSamplesAreTheScalarOnesOnEverySimdTarget) {
 // two), with random normals (lane_vertex_at), throughputs and samples: the vector step gives
 // continue_path's result bit for bit, dead paths included.
 TEST(Lanes, LaneStepsAreContinuePathOnEverySimdTarget) {
-    RenderConfig config;
+    Estimator config;
     config.strategy = Strategy::Mis;
     config.rr_depth = 3;
     config.max_depth = 16;
@@ -473,7 +473,7 @@ TEST(Lanes, HitsResolvedInLanesAreSurfaceAtOnEverySimdTarget) {
     }
     const size_t prims = 2 * triangles + scene.quads.size();
 
-    RenderConfig config;
+    Estimator config;
     config.strategy = Strategy::Mis;
     const LightSet lights;
     const size_t n = 59;  // rows: hits, then the same vertices given

@@ -5,12 +5,12 @@
 #include <cmath>
 
 #include "chi2.h"
+#include "sampling/sampler.h"
+#include "sampling/warp.h"
+#include "shading/lights.h"
 #include "temp_dir.h"
 #include "wavetrace/image/image.h"
-#include "wavetrace/render/sampler.h"
 #include "wavetrace/scene/scene.h"
-#include "wavetrace/shading/lights.h"
-#include "shading/warp.h"
 
 using namespace wavetrace;
 

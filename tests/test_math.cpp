@@ -21,7 +21,7 @@ TEST(Transform, TranslateMovesPointsNotVectors) {
 }
 
 TEST(Transform, RotateIsRightHanded) {
-    // +90 degrees about +y takes +z to +x and +x to -z (the seed's rotate_y).
+    // +90 degrees about +y takes +z to +x and +x to -z (rotate_y of Ray Tracing: The Next Week).
     Transform r = Transform::rotate({0, 1, 0}, 90);
     expect_near(r.vector({0, 0, 1}), {1, 0, 0});
     expect_near(r.vector({1, 0, 0}), {0, 0, -1});

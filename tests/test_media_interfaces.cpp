@@ -8,10 +8,11 @@
 #include <cstdio>
 #include <string>
 
+#include "render_film.h"
 #include "temp_dir.h"
+#include "wavetrace/accel/bvh.h"
 #include "wavetrace/image/compare.h"
-#include "wavetrace/render/wavefront.h"
-#include "wavetrace/scene/bvh.h"
+#include "wavetrace/loaders/load_scene.h"
 #include "wavetrace/scene/scene.h"
 
 using namespace wavetrace;
@@ -56,13 +57,13 @@ struct Rendered {
 Rendered render(const TempDir& dir, const std::string& json, uint64_t seed) {
     Scene scene = load_scene(dir.write("scene.json", json));
     Bvh bvh = Bvh::build(scene);
-    RenderConfig c;
+    RenderRequest c;
     c.width = 64;
     c.height = 64;
     c.spp = 256;
     c.seed = seed;
-    c.max_depth = 50;
-    Film film = render_wavefront(scene, bvh, c);
+    c.estimator.max_depth = 50;
+    Film film = wavefront_film(scene, bvh, c);
     return {film.mean(), film.variance_of_mean()};
 }
 

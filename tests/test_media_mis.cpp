@@ -4,12 +4,12 @@
 
 #include <cmath>
 
-#include "shading/trace.h"
-#include "wavetrace/render/sampler.h"
-#include "wavetrace/scene/bvh.h"
-#include "wavetrace/scene/scene.h"
-#include "wavetrace/shading/mis.h"
+#include "sampling/sampler.h"
+#include "shading/mis.h"
 #include "shading/path_vertex.h"
+#include "shading/trace.h"
+#include "wavetrace/accel/bvh.h"
+#include "wavetrace/scene/scene.h"
 
 using namespace wavetrace;
 

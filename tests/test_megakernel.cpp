@@ -7,10 +7,11 @@
 #include <cmath>
 #include <map>
 
+#include "render_film.h"
 #include "temp_dir.h"
 #include "test_paths.h"
-#include "wavetrace/render/megakernel.h"
-#include "wavetrace/scene/bvh.h"
+#include "wavetrace/accel/bvh.h"
+#include "wavetrace/loaders/load_scene.h"
 #include "wavetrace/scene/scene.h"
 
 using namespace wavetrace;
@@ -28,14 +29,14 @@ Film render(const Scene& scene,
             uint64_t seed = 1,
             int max_depth = 50) {
     Bvh bvh = Bvh::build(scene);
-    RenderConfig c;
+    RenderRequest c;
     c.width = w;
     c.height = h;
     c.spp = spp;
     c.seed = seed;
-    c.strategy = strategy;
-    c.max_depth = max_depth;
-    return render_megakernel(scene, bvh, c);
+    c.estimator.strategy = strategy;
+    c.estimator.max_depth = max_depth;
+    return megakernel_film(scene, bvh, c);
 }
 
 // Mean of a region's pixel means (luminance) and its standard error.

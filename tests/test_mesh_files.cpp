@@ -8,6 +8,7 @@
 #include <cstring>
 
 #include "temp_dir.h"
+#include "wavetrace/loaders/load_scene.h"
 #include "wavetrace/scene/scene.h"
 
 using namespace wavetrace;

@@ -8,25 +8,26 @@
 #include <algorithm>
 #include <cstring>
 #include <fstream>
+#include <mutex>
 #include <sstream>
 #include <thread>
 #include <utility>
 #include <vector>
 
+#include "render_film.h"
 #include "temp_dir.h"
 #include "test_paths.h"
-#include "wavetrace/render/megakernel.h"
-#include "wavetrace/render/renderer.h"
-#include "wavetrace/render/wavefront.h"
-#include "wavetrace/scene/bvh.h"
+#include "wavetrace/accel/bvh.h"
+#include "wavetrace/engines/render.h"
+#include "wavetrace/loaders/load_scene.h"
 #include "wavetrace/scene/scene.h"
 
 using namespace wavetrace;
 
 namespace {
 
-RenderConfig small_config(int spp) {
-    RenderConfig c;
+RenderRequest small_config(int spp) {
+    RenderRequest c;
     c.width = 37;  // not a multiple of the wave size below
     c.height = 23;
     c.spp = spp;
@@ -46,45 +47,57 @@ void expect_same_film(const Film& a, const Film& b, int samples) {
 
 }  // namespace
 
+// Stops the render at its `stop_at`-th check; checks that it is asked before the first pass
+// and after each.
+class StopAt : public RenderObserver {
+  public:
+    explicit StopAt(int stop_at) : stop_at_(stop_at) {}
+    bool on_pass(int done, int, const Film&) override {
+        EXPECT_EQ(done, calls_);  // a check before the first pass and one after it
+        return ++calls_ < stop_at_;
+    }
+
+  private:
+    int stop_at_, calls_ = 0;
+};
+
 TEST(Passes, StoppingBetweenPassesGivesTheImageOfTheSamplesDone) {
     Scene scene = load_scene(scene_path("cornell-smoke"));
     Bvh bvh = Bvh::build(scene);
-    WavefrontConfig wf;
-    wf.wave_size = 300;
     // Both engines' first pass is one sample (the later ones last about half a second): stop
     // at the second check.
     for (Engine engine : {Engine::Wavefront, Engine::Megakernel}) {
-        auto run = [&](const RenderConfig& c, RenderStats* stats) {
-            return engine == Engine::Wavefront ? render_wavefront(scene, bvh, c, wf, stats)
-                                               : render_megakernel(scene, bvh, c, stats);
-        };
-        int calls = 0;
-        RenderConfig stopped = small_config(10);
-        stopped.stop = [&](int done) {
-            EXPECT_EQ(done, calls);  // a check before the first pass and one after it
-            return ++calls > 1;
-        };
-        RenderStats stats;
-        Film film = run(stopped, &stats);
+        RenderRequest request = small_config(10);
+        request.engine = engine;
+        request.wavefront.wave_size = 300;
+        Film film(request.width, request.height);
+        StopAt stop(2);
+        RenderStats stats = render(scene, bvh, request, film, &stop);
         EXPECT_EQ(stats.spp_done, 1);
-        expect_same_film(film, run(small_config(1), nullptr), 1);
+        RenderRequest one = request;
+        one.spp = 1;
+        Film reference(one.width, one.height);
+        render(scene, bvh, one, reference);
+        expect_same_film(film, reference, 1);
     }
 }
 
 TEST(Passes, SampleRangesAddUpToTheWholeRender) {
     Scene scene = load_scene(scene_path("cornell"));
     Bvh bvh = Bvh::build(scene);
-    WavefrontConfig wf;
-    wf.wave_size = 300;
-    RenderConfig first = small_config(3), second = small_config(4);
-    second.first_sample = 3;
-    Film mega(first.width, first.height), wave(first.width, first.height);
-    render_megakernel(scene, bvh, first, mega);
-    render_megakernel(scene, bvh, second, mega);
-    render_wavefront(scene, bvh, first, wave, wf);
-    render_wavefront(scene, bvh, second, wave, wf);
-    expect_same_film(mega, render_megakernel(scene, bvh, small_config(7)), 7);
-    expect_same_film(wave, render_wavefront(scene, bvh, small_config(7), wf), 7);
+    for (Engine engine : {Engine::Wavefront, Engine::Megakernel}) {
+        RenderRequest first = small_config(3), second = small_config(4), all = small_config(7);
+        second.first_sample = 3;
+        for (RenderRequest* r : {&first, &second, &all}) {
+            r->engine = engine;
+            r->wavefront.wave_size = 300;
+        }
+        Film parts(first.width, first.height), whole(first.width, first.height);
+        render(scene, bvh, first, parts);
+        render(scene, bvh, second, parts);
+        render(scene, bvh, all, whole);
+        expect_same_film(parts, whole, 7);
+    }
 }
 
 namespace {
@@ -101,10 +114,11 @@ Stopped render_and_signal(const TempDir& dir,
                           const std::string& delay,
                           const std::vector<std::string>& signals) {
     // Run by std::system's sh; a guard kills the render after 60 s, so that one that ignored
-    // the signal fails the test instead of running on.
+    // the signal fails the test instead of running on. The guard's output goes nowhere: its
+    // sleep outlives the test and would hold ctest's pipe open until it ends.
     std::string script = "'" + cli_path().string() + "' render " + args + " 2> '" +
                          (dir.path() / "err").string() + "' > /dev/null & p=$!; " +
-                         "(sleep 60; kill -9 $p) & guard=$!; sleep " + delay + ";";
+                         "(sleep 60; kill -9 $p) > /dev/null 2>&1 & guard=$!; sleep " + delay + ";";
     for (const std::string& s : signals) script += " kill -" + s + " $p; sleep 0.05;";
     script += " wait $p; status=$?; kill $guard 2> /dev/null; exit $status";
     int status = std::system(script.c_str());
@@ -223,7 +237,7 @@ TEST(Passes, ProgressLineInATerminalCountsSamplesAndTimeLeft) {
 }
 
 namespace {
-// Records where and what the engine-agnostic render() reports, and stops after `stop_at`.
+// Records where and what render() reports, and stops after `stop_at` samples.
 class Recorder : public RenderObserver {
   public:
     explicit Recorder(int stop_at) : stop_at_(stop_at) {}
@@ -232,44 +246,54 @@ class Recorder : public RenderObserver {
         reports.push_back({done, requested});
         return done < stop_at_;
     }
+    void on_progress(double fraction) override {
+        std::lock_guard<std::mutex> lock(mutex);
+        fractions.push_back(fraction);
+    }
     std::vector<std::thread::id> threads;
     std::vector<std::pair<int, int>> reports;
+    std::mutex mutex;
+    std::vector<double> fractions;
 
   private:
     int stop_at_;
 };
 }  // namespace
 
-// render(): either engine from one call; the observer runs on the caller's thread between
-// passes, sees the samples done, and stops the render by returning false.
+// render(): either engine from one call; the observer's passes run on the caller's thread
+// between passes, see the samples done, and stop the render by returning false; its progress
+// fractions grow to 1.
 TEST(Passes, RenderCallReportsOnTheCallersThreadAndCancels) {
     Scene scene = load_scene(scene_path("cornell"));
     Bvh bvh = Bvh::build(scene);
     for (Engine engine : {Engine::Wavefront, Engine::Megakernel}) {
-        RenderRequest request;
-        request.config = small_config(6);
+        RenderRequest request = small_config(6);
         request.engine = engine;
         request.wavefront.wave_size = 300;
-        Film film(request.config.width, request.config.height);
+        Film film(request.width, request.height);
         Recorder all(1000);
         RenderStats stats = render(scene, bvh, request, film, &all);
         EXPECT_EQ(stats.spp_done, 6);
         ASSERT_FALSE(all.reports.empty());
+        EXPECT_EQ(all.reports.front(), std::make_pair(0, 6));
         EXPECT_EQ(all.reports.back(), std::make_pair(6, 6));
         for (std::thread::id id : all.threads) EXPECT_EQ(id, std::this_thread::get_id());
-        // The same film as the engine's own call.
-        Film direct = engine == Engine::Wavefront
-                          ? render_wavefront(scene, bvh, request.config, request.wavefront)
-                          : render_megakernel(scene, bvh, request.config);
+        ASSERT_FALSE(all.fractions.empty());
+        std::sort(all.fractions.begin(), all.fractions.end());
+        EXPECT_GT(all.fractions.front(), 0.0);
+        EXPECT_DOUBLE_EQ(all.fractions.back(), 1.0);
+        // The same film as one pass without an observer.
+        Film direct(request.width, request.height);
+        render(scene, bvh, request, direct);
         expect_same_film(film, direct, 6);
         // The first pass is one sample: stop after it.
-        Film stopped(request.config.width, request.config.height);
+        Film stopped(request.width, request.height);
         Recorder one(1);
         EXPECT_EQ(render(scene, bvh, request, stopped, &one).spp_done, 1);
-        expect_same_film(stopped,
-                         engine == Engine::Wavefront
-                             ? render_wavefront(scene, bvh, small_config(1), request.wavefront)
-                             : render_megakernel(scene, bvh, small_config(1)),
-                         1);
+        RenderRequest first = request;
+        first.spp = 1;
+        Film reference(first.width, first.height);
+        render(scene, bvh, first, reference);
+        expect_same_film(stopped, reference, 1);
     }
 }

@@ -6,6 +6,7 @@
 
 #include "temp_dir.h"
 #include "test_paths.h"
+#include "wavetrace/loaders/load_scene.h"
 #include "wavetrace/scene/scene.h"
 
 using namespace wavetrace;

@@ -5,8 +5,9 @@
 #include "temp_dir.h"
 #include "test_paths.h"
 #include "wavetrace/image/image.h"
+#include "wavetrace/loaders/load_scene.h"
 #include "wavetrace/scene/scene.h"
-#include "wavetrace/scene/surface.h"
+#include "wavetrace/shading/surface.h"
 
 using namespace wavetrace;
 

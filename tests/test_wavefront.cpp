@@ -7,23 +7,24 @@
 #include <cmath>
 #include <numeric>
 
+#include "engines/wavefront.h"
+#include "render_film.h"
 #include "test_paths.h"
-#include "wavetrace/render/megakernel.h"
-#include "wavetrace/render/wavefront.h"
-#include "wavetrace/scene/bvh.h"
+#include "wavetrace/accel/bvh.h"
+#include "wavetrace/loaders/load_scene.h"
 #include "wavetrace/scene/scene.h"
 
 using namespace wavetrace;
 
 namespace {
 
-RenderConfig config(Strategy st, int w, int h, int spp, uint64_t seed = 11) {
-    RenderConfig c;
+RenderRequest config(Strategy st, int w, int h, int spp, uint64_t seed = 11) {
+    RenderRequest c;
     c.width = w;
     c.height = h;
     c.spp = spp;
     c.seed = seed;
-    c.strategy = st;
+    c.estimator.strategy = st;
     return c;
 }
 
@@ -38,11 +39,11 @@ TEST(Wavefront, EqualsTheMegakernel) {
         Bvh bvh = Bvh::build(scene);
         for (Strategy st :
              {Strategy::Bsdf, Strategy::Light, Strategy::Mixture, Strategy::Nee, Strategy::Mis}) {
-            RenderConfig c = config(st, 40, 40, 4);
-            WavefrontConfig wf;
+            RenderRequest c = config(st, 40, 40, 4);
+            WavefrontOptions wf;
             wf.wave_size = 700;  // several waves, the last one partial
-            Image mk = render_megakernel(scene, bvh, c).mean();
-            Image wv = render_wavefront(scene, bvh, c, wf).mean();
+            Image mk = megakernel_film(scene, bvh, c).mean();
+            Image wv = wavefront_film(scene, bvh, c, wf).mean();
             size_t outside = 0, values = 0;
             double worst = 0, sum_mk = 0, sum_wv = 0;
             int worst_pixel = -1;
@@ -74,16 +75,16 @@ TEST(Wavefront, EqualsTheMegakernel) {
 TEST(Wavefront, BitIdenticalForAnyThreadCountAndWaveSize) {
     Scene scene = load_scene(scene_path("cornell-smoke"));
     Bvh bvh = Bvh::build(scene);
-    RenderConfig c = config(Strategy::Mis, 37, 23, 5);  // 851 pixels
+    RenderRequest c = config(Strategy::Mis, 37, 23, 5);  // 851 pixels
     // Fewer threads than the machine has through a global_control limit (as --threads does),
     // more through an arena of that many (oversubscribed here, but every thread takes waves).
     auto render = [&](int threads, size_t wave, bool sort) {
-        WavefrontConfig wf;
+        WavefrontOptions wf;
         wf.wave_size = wave;
         wf.sort_by_material = sort;
         tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
         tbb::task_arena arena(threads);
-        return arena.execute([&] { return render_wavefront(scene, bvh, c, wf).mean(); });
+        return arena.execute([&] { return wavefront_film(scene, bvh, c, wf).mean(); });
     };
     Image ref = render(1, 851, false);
     struct Run {
@@ -105,11 +106,11 @@ TEST(Wavefront, BitIdenticalForAnyThreadCountAndWaveSize) {
 // wave_size, none smaller than 128 but where less is left; they shrink, and each takes at most
 // a share 1 / (2 threads) of what is left, so the last ones started are small.
 TEST(Wavefront, WavesCoverThePixelsOnceAndShrinkTowardsTheEnd) {
-    for (size_t pixels : {size_t(1), size_t(100), size_t(851), size_t(320 * 320),
-                          size_t(1920 * 1080)})
+    for (size_t pixels :
+         {size_t(1), size_t(100), size_t(851), size_t(320 * 320), size_t(1920 * 1080)})
         for (size_t threads : {1, 2, 7, 16})
             for (size_t wave_size : {64, 300, 4096}) {
-                WavefrontConfig wf;
+                WavefrontOptions wf;
                 wf.wave_size = wave_size;
                 const std::vector<WaveRange> waves = wavefront_waves(pixels, threads, wf);
                 const std::string at = "pixels " + std::to_string(pixels) + " threads " +
@@ -124,8 +125,8 @@ TEST(Wavefront, WavesCoverThePixelsOnceAndShrinkTowardsTheEnd) {
                     ASSERT_EQ(waves[w].first, first) << at << " wave " << w;
                     ASSERT_GE(waves[w].n, std::min({size_t(128), most, left})) << at;
                     ASSERT_LE(waves[w].n, most) << at;
-                    ASSERT_LE(waves[w].n, std::max<size_t>(128, (left + 2 * threads - 1) /
-                                                                    (2 * threads)))
+                    ASSERT_LE(waves[w].n,
+                              std::max<size_t>(128, (left + 2 * threads - 1) / (2 * threads)))
                         << at << " wave " << w;
                     if (w > 0) {
                         ASSERT_LE(waves[w].n, waves[w - 1].n) << at;
@@ -135,7 +136,7 @@ TEST(Wavefront, WavesCoverThePixelsOnceAndShrinkTowardsTheEnd) {
                 EXPECT_EQ(first, pixels) << at;
             }
     // A 320² image on 16 threads starts with waves of 3,200 paths, not 100 (102,400 / 1,024).
-    EXPECT_EQ(wavefront_wave_size(320 * 320, 16, WavefrontConfig{}), size_t(3200));
+    EXPECT_EQ(wavefront_wave_size(320 * 320, 16, WavefrontOptions{}), size_t(3200));
 }
 
 // Lambertian and rough metal surfaces of textured albedo (an image and a checker on quads, a
@@ -186,9 +187,9 @@ TEST(Wavefront, TexturedSurfacesInLanesEqualTheMegakernel) {
     scene.camera.look_at = {0, 0.7f, 0};
     Bvh bvh = Bvh::build(scene);
     for (Strategy st : {Strategy::Bsdf, Strategy::Nee, Strategy::Mis}) {
-        RenderConfig c = config(st, 48, 36, 4);
-        Image mk = render_megakernel(scene, bvh, c).mean();
-        Image wv = render_wavefront(scene, bvh, c).mean();
+        RenderRequest c = config(st, 48, 36, 4);
+        Image mk = megakernel_film(scene, bvh, c).mean();
+        Image wv = wavefront_film(scene, bvh, c).mean();
         size_t outside = 0, values = 0;
         double sum = 0;
         for (size_t i = 0; i < mk.pixels.size(); ++i)

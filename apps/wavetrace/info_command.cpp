@@ -78,7 +78,7 @@ int run_info(const InfoOptions& o) {
         "memory       geometry {}, bvh {} (binary tree {}, traversal layout {}), textures {}\n",
         mib(geometry), mib(st.bytes + st.wide_bytes), mib(st.bytes), mib(st.wide_bytes),
         mib(texels));
-    const size_t per_path = wavefront_bytes_per_path(), wave = WavefrontConfig{}.wave_size;
+    const size_t per_path = wavefront_bytes_per_path(), wave = WavefrontOptions{}.wave_size;
     fmt::print(
         "wavefront    {} B of queues per path in flight; waves of {} paths, one per thread: {} "
         "per thread\n",

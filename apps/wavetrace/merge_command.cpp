@@ -5,8 +5,8 @@
 #include <iostream>
 
 #include "commands.h"
+#include "wavetrace/film/film_file.h"
 #include "wavetrace/image/image.h"
-#include "wavetrace/render/film_file.h"
 
 namespace wavetrace::cli {
 

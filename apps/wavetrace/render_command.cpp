@@ -8,13 +8,13 @@
 #include <cmath>
 #include <csignal>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <iterator>
 #include <mutex>
 #include <optional>
 
 #include "commands.h"
-#include "wavetrace/render/film_file.h"
 #include "wavetrace/wavetrace.h"
 
 namespace wavetrace::cli {
@@ -109,38 +109,59 @@ void map_aov_to_display(Aov aov, Image& image) {
     }
 }
 
-// A progress line on stderr, only when stderr is a terminal: samples per pixel done (of the
-// total, resumed ones included), percent, elapsed, ETA (or, with a time limit, the time left
-// counting down), Mpaths/s. The engines report the fraction of this render's samples done.
-class Progress {
+// Watches a colour render: a progress line on stderr, only when stderr is a terminal (samples
+// per pixel done of the total, resumed ones included, percent, elapsed, ETA or, with a time
+// limit, the time left counting down, Mpaths/s); a checkpoint of the film between passes
+// every --checkpoint-every seconds; and the stop at a signal or at the time limit.
+class RenderWatch : public RenderObserver {
   public:
-    Progress(const RenderConfig& c, int already, std::optional<double> time_limit)
+    // `checkpoint(film, samples_done)` writes the film file; `time_limit` and `every` are in
+    // seconds.
+    RenderWatch(const RenderRequest& request,
+                int already,
+                std::optional<double> time_limit,
+                std::optional<double> every,
+                std::function<void(const Film&, int)> checkpoint)
         : enabled_(::isatty(2)),
-          paths_(double(c.width) * c.height * c.spp),
-          spp_(c.spp),
+          paths_(double(request.width) * request.height * request.spp),
+          spp_(request.spp),
           already_(already),
           time_limit_(time_limit),
-          start_(std::chrono::steady_clock::now()) {}
+          every_(every),
+          checkpoint_(std::move(checkpoint)),
+          start_(std::chrono::steady_clock::now()),
+          last_checkpoint_(start_) {}
 
-    ProgressCallback callback() {
-        if (!enabled_) return {};
-        return [this](double fraction) {
-            auto now = std::chrono::steady_clock::now();
-            std::lock_guard<std::mutex> lock(mutex_);
-            if (now - last_ < std::chrono::milliseconds(200) && fraction < 1.0) return;
-            last_ = now;
-            const double elapsed = std::chrono::duration<double>(now - start_).count();
-            const double eta = fraction > 0 ? elapsed * (1 - fraction) / fraction : 0;
-            const int done = already_ + static_cast<int>(fraction * spp_);
-            const std::string left =
-                time_limit_
-                    ? fmt::format("time left {:6.1f} s", std::max(0.0, *time_limit_ - elapsed))
-                    : fmt::format("ETA {:6.1f} s", eta);
-            std::fprintf(stderr, "\r%d/%d spp  %5.1f%%  elapsed %6.1f s  %s  %6.2f Mpaths/s   ",
-                         done, already_ + spp_, 100 * fraction, elapsed, left.c_str(),
-                         paths_ * fraction / std::max(elapsed, 1e-9) * 1e-6);
-        };
+    // Between passes nothing is added to the film: a consistent snapshot.
+    bool on_pass(int done, int requested, const Film& film) override {
+        const auto now = std::chrono::steady_clock::now();
+        if (done == requested) return true;  // finished: the caller writes the film
+        if (every_ && done > 0 &&
+            std::chrono::duration<double>(now - last_checkpoint_).count() >= *every_) {
+            checkpoint_(film, done);
+            last_checkpoint_ = now;
+        }
+        if (g_stop_signal.load() != 0) return false;
+        return !time_limit_ || std::chrono::duration<double>(now - start_).count() < *time_limit_;
     }
+
+    void on_progress(double fraction) override {
+        if (!enabled_) return;
+        auto now = std::chrono::steady_clock::now();
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (now - last_line_ < std::chrono::milliseconds(200) && fraction < 1.0) return;
+        last_line_ = now;
+        const double elapsed = std::chrono::duration<double>(now - start_).count();
+        const double eta = fraction > 0 ? elapsed * (1 - fraction) / fraction : 0;
+        const int done = already_ + static_cast<int>(fraction * spp_);
+        const std::string left =
+            time_limit_ ? fmt::format("time left {:6.1f} s", std::max(0.0, *time_limit_ - elapsed))
+                        : fmt::format("ETA {:6.1f} s", eta);
+        std::fprintf(stderr, "\r%d/%d spp  %5.1f%%  elapsed %6.1f s  %s  %6.2f Mpaths/s   ", done,
+                     already_ + spp_, 100 * fraction, elapsed, left.c_str(),
+                     paths_ * fraction / std::max(elapsed, 1e-9) * 1e-6);
+    }
+
     void finish() {
         if (enabled_) std::fprintf(stderr, "\r%90s\r", "");
     }
@@ -149,8 +170,9 @@ class Progress {
     bool enabled_;
     double paths_;
     int spp_, already_;
-    std::optional<double> time_limit_;
-    std::chrono::steady_clock::time_point start_, last_{};
+    std::optional<double> time_limit_, every_;
+    std::function<void(const Film&, int)> checkpoint_;
+    std::chrono::steady_clock::time_point start_, last_checkpoint_, last_line_{};
     std::mutex mutex_;
 };
 
@@ -230,20 +252,27 @@ Rendered render_to_image(const RenderOptions& o,
     write.exposure = o.exposure;
     write.metadata = {{"wavetrace:scene", o.scene}, {"wavetrace:seed", std::to_string(o.seed)}};
     if (o.aov == "color") {
-        RenderConfig config;
-        config.width = width;
-        config.height = height;
-        config.seed = o.seed;
-        config.strategy = *parse_strategy(o.strategy);
-        config.heuristic = o.heuristic == "balance" ? MisHeuristic::Balance : MisHeuristic::Power;
-        config.max_depth = o.max_depth.value_or(scene.render.max_depth);
+        RenderRequest request;
+        request.width = width;
+        request.height = height;
+        request.seed = o.seed;
+        request.engine = *parse_engine(o.engine);
+        request.estimator.strategy = *parse_strategy(o.strategy);
+        request.estimator.heuristic =
+            o.heuristic == "balance" ? MisHeuristic::Balance : MisHeuristic::Power;
+        request.estimator.max_depth = o.max_depth.value_or(scene.render.max_depth);
+        if (o.wave_size) request.wavefront.wave_size = static_cast<size_t>(*o.wave_size);
+        request.wavefront.sort_by_material = o.sort_by_material;
         // Samples [offset, offset + requested) in all; a resumed film holds the first ones.
         const int requested = o.spp.value_or(scene.render.spp);
         const uint32_t offset = static_cast<uint32_t>(o.sample_offset.value_or(0));
         const int already = resumed ? static_cast<int>(resumed->second.samples()) : 0;
         Film film = resumed ? std::move(resumed->first) : Film(width, height);
-        config.first_sample = static_cast<int>(offset) + already;
-        config.spp = std::max(0, requested - already);
+        request.first_sample = static_cast<int>(offset) + already;
+        request.spp = std::max(0, requested - already);
+        // Checkpoints come between passes: passes no longer than half the interval.
+        if (o.checkpoint_every)
+            request.pass_seconds = std::min(request.pass_seconds, *o.checkpoint_every / 2);
         const fs::path film_path = !o.film.empty() ? fs::path(o.film) : fs::path(o.resume);
         auto film_info = [&](int done) {
             FilmInfo info{film_settings_text, {}};
@@ -252,38 +281,14 @@ Rendered render_to_image(const RenderOptions& o,
             return info;
         };
 
-        RenderStats stats;
-        Progress progress(config, already, o.time_limit);
-        WavefrontConfig wavefront;
-        if (o.wave_size) wavefront.wave_size = static_cast<size_t>(*o.wave_size);
-        wavefront.sort_by_material = o.sort_by_material;
-        // Checkpoints come between passes: passes no longer than half the interval.
-        if (o.checkpoint_every)
-            config.pass_seconds = std::min(config.pass_seconds, *o.checkpoint_every / 2);
-        const auto render_start = std::chrono::steady_clock::now();
-        auto last_checkpoint = render_start;
-        config.stop = [&](int done) {
-            const auto now = std::chrono::steady_clock::now();
-            // Between passes nothing is added to the film: a consistent snapshot.
-            if (o.checkpoint_every && done > 0 &&
-                std::chrono::duration<double>(now - last_checkpoint).count() >=
-                    *o.checkpoint_every) {
-                save_film(film_path, film, film_info(done));
-                last_checkpoint = now;
-            }
-            if (g_stop_signal.load() != 0) return true;
-            if (!o.time_limit) return false;
-            return std::chrono::duration<double>(now - render_start).count() >= *o.time_limit;
-        };
+        RenderWatch watch(
+            request, already, o.time_limit, o.checkpoint_every,
+            [&](const Film& f, int done) { save_film(film_path, f, film_info(done)); });
         std::signal(SIGINT, on_stop_signal);
         std::signal(SIGTERM, on_stop_signal);
-        if (config.spp > 0) {
-            if (o.engine == "megakernel")
-                render_megakernel(scene, bvh, config, film, &stats, progress.callback());
-            else
-                render_wavefront(scene, bvh, config, film, wavefront, &stats, progress.callback());
-        }
-        progress.finish();
+        RenderStats stats;
+        if (request.spp > 0) stats = render(scene, bvh, request, film, &watch);
+        watch.finish();
         const int total = already + stats.spp_done;
         r.spp_done = total;
         if (!film_path.empty()) save_film(film_path, film, film_info(stats.spp_done));
@@ -296,7 +301,7 @@ Rendered render_to_image(const RenderOptions& o,
                                {"wavetrace:spp", std::to_string(total)},
                                {"wavetrace:spp_requested", std::to_string(requested)},
                                {"wavetrace:first_sample", std::to_string(offset)},
-                               {"wavetrace:max_depth", std::to_string(config.max_depth)},
+                               {"wavetrace:max_depth", std::to_string(request.estimator.max_depth)},
                                {"wavetrace:render_seconds", fmt::format("{:.3f}", stats.seconds)}});
         std::string stopped;
         if (total < requested)

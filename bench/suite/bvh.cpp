@@ -10,11 +10,11 @@
 #include <cstdio>
 #include <functional>
 
-#include "reference/embree_mirror.h"
+#include "embree/embree_mirror.h"
+#include "sampling/warp.h"
 #include "sections.h"
-#include "wavetrace/shading/lights.h"
+#include "shading/lights.h"
 #include "shading/path_vertex.h"
-#include "shading/warp.h"
 #include "wavetrace/wavetrace.h"
 
 namespace wavetrace::bench {
@@ -127,20 +127,19 @@ void bench_bvh(const Options& o, Results& r) {
                 // Ours and Embree's single rays; on coherent batches also our 8-ray packets
                 // (a 4 x 2 pixel tile; 4 rays each on SSE4/NEON) and Embree's 8- and 16-wide.
                 std::vector<Hit> hits(rays.size());
-                std::vector<Tracer> tracers{
-                    {1,
-                     [&](size_t i) {
-                         if (shadow)
-                             (void)bvh.occluded(rays[i]);
-                         else
-                             (void)bvh.intersect(rays[i]);
-                     }},
-                    {1, [&](size_t i) {
-                         if (shadow)
-                             (void)embree.occluded(rays[i]);
-                         else
-                             (void)embree.intersect(rays[i]);
-                     }}};
+                std::vector<Tracer> tracers{{1,
+                                             [&](size_t i) {
+                                                 if (shadow)
+                                                     (void)bvh.occluded(rays[i]);
+                                                 else
+                                                     (void)bvh.intersect(rays[i]);
+                                             }},
+                                            {1, [&](size_t i) {
+                                                 if (shadow)
+                                                     (void)embree.occluded(rays[i]);
+                                                 else
+                                                     (void)embree.intersect(rays[i]);
+                                             }}};
                 if (packets) {
                     tracers.push_back({8, [&](size_t i) {
                                            bvh.intersect_packet(std::span(&rays[i], 8),
@@ -164,8 +163,8 @@ void bench_bvh(const Options& o, Results& r) {
                         "16-wide %7.2f, ours/embree %.2f\n",
                         name, threads, double(ours_p), double(p16), double(ratio_p));
                 }
-                r.row("bvh", {name, batch, threads, rays.size(), ours, ref, ratio, p8, p16,
-                              ours_p, ratio_p});
+                r.row("bvh", {name, batch, threads, rays.size(), ours, ref, ratio, p8, p16, ours_p,
+                              ratio_p});
                 std::printf(
                     "bvh %-10s %-8s %d thread(s): ours %7.2f Mrays/s, embree %7.2f, ours/embree "
                     "%.2f\n",

@@ -8,7 +8,8 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "reference/embree_engines.h"
+#include "embree/embree_engines.h"
+#include "engines/wavefront.h"
 #include "sections.h"
 #include "wavetrace/wavetrace.h"
 
@@ -18,7 +19,7 @@ namespace {
 
 // Peak memory of one render by the CLI in a process of its own (its summary line reports
 // getrusage's peak): the per-engine figure that two engines in one process cannot give.
-double cli_peak_mib(const std::string& scene, const char* engine, const RenderConfig& c) {
+double cli_peak_mib(const std::string& scene, const char* engine, const RenderRequest& c) {
     const std::filesystem::path image = std::filesystem::temp_directory_path() /
                                         ("wavetrace-bench-" + std::to_string(getpid()) + ".pfm");
     std::string cmd = std::string("'") + WAVETRACE_CLI_PATH + "' render '" + scene + "' --engine " +
@@ -84,22 +85,21 @@ void bench_engines(const Options& o, Results& r) {
             Bvh bvh = Bvh::build(scene);
             // As in the BVH section: Embree's default build and its fast (non-robust) traversal.
             EmbreeMirror embree(scene, RTC_BUILD_QUALITY_MEDIUM, /*robust=*/false);
-            RenderConfig cfg;
+            RenderRequest cfg;
             cfg.width = o.quick ? 16 : c.w;
             cfg.height = o.quick ? 16 : c.h;
             cfg.spp = o.quick ? 1 : c.spp;
             cfg.seed = 1;
-            cfg.max_depth = scene.render.max_depth;
+            cfg.estimator.max_depth = scene.render.max_depth;
             std::vector<double> ratio, mk_paths, wf_paths, mk_rays, wf_rays, mke_paths, wfe_paths,
                 mk_vs_embree, wf_vs_embree, wf_vs_mke;
             Image mk_img, wf_img;
-            WavefrontConfig wf_cfg;
             for (int rep = 0; rep < reps; ++rep) {
                 RenderStats mk, wf, mke, wfe;
-                mk_img = render_megakernel(scene, bvh, cfg, &mk).mean();
-                wf_img = render_wavefront(scene, bvh, cfg, wf_cfg, &wf).mean();
-                render_megakernel(scene, embree, cfg, &mke);
-                render_wavefront(scene, embree, cfg, wf_cfg, &wfe);
+                mk = render_once(scene, bvh, cfg, Engine::Megakernel, &mk_img);
+                wf = render_once(scene, bvh, cfg, Engine::Wavefront, &wf_img);
+                mke = render_once(scene, embree, cfg, Engine::Megakernel);
+                wfe = render_once(scene, embree, cfg, Engine::Wavefront);
                 mke_paths.push_back(mke.paths / mke.seconds * 1e-6);
                 wfe_paths.push_back(wfe.paths / wfe.seconds * 1e-6);
                 mk_vs_embree.push_back(mke.seconds / mk.seconds);  // > 1: ours is faster
@@ -116,8 +116,8 @@ void bench_engines(const Options& o, Results& r) {
             // Each thread carries one wave at a time.
             const double queue_mib =
                 double(wavefront_bytes_per_path()) *
-                double(wavefront_wave_size(size_t(pixels), size_t(threads), wf_cfg)) * threads /
-                (1 << 20);
+                double(wavefront_wave_size(size_t(pixels), size_t(threads), cfg.wavefront)) *
+                threads / (1 << 20);
             const double film_mib = pixels * Film::kBytesPerPixel / (1 << 20);
             r.row("engines", {c.scene,
                               threads,
@@ -166,20 +166,22 @@ void bench_waves(const Options& o, Results& r) {
     for (const char* name : {"cornell", "dragon"}) {
         Scene scene = load_scene((o.scenes / (std::string(name) + ".json")).string());
         Bvh bvh = Bvh::build(scene);
-        RenderConfig cfg;
+        RenderRequest cfg;
         cfg.width = o.quick ? 16 : 1024;
         cfg.height = o.quick ? 16 : 1024;
         cfg.spp = o.quick ? 1 : 2;
         cfg.seed = 1;
-        cfg.max_depth = scene.render.max_depth;
+        cfg.estimator.max_depth = scene.render.max_depth;
         for (size_t size : sizes) {
             const size_t effective = wavefront_wave_size(size_t(cfg.width) * size_t(cfg.height),
-                                                         threads, WavefrontConfig{size});
+                                                         threads, WavefrontOptions{size});
             std::vector<double> wf_paths, mk_paths, ratio;
             for (int rep = 0; rep < (o.quick ? 1 : 3); ++rep) {
                 RenderStats mk, wf;
-                render_megakernel(scene, bvh, cfg, &mk);
-                render_wavefront(scene, bvh, cfg, WavefrontConfig{size}, &wf);
+                RenderRequest sized = cfg;
+                sized.wavefront.wave_size = size;
+                mk = render_once(scene, bvh, sized, Engine::Megakernel);
+                wf = render_once(scene, bvh, sized, Engine::Wavefront);
                 wf_paths.push_back(wf.paths / wf.seconds * 1e-6);
                 mk_paths.push_back(mk.paths / mk.seconds * 1e-6);
                 ratio.push_back(mk.seconds / wf.seconds);

@@ -8,7 +8,7 @@
 #include <fstream>
 
 #include "sections.h"
-#include "wavetrace/render/wavefront.h"
+#include "wavetrace/engines/render.h"
 
 int main(int argc, char** argv) {
     using namespace wavetrace::bench;

@@ -56,11 +56,11 @@ struct Independent {
 };
 
 template <class Render>
-Independent independent_mpaths(int threads, RenderConfig cfg, const Render& render) {
+Independent independent_mpaths(int threads, RenderRequest cfg, const Render& render) {
     std::vector<RenderStats> stats(threads);
     const auto start = std::chrono::steady_clock::now();
     at_once(threads, [&](int i) {
-        RenderConfig own = cfg;
+        RenderRequest own = cfg;
         own.seed += static_cast<uint64_t>(i);
         tbb::task_arena one(1);
         one.execute([&] { render(own, &stats[i]); });
@@ -140,23 +140,23 @@ void bench_scaling(const Options& o, Results& r) {
         if (!o.wants(name)) continue;
         Scene scene = load_scene(o.scenes / (std::string(name) + ".json"));
         Bvh bvh = Bvh::build(scene);
-        RenderConfig cfg;
+        RenderRequest cfg;
         cfg.width = o.quick ? 16 : 320;
         cfg.height = o.quick ? 16 : 320;
         cfg.seed = 1;
-        cfg.max_depth = scene.render.max_depth;
-        const auto megakernel = [&](const RenderConfig& c, RenderStats* s) {
-            render_megakernel(scene, bvh, c, s);
+        cfg.estimator.max_depth = scene.render.max_depth;
+        const auto megakernel = [&](const RenderRequest& c, RenderStats* s) {
+            *s = render_once(scene, bvh, c, Engine::Megakernel);
         };
-        const auto wavefront = [&](const RenderConfig& c, RenderStats* s) {
-            render_wavefront(scene, bvh, c, {}, s);
+        const auto wavefront = [&](const RenderRequest& c, RenderStats* s) {
+            *s = render_once(scene, bvh, c, Engine::Wavefront);
         };
         double base_mk = 0, base_wf = 0;  // Mpaths/s at one thread
         for (size_t c = 0; c < counts.size(); ++c) {
             const int t = counts[c];
             tbb::global_control limit(tbb::global_control::max_allowed_parallelism, t);
             cfg.spp = o.quick ? 1 : 16 * ((t + 1) / 2);
-            RenderConfig each = cfg;
+            RenderRequest each = cfg;
             each.spp = std::max(1, cfg.spp / t);
             // Interleaved (A B A B ...), medians, to damp the noise of a shared machine.
             std::vector<double> mk, wf, ratio;

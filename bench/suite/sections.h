@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "results.h"
+#include "wavetrace/wavetrace.h"
 
 namespace wavetrace::bench {
 
@@ -29,6 +30,21 @@ struct Options {
         return only.empty() || std::find(only.begin(), only.end(), scene) != only.end();
     }
 };
+
+// One render of `request` by `engine` into a new film, on our BVH or on Embree; the film's
+// mean goes to `mean` if given.
+template <class Tracer>
+RenderStats render_once(const Scene& scene,
+                        const Tracer& tracer,
+                        RenderRequest request,
+                        Engine engine,
+                        Image* mean = nullptr) {
+    request.engine = engine;
+    Film film(request.width, request.height);
+    const RenderStats stats = render(scene, tracer, request, film);
+    if (mean) *mean = film.mean();
+    return stats;
+}
 
 void bench_engines(const Options& o, Results& r);      // megakernel vs wavefront, A B A B ...
 void bench_waves(const Options& o, Results& r);        // wavefront speed vs wave size

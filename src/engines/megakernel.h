@@ -1,7 +1,7 @@
-// The megakernel: per pixel sample, a recursive ray_color in the seed's style (depth-limited,
-// with Russian roulette). Every step of a path is a call into shading/path_vertex.h, the code
-// the wavefront kernels call too. Generic over the intersector: megakernel.cpp instantiates it
-// for our BVH, src/reference for Embree.
+// The megakernel: per pixel sample, a recursive ray_color in the style of *Ray Tracing in One
+// Weekend* (depth-limited, with Russian roulette). Every step of a path is a call into
+// shading/path_vertex.h, the code the wavefront kernels call too. Generic over the intersector:
+// megakernel.cpp instantiates it for our BVH, src/embree for Embree.
 #pragma once
 
 #include <tbb/blocked_range.h>
@@ -11,11 +11,12 @@
 #include <atomic>
 #include <chrono>
 
-#include "scene/intersector.h"
+#include "accel/intersector.h"
+#include "engines/passes.h"
+#include "sampling/sampler.h"
 #include "shading/path_vertex.h"
 #include "shading/trace.h"
-#include "wavetrace/render/megakernel.h"
-#include "wavetrace/render/sampler.h"
+#include "wavetrace/engines/render.h"
 #include "wavetrace/scene/scene.h"
 
 namespace wavetrace {
@@ -28,13 +29,14 @@ struct PathContext {
     const Scene& scene;
     const Tracer& bvh;
     const LightSet& lights;
-    const RenderConfig& config;
+    const Estimator& estimator;
+    uint64_t seed;
     uint32_t pixel;
     uint32_t sample;
     uint64_t rays = 0;
 };
 
-// Radiance arriving along `ray` (the seed's ray_color). `bounce` numbers the vertex the ray
+// Radiance arriving along `ray` (the book's ray_color). `bounce` numbers the vertex the ray
 // will reach: 0 for camera rays. `beta` is the path throughput so far, for Russian roulette.
 template <Intersector Tracer>
 Color ray_color(PathContext<Tracer>& ctx,
@@ -43,8 +45,8 @@ Color ray_color(PathContext<Tracer>& ctx,
                 MediumStack media,
                 const PreviousVertex& prev,
                 Color beta) {
-    const RenderConfig& cfg = ctx.config;
-    float flight = segment_flight(ctx.scene, cfg.seed, ctx.pixel, ctx.sample, bounce);
+    const Estimator& cfg = ctx.estimator;
+    float flight = segment_flight(ctx.scene, ctx.seed, ctx.pixel, ctx.sample, bounce);
     for (int crossing = 0; crossing < kMaxBoundaryCrossings; ++crossing) {
         ++ctx.rays;
         Hit hit = ctx.bvh.intersect(ray);
@@ -63,7 +65,7 @@ Color ray_color(PathContext<Tracer>& ctx,
         }
         if (!may_scatter(cfg, bounce)) return seg.emission;
         const Vertex& v = seg.vertex;
-        VertexSamples u = vertex_samples(cfg.seed, ctx.pixel, ctx.sample, bounce);
+        VertexSamples u = vertex_samples(ctx.seed, ctx.pixel, ctx.sample, bounce);
 
         // Next-event estimation: a shadow ray to a light sample, weighted for the strategy.
         Color radiance = seg.emission;  // zero but at an emitter that also reflects
@@ -86,46 +88,38 @@ Color ray_color(PathContext<Tracer>& ctx,
 }  // namespace megakernel_detail
 
 template <Intersector Tracer>
-void megakernel(const Scene& scene,
-                const Tracer& bvh,
-                const RenderConfig& config,
-                Film& film,
-                RenderStats* stats,
-                const ProgressCallback& progress) {
+RenderStats megakernel(const Scene& scene,
+                       const Tracer& bvh,
+                       const RenderRequest& request,
+                       Film& film,
+                       RenderObserver* observer) {
     using megakernel_detail::kTile;
     auto start = std::chrono::steady_clock::now();
     LightSet lights(scene);
-    CameraRays camera(scene.camera, config.width, config.height);
+    CameraRays camera(scene.camera, request.width, request.height);
     const MediumStack camera_media = media_at(scene, bvh, scene.camera.look_from);
-    const int tiles_x = (config.width + kTile - 1) / kTile;
-    const int tiles_y = (config.height + kTile - 1) / kTile;
+    const int width = request.width, height = request.height;
+    const int tiles_x = (width + kTile - 1) / kTile;
+    const int tiles_y = (height + kTile - 1) / kTile;
     const int tiles = tiles_x * tiles_y;
     std::atomic<uint64_t> rays{0};
     std::atomic<int64_t> tiles_done{0};  // tile passes, weighted by their sample counts
 
-    // Passes of samples over all tiles: a stop between passes leaves every pixel with the same
-    // number of samples, and each pixel still receives its samples in order, so the image does
-    // not depend on how the samples were split. Without a stop function the render is one
-    // pass; with one, passes last about config.pass_seconds (half a second): long enough that a
-    // tile keeps its samples together (its part of the BVH stays in cache), short enough to stop
-    // promptly.
-    int done = 0, chunk = 1;
-    while (done < config.spp) {
-        if (config.stop && config.stop(done)) break;
-        const int count = config.stop ? std::min(chunk, config.spp - done) : config.spp - done;
-        const uint32_t first = static_cast<uint32_t>(config.first_sample + done);
-        const auto pass_start = std::chrono::steady_clock::now();
+    // A pass over all tiles, each tile's pixels carrying their samples [first, first + count)
+    // in order: a tile keeps its samples together, so its part of the BVH stays in cache.
+    auto render_pass = [&](uint32_t first, int count) {
         tbb::parallel_for(tbb::blocked_range<int>(0, tiles), [&](const tbb::blocked_range<int>& r) {
             for (int tile = r.begin(); tile < r.end(); ++tile) {
                 const int x0 = (tile % tiles_x) * kTile, y0 = (tile / tiles_x) * kTile;
                 uint64_t tile_rays = 0;
-                for (int y = y0; y < std::min(y0 + kTile, config.height); ++y)
-                    for (int x = x0; x < std::min(x0 + kTile, config.width); ++x) {
-                        const uint32_t pixel = static_cast<uint32_t>(y) * config.width + x;
+                for (int y = y0; y < std::min(y0 + kTile, height); ++y)
+                    for (int x = x0; x < std::min(x0 + kTile, width); ++x) {
+                        const uint32_t pixel = static_cast<uint32_t>(y) * width + x;
                         for (uint32_t sample = first; sample < first + uint32_t(count); ++sample) {
-                            megakernel_detail::PathContext<Tracer> ctx{scene,  bvh,   lights,
-                                                                       config, pixel, sample};
-                            Ray ray = generate_camera_ray(camera, config.seed, pixel, sample, x, y);
+                            megakernel_detail::PathContext<Tracer> ctx{
+                                scene, bvh, lights, request.estimator, request.seed, pixel, sample};
+                            Ray ray =
+                                generate_camera_ray(camera, request.seed, pixel, sample, x, y);
                             Color c = megakernel_detail::ray_color(
                                 ctx, ray, 0, camera_media, PreviousVertex{ray.o}, Color(1.0f));
                             film.add(static_cast<int>(pixel), c);
@@ -134,23 +128,25 @@ void megakernel(const Scene& scene,
                     }
                 rays.fetch_add(tile_rays, std::memory_order_relaxed);
                 const double finished = tiles_done.fetch_add(count) + count;
-                if (progress) progress(finished / (double(tiles) * config.spp));
+                if (observer) observer->on_progress(finished / (double(tiles) * request.spp));
             }
         });
-        done += count;
-        const double seconds =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - pass_start).count();
-        chunk = static_cast<int>(
-            std::clamp(count * config.pass_seconds / std::max(seconds, 1e-3), 1.0, 65536.0));
-    }
+    };
+    const int done = run_passes(request, film, observer, render_pass);
 
-    if (stats) {
-        stats->seconds =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        stats->paths = static_cast<uint64_t>(config.width) * config.height * done;
-        stats->rays = rays.load();
-        stats->spp_done = done;
-    }
+    RenderStats stats;
+    stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    stats.paths = static_cast<uint64_t>(width) * height * done;
+    stats.rays = rays.load();
+    stats.spp_done = done;
+    return stats;
 }
+
+// The engine on our BVH (megakernel.cpp).
+RenderStats render_megakernel(const Scene& scene,
+                              const Bvh& bvh,
+                              const RenderRequest& request,
+                              Film& film,
+                              RenderObserver* observer = nullptr);
 
 }  // namespace wavetrace

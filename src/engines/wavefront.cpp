@@ -2,8 +2,7 @@
 
 #include <algorithm>
 
-#include "wavetrace/render/wavefront.h"
-#include "wavetrace/scene/bvh.h"
+#include "wavetrace/accel/bvh.h"
 
 namespace wavetrace {
 
@@ -19,7 +18,7 @@ constexpr size_t kMinWave = 128;
 namespace {
 
 // The size of the wave taken when `left` of `pixels` pixels are left.
-size_t guided_wave(size_t left, size_t pixels, size_t threads, const WavefrontConfig& wavefront) {
+size_t guided_wave(size_t left, size_t pixels, size_t threads, const WavefrontOptions& wavefront) {
     const size_t most = std::max<size_t>(1, std::min(wavefront.wave_size, pixels));
     const size_t parts = kGuidedShare * std::max<size_t>(threads, 1);
     return std::min(left, std::clamp((left + parts - 1) / parts, std::min(kMinWave, most), most));
@@ -29,7 +28,7 @@ size_t guided_wave(size_t left, size_t pixels, size_t threads, const WavefrontCo
 
 std::vector<WaveRange> wavefront_waves(size_t pixels,
                                        size_t threads,
-                                       const WavefrontConfig& wavefront) {
+                                       const WavefrontOptions& wavefront) {
     std::vector<WaveRange> waves;
     for (size_t first = 0; first < pixels;) {
         const size_t n = guided_wave(pixels - first, pixels, threads, wavefront);
@@ -40,7 +39,7 @@ std::vector<WaveRange> wavefront_waves(size_t pixels,
 }
 
 // The first wave is the largest: the share of what is left only shrinks.
-size_t wavefront_wave_size(size_t pixels, size_t threads, const WavefrontConfig& wavefront) {
+size_t wavefront_wave_size(size_t pixels, size_t threads, const WavefrontOptions& wavefront) {
     return pixels == 0 ? 1 : guided_wave(pixels, pixels, threads, wavefront);
 }
 
@@ -48,25 +47,12 @@ size_t wavefront_bytes_per_path() {
     return WaveQueues::bytes_per_path();
 }
 
-Film render_wavefront(const Scene& scene,
-                      const Bvh& bvh,
-                      const RenderConfig& config,
-                      const WavefrontConfig& wavefront_config,
-                      RenderStats* stats,
-                      const ProgressCallback& progress) {
-    Film film(config.width, config.height);
-    wavefront(scene, bvh, config, film, wavefront_config, stats, progress);
-    return film;
-}
-
-void render_wavefront(const Scene& scene,
-                      const Bvh& bvh,
-                      const RenderConfig& config,
-                      Film& film,
-                      const WavefrontConfig& wavefront_config,
-                      RenderStats* stats,
-                      const ProgressCallback& progress) {
-    wavefront(scene, bvh, config, film, wavefront_config, stats, progress);
+RenderStats render_wavefront(const Scene& scene,
+                             const Bvh& bvh,
+                             const RenderRequest& request,
+                             Film& film,
+                             RenderObserver* observer) {
+    return wavefront(scene, bvh, request, film, observer);
 }
 
 }  // namespace wavetrace

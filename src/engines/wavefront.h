@@ -5,7 +5,7 @@
 // stage, bounce after bounce and sample after sample of a pass, in queues it reuses from wave to
 // wave, so that a wave's queues stay in that core's cache (the per-thread queues of Áfra et
 // al., HPG 2016, and of MoonRay, rather than pbrt-v4's one global wave). Generic over the
-// intersector: wavefront.cpp instantiates it for our BVH, src/reference for Embree.
+// intersector: wavefront.cpp instantiates it for our BVH, src/embree for Embree.
 #pragma once
 
 #include <tbb/blocked_range.h>
@@ -19,12 +19,28 @@
 #include <chrono>
 #include <vector>
 
+#include "accel/intersector.h"
+#include "engines/passes.h"
 #include "kernels/kernels.h"
-#include "scene/intersector.h"
 #include "shading/trace.h"
-#include "wavetrace/render/wavefront.h"
+#include "wavetrace/engines/render.h"
 
 namespace wavetrace {
+
+// The waves a render of `pixels` pixels on `threads` threads is cut into, in the order the
+// threads take them: consecutive pixel ranges [first, first + n) of the pass order that cover
+// it once, guided self-scheduling (Polychronopoulos & Kuck, 1987): each wave takes a share
+// 1 / (2 threads) of the pixels left, at most wave_size and at least 128 (fewer only where
+// fewer are left), so waves start large and shrink towards the end of a pass, where the
+// threads wait for the last ones.
+struct WaveRange {
+    size_t first, n;
+};
+std::vector<WaveRange> wavefront_waves(size_t pixels,
+                                       size_t threads,
+                                       const WavefrontOptions& wavefront);
+// The most paths a thread carries at once in such a render: its first wave's size.
+size_t wavefront_wave_size(size_t pixels, size_t threads, const WavefrontOptions& wavefront);
 namespace wavefront_detail {
 
 // Carries the wave of the pass's pixels [first, first + n) (in pass order) through all its
@@ -61,26 +77,31 @@ uint64_t run_wave(const WaveInputs& in,
 }  // namespace wavefront_detail
 
 template <Intersector Tracer>
-void wavefront(const Scene& scene,
-               const Tracer& bvh,
-               const RenderConfig& config,
-               Film& film,
-               const WavefrontConfig& wavefront,
-               RenderStats* stats,
-               const ProgressCallback& progress) {
+RenderStats wavefront(const Scene& scene,
+                      const Tracer& bvh,
+                      const RenderRequest& request,
+                      Film& film,
+                      RenderObserver* observer) {
     auto start = std::chrono::steady_clock::now();
+    const WavefrontOptions& options = request.wavefront;
     const LightSet lights(scene);
-    const CameraRays camera(scene.camera, config.width, config.height);
-    const WaveInputs in{scene, lights, config, camera,
+    const CameraRays camera(scene.camera, request.width, request.height);
+    const WaveInputs in{scene,
+                        lights,
+                        request.estimator,
+                        request.seed,
+                        request.width,
+                        request.height,
+                        camera,
                         media_at(scene, bvh, scene.camera.look_from)};
-    const size_t pixels = static_cast<size_t>(config.width) * config.height;
+    const size_t pixels = static_cast<size_t>(request.width) * request.height;
     // The threads this render may use: the arena's, or fewer under a tbb::global_control limit
     // (--threads). The image depends on neither, so the waves may follow them.
-    const size_t threads = static_cast<size_t>(std::max(
-        1, std::min<int>(tbb::this_task_arena::max_concurrency(),
-                         static_cast<int>(tbb::global_control::active_value(
-                             tbb::global_control::max_allowed_parallelism)))));
-    const std::vector<WaveRange> waves = wavefront_waves(pixels, threads, wavefront);
+    const size_t threads = static_cast<size_t>(
+        std::max(1, std::min<int>(tbb::this_task_arena::max_concurrency(),
+                                  static_cast<int>(tbb::global_control::active_value(
+                                      tbb::global_control::max_allowed_parallelism)))));
+    const std::vector<WaveRange> waves = wavefront_waves(pixels, threads, options);
     tbb::enumerable_thread_specific<WaveQueues> queues([&] {
         WaveQueues q;
         q.resize(waves.empty() ? 1 : waves.front().n);
@@ -89,19 +110,11 @@ void wavefront(const Scene& scene,
     std::atomic<uint64_t> rays{0};
     std::atomic<uint64_t> paths_done{0};  // pixels times the samples carried for them
 
-    // Passes of samples over all waves, as in the megakernel: each wave carries its pixels
-    // through the pass's samples in order, so every pixel receives its samples in sample order
-    // whatever the wave size, the thread count or which thread ran which wave, and a stop
-    // between passes leaves every pixel with the same number of samples. Without a stop
-    // function the render is one pass (the threads meet once, at the end); with one, passes
-    // last about config.pass_seconds. The waves are taken in their order (one counter), so
-    // that the small ones at the end of the schedule are the last to start.
-    int done = 0, chunk = 1;
-    while (done < config.spp) {
-        if (config.stop && config.stop(done)) break;
-        const int count = config.stop ? std::min(chunk, config.spp - done) : config.spp - done;
-        const uint32_t first_sample = static_cast<uint32_t>(config.first_sample + done);
-        const auto pass_start = std::chrono::steady_clock::now();
+    // A pass over all waves: each wave carries its pixels through the pass's samples in order,
+    // so every pixel receives its samples in sample order whatever the wave size, the thread
+    // count or which thread ran which wave. The waves are taken in their order (one counter),
+    // so that the small ones at the end of the schedule are the last to start.
+    auto render_pass = [&](uint32_t first_sample, int count) {
         std::atomic<size_t> next{0};
         tbb::parallel_for(
             tbb::blocked_range<size_t>(0, threads, 1),
@@ -114,28 +127,30 @@ void wavefront(const Scene& scene,
                          ++sample)
                         traced += wavefront_detail::run_wave(
                             in, bvh, sample, static_cast<uint32_t>(wave.first), wave.n,
-                            wavefront.sort_by_material, q, film);
+                            options.sort_by_material, q, film);
                     const uint64_t carried = uint64_t(wave.n) * uint64_t(count);
                     const double finished = double(paths_done.fetch_add(carried) + carried);
-                    if (progress) progress(finished / (double(pixels) * config.spp));
+                    if (observer) observer->on_progress(finished / (double(pixels) * request.spp));
                 }
                 rays.fetch_add(traced, std::memory_order_relaxed);
             },
             tbb::simple_partitioner());
-        done += count;
-        const double seconds =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - pass_start).count();
-        chunk = static_cast<int>(
-            std::clamp(count * config.pass_seconds / std::max(seconds, 1e-3), 1.0, 65536.0));
-    }
+    };
+    const int done = run_passes(request, film, observer, render_pass);
 
-    if (stats) {
-        stats->seconds =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        stats->paths = static_cast<uint64_t>(pixels) * done;
-        stats->rays = rays.load();
-        stats->spp_done = done;
-    }
+    RenderStats stats;
+    stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    stats.paths = static_cast<uint64_t>(pixels) * done;
+    stats.rays = rays.load();
+    stats.spp_done = done;
+    return stats;
 }
+
+// The engine on our BVH (wavefront.cpp).
+RenderStats render_wavefront(const Scene& scene,
+                             const Bvh& bvh,
+                             const RenderRequest& request,
+                             Film& film,
+                             RenderObserver* observer = nullptr);
 
 }  // namespace wavetrace

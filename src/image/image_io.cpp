@@ -11,8 +11,8 @@
 #include <cstring>
 #include <system_error>
 
-#include "io/input_file.h"
-#include "io/output_file.h"
+#include "files/input_file.h"
+#include "files/output_file.h"
 #include "wavetrace/image/image.h"
 
 namespace wavetrace {

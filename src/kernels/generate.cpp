@@ -53,8 +53,8 @@ void generate(const WaveInputs& in,
               size_t end,
               PathQueue& paths,
               RayQueue& rays) {
-    const uint32_t width = static_cast<uint32_t>(in.config.width),
-                   height = static_cast<uint32_t>(in.config.height);
+    const uint32_t width = static_cast<uint32_t>(in.width),
+                   height = static_cast<uint32_t>(in.height);
     const PackedMedia media = PackedMedia::pack(in.camera_media);
     const bool flights = !in.scene.media.empty();
     // Chunk by chunk: the pixels, their camera rays in SIMD lanes, then the path entries.
@@ -70,7 +70,7 @@ void generate(const WaveInputs& in,
             x[k] = static_cast<float>(walk.x());
             y[k] = static_cast<float>(walk.y());
         }
-        draw_camera_rays(in.camera, in.config.seed, sample, pixel, x, y, n, flights, camera);
+        draw_camera_rays(in.camera, in.seed, sample, pixel, x, y, n, flights, camera);
         for (size_t k = 0; k < n; ++k) {
             const size_t i = c + k;
             const Ray ray{{camera.o[0][k], camera.o[1][k], camera.o[2][k]},

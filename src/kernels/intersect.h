@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <span>
 
+#include "accel/intersector.h"
 #include "kernels/wave.h"
-#include "scene/intersector.h"
 
 namespace wavetrace {
 

@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <span>
 
+#include "accel/intersector.h"
 #include "kernels/intersect.h"
 #include "kernels/wave.h"
-#include "scene/intersector.h"
 #include "shading/trace.h"
 
 namespace wavetrace {

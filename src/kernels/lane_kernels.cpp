@@ -9,12 +9,12 @@
 #include <initializer_list>
 
 #include "math/lanes-inl.h"
-#include "render/sampler-inl.h"
+#include "sampling/sampler-inl.h"
 #include "scene/camera_ray-inl.h"
-#include "scene/surface_point-inl.h"
 #include "shading/medium_flight-inl.h"
 #include "shading/quad_light_nee-inl.h"
 #include "shading/sphere_light-inl.h"
+#include "shading/surface_point-inl.h"
 #include "shading/surface_step-inl.h"
 
 HWY_BEFORE_NAMESPACE();

@@ -1,5 +1,5 @@
 // The wavefront's kernels that run in SIMD lanes, over a chunk of a wave: camera rays
-// (scene/camera_ray-inl.h), the uniform numbers of each vertex (render/sampler-inl.h), the
+// (scene/camera_ray-inl.h), the uniform numbers of each vertex (sampling/sampler-inl.h), the
 // points and normals of surface hits (scene/surface_point-inl.h), the light samples towards quad
 // lights (shading/quad_light_nee-inl.h) and the continuation (shading/surface_step-inl.h) of
 // Lambertian and rough metal vertices. The formulas are the ones the megakernel
@@ -10,8 +10,8 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "sampling/sampler.h"
 #include "shading/path_vertex.h"
-#include "wavetrace/render/sampler.h"
 #include "wavetrace/scene/camera.h"
 #include "wavetrace/scene/shapes.h"
 

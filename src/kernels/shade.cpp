@@ -102,11 +102,8 @@ struct ChunkTriangles {
     Triangle tri[kShadeChunk];
 };
 
-void prefetch_chunk_vertices(const Scene& scene,
-                             const HitQueue& hits,
-                             size_t begin,
-                             size_t end,
-                             ChunkTriangles& records) {
+void prefetch_chunk_vertices(
+    const Scene& scene, const HitQueue& hits, size_t begin, size_t end, ChunkTriangles& records) {
     size_t count = 0;
     for (size_t i = begin; i < end; ++i)
         if (const PrimRef p = hits.prim[i]; p.valid() && p.kind() == PrimKind::Triangle)
@@ -181,7 +178,7 @@ bool shade_quickly(const WaveInputs& in,
             else
                 deferred[deferred_count++] = {row, light, u.light_u, u.light_v};
         }
-        block.set_step(row, u.continuation, u.roulette, bounce + 1 >= in.config.rr_depth);
+        block.set_step(row, u.continuation, u.roulette, bounce + 1 >= in.estimator.rr_depth);
     };
     // In a medium, the path scatters on the way to the hit (resolve_segment's first event:
     // `segments`, drawn for the chunk in lanes), or reaches it with `flight` left; the optical
@@ -191,7 +188,7 @@ bool shade_quickly(const WaveInputs& in,
         if (!lanes) return false;
         flight = segments.flight[chunk_row];
         if (segments.scatters[chunk_row] != 0.0f) {
-            if (!may_scatter(in.config, bounce)) return true;  // the path ends here
+            if (!may_scatter(in.estimator, bounce)) return true;  // the path ends here
             const Ray ray{rays.origin[i], rays.dir[i]};
             const float dir_length = segments.dir_length[chunk_row];
             const Vertex v =
@@ -229,7 +226,7 @@ bool shade_quickly(const WaveInputs& in,
     bool texture = false;
     // Textured meshes stay scalar: their texture coordinates come from the mesh's vertices.
     if (!lanes || !lane_material(scene, m, &bsdf, &texture) || (texture && tri)) return false;
-    if (!may_scatter(in.config, bounce)) return true;  // the path ends here, with nothing found
+    if (!may_scatter(in.estimator, bounce)) return true;  // the path ends here, with nothing found
     size_t row;
     if (tri) {
         const Mesh& mesh = scene.meshes[tri->mesh];
@@ -274,7 +271,7 @@ size_t shade(const WaveInputs& in,
              std::span<uint8_t> keep,
              ShadowQueue& shadows,
              size_t first_shadow) {
-    const RenderConfig& cfg = in.config;
+    const Estimator& cfg = in.estimator;
     size_t s = first_shadow;
     SampleBlock samples;
     SurfaceBlock block;
@@ -295,7 +292,7 @@ size_t shade(const WaveInputs& in,
     const bool segments_in_lanes = resolve_in_lanes && !in.scene.media.empty();
     for (size_t c = begin; c < end; c += kShadeChunk) {
         const size_t chunk_end = std::min(end, c + kShadeChunk);
-        draw_vertex_samples(cfg.seed, sample, &paths.pixel[c], &paths.bounce[c], chunk_end - c,
+        draw_vertex_samples(in.seed, sample, &paths.pixel[c], &paths.bounce[c], chunk_end - c,
                             flights, samples);
         if (segments_in_lanes) {
             for (size_t i = c; i < chunk_end; ++i) {

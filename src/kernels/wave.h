@@ -10,11 +10,11 @@
 #include "queues/path_state.h"
 #include "queues/ray_queue.h"
 #include "queues/shadow_queue.h"
-#include "wavetrace/render/film.h"
-#include "wavetrace/render/render.h"
+#include "shading/lights.h"
+#include "wavetrace/film/film.h"
 #include "wavetrace/scene/camera.h"
 #include "wavetrace/scene/scene.h"
-#include "wavetrace/shading/lights.h"
+#include "wavetrace/shading/estimator.h"
 
 namespace wavetrace {
 
@@ -23,7 +23,9 @@ namespace wavetrace {
 struct WaveInputs {
     const Scene& scene;
     const LightSet& lights;
-    const RenderConfig& config;
+    const Estimator& estimator;
+    uint64_t seed;
+    int width, height;  // of the image
     const CameraRays& camera;
     MediumStack camera_media;
 };

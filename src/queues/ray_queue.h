@@ -5,9 +5,9 @@
 #include <cstdint>
 
 #include "queues/soa.h"
+#include "wavetrace/accel/bvh.h"
 #include "wavetrace/math/ray.h"
 #include "wavetrace/math/vec3.h"
-#include "wavetrace/scene/bvh.h"
 #include "wavetrace/scene/ids.h"
 
 namespace wavetrace {

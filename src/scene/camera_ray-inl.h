@@ -9,7 +9,7 @@
 #endif
 
 #include "math/lanes-inl.h"
-#include "render/sampler-inl.h"
+#include "sampling/sampler-inl.h"
 #include "wavetrace/scene/camera.h"
 
 HWY_BEFORE_NAMESPACE();
@@ -21,7 +21,7 @@ HWY_INLINE V3<typename L::F> Broadcast(Vec3 v) {
     return {L::Set(v.x), L::Set(v.y), L::Set(v.z)};
 }
 
-// The seed's camera (RTIOW §12-13): a film on the focus plane, rays from a disk lens. (x, y)
+// The camera of Ray Tracing in One Weekend (§12-13): a film on the focus plane, rays from a disk lens. (x, y)
 // in pixels, (lens_u, lens_v) in [0,1)^2 pick the lens point by the polar map (r = sqrt(u1),
 // phi = 2 pi u2). The direction is not normalized.
 template <class L>
@@ -46,7 +46,7 @@ HWY_INLINE void CameraRay(const CameraFrame& c,
 }
 
 // The camera ray of one sample of pixel (x, y), its path's sampler state `state`: jittered over
-// the pixel and the lens by the camera dimensions (render/sampler.h). What generate_camera_ray
+// the pixel and the lens by the camera dimensions (sampling/sampler.h). What generate_camera_ray
 // (one lane) and the generate kernel (a vector of pixels) both run.
 template <class L>
 HWY_INLINE void SampledCameraRay(const CameraFrame& c,

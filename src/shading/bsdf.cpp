@@ -1,10 +1,10 @@
-#include "wavetrace/shading/bsdf.h"
+#include "shading/bsdf.h"
 
 #include <algorithm>
 #include <cmath>
 
+#include "sampling/warp.h"
 #include "shading/ggx-inl.h"
-#include "shading/warp.h"
 #include "wavetrace/math/constants.h"
 
 namespace wavetrace {
@@ -76,7 +76,7 @@ BsdfSample bsdf_sample(const BsdfParams& b, Vec3 wo, float u_lobe, float u1, flo
     BsdfSample s;
     if (wo.z == 0.0f && b.kind != MaterialKind::Isotropic) return s;
     // Reflective lobes work on wo's side of the surface: both directions mirrored into the
-    // upper hemisphere when wo is below (two-sided shading, as the seed's front_face flip).
+    // upper hemisphere when wo is below (two-sided shading, as Ray Tracing in One Weekend's front_face flip).
     const float side = lanes::SideOf<OneLane>(to_lanes(wo));
     switch (b.kind) {
         case MaterialKind::Lambertian: {

@@ -1,13 +1,13 @@
-#include "wavetrace/shading/lights.h"
+#include "shading/lights.h"
 
 #include <cmath>
 
+#include "accel/intersect.h"
+#include "sampling/warp.h"
 #include "shading/sphere_light-inl.h"
-#include "shading/warp.h"
 #include "wavetrace/math/frame.h"
-#include "wavetrace/scene/intersect.h"
 #include "wavetrace/scene/scene.h"
-#include "wavetrace/scene/surface.h"
+#include "wavetrace/shading/surface.h"
 
 namespace wavetrace {
 namespace lanes = HWY_NAMESPACE;

@@ -1,4 +1,4 @@
-// Multiple importance sampling weights over lanes (wavetrace/shading/mis.h has the scalar
+// Multiple importance sampling weights over lanes (shading/mis.h has the scalar
 // function, the one-lane instance). Per-target header, see math/lanes-inl.h.
 #if defined(WAVETRACE_SHADING_MIS_INL_H_) == defined(HWY_TARGET_TOGGLE)
 #ifdef WAVETRACE_SHADING_MIS_INL_H_
@@ -8,7 +8,7 @@
 #endif
 
 #include "math/lanes-inl.h"
-#include "wavetrace/shading/mis.h"
+#include "shading/mis.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace wavetrace {

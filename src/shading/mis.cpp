@@ -1,4 +1,4 @@
-#include "wavetrace/shading/mis.h"
+#include "shading/mis.h"
 
 #include "shading/mis-inl.h"
 

@@ -3,15 +3,15 @@
 #include <algorithm>
 #include <cmath>
 
-#include "render/sampler-inl.h"
+#include "sampling/sampler-inl.h"
+#include "sampling/sampler.h"
+#include "sampling/warp.h"
 #include "scene/camera_ray-inl.h"
 #include "shading/medium_flight-inl.h"
 #include "shading/mis-inl.h"
 #include "shading/quad_light_nee-inl.h"
 #include "shading/sphere_light-inl.h"
 #include "shading/surface_step-inl.h"
-#include "shading/warp.h"
-#include "wavetrace/render/sampler.h"
 #include "wavetrace/scene/scene.h"
 
 namespace wavetrace {
@@ -162,7 +162,7 @@ Continuation sample_continuation(Strategy strategy,
     return c;
 }
 
-bool samples_lights(const RenderConfig& config, const Vertex& v, const LightSet& lights) {
+bool samples_lights(const Estimator& config, const Vertex& v, const LightSet& lights) {
     const bool nee = config.strategy == Strategy::Nee || config.strategy == Strategy::Mis;
     return nee && can_sample_lights(v, lights);
 }
@@ -185,7 +185,7 @@ int32_t quad_light_sample_at(const Vertex& v, const LightSet& lights, LightChoic
 
 WeightedDirect next_event(const Scene& scene,
                           const LightSet& lights,
-                          const RenderConfig& config,
+                          const Estimator& config,
                           const Vertex& v,
                           Vec3 wo,
                           const VertexSamples& u) {
@@ -195,7 +195,7 @@ WeightedDirect next_event(const Scene& scene,
 
 WeightedDirect next_event(const Scene& scene,
                           const LightSet& lights,
-                          const RenderConfig& config,
+                          const Estimator& config,
                           const Vertex& v,
                           Vec3 wo,
                           const VertexSamples& u,
@@ -285,7 +285,7 @@ Ray cross_boundary(const SurfaceHit& s, Vec3 dir, MediumStack& media) {
 
 SegmentResult resolve_segment(const Scene& scene,
                               const LightSet& lights,
-                              const RenderConfig& config,
+                              const Estimator& config,
                               const Ray& ray,
                               const Hit& hit,
                               MediumStack& media,
@@ -347,13 +347,13 @@ bool is_lane_vertex(const Vertex& v) {
            (v.bsdf.kind == MaterialKind::Metal && v.bsdf.alpha > 0.0f);
 }
 
-bool takes_lane_step(const RenderConfig& config, const Vertex& v, const LightSet& lights) {
+bool takes_lane_step(const Estimator& config, const Vertex& v, const LightSet& lights) {
     return is_lane_vertex(v) && !one_sample_continuation(config.strategy, v, lights);
 }
 
 PathStep continue_path(const Scene& scene,
                        const LightSet& lights,
-                       const RenderConfig& config,
+                       const Estimator& config,
                        const Vertex& v,
                        Vec3 wo,
                        int bounce,

@@ -6,16 +6,16 @@
 
 #include <cstdint>
 
+#include "sampling/sampler.h"
+#include "shading/bsdf.h"
+#include "shading/lights.h"
 #include "shading/medium_stack.h"
+#include "wavetrace/accel/bvh.h"
 #include "wavetrace/math/frame.h"
 #include "wavetrace/math/ray.h"
-#include "wavetrace/render/render.h"
-#include "wavetrace/render/sampler.h"
-#include "wavetrace/scene/bvh.h"
 #include "wavetrace/scene/camera.h"
-#include "wavetrace/scene/surface.h"
-#include "wavetrace/shading/bsdf.h"
-#include "wavetrace/shading/lights.h"
+#include "wavetrace/shading/estimator.h"
+#include "wavetrace/shading/surface.h"
 
 namespace wavetrace {
 
@@ -153,7 +153,7 @@ Ray cross_boundary(const SurfaceHit& s, Vec3 dir, MediumStack& media);
 // boundaries (updating `media`), or a surface to scatter at.
 SegmentResult resolve_segment(const Scene& scene,
                               const LightSet& lights,
-                              const RenderConfig& config,
+                              const Estimator& config,
                               const Ray& ray,
                               const Hit& hit,
                               MediumStack& media,
@@ -163,7 +163,7 @@ SegmentResult resolve_segment(const Scene& scene,
 // Whether the continuation at v is a lane step (shading/surface_step-inl.h): a lane vertex
 // whose direction the strategy samples from the BSDF or phase function. The wavefront runs
 // these vertices' steps in SIMD lanes, continue_path the same formula in one lane.
-bool takes_lane_step(const RenderConfig& config, const Vertex& v, const LightSet& lights);
+bool takes_lane_step(const Estimator& config, const Vertex& v, const LightSet& lights);
 // A Lambertian or rough metal surface, or a medium's isotropic phase function: the vertices the
 // lane formulas of next-event estimation towards quad and sphere lights and of the continuation
 // take.
@@ -180,7 +180,7 @@ struct PathStep {
 };
 PathStep continue_path(const Scene& scene,
                        const LightSet& lights,
-                       const RenderConfig& config,
+                       const Estimator& config,
                        const Vertex& v,
                        Vec3 wo,
                        int bounce,
@@ -189,7 +189,7 @@ PathStep continue_path(const Scene& scene,
                        const ContinuationSamples& u,
                        float u_roulette);
 // The uniform numbers of vertex `bounce` of path (pixel, sample), from the dimension layout
-// of render/sampler.h: what both engines draw, so that they trace the same paths.
+// of sampling/sampler.h: what both engines draw, so that they trace the same paths.
 struct VertexSamples {
     float light_select, light_u, light_v;  // next-event estimation
     ContinuationSamples continuation;
@@ -217,20 +217,20 @@ struct WeightedDirect {
 };
 WeightedDirect next_event(const Scene& scene,
                           const LightSet& lights,
-                          const RenderConfig& config,
+                          const Estimator& config,
                           const Vertex& v,
                           Vec3 wo,
                           const VertexSamples& u);
 // The same with the light already chosen, where samples_lights(config, v, lights) holds.
 WeightedDirect next_event(const Scene& scene,
                           const LightSet& lights,
-                          const RenderConfig& config,
+                          const Estimator& config,
                           const Vertex& v,
                           Vec3 wo,
                           const VertexSamples& u,
                           LightChoice light);
 // Whether next-event estimation happens at v: the strategy samples lights and v can.
-bool samples_lights(const RenderConfig& config, const Vertex& v, const LightSet& lights);
+bool samples_lights(const Estimator& config, const Vertex& v, const LightSet& lights);
 // The light next_event samples at v in SIMD lanes (shading/quad_light_nee-inl.h), as its index
 // among the LightSet's quad emitters, or -1: at a lane vertex (is_lane_vertex) that
 // samples_lights(), a chosen quad of constant radiance.
@@ -248,7 +248,7 @@ Ray generate_camera_ray(
     const CameraRays& camera, uint64_t seed, uint32_t pixel, uint32_t sample, int x, int y);
 
 // Whether a vertex reached by segment `bounce` may scatter: the path may still grow.
-inline bool may_scatter(const RenderConfig& config, int bounce) {
+inline bool may_scatter(const Estimator& config, int bounce) {
     return bounce + 1 < config.max_depth;
 }
 

@@ -14,9 +14,9 @@
 
 #include "math/lanes-inl.h"
 #include "shading/ggx-inl.h"
+#include "shading/lights.h"
 #include "shading/mis-inl.h"
 #include "wavetrace/math/constants.h"
-#include "wavetrace/shading/lights.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace wavetrace {

@@ -12,12 +12,12 @@
 #define WAVETRACE_SHADING_SPHERE_LIGHT_INL_H_
 #endif
 
+#include "accel/sphere_hit-inl.h"
 #include "math/lanes-inl.h"
-#include "scene/sphere_hit-inl.h"
-#include "scene/surface_point-inl.h"
+#include "shading/lights.h"
 #include "shading/quad_light_nee-inl.h"
+#include "shading/surface_point-inl.h"
 #include "wavetrace/math/constants.h"
-#include "wavetrace/shading/lights.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace wavetrace {

@@ -13,8 +13,8 @@
 #endif
 
 #include "math/lanes-inl.h"
+#include "sampling/warp-inl.h"
 #include "shading/ggx-inl.h"
-#include "shading/warp-inl.h"
 #include "wavetrace/math/constants.h"
 
 HWY_BEFORE_NAMESPACE();

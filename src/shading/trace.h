@@ -4,10 +4,10 @@
 
 #include <cmath>
 
-#include "scene/intersector.h"
+#include "accel/intersector.h"
 #include "shading/path_vertex.h"
 #include "wavetrace/scene/scene.h"
-#include "wavetrace/scene/surface.h"
+#include "wavetrace/shading/surface.h"
 
 namespace wavetrace {
 

@@ -7,7 +7,7 @@
 #include <fstream>
 #include <string>
 
-#include "wavetrace/render/film_file.h"
+#include "wavetrace/film/film_file.h"
 
 namespace fs = std::filesystem;
 

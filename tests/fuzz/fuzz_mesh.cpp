@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "scene/mesh_file.h"
+#include "loaders/mesh_file.h"
 
 namespace fs = std::filesystem;
 

@@ -9,7 +9,7 @@ namespace wavetrace {
 
 enum class MaterialKind : uint8_t {
     Lambertian,  // ideal diffuse: albedo / pi
-    Metal,       // conductor with albedo and roughness in [0, 1] (the seed's "fuzz"); 0 is a mirror
+    Metal,       // conductor with albedo and roughness in [0, 1] (Ray Tracing in One Weekend's "fuzz"); 0 is a mirror
     Mirror,      // perfect specular reflection tinted by albedo
     Dielectric,  // smooth glass with index of refraction `ior`
     DiffuseLight,  // emits `emission` radiance from its front side (or both sides if `two_sided`)

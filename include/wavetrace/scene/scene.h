@@ -1,5 +1,6 @@
 // The scene: plain arrays of shapes, materials, textures and media, with builder helpers.
-// Loaded from JSON by load_scene() or built in code; the BVH is built over it afterwards.
+// Loaded from a file by load_scene() (wavetrace/loaders/load_scene.h) or built in code; the BVH is
+// built over it afterwards.
 #pragma once
 
 #include <filesystem>
@@ -117,13 +118,5 @@ class SceneError : public std::runtime_error {
   public:
     using std::runtime_error::runtime_error;
 };
-
-struct LoadOptions {
-    // Called with warnings (e.g. skipped degenerate triangles); default: print to stderr.
-    void (*warn)(const std::string& message) = nullptr;
-};
-
-// Loads a JSON scene file (see docs/scene-format.md). Throws SceneError on bad input.
-Scene load_scene(const std::filesystem::path& path, const LoadOptions& options = {});
 
 }  // namespace wavetrace

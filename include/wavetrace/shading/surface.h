@@ -1,0 +1,27 @@
+#pragma once
+
+#include "wavetrace/accel/bvh.h"
+#include "wavetrace/math/ray.h"
+#include "wavetrace/scene/ids.h"
+
+namespace wavetrace {
+
+struct Scene;
+
+// Everything shading needs about a ray's hit point.
+struct SurfaceHit {
+    Point3 p;
+    Normal3 ng;              // geometric normal, unit, on the shape's outside (front)
+    Normal3 ns;              // shading normal, unit, on the same side as ng
+    Vec2 uv;                 // texture coordinates (spheres: only where a texture reads them)
+    bool front_face = true;  // the ray arrived from the side ng points to
+    MaterialId material = kNone;
+    MediumId interior = kNone;
+};
+
+SurfaceHit surface_at(const Scene& scene, const Ray& ray, const Hit& hit);
+
+// A sphere's texture coordinates at the point of outward unit normal ng (surface_at's).
+Vec2 sphere_uv(Normal3 ng);
+
+}  // namespace wavetrace

@@ -1,0 +1,312 @@
+// Binned SAH BVH build (Wald, "On fast Construction of SAH-based Bounding Volume
+// Hierarchies", IRT 2007), flattened depth-first into 32-byte nodes.
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_invoke.h>
+#include <tbb/parallel_reduce.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <memory>
+
+#include "accel/bvh_layout.h"
+#include "wavetrace/accel/bvh.h"
+#include "wavetrace/scene/scene.h"
+
+namespace wavetrace {
+namespace {
+
+struct BuildPrim {
+    Aabb box;
+    Vec3 centroid;
+    PrimRef ref;
+};
+
+struct BuildNode {
+    Aabb box;
+    std::unique_ptr<BuildNode> left, right;  // both null for a leaf
+    uint32_t first = 0, count = 0;           // leaf range in the primitive array
+};
+
+// Primitives are tested block_width at a time (a leaf block of the wide layout), so the SAH
+// counts blocks, not primitives: a leaf of 5 triangles costs one block test, like one of 8
+// (as Embree's builders do for their 4- and 8-wide primitive blocks).
+float blocks(uint32_t n, int block_width) {
+    return static_cast<float>((n + uint32_t(block_width) - 1) / uint32_t(block_width));
+}
+
+constexpr int kMaxBins = 64;
+// Past this depth the build splits at the median, which bounds the depth of any tree by
+// this plus log2(2^30 / 1) < Bvh::kStackSize.
+constexpr int kMedianSplitDepth = 32;
+
+struct Bin {
+    Aabb box;
+    uint32_t count = 0;
+};
+using Bins = std::array<std::array<Bin, kMaxBins>, 3>;
+
+struct Binner {
+    Aabb centroids;
+    int bins;
+    // The bin of centroid coordinate c on `axis`; binning and partitioning must agree on it.
+    // An axis along which all centroids coincide puts everything in bin 0 (it is never split
+    // on; 0 * (bins / 0) would be NaN, whose conversion to int is undefined).
+    int bin_of(float c, int axis) const {
+        float lo = centroids.lo[axis], extent = centroids.hi[axis] - centroids.lo[axis];
+        if (!(extent > 0.0f)) return 0;
+        float b = (c - lo) * (static_cast<float>(bins) / extent);
+        return std::clamp(static_cast<int>(std::min(b, static_cast<float>(bins - 1))), 0, bins - 1);
+    }
+};
+
+struct Split {
+    int axis;
+    int split;  // primitives in bins [0, split) go left
+    float cost;
+};
+
+class Builder {
+  public:
+    Builder(std::vector<BuildPrim>& prims, const BvhBuildConfig& config)
+        : prims_(prims), config_(config) {}
+
+    std::unique_ptr<BuildNode> build(uint32_t begin, uint32_t end, int depth) const {
+        auto node = std::make_unique<BuildNode>();
+        Aabb centroids;
+        for (uint32_t i = begin; i < end; ++i) {
+            node->box.grow(prims_[i].box);
+            centroids.grow(prims_[i].centroid);
+        }
+        uint32_t n = end - begin;
+        auto make_leaf = [&] {
+            node->first = begin;
+            node->count = n;
+            return std::move(node);
+        };
+        if (n == 1) return make_leaf();
+
+        const bool fits_leaf = n <= static_cast<uint32_t>(config_.max_leaf_size);
+        Vec3 extent = centroids.extent();
+        int widest = max_dimension(extent);
+        uint32_t mid = begin + n / 2;  // the median split, used when SAH cannot split
+        bool sah_split = extent[widest] > 0.0f && depth < kMedianSplitDepth;
+        if (sah_split) {
+            Binner binner{centroids, std::clamp(config_.bins, 2, kMaxBins)};
+            Bins bins = bin(binner, begin, end);
+            Split best = best_split(binner, bins, node->box);
+            float leaf_cost = config_.intersection_cost * blocks(n);
+            if (fits_leaf && leaf_cost <= best.cost) return make_leaf();
+            if (best.cost < kInfinity) {
+                auto it = std::partition(
+                    prims_.begin() + begin, prims_.begin() + end, [&](const BuildPrim& p) {
+                        return binner.bin_of(p.centroid[best.axis], best.axis) < best.split;
+                    });
+                mid = static_cast<uint32_t>(it - prims_.begin());
+            } else {
+                sah_split = false;
+            }
+        }
+        if (!sah_split) {
+            // All centroids coincide (or the tree is too deep): split at the median instead.
+            if (fits_leaf) return make_leaf();
+            std::nth_element(prims_.begin() + begin, prims_.begin() + mid, prims_.begin() + end,
+                             [widest](const BuildPrim& a, const BuildPrim& b) {
+                                 return a.centroid[widest] < b.centroid[widest];
+                             });
+        }
+
+        if (n > config_.parallel_threshold) {
+            tbb::parallel_invoke([&] { node->left = build(begin, mid, depth + 1); },
+                                 [&] { node->right = build(mid, end, depth + 1); });
+        } else {
+            node->left = build(begin, mid, depth + 1);
+            node->right = build(mid, end, depth + 1);
+        }
+        return node;
+    }
+
+  private:
+    float blocks(uint32_t n) const { return wavetrace::blocks(n, config_.block_width); }
+
+    Bins bin(const Binner& binner, uint32_t begin, uint32_t end) const {
+        auto bin_range = [&](uint32_t b, uint32_t e, Bins bins) {
+            for (uint32_t i = b; i < e; ++i)
+                for (int axis = 0; axis < 3; ++axis) {
+                    Bin& bin = bins[axis][binner.bin_of(prims_[i].centroid[axis], axis)];
+                    bin.box.grow(prims_[i].box);
+                    ++bin.count;
+                }
+            return bins;
+        };
+        if (end - begin <= config_.parallel_threshold) return bin_range(begin, end, Bins{});
+        // Merging bins is exact (min/max and integer sums), so the result is the same for
+        // any split of the range among threads.
+        return tbb::parallel_reduce(
+            tbb::blocked_range<uint32_t>(begin, end, 1024), Bins{},
+            [&](const tbb::blocked_range<uint32_t>& r, Bins bins) {
+                return bin_range(r.begin(), r.end(), bins);
+            },
+            [](Bins a, const Bins& b) {
+                for (int axis = 0; axis < 3; ++axis)
+                    for (int i = 0; i < kMaxBins; ++i) {
+                        a[axis][i].box.grow(b[axis][i].box);
+                        a[axis][i].count += b[axis][i].count;
+                    }
+                return a;
+            });
+    }
+
+    // SAH: cost = C_trav + C_isect (A_L N_L + A_R N_R) / A (MacDonald and Booth 1990).
+    Split best_split(const Binner& binner, const Bins& bins, const Aabb& box) const {
+        Split best{0, 1, kInfinity};
+        float inv_area = 1.0f / std::max(box.half_area(), 1e-30f);
+        for (int axis = 0; axis < 3; ++axis) {
+            if (binner.centroids.extent()[axis] <= 0.0f) continue;
+            int nb = binner.bins;
+            std::array<float, kMaxBins> right_cost{};
+            std::array<uint32_t, kMaxBins> right_count{};
+            Aabb acc;
+            uint32_t count = 0;
+            for (int i = nb - 1; i > 0; --i) {
+                acc.grow(bins[axis][i].box);
+                count += bins[axis][i].count;
+                right_cost[i] = acc.half_area() * blocks(count);
+                right_count[i] = count;
+            }
+            acc = Aabb{};
+            count = 0;
+            for (int i = 1; i < nb; ++i) {
+                acc.grow(bins[axis][i - 1].box);
+                count += bins[axis][i - 1].count;
+                float cost =
+                    config_.traversal_cost + config_.intersection_cost * inv_area *
+                                                 (acc.half_area() * blocks(count) + right_cost[i]);
+                bool both_sides = count > 0 && right_count[i] > 0;
+                if (both_sides && cost < best.cost) best = {axis, i, cost};
+            }
+        }
+        return best;
+    }
+
+    std::vector<BuildPrim>& prims_;
+    const BvhBuildConfig& config_;
+};
+
+}  // namespace
+
+Bvh::Bvh() : layout_(std::make_unique<BvhLayout>()) {}
+Bvh::~Bvh() = default;
+Bvh::Bvh(Bvh&&) noexcept = default;
+Bvh& Bvh::operator=(Bvh&&) noexcept = default;
+
+Hit Bvh::intersect(const Ray& ray) const {
+    Hit hit;
+    wide_intersect(layout_->wide, ray, &hit);
+    return hit;
+}
+
+bool Bvh::occluded(const Ray& ray) const {
+    return wide_occluded(layout_->wide, ray);
+}
+
+Hit Bvh::any_hit(const Ray& ray) const {
+    Hit hit;
+    wide_any_hit(layout_->wide, ray, &hit);
+    return hit;
+}
+
+void Bvh::intersect_each(std::span<const Ray> rays, std::span<Hit> hits) const {
+    wide_intersect_each(layout_->wide, rays.data(), std::min(rays.size(), hits.size()),
+                        hits.data());
+}
+
+void Bvh::occluded_each(std::span<const Ray> rays, std::span<bool> occluded) const {
+    wide_occluded_each(layout_->wide, rays.data(), std::min(rays.size(), occluded.size()),
+                       occluded.data());
+}
+
+void Bvh::any_hit_each(std::span<const Ray> rays, std::span<Hit> hits) const {
+    wide_any_hit_each(layout_->wide, rays.data(), std::min(rays.size(), hits.size()), hits.data());
+}
+
+void Bvh::intersect_packet(std::span<const Ray> rays, std::span<Hit> hits) const {
+    wide_intersect_packet(layout_->wide, rays.data(), std::min(rays.size(), hits.size()),
+                          hits.data());
+}
+
+void Bvh::occluded_packet(std::span<const Ray> rays, std::span<bool> occluded) const {
+    wide_occluded_packet(layout_->wide, rays.data(), std::min(rays.size(), occluded.size()),
+                         occluded.data());
+}
+
+const char* simd_target() {
+    return wide_simd_target();
+}
+
+Bvh Bvh::build(const Scene& scene, const BvhBuildConfig& config) {
+    auto start = std::chrono::steady_clock::now();
+    Bvh bvh;
+    bvh.scene_ = &scene;
+
+    std::vector<BuildPrim> prims;
+    prims.reserve(scene.primitive_count());
+    auto add = [&](PrimKind kind, size_t n) {
+        for (size_t i = 0; i < n; ++i) {
+            PrimRef ref = PrimRef::make(kind, static_cast<uint32_t>(i));
+            Aabb box = scene.prim_bounds(ref);
+            prims.push_back({box, box.center(), ref});
+        }
+    };
+    add(PrimKind::Triangle, scene.triangles.size());
+    add(PrimKind::Quad, scene.quads.size());
+    add(PrimKind::Sphere, scene.spheres.size());
+    if (prims.empty()) return bvh;
+
+    Builder builder(prims, config);
+    std::unique_ptr<BuildNode> root = builder.build(0, static_cast<uint32_t>(prims.size()), 1);
+
+    // Flatten depth-first; leaves' ranges are already contiguous in `prims` in this order.
+    bvh.layout_->prims.resize(prims.size());
+    for (size_t i = 0; i < prims.size(); ++i) bvh.layout_->prims[i] = prims[i].ref;
+    float root_area = std::max(root->box.half_area(), 1e-30f);
+    BvhStats& stats = bvh.stats_;
+    auto flatten = [&](auto&& self, const BuildNode& n, int depth) -> uint32_t {
+        uint32_t index = static_cast<uint32_t>(bvh.layout_->nodes.size());
+        bvh.layout_->nodes.push_back({n.box.lo, 0, n.box.hi, 0});
+        float rel_area = n.box.half_area() / root_area;
+        if (!n.left) {
+            bvh.layout_->nodes[index].offset = n.first;
+            bvh.layout_->nodes[index].count = n.count;
+            stats.leaves++;
+            stats.depth = std::max(stats.depth, depth);
+            stats.sah_cost +=
+                config.intersection_cost * blocks(n.count, config.block_width) * rel_area;
+            return index;
+        }
+        stats.sah_cost += config.traversal_cost * rel_area;
+        self(self, *n.left, depth + 1);
+        uint32_t right = self(self, *n.right, depth + 1);
+        bvh.layout_->nodes[index].offset = right;
+        return index;
+    };
+    bvh.layout_->nodes.reserve(2 * prims.size());
+    flatten(flatten, *root, 1);
+    bvh.layout_->nodes.shrink_to_fit();
+
+    bvh.layout_->wide =
+        collapse_to_wide(scene, bvh.layout_->nodes, bvh.layout_->prims,
+                         {config.traversal_cost, config.intersection_cost,
+                          static_cast<uint32_t>(std::max(config.max_leaf_size, 1))});
+
+    stats.nodes = bvh.layout_->nodes.size();
+    stats.bytes =
+        bvh.layout_->nodes.size() * sizeof(BvhNode) + bvh.layout_->prims.size() * sizeof(PrimRef);
+    stats.wide_nodes = bvh.layout_->wide.nodes.size();
+    stats.wide_bytes = bvh.layout_->wide.bytes();
+    stats.build_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return bvh;
+}
+
+}  // namespace wavetrace

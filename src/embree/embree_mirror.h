@@ -1,0 +1,40 @@
+// The scene mirrored into Embree 3, the reference our BVH is checked and benchmarked against:
+// geometry id = primitive kind (triangles, quads as quads, spheres as sphere points),
+// primitive id = index, so hits compare one to one with PrimRefs. Used only by tests and
+// benchmarks; the renderer itself does not link Embree.
+#pragma once
+
+#include <embree3/rtcore.h>
+
+#include "wavetrace/accel/bvh.h"
+#include "wavetrace/math/ray.h"
+
+namespace wavetrace {
+
+struct Scene;
+
+class EmbreeMirror {
+  public:
+    // quality: RTC_BUILD_QUALITY_MEDIUM (Embree's default) or RTC_BUILD_QUALITY_HIGH.
+    explicit EmbreeMirror(const Scene& scene,
+                          RTCBuildQuality quality = RTC_BUILD_QUALITY_MEDIUM,
+                          bool robust = true);
+    ~EmbreeMirror();
+    EmbreeMirror(const EmbreeMirror&) = delete;
+    EmbreeMirror& operator=(const EmbreeMirror&) = delete;
+
+    Hit intersect(const Ray& ray) const;  // rtcIntersect1
+    bool occluded(const Ray& ray) const;  // rtcOccluded1
+    // rtcIntersect8 / rtcIntersect16 on `width` (8 or 16) rays at once; hits may be null when
+    // only the tracing matters (benchmarks).
+    void intersect_packet(const Ray* rays, int width, Hit* hits = nullptr) const;
+    RTCScene scene() const { return scene_; }
+    double build_ms() const { return build_ms_; }
+
+  private:
+    RTCDevice device_;
+    RTCScene scene_;
+    double build_ms_ = 0;
+};
+
+}  // namespace wavetrace

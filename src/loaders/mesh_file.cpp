@@ -1,0 +1,180 @@
+#include "loaders/mesh_file.h"
+
+#include <assimp/BaseImporter.h>
+#include <assimp/ObjMaterial.h>
+#include <assimp/importerdesc.h>
+#include <assimp/material.h>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include <algorithm>
+#include <assimp/Importer.hpp>
+#include <cctype>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "files/input_file.h"
+#include "loaders/mesh_guards.h"
+
+namespace wavetrace {
+namespace {
+
+// Assimp reads a file with the reader of its extension; where several readers share one
+// (.gltf: glTF 1 and glTF 2) and none recognises the content, it falls back to trying every
+// reader on the content, which handed a broken PLY named .gltf to the PLY reader, where it
+// hung (found by tests/fuzz/fuzz_mesh). Such files are refused here instead.
+void refuse_unrecognised(const Assimp::Importer& importer,
+                         const std::filesystem::path& path,
+                         const std::string& extension) {
+    std::vector<size_t> readers;
+    for (size_t i = 0; i < importer.GetImporterCount(); ++i) {
+        std::istringstream list(importer.GetImporterInfo(i)->mFileExtensions);
+        for (std::string e; list >> e;)
+            if (e == extension) readers.push_back(i);
+    }
+    if (readers.size() <= 1) return;  // one reader: Assimp uses it, with no fallback
+    for (size_t i : readers)
+        if (importer.GetImporter(i)->CanRead(path.string(), importer.GetIOHandler(), false)) return;
+    throw std::runtime_error("not a ." + extension + " file that its readers recognise");
+}
+
+Color color_of(const aiMaterial& m, const char* key, unsigned type, unsigned index) {
+    aiColor3D c(0, 0, 0);
+    m.Get(key, type, index, c);
+    return {c.r, c.g, c.b};
+}
+
+FileMaterial read_material(const aiMaterial& m) {
+    FileMaterial out;
+    aiString name;
+    if (m.Get(AI_MATKEY_NAME, name) == AI_SUCCESS) out.name = name.C_Str();
+    out.kd = color_of(m, AI_MATKEY_COLOR_DIFFUSE);
+    out.ks = color_of(m, AI_MATKEY_COLOR_SPECULAR);
+    out.ke = color_of(m, AI_MATKEY_COLOR_EMISSIVE);
+    m.Get(AI_MATKEY_SHININESS, out.ns);
+    m.Get(AI_MATKEY_REFRACTI, out.ni);
+    m.Get(AI_MATKEY_OPACITY, out.dissolve);
+    int illum = -1;
+    if (m.Get(AI_MATKEY_OBJ_ILLUM, illum) == AI_SUCCESS) out.illum = illum;
+    aiString path;
+    if (m.GetTextureCount(aiTextureType_DIFFUSE) > 0 &&
+        m.GetTexture(aiTextureType_DIFFUSE, 0, &path) == AI_SUCCESS)
+        out.map_kd = path.C_Str();
+    const std::pair<aiTextureType, const char*> others[] = {
+        {aiTextureType_SPECULAR, "map_Ks"}, {aiTextureType_AMBIENT, "map_Ka"},
+        {aiTextureType_EMISSIVE, "map_Ke"}, {aiTextureType_HEIGHT, "map_Bump"},
+        {aiTextureType_NORMALS, "norm"},    {aiTextureType_SHININESS, "map_Ns"},
+        {aiTextureType_OPACITY, "map_d"},   {aiTextureType_DISPLACEMENT, "disp"},
+        {aiTextureType_REFLECTION, "refl"}};
+    for (const auto& [type, key] : others)
+        if (m.GetTextureCount(type) > 0) out.other_maps.push_back(key);
+    return out;
+}
+
+}  // namespace
+
+MeshFile read_mesh_file(const std::filesystem::path& path) {
+    check_input_file(path, kMaxMeshFileBytes, "meshes");
+    Assimp::Importer importer;
+    std::string ext = path.extension().string();
+    if (ext.empty() || !importer.IsExtensionSupported(ext))
+        throw std::runtime_error("unsupported mesh format '" + ext +
+                                 "' (Assimp reads e.g. .obj, .ply, .gltf, .glb, .stl)");
+    std::string lower = ext.substr(1);
+    for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (lower == "ply") check_ply(path);
+    if (lower == "off") check_off(path);
+    refuse_unrecognised(importer, path, lower);
+    // Keep only triangles. Assimp's OBJ reader un-indexes faces; joining identical vertices
+    // restores the shared indexing (and the memory) of the file.
+    importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE,
+                                aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+    // Read and validate first, check the faces ourselves, and only then post-process:
+    // Assimp's post-processing steps assert (abort the process) on faces that its readers let
+    // through, e.g. a binary PLY face with no indices (found by tests/fuzz/fuzz_mesh).
+    const aiScene* scene = importer.ReadFile(path.string(), aiProcess_ValidateDataStructure);
+    if (!scene || (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) || !scene->mRootNode)
+        throw std::runtime_error(importer.GetErrorString());
+    for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
+        const aiMesh* mesh = scene->mMeshes[m];
+        for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
+            const aiFace& face = mesh->mFaces[f];
+            if (face.mNumIndices == 0 || !face.mIndices)
+                throw std::runtime_error("face " + std::to_string(f) + " of mesh " +
+                                         std::to_string(m) + " has no vertices");
+            for (unsigned k = 0; k < face.mNumIndices; ++k)
+                if (face.mIndices[k] >= mesh->mNumVertices)
+                    throw std::runtime_error("face " + std::to_string(f) + " of mesh " +
+                                             std::to_string(m) + " uses vertex " +
+                                             std::to_string(face.mIndices[k]) + " of " +
+                                             std::to_string(mesh->mNumVertices));
+        }
+    }
+    scene = importer.ApplyPostProcessing(aiProcess_Triangulate | aiProcess_PreTransformVertices |
+                                         aiProcess_SortByPType | aiProcess_JoinIdenticalVertices);
+    if (!scene || !scene->mRootNode) throw std::runtime_error(importer.GetErrorString());
+
+    MeshFile out;
+    for (unsigned m = 0; m < scene->mNumMaterials; ++m)
+        out.materials.push_back(read_material(*scene->mMaterials[m]));
+    if (out.materials.empty()) out.materials.push_back(FileMaterial{"(none)"});
+    bool all_normals = true, all_uvs = true;
+    for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
+        const aiMesh* mesh = scene->mMeshes[m];
+        if (!(mesh->mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;
+        all_normals = all_normals && mesh->HasNormals();
+        all_uvs = all_uvs && mesh->HasTextureCoords(0);
+    }
+    for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
+        const aiMesh* mesh = scene->mMeshes[m];
+        if (!(mesh->mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;
+        uint32_t base = static_cast<uint32_t>(out.positions.size());
+        for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
+            const aiVector3D& p = mesh->mVertices[v];
+            out.positions.push_back({p.x, p.y, p.z});
+            if (all_normals) {
+                const aiVector3D& n = mesh->mNormals[v];
+                out.normals.push_back({n.x, n.y, n.z});
+            }
+            if (all_uvs) {
+                const aiVector3D& t = mesh->mTextureCoords[0][v];
+                out.uvs.push_back({t.x, t.y});
+            }
+        }
+        MeshPart part{out.indices.size() / 3, 0, mesh->mMaterialIndex};
+        for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
+            const aiFace& face = mesh->mFaces[f];
+            if (face.mNumIndices != 3) continue;
+            // Indices were checked before post-processing; Scene::add_mesh skips any triangle
+            // whose index is still out of range.
+            for (int k = 0; k < 3; ++k) out.indices.push_back(base + face.mIndices[k]);
+            ++part.triangles;
+        }
+        if (part.material >= out.materials.size()) part.material = 0;
+        if (part.triangles > 0) out.parts.push_back(part);
+    }
+    if (out.indices.empty()) throw std::runtime_error("the file holds no triangles");
+    return out;
+}
+
+std::vector<Normal3> smooth_normals(const std::vector<Point3>& positions,
+                                    const std::vector<uint32_t>& indices) {
+    std::vector<Normal3> normals(positions.size(), Normal3{});
+    for (size_t i = 0; i + 2 < indices.size(); i += 3) {
+        uint32_t a = indices[i], b = indices[i + 1], c = indices[i + 2];
+        if (a >= positions.size() || b >= positions.size() || c >= positions.size()) continue;
+        Normal3 n = cross(positions[b] - positions[a], positions[c] - positions[a]);
+        if (!is_finite(n)) continue;
+        normals[a] += n;
+        normals[b] += n;
+        normals[c] += n;
+    }
+    for (Normal3& n : normals) {
+        float len = length(n);
+        n = len > 0 ? n / len : Normal3{};
+    }
+    return normals;
+}
+
+}  // namespace wavetrace

@@ -1,0 +1,16 @@
+// Checks that run before Assimp reads a mesh file: the inputs on which Assimp 5.2's readers
+// hang, crash or allocate without bound are refused here first, with a message that does not
+// repeat the path (read_mesh_file adds it). Each guard says which reader fails and how.
+#pragma once
+
+#include <filesystem>
+
+namespace wavetrace {
+
+// A PLY file: a complete header, a binary body as long as the header's counts need, and
+// lists no longer than the rest of the file can hold. Throws std::runtime_error.
+void check_ply(const std::filesystem::path& path);
+// An OFF file: vertex and face counts that a file of its size can hold.
+void check_off(const std::filesystem::path& path);
+
+}  // namespace wavetrace

@@ -1,0 +1,567 @@
+// JSON scene files -> Scene. The format is documented in docs/scene-format.md; every check
+// here has a matching sentence there.
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <sstream>
+
+#include "files/input_file.h"
+#include "loaders/json_reader.h"
+#include "loaders/mesh_file.h"
+#include "wavetrace/image/image.h"
+#include "wavetrace/loaders/load_scene.h"
+#include "wavetrace/scene/scene.h"
+
+namespace wavetrace {
+namespace fs = std::filesystem;
+using json_reader::Object;
+using json_reader::Value;
+
+namespace {
+
+constexpr float kMaxCoordinate = 1e7f;  // beyond this float spacing exceeds ~1 unit
+
+class Loader {
+  public:
+    Loader(const fs::path& path, const LoadOptions& options)
+        : path_(path), file_(path.string()), options_(options) {}
+
+    Scene load() {
+        try {
+            check_input_file(path_, kMaxSceneFileBytes, "scene files");
+        } catch (const std::runtime_error& e) {
+            throw SceneError(file_ + ": cannot open scene file: " + e.what());
+        }
+        std::ifstream in(path_, std::ios::binary);
+        if (!in) throw SceneError(file_ + ": cannot open scene file: " + std::strerror(errno));
+        std::stringstream text;
+        text << in.rdbuf();
+        json_ = json_reader::parse(text.str(), file_);
+
+        Object root(Value(json_, file_, ""));
+        root.only(
+            {"description", "render", "camera", "background", "materials", "media", "objects"});
+        scene_.name = path_.stem().string();
+        if (auto v = root.optional("description")) v->string();
+        if (auto v = root.optional("render")) read_render(*v);
+        read_camera(root.required("camera"));
+        if (auto v = root.optional("background")) read_background(*v);
+        if (auto v = root.optional("materials")) read_materials(*v);
+        if (auto v = root.optional("media")) read_media(*v);
+        Value objects = root.required("objects");
+        for (size_t i = 0; i < objects.size(); ++i) read_object(objects[i], Transform{});
+        root.finish();
+        if (skipped_triangles_ > 0)
+            warn(std::to_string(skipped_triangles_) + " degenerate triangles skipped");
+        return std::move(scene_);
+    }
+
+  private:
+    void warn(const std::string& message) const {
+        std::string full = file_ + ": warning: " + message;
+        if (options_.warn)
+            options_.warn(full);
+        else
+            std::cerr << full << "\n";
+    }
+
+    // A path in the scene file, relative to the scene file's folder.
+    fs::path resolve(const Value& v) const {
+        fs::path p = v.string();
+        if (p.empty()) v.fail("expected a file name, got \"\"");
+        return p.is_absolute() ? p : path_.parent_path() / p;
+    }
+
+    void read_render(const Value& v) {
+        Object o(v);
+        RenderSettings& r = scene_.render;
+        if (auto x = o.optional("width")) r.width = x->integer(1, kMaxImageSide);
+        if (auto x = o.optional("height")) r.height = x->integer(1, kMaxImageSide);
+        if (auto x = o.optional("spp")) r.spp = x->integer(1, kMaxSpp);
+        if (auto x = o.optional("max_depth")) r.max_depth = x->integer(1, kMaxDepth);
+        o.finish();
+        if (static_cast<long long>(r.width) * r.height > kMaxPixels)
+            v.fail(
+                "width x height = " + std::to_string(static_cast<long long>(r.width) * r.height) +
+                " pixels exceeds the limit of " + std::to_string(kMaxPixels));
+    }
+
+    Vec3 point(const Value& v) const {
+        Vec3 p = v.vec3();
+        if (max_component(abs(p)) > kMaxCoordinate)
+            v.fail("coordinate beyond +-1e7, got " + v.describe());
+        return p;
+    }
+
+    void read_camera(const Value& v) {
+        Object o(v);
+        Camera& c = scene_.camera;
+        c.look_from = point(o.required("look_from"));
+        Value at = o.required("look_at");
+        c.look_at = point(at);
+        // A viewing direction shorter than this cannot be normalized in float: the camera frame
+        // would be infinite or NaN.
+        const float dist = length(c.look_at - c.look_from);
+        if (!(dist > 1e-6f * std::max(1.0f, max_component(abs(c.look_from)))))
+            at.fail("look_at must differ from look_from");
+        auto up = o.optional("up");
+        if (up) c.up = up->nonzero_vec3();
+        if (length(cross(normalize(c.up), normalize(c.look_at - c.look_from))) < 1e-6f) {
+            if (up) up->fail("up must not be parallel to the viewing direction");
+            v.fail("the viewing direction is parallel to the default up [0, 1, 0]; set \"up\"");
+        }
+        if (auto x = o.optional("vfov")) {
+            if (!x->is_number() || !(x->number() > 0.0f && x->number() <= 179.0f))
+                x->fail("expected a number in (0, 179], got " + x->describe());
+            c.vfov = x->number();
+        }
+        if (auto x = o.optional("aperture")) c.aperture = x->non_negative();
+        if (auto x = o.optional("focus_distance")) c.focus_distance = x->positive();
+        o.finish();
+    }
+
+    void read_background(const Value& v) {
+        Background& bg = scene_.background;
+        if (!v.is_object()) {
+            bg.kind = Background::Kind::Constant;
+            bg.radiance = v.color();
+            return;
+        }
+        Object o(v);
+        std::string type = o.required("type").string();
+        if (type == "constant") {
+            bg.kind = Background::Kind::Constant;
+            bg.radiance = o.required("radiance").color();
+        } else if (type == "environment") {
+            bg.kind = Background::Kind::Environment;
+            Value file = o.required("file");
+            bg.image = scene_.add_image(read_image_at(file));
+            bg.radiance = Vec3(1.0f);
+            if (auto x = o.optional("scale")) bg.radiance = x->color();
+            if (auto x = o.optional("rotation")) bg.rotation = x->number();
+        } else {
+            o.required("type").fail("unknown background type \"" + type +
+                                    "\" (expected constant or environment)");
+        }
+        o.finish();
+    }
+
+    ImageData read_image_at(const Value& file) const {
+        fs::path p = resolve(file);
+        std::error_code ec;
+        if (!fs::exists(p, ec)) file.fail("cannot open image '" + p.string() + "': no such file");
+        try {
+            return read_image(p);
+        } catch (const ImageError& e) {
+            file.fail(e.what());
+        }
+    }
+
+    // A texture: a colour [r, g, b] (or a grey number), or an object with a "type". Reflectances
+    // (albedos) must not exceed 1 in any channel; radiances may.
+    enum class Range { Reflectance, Radiance };
+    TextureId read_texture(const Value& v, Range range) {
+        auto colour = [range](const Value& c) {
+            return range == Range::Reflectance ? c.reflectance() : c.color();
+        };
+        if (!v.is_object()) return scene_.add_solid(colour(v));
+        Object o(v);
+        Value type_value = o.required("type");
+        std::string type = type_value.string();
+        Texture t;
+        if (type == "solid") {
+            t.kind = TextureKind::Solid;
+            t.color = colour(o.required("color"));
+        } else if (type == "checker") {
+            t.kind = TextureKind::Checker;
+            t.scale = o.required("scale").positive();
+            t.even = read_texture(o.required("even"), range);
+            t.odd = read_texture(o.required("odd"), range);
+        } else if (type == "noise") {
+            t.kind = TextureKind::Noise;
+            t.scale = o.required("scale").positive();
+            t.color = Vec3(1.0f);
+            if (auto x = o.optional("color")) t.color = colour(*x);
+        } else if (type == "image") {
+            t.kind = TextureKind::Image;
+            t.image = scene_.add_image(read_image_at(o.required("file")));
+        } else {
+            type_value.fail("unknown texture type \"" + type +
+                            "\" (expected solid, checker, noise or image)");
+        }
+        o.finish();
+        return scene_.add_texture(t);
+    }
+
+    void read_materials(const Value& v) {
+        Object all(v);
+        for (const auto& [name, unused] : v.raw().items()) {
+            Value mv = all.required(name);
+            Object o(mv);
+            Value type_value = o.required("type");
+            std::string type = type_value.string();
+            Material m;
+            m.name = name;
+            if (type == "lambertian") {
+                m.kind = MaterialKind::Lambertian;
+                m.albedo = read_texture(o.required("albedo"), Range::Reflectance);
+            } else if (type == "metal") {
+                m.kind = MaterialKind::Metal;
+                m.albedo = read_texture(o.required("albedo"), Range::Reflectance);
+                if (auto x = o.optional("roughness")) m.roughness = x->in_range(0.0f, 1.0f);
+            } else if (type == "mirror") {
+                m.kind = MaterialKind::Mirror;
+                auto x = o.optional("albedo");
+                m.albedo = x ? read_texture(*x, Range::Reflectance) : scene_.add_solid(Vec3(1.0f));
+            } else if (type == "dielectric") {
+                m.kind = MaterialKind::Dielectric;
+                m.ior = o.required("ior").positive();
+            } else if (type == "diffuse_light") {
+                m.kind = MaterialKind::DiffuseLight;
+                m.emission = read_texture(o.required("radiance"), Range::Radiance);
+                if (auto x = o.optional("two_sided")) m.two_sided = x->boolean();
+                // Optional: the emitter also reflects, as a Lambertian surface.
+                if (auto x = o.optional("albedo")) m.albedo = read_texture(*x, Range::Reflectance);
+            } else {
+                type_value.fail("unknown material type \"" + type +
+                                "\" (expected lambertian, metal, mirror, dielectric or "
+                                "diffuse_light; media are declared under /media)");
+            }
+            o.finish();
+            materials_[name] = scene_.add_material(std::move(m));
+        }
+        all.finish();
+    }
+
+    void read_media(const Value& v) {
+        Object all(v);
+        for (const auto& [name, unused] : v.raw().items()) {
+            if (scene_.media.size() >= kMaxMedia)
+                all.required(name).fail("more than " + std::to_string(kMaxMedia) + " media");
+            Object o(all.required(name));
+            float density = o.required("density").positive();
+            TextureId albedo = read_texture(o.required("albedo"), Range::Reflectance);
+            o.finish();
+            media_[name] = scene_.add_medium(name, density, albedo);
+        }
+        all.finish();
+    }
+
+    Transform read_transform(const Value& v) const {
+        Transform t;
+        for (size_t i = 0; i < v.size(); ++i) {
+            Value step = v[i];
+            Object o(step);
+            Transform s;
+            int ops = 0;
+            if (auto x = o.optional("translate")) {
+                s = Transform::translate(point(*x));
+                ++ops;
+            }
+            if (auto x = o.optional("rotate")) {
+                Object r(*x);
+                Vec3 axis = r.required("axis").nonzero_vec3();
+                float degrees = r.required("degrees").number();
+                r.finish();
+                s = Transform::rotate(axis, degrees);
+                ++ops;
+            }
+            if (auto x = o.optional("scale")) {
+                Vec3 k = x->is_number() ? Vec3(x->number()) : x->vec3();
+                if (k.x == 0 || k.y == 0 || k.z == 0 || max_component(abs(k)) > kMaxCoordinate ||
+                    min_component(abs(k)) < 1.0f / kMaxCoordinate)
+                    x->fail("expected a non-zero scale within [1e-7, 1e7], got " + x->describe());
+                s = Transform::scale(k);
+                ++ops;
+            }
+            o.finish();
+            if (ops != 1)
+                step.fail("expected exactly one of \"translate\", \"rotate\" or \"scale\"");
+            t = s * t;  // steps apply in the order listed
+            if (!t.is_well_conditioned(kMaxCoordinate))
+                step.fail("the transform up to this step scales beyond [1e-7, 1e7] or overflows");
+        }
+        return t;
+    }
+
+    // One scene mesh per material part of a mesh file, each with its file material mapped.
+    void add_mesh_parts(const MeshFile& mesh,
+                        const fs::path& path,
+                        MediumId interior,
+                        const Transform& to_world,
+                        const Value& where) {
+        std::vector<MaterialId> mapped(mesh.materials.size(), kNone);
+        for (const MeshPart& part : mesh.parts) {
+            if (mapped[part.material] == kNone)
+                mapped[part.material] =
+                    map_file_material(mesh.materials[part.material], path, where);
+            // The part's own vertices, re-indexed from 0.
+            std::vector<uint32_t> indices, remap(mesh.positions.size(), UINT32_MAX);
+            std::vector<Point3> positions;
+            std::vector<Normal3> normals;
+            std::vector<Vec2> uvs;
+            for (size_t k = 3 * part.first_triangle; k < 3 * (part.first_triangle + part.triangles);
+                 ++k) {
+                const uint32_t v = mesh.indices[k];
+                if (v >= mesh.positions.size()) continue;  // add_mesh would skip it too
+                if (remap[v] == UINT32_MAX) {
+                    remap[v] = static_cast<uint32_t>(positions.size());
+                    positions.push_back(mesh.positions[v]);
+                    if (!mesh.normals.empty()) normals.push_back(mesh.normals[v]);
+                    if (!mesh.uvs.empty()) uvs.push_back(mesh.uvs[v]);
+                }
+                indices.push_back(remap[v]);
+            }
+            Mesh m;
+            m.name = path.filename().string() + ":" + mesh.materials[part.material].name;
+            m.material = mapped[part.material];
+            m.interior = interior;
+            skipped_triangles_ +=
+                scene_.add_mesh(std::move(m), positions, normals, uvs, indices, to_world);
+        }
+    }
+
+    // A mesh file's material as a wavetrace material (docs/scene-format.md, "Materials from
+    // mesh files"): Ke -> one-sided emitter (reflecting as Lambertian Kd if Kd > 0), illum 4/6/7 ->
+    // dielectric of index Ni, Ks without
+    // Kd -> metal (roughness from Ns), else Kd (or map_Kd) -> Lambertian. What does not map is
+    // a warning naming the material.
+    MaterialId map_file_material(const FileMaterial& fm,
+                                 const fs::path& mesh_path,
+                                 const Value& where) {
+        const std::string who = mesh_path.filename().string() + ": material \"" + fm.name + "\"";
+        auto positive = [](Color c) { return max_component(c) > 0.0f; };
+        auto check_color = [&](Color c, const char* key) {
+            if (!is_finite(c) || c.x < 0 || c.y < 0 || c.z < 0 || max_component(c) > 1e6f)
+                where.fail(who + ": " + key + " must be finite and non-negative");
+        };
+        check_color(fm.kd, "Kd");
+        check_color(fm.ks, "Ks");
+        check_color(fm.ke, "Ke");
+        Material m;
+        m.name = fm.name;
+        const bool dielectric = fm.illum == 4 || fm.illum == 6 || fm.illum == 7;
+        std::vector<std::string> ignored = fm.other_maps;
+        if (positive(fm.ke)) {
+            m.kind = MaterialKind::DiffuseLight;
+            m.emission = scene_.add_solid(fm.ke);
+            if (positive(fm.kd)) m.albedo = scene_.add_solid(min(fm.kd, Color(1.0f)));
+            if (positive(fm.ks)) ignored.push_back("Ks (an emitter reflects as Lambertian Kd)");
+            if (!fm.map_kd.empty()) ignored.push_back("map_Kd of an emitter");
+        } else if (dielectric) {
+            m.kind = MaterialKind::Dielectric;
+            if (!(fm.ni > 1.0f && fm.ni < 10.0f)) {
+                warn(who + ": Ni " + std::to_string(fm.ni) +
+                     " is no index of refraction of glass; using 1.5");
+                m.ior = 1.5f;
+            } else {
+                m.ior = fm.ni;
+            }
+            if (positive(fm.kd) || !fm.map_kd.empty())
+                ignored.push_back("Kd (a dielectric is clear)");
+        } else if (positive(fm.ks) && !positive(fm.kd) && fm.map_kd.empty()) {
+            m.kind = MaterialKind::Metal;
+            m.albedo = scene_.add_solid(min(fm.ks, Color(1.0f)));
+            // The Phong exponent as a microfacet width: alpha = sqrt(2 / (Ns + 2)) (the
+            // Beckmann-Phong correspondence, Walter et al. 2007, section 5.2); roughness^2 = alpha.
+            m.roughness = std::pow(2.0f / (std::max(fm.ns, 0.0f) + 2.0f), 0.25f);
+        } else {
+            m.kind = MaterialKind::Lambertian;
+            if (!fm.map_kd.empty()) {
+                fs::path tex = mesh_path.parent_path() / fm.map_kd;
+                std::error_code ec;
+                if (!fs::exists(tex, ec))
+                    where.fail(who + ": map_Kd '" + tex.string() + "': no such file");
+                Texture t;
+                t.kind = TextureKind::Image;
+                try {
+                    t.image = scene_.add_image(read_image(tex));
+                } catch (const std::exception& e) {
+                    where.fail(who + ": map_Kd '" + tex.string() + "': " + e.what());
+                }
+                m.albedo = scene_.add_texture(t);
+            } else {
+                if (!positive(fm.kd)) warn(who + ": no Kd, Ks or Ke; rendered black");
+                m.albedo = scene_.add_solid(min(fm.kd, Color(1.0f)));
+            }
+            if (positive(fm.ks)) ignored.push_back("Ks (no diffuse + glossy material)");
+        }
+        if (fm.dissolve < 1.0f) ignored.push_back("d (transparency)");
+        if (!ignored.empty()) {
+            std::string list;
+            for (const std::string& k : ignored) list += (list.empty() ? "" : ", ") + k;
+            warn(who + ": ignored " + list);
+        }
+        return scene_.add_material(std::move(m));
+    }
+
+    MaterialId material_ref(const Value& v) const {
+        std::string name = v.string();
+        auto it = materials_.find(name);
+        if (it == materials_.end()) v.fail("no material named \"" + name + "\" in /materials");
+        return it->second;
+    }
+
+    MediumId medium_ref(const Value& v) const {
+        std::string name = v.string();
+        auto it = media_.find(name);
+        if (it == media_.end()) v.fail("no medium named \"" + name + "\" in /media");
+        return it->second;
+    }
+
+    void read_object(const Value& v, const Transform& parent) {
+        Object o(v);
+        Value type_value = o.required("type");
+        std::string type = type_value.string();
+        Transform to_world = parent;
+        if (auto x = o.optional("transform")) {
+            to_world = parent * read_transform(*x);
+            // Each step is in range, but their product, with the groups' above, may not be.
+            if (!to_world.is_well_conditioned(kMaxCoordinate))
+                x->fail(
+                    "the composed transform (with its groups') scales beyond [1e-7, 1e7] "
+                    "or overflows");
+        }
+
+        if (type == "group") {
+            Value children = o.required("objects");
+            o.finish();
+            for (size_t i = 0; i < children.size(); ++i) read_object(children[i], to_world);
+            return;
+        }
+
+        const Counts before = counts();
+        // Surface material and interior medium; a shape with only a medium is an invisible
+        // boundary (constant_medium in Ray Tracing: The Next Week).
+        MediumId interior = kNone;
+        if (auto x = o.optional("interior")) interior = medium_ref(*x);
+        MaterialId material = kNone;
+        bool file_materials = false;  // a mesh whose materials come from its file (OBJ's MTL)
+        if (auto x = type == "mesh" ? o.optional("materials") : std::nullopt) {
+            if (x->string() != "file")
+                x->fail("expected \"file\" (the materials the mesh file names), got " +
+                        x->describe());
+            if (auto m = o.optional("material"))
+                m->fail("give \"material\" or \"materials\": \"file\", not both");
+            file_materials = true;
+        } else if (auto m = o.optional("material")) {
+            material = material_ref(*m);
+        } else if (interior != kNone) {
+            material = scene_.interface_material();
+        } else {
+            v.fail("missing required key \"material\" (or \"interior\" for a medium boundary)");
+        }
+
+        if (type == "sphere") {
+            Sphere s;
+            s.center = point(o.required("center"));
+            Value radius = o.required("radius");
+            s.radius = radius.positive();
+            s.material = material;
+            s.interior = interior;
+            o.finish();
+            float scale;
+            if (!to_world.preserves_shape(&scale))
+                v.fail("a sphere's transform must not scale non-uniformly");
+            scene_.add_sphere(s, to_world);
+        } else if (type == "quad") {
+            Quad q;
+            q.q = point(o.required("q"));
+            q.u = o.required("u").nonzero_vec3();
+            Value vv = o.required("v");
+            q.v = vv.nonzero_vec3();
+            if (length_squared(cross(q.u, q.v)) == 0.0f) vv.fail("u and v must not be parallel");
+            q.material = material;
+            q.interior = interior;
+            o.finish();
+            scene_.add_quad(q, to_world);
+        } else if (type == "box") {
+            Point3 lo = point(o.required("min"));
+            Value max_value = o.required("max");
+            Point3 hi = point(max_value);
+            if (!(hi.x > lo.x && hi.y > lo.y && hi.z > lo.z))
+                max_value.fail("expected max > min in every axis, got " + max_value.describe());
+            o.finish();
+            scene_.add_box(lo, hi, material, interior, to_world);
+        } else if (type == "mesh") {
+            Value file = o.required("file");
+            std::string normals = "file";
+            if (auto x = o.optional("normals")) {
+                normals = x->string();
+                if (normals != "file" && normals != "flat" && normals != "smooth")
+                    x->fail("expected \"file\", \"flat\" or \"smooth\", got " + x->describe());
+            }
+            o.finish();
+            fs::path p = resolve(file);
+            MeshFile mesh;
+            try {
+                mesh = read_mesh_file(p);
+            } catch (const std::exception& e) {
+                file.fail("cannot read mesh '" + p.string() + "': " + e.what());
+            }
+            if (normals == "flat") mesh.normals.clear();
+            if (normals == "smooth") mesh.normals = smooth_normals(mesh.positions, mesh.indices);
+            if (file_materials) {
+                add_mesh_parts(mesh, p, interior, to_world, file);
+            } else {
+                Mesh m;
+                m.name = p.filename().string();
+                m.material = material;
+                m.interior = interior;
+                skipped_triangles_ += scene_.add_mesh(std::move(m), mesh.positions, mesh.normals,
+                                                      mesh.uvs, mesh.indices, to_world);
+            }
+        } else {
+            type_value.fail("unknown object type \"" + type +
+                            "\" (expected sphere, quad, box, mesh or group)");
+        }
+        check_new_primitives(v, before);
+    }
+
+    struct Counts {
+        size_t triangles, quads, spheres;
+    };
+    Counts counts() const {
+        return {scene_.triangles.size(), scene_.quads.size(), scene_.spheres.size()};
+    }
+
+    // The object's primitives, once transformed, must stay in the range where float
+    // coordinates are precise, and each kind must stay addressable by a PrimRef.
+    void check_new_primitives(const Value& v, const Counts& before) const {
+        Counts now = counts();
+        if (now.triangles > kMaxPrimsPerKind || now.quads > kMaxPrimsPerKind ||
+            now.spheres > kMaxPrimsPerKind)
+            v.fail("too many primitives of one kind (the limit is 2^30 - 1)");
+        Aabb box;
+        for (size_t i = before.triangles; i < now.triangles; ++i)
+            box.grow(
+                scene_.prim_bounds(PrimRef::make(PrimKind::Triangle, static_cast<uint32_t>(i))));
+        for (size_t i = before.quads; i < now.quads; ++i)
+            box.grow(scene_.prim_bounds(PrimRef::make(PrimKind::Quad, static_cast<uint32_t>(i))));
+        for (size_t i = before.spheres; i < now.spheres; ++i)
+            box.grow(scene_.prim_bounds(PrimRef::make(PrimKind::Sphere, static_cast<uint32_t>(i))));
+        // Written so that NaN coordinates fail too.
+        if (!box.empty() && !(max_component(abs(box.lo)) <= kMaxCoordinate &&
+                              max_component(abs(box.hi)) <= kMaxCoordinate))
+            v.fail("after its transform the object reaches beyond +-1e7");
+    }
+
+    fs::path path_;
+    std::string file_;
+    const LoadOptions& options_;
+    nlohmann::json json_;
+    Scene scene_;
+    std::map<std::string, MaterialId> materials_;
+    std::map<std::string, MediumId> media_;
+    size_t skipped_triangles_ = 0;
+};
+
+}  // namespace
+
+Scene load_scene(const fs::path& path, const LoadOptions& options) {
+    return Loader(path, options).load();
+}
+
+}  // namespace wavetrace

@@ -1,0 +1,80 @@
+#include "sampling/distribution.h"
+
+#include <cmath>
+
+namespace wavetrace {
+
+Distribution1D::Distribution1D(std::span<const float> weights)
+    : pdf_(weights.size()), cdf_(weights.size() + 1, 0.0) {
+    double sum = 0;
+    for (size_t i = 0; i < weights.size(); ++i) sum += weights[i];
+    const bool uniform = !(sum > 0);  // all zero: fall back to a uniform choice
+    sum = 0;
+    for (size_t i = 0; i < weights.size(); ++i) {
+        sum += uniform ? 1.0 : weights[i];
+        cdf_[i + 1] = sum;
+    }
+    total_ = static_cast<float>(sum);
+    const double n = static_cast<double>(weights.size());
+    for (size_t i = 0; i < weights.size(); ++i) {
+        cdf_[i + 1] /= sum;
+        pdf_[i] = static_cast<float>((uniform ? 1.0 : weights[i]) / sum * n);
+    }
+    cdf_.back() = 1.0;
+}
+
+size_t Distribution1D::find(float u) const {
+    // The last i with cdf_[i] <= u, skipping zero-width entries.
+    auto it = std::upper_bound(cdf_.begin(), cdf_.end(), static_cast<double>(u));
+    size_t i = static_cast<size_t>(std::max<std::ptrdiff_t>(0, (it - cdf_.begin()) - 1));
+    return std::min(i, pdf_.size() - 1);
+}
+
+size_t Distribution1D::sample_discrete(float u, float* prob, float* remapped) const {
+    size_t i = find(u);
+    double width = cdf_[i + 1] - cdf_[i];
+    if (prob) *prob = probability(i);
+    if (remapped)
+        *remapped =
+            width > 0 ? std::min(0.99999994f, static_cast<float>((u - cdf_[i]) / width)) : 0.0f;
+    return i;
+}
+
+float Distribution1D::sample_continuous(float u, float* pdf, size_t* index) const {
+    size_t i = find(u);
+    double width = cdf_[i + 1] - cdf_[i];
+    double du = width > 0 ? (u - cdf_[i]) / width : 0.0;
+    if (pdf) *pdf = pdf_[i];
+    if (index) *index = i;
+    float x = static_cast<float>((static_cast<double>(i) + du) / static_cast<double>(pdf_.size()));
+    return std::min(x, 0.99999994f);
+}
+
+float Distribution1D::pdf_continuous(float x) const {
+    size_t i = std::min(pdf_.size() - 1, static_cast<size_t>(std::max(0.0f, x) * pdf_.size()));
+    return pdf_[i];
+}
+
+Distribution2D::Distribution2D(std::span<const float> weights, int nu, int nv) {
+    std::vector<float> marginal(nv);
+    for (int v = 0; v < nv; ++v) {
+        rows_.emplace_back(weights.subspan(static_cast<size_t>(v) * nu, nu));
+        marginal[v] = rows_.back().total();
+    }
+    marginal_ = Distribution1D(marginal);
+}
+
+void Distribution2D::sample(float u1, float u2, float* u, float* v, float* pdf) const {
+    float pdf_v, pdf_u;
+    size_t row;
+    *v = marginal_.sample_continuous(u2, &pdf_v, &row);
+    *u = rows_[row].sample_continuous(u1, &pdf_u);
+    *pdf = pdf_u * pdf_v;
+}
+
+float Distribution2D::pdf(float u, float v) const {
+    size_t row = std::min(rows_.size() - 1, static_cast<size_t>(std::max(0.0f, v) * rows_.size()));
+    return marginal_.pdf_continuous(v) * rows_[row].pdf_continuous(u);
+}
+
+}  // namespace wavetrace

@@ -1,0 +1,114 @@
+// Light selection and sampling with solid-angle densities, for next-event estimation and
+// MIS. Every emissive primitive is a light; so is a non-black background.
+//
+// Densities returned here include the probability of selecting the light, so they compare
+// directly with BSDF densities in MIS weights. Lights are selected in proportion to their
+// power (area x pi x luminance of the radiance, doubled if two-sided; textured emitters count
+// with luminance 1; the background as a sphere of the scene's radius, 4 pi^2 r^2 L).
+#pragma once
+
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+#include "sampling/distribution.h"
+#include "wavetrace/math/constants.h"
+#include "wavetrace/math/vec3.h"
+#include "wavetrace/scene/ids.h"
+
+namespace wavetrace {
+
+struct Scene;
+
+struct LightSample {
+    Vec3 wi;                 // unit direction from the reference point to the light
+    float dist = kInfinity;  // to the sampled point (infinity for the background)
+    Color radiance{0.0f};    // emitted towards the reference point (0 from a back face)
+    float pdf = 0.0f;        // solid angle, selection included
+    PrimRef prim;            // invalid for the background
+    bool valid = false;
+};
+
+// The quad lights of constant radiance (the case next-event estimation at Lambertian vertices
+// samples in SIMD lanes, src/shading/quad_light_nee-inl.h) as columns, entry k for quad emitter
+// k (quad_emitter_index()): corner q, edges u and v, the front normal n = normalize(cross(u,
+// v)), the area, the radiance, and two_sided (1 or 0).
+struct QuadEmitterColumns {
+    std::vector<float> q[3], u[3], v[3], n[3], radiance[3], area, two_sided;
+};
+
+// The sphere lights of constant radiance (sampled in SIMD lanes from outside the sphere,
+// src/shading/sphere_light-inl.h) as columns, entry k for sphere emitter k
+// (sphere_emitter_index()): centre, radius, radiance, and two_sided (1 or 0).
+struct SphereEmitterColumns {
+    std::vector<float> centre[3], radius, radiance[3], two_sided;
+};
+
+struct LightChoice {
+    size_t index = 0;
+    float probability = 0.0f;
+};
+
+class LightSet {
+  public:
+    LightSet() = default;
+    explicit LightSet(const Scene& scene);
+
+    bool empty() const { return count_ == 0; }
+    size_t size() const { return count_; }
+    bool has_background() const { return background_; }
+    // Probability that sampling picks this emissive primitive (0 if it is not a light).
+    float selection_probability(PrimRef prim) const;
+    float background_selection_probability() const;
+
+    // Picks a light with selection number u_select, in proportion to power (not empty()).
+    // Inline for the common case of one light, which needs no search of the table.
+    LightChoice select(float u_select) const {
+        return count_ == 1 ? LightChoice{0, only_probability_} : select_in_table(u_select);
+    }
+    // The chosen light's index among the quad emitters if it is a quad of constant radiance,
+    // else -1.
+    int32_t quad_emitter_index(LightChoice choice) const;
+    const QuadEmitterColumns& quad_emitter_columns() const { return quad_columns_; }
+    // The same for spheres of constant radiance.
+    int32_t sphere_emitter_index(LightChoice choice) const;
+    const SphereEmitterColumns& sphere_emitter_columns() const { return sphere_columns_; }
+
+    // Samples a point on the chosen light as seen from `ref` with two uniform numbers.
+    LightSample sample(
+        const Scene& scene, Point3 ref, LightChoice choice, float u1, float u2) const;
+    // Picks a light and samples a point on it as seen from `ref` with three uniform numbers.
+    LightSample sample(const Scene& scene, Point3 ref, float u_select, float u1, float u2) const;
+    // Density with which sample() from `ref` produces direction wi hitting emitter `prim` at
+    // point p (distance dist). Zero for non-emitters.
+    float pdf_prim(const Scene& scene, Point3 ref, PrimRef prim, Vec3 wi, float dist) const;
+    // Density with which sample() produces background direction wi.
+    float pdf_background(const Scene& scene, Vec3 wi) const;
+    // Total density of direction wi from `ref` over all lights, ignoring occlusion: the
+    // density a "pick a light, then a point" sampler assigns to wi. O(number of emitters).
+    float pdf_direction(const Scene& scene, Point3 ref, Vec3 wi) const;
+
+  private:
+    float prim_pdf_given_selection(
+        const Scene& scene, Point3 ref, PrimRef prim, Vec3 wi, float dist) const;
+
+    std::vector<PrimRef> emitters_;  // light i < emitters_.size()
+    std::vector<int32_t> quad_of_;   // light i: index into quad_columns_, or -1
+    QuadEmitterColumns quad_columns_;
+    std::vector<int32_t> sphere_of_;  // light i: index into sphere_columns_, or -1
+    SphereEmitterColumns sphere_columns_;
+    std::unordered_map<uint32_t, uint32_t> index_;  // PrimRef bits -> light index
+    bool background_ = false;                       // the last light, if present
+    size_t count_ = 0;
+    Distribution1D select_;
+    float only_probability_ = 0.0f;  // select_'s probability of light 0, when it is the only one
+    LightChoice select_in_table(float u_select) const;
+    Distribution2D environment_;  // over the environment image's texels, luminance x sin(theta)
+};
+
+// Radiance a surface emits towards the side the ray came from (0 unless the material emits;
+// one-sided emitters emit only on their front).
+struct SurfaceHit;
+Color emitted_radiance(const Scene& scene, const SurfaceHit& hit);
+
+}  // namespace wavetrace

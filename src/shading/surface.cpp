@@ -1,0 +1,84 @@
+#include "wavetrace/shading/surface.h"
+
+#include <cmath>
+
+#include "shading/surface_point-inl.h"
+#include "wavetrace/math/constants.h"
+#include "wavetrace/scene/scene.h"
+#include "wavetrace/scene/texture.h"
+
+namespace wavetrace {
+namespace lanes = HWY_NAMESPACE;
+using lanes::OneLane, lanes::to_lanes, lanes::to_vec3;
+
+// The sphere mapping of Ray Tracing: The Next Week: u = phi / 2 pi around -x..+z.., v = theta / pi from -y.
+Vec2 sphere_uv(Normal3 ng) {
+    const float theta = std::acos(std::fmax(-1.0f, std::fmin(1.0f, -ng.y)));
+    const float phi = std::atan2(-ng.z, ng.x) + kPi;
+    return {phi * (0.5f * kInvPi), theta * kInvPi};
+}
+
+SurfaceHit surface_at(const Scene& scene, const Ray& ray, const Hit& hit) {
+    SurfaceHit s;
+    s.p = ray.at(hit.t);
+    uint32_t i = hit.prim.index();
+    switch (hit.prim.kind()) {
+        case PrimKind::Triangle: {
+            const Triangle& tri = scene.triangles[i];
+            const Mesh& mesh = scene.meshes[tri.mesh];
+            const lanes::V3<float> p[3] = {to_lanes(scene.positions[tri.v[0]]),
+                                           to_lanes(scene.positions[tri.v[1]]),
+                                           to_lanes(scene.positions[tri.v[2]])};
+            lanes::V3<float> n[3] = {};
+            if (mesh.has_normals)
+                for (int k = 0; k < 3; ++k) n[k] = to_lanes(scene.normals[tri.v[k]]);
+            const float b1 = hit.u, b2 = hit.v, b0 = 1.0f - b1 - b2;
+            const lanes::SurfacePoint<OneLane> sp =
+                lanes::TrianglePoint<OneLane>(p, n, mesh.has_normals, b1, b2);
+            s.p = to_vec3(sp.p);
+            s.ng = to_vec3(sp.ng);
+            s.ns = to_vec3(sp.ns);
+            if (mesh.has_uvs) {
+                Vec2 t0 = scene.uvs[tri.v[0]], t1 = scene.uvs[tri.v[1]], t2 = scene.uvs[tri.v[2]];
+                s.uv = {b0 * t0.x + b1 * t1.x + b2 * t2.x, b0 * t0.y + b1 * t1.y + b2 * t2.y};
+            } else {
+                s.uv = {b1, b2};
+            }
+            s.material = mesh.material;
+            s.interior = mesh.interior;
+            break;
+        }
+        case PrimKind::Quad: {
+            const Quad& q = scene.quads[i];
+            const lanes::SurfacePoint<OneLane> sp = lanes::QuadPoint<OneLane>(
+                to_lanes(q.q), to_lanes(q.u), to_lanes(q.v), hit.u, hit.v);
+            s.p = to_vec3(sp.p);
+            s.ng = s.ns = to_vec3(sp.ng);
+            s.uv = {hit.u, hit.v};
+            s.material = q.material;
+            s.interior = q.interior;
+            break;
+        }
+        case PrimKind::Sphere: {
+            const Sphere& sp = scene.spheres[i];
+            s.ng = s.ns = to_vec3(
+                lanes::SpherePoint<OneLane>(to_lanes(s.p), to_lanes(sp.center), sp.radius).ng);
+            // sphere_uv: an acos and an atan2 (7% of a render of spheres lit by spheres), so only
+            // where a texture of the sphere's material reads it.
+            if (sp.material != kNone &&
+                (texture_reads_uv(scene, scene.materials[sp.material].albedo) ||
+                 texture_reads_uv(scene, scene.materials[sp.material].emission))) {
+                s.uv = sphere_uv(s.ng);
+            }
+            s.material = sp.material;
+            s.interior = sp.interior;
+            break;
+        }
+    }
+    s.front_face = dot(ray.d, s.ng) < 0.0f;
+    // Keep the shading normal on the geometric normal's side (interpolation can flip it).
+    if (dot(s.ns, s.ng) < 0.0f) s.ns = -s.ns;
+    return s;
+}
+
+}  // namespace wavetrace
