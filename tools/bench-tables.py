@@ -1,0 +1,136 @@
+#!/usr/bin/env python3
+"""The Markdown tables of docs/benchmarks.md's current results, from a `make bench` run.
+
+usage: tools/bench-tables.py [RESULTS_DIR]   (default: results)
+
+Reads the CSV files and kernels.json that `make bench` writes and prints one table per
+section, so the figures in the docs are the ones the run measured.
+"""
+import csv
+import json
+import os
+import sys
+
+
+def rows(results, name):
+    with open(os.path.join(results, name + ".csv"), newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def f(x, digits=2):
+    return f"{float(x):.{digits}f}"
+
+
+def table(header, body):
+    print("| " + " | ".join(header) + " |")
+    print("|" + "---|" * len(header))
+    for r in body:
+        print("| " + " | ".join(str(c) for c in r) + " |")
+    print()
+
+
+def engines(results):
+    body = []
+    for r in rows(results, "engines"):
+        body.append([
+            r["scene"], r["threads"], f(r["megakernel_mpaths"]), f(r["wavefront_mpaths"]),
+            f(r["megakernel_embree_mpaths"]), f(r["wavefront_embree_mpaths"]),
+            f(r["megakernel_ours_over_embree"]),
+            f"**{f(r['ratio_median'])}** [{f(r['ratio_min'])}, {f(r['ratio_max'])}]",
+            f(r["wavefront_over_megakernel_embree"]), f"{float(r['rel_mse_between']):.1e}",
+            f"{f(r['megakernel_peak_mib'], 1)} / {f(r['wavefront_peak_mib'], 1)}"])
+    table(["scene", "threads", "megakernel Mpaths/s", "wavefront Mpaths/s",
+           "megakernel on Embree", "wavefront on Embree", "megakernel ours / Embree",
+           "**wavefront / megakernel**", "wavefront / megakernel on Embree",
+           "rel. MSE between", "peak MiB (mk / wf)"], body)
+
+
+def bvh(results):
+    by = {}
+    for r in rows(results, "bvh"):
+        by.setdefault((r["scene"], r["batch"]), {})[r["threads"]] = r
+    body, packets = [], []
+    for (scene, batch), t in by.items():
+        one, two = t.get("1"), t.get("2")
+        line = [scene, batch, f(one["ours_mrays"], 1), f(one["embree_mrays"], 1),
+                f"**{f(one['ours_over_embree'])}**"]
+        if two:
+            line += [f(two["ours_mrays"], 1), f(two["embree_mrays"], 1),
+                     f"**{f(two['ours_over_embree'])}**"]
+        body.append(line)
+        if batch == "primary" and float(one["ours_packet_mrays"]) > 0:
+            p = [scene, f(one["ours_mrays"], 1), f(one["ours_packet_mrays"], 1),
+                 f(one["embree_packet8_mrays"], 1), f(one["embree_packet16_mrays"], 1),
+                 f"**{f(one['ours_packet_over_embree_packet16'])}**"]
+            if two:
+                p += [f(two["ours_packet_mrays"], 1), f(two["embree_packet16_mrays"], 1),
+                      f"**{f(two['ours_packet_over_embree_packet16'])}**"]
+            packets.append(p)
+    table(["scene", "batch", "ours, 1 thread (Mrays/s)", "Embree, 1 thread", "ours / Embree",
+           "ours, 2 threads", "Embree, 2 threads", "ours / Embree"], body)
+    table(["scene", "ours, single rays, 1 thread", "ours, packets, 1 thread", "Embree 8-wide",
+           "Embree 16-wide", "ours / Embree 16", "ours, packets, 2 threads",
+           "Embree 16-wide, 2 threads", "ours / Embree 16"], packets)
+    table(["scene", "primitives", "ours (ms)", "Embree medium (ms)", "Embree high (ms)"],
+          [[r["scene"], r["primitives"], f(r["ours_ms"], 3), f(r["embree_medium_ms"], 3),
+            f(r["embree_high_ms"], 3)] for r in rows(results, "bvh_build")])
+
+
+def scaling(results):
+    body = []
+    for r in rows(results, "scaling"):
+        body.append([r["scene"], r["engine"], r["threads"], f(r["mpaths"]), f(r["speedup"]),
+                     f(r["efficiency"]), f(r["independent_own_speedup"]),
+                     f(r["arithmetic_speedup"]), f(r["wavefront_over_megakernel"])])
+    table(["scene", "engine", "threads", "Mpaths/s", "speed-up", "efficiency",
+           "renders alone: own rates", "arithmetic", "wavefront / megakernel"], body)
+
+
+def waves(results):
+    body = []
+    for r in rows(results, "waves"):
+        body.append([r["scene"], int(float(r["wave_size"])),
+                     f(r["queue_kib_per_thread"], 1), f(r["wavefront_mpaths"]),
+                     f(r["megakernel_mpaths"]), f(r["ratio_median"]),
+                     int(float(r["effective_wave"]))])
+    table(["scene", "wave (paths per thread)", "queues per thread (KiB)", "wavefront Mpaths/s",
+           "megakernel Mpaths/s", "wavefront / megakernel", "used"], body)
+
+
+def convergence(results):
+    spp = max(int(r["spp"]) for r in rows(results, "convergence"))
+    scenes = {}
+    for r in rows(results, "convergence"):
+        if int(r["spp"]) == spp:
+            scenes.setdefault(r["scene"], {})[r["strategy"]] = r
+    strategies = ["bsdf", "light", "mixture", "nee", "mis"]
+    body = []
+    for scene, s in scenes.items():
+        body.append([f"{scene}: rMSE"] + [f"{float(s[k]['rel_mse']):.3g}" for k in strategies])
+        body.append([f"{scene}: efficiency"] +
+                    [f"{float(s[k]['efficiency']):.3g}" for k in strategies])
+    print(f"At {spp} spp:\n")
+    table(["scene"] + strategies, body)
+
+
+def kernels(results):
+    with open(os.path.join(results, "kernels.json")) as fh:
+        data = json.load(fh)
+    body = []
+    for b in data["benchmarks"]:
+        if "items_per_second" in b:
+            body.append([b["name"], f(b["items_per_second"] * 1e-6, 1)])
+    table(["benchmark", "M items/s"], body)
+
+
+def main():
+    results = sys.argv[1] if len(sys.argv) > 1 else "results"
+    for title, section in [("engines", engines), ("bvh", bvh), ("scaling", scaling),
+                           ("waves", waves), ("convergence", convergence),
+                           ("kernels", kernels)]:
+        print(f"<!-- {title} -->\n")
+        section(results)
+
+
+if __name__ == "__main__":
+    main()
