@@ -37,7 +37,7 @@ FUZZ_HEAP_DIR ?= build-fuzz-heap
 CLANG_CMAKE = -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
   -DCMAKE_AR=/usr/bin/ar -DCMAKE_RANLIB=/usr/bin/ranlib -DCMAKE_LINKER=/usr/bin/ld \
   -DWAVETRACE_FUZZ=ON --log-level=WARNING
-SAN_TESTS ?= SceneLoader.*:Cli.*:Hostile*:Bvh.*:Triangle.*:Sphere.*:Quad.*:MeshFiles.*:Wavefront.*:Megakernel.*:Kernels.*:Lanes.*:Films.*:CompareImages.*
+SAN_TESTS ?= Check*:SceneLoader.*:Cli.*:Hostile*:Bvh.*:Triangle.*:Sphere.*:Quad.*:MeshFiles.*:Wavefront.*:Megakernel.*:Kernels.*:Lanes.*:Films.*:CompareImages.*
 FUZZ_RUNS ?= 20000
 FUZZ_SECONDS ?= 600
 

@@ -17,6 +17,7 @@ namespace {
 
 // Lowest first. The public headers of include/wavetrace/<layer>/ belong to that layer.
 const std::vector<std::string> kLayers = {
+    "util",      // invariant checks
     "math",      // small float math, SIMD lane types
     "files",     // reading an input file whole, writing an output atomically
     "sampling",  // the counter-based sampler, warps, tabulated distributions

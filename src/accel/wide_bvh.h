@@ -1,7 +1,7 @@
 // The traversal layout of the BVH: the binary SAH tree collapsed into nodes of kWideNodeWidth
 // children whose boxes are stored as SoA float lanes, and leaves whose primitives are gathered
 // into blocks of kLeafBlockWidth primitives of one kind, tested all at once. The binary tree
-// stays the source of truth (bvh_build.cpp); this is what rays walk (wide_bvh_traverse.cpp).
+// stays the source of truth (bvh_build.cpp); this is what rays walk (wide_bvh_traverse.cpp, wide_bvh_packets.cpp).
 // The layout follows Embree's BVH8 (Wald et al., "Embree: A Kernel Framework for Efficient CPU
 // Ray Tracing", SIGGRAPH 2014) and Wald, Benthin and Boulos, "Getting Rid of Packets" (2008).
 #pragma once

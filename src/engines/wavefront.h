@@ -23,6 +23,7 @@
 #include "engines/passes.h"
 #include "kernels/kernels.h"
 #include "shading/trace.h"
+#include "util/check.h"
 #include "wavetrace/engines/render.h"
 
 namespace wavetrace {
@@ -54,6 +55,7 @@ uint64_t run_wave(const WaveInputs& in,
                   bool sort,
                   WaveQueues& q,
                   Film& film) {
+    WT_CHECK_LE(n, q.paths.capacity);
     uint64_t rays = 0;
     generate(in, sample, first, 0, n, q.paths, q.rays);
     for (bool camera_rays = true; n > 0; camera_rays = false) {
@@ -65,11 +67,14 @@ uint64_t run_wave(const WaveInputs& in,
         if (sort) sort_by_material(in.scene, n, q.key, q.paths, q.rays, q.hits);
         const size_t shadows =
             shade(in, sample, q.hits, 0, n, q.paths, q.rays, q.keep, q.shadows, 0);
+        WT_DCHECK_LE(shadows, n);  // at most one shadow ray per path per bounce
         rays += intersect_shadow(bvh, in, q.shadows, q.paths, 0, shadows, q.transmittance,
                                  camera_rays ? &q.hits : nullptr);
         mis_combine(q.shadows, q.transmittance, 0, shadows, q.paths);
         accumulate_film(q.paths, q.keep, n, film);
-        n = compact(q.keep, n, q.paths, q.rays);
+        const size_t left = compact(q.keep, n, q.paths, q.rays);
+        WT_DCHECK_LE(left, n);
+        n = left;
     }
     return rays;
 }

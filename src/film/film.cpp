@@ -3,6 +3,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "util/check.h"
+
 namespace wavetrace {
 
 Film::Film(int width, int height)
@@ -13,6 +15,7 @@ Film::Film(int width, int height)
       counts_(static_cast<size_t>(width) * height, 0) {}
 
 void Film::add(int pixel, Color v) {
+    WT_DCHECK(pixel >= 0 && static_cast<size_t>(pixel) < counts_.size());
     if (!is_finite(v) || v.x < 0 || v.y < 0 || v.z < 0) {
         invalid_.fetch_add(1, std::memory_order_relaxed);
         return;

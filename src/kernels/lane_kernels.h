@@ -1,6 +1,6 @@
 // The wavefront's kernels that run in SIMD lanes, over a chunk of a wave: camera rays
 // (scene/camera_ray-inl.h), the uniform numbers of each vertex (sampling/sampler-inl.h), the
-// points and normals of surface hits (scene/surface_point-inl.h), the light samples towards quad
+// points and normals of surface hits (shading/surface_point-inl.h), the light samples towards quad
 // lights (shading/quad_light_nee-inl.h) and the continuation (shading/surface_step-inl.h) of
 // Lambertian and rough metal vertices. The formulas are the ones the megakernel
 // runs in one lane; these run them a vector at a time, on the best target the CPU has

@@ -1,4 +1,5 @@
 #include "kernels/kernels.h"
+#include "util/check.h"
 
 namespace wavetrace {
 
@@ -8,8 +9,11 @@ void mis_combine(const ShadowQueue& shadows,
                  size_t begin,
                  size_t end,
                  PathQueue& paths) {
-    for (size_t i = begin; i < end; ++i)
+    WT_DCHECK_LE(end, shadows.capacity);
+    for (size_t i = begin; i < end; ++i) {
+        WT_DCHECK_LT(shadows.path[i], paths.capacity);
         paths.radiance[shadows.path[i]] += shadows.contribution[i] * transmittance[i];
+    }
 }
 
 }  // namespace wavetrace

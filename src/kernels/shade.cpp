@@ -3,12 +3,14 @@
 #include "kernels/kernels.h"
 #include "kernels/lane_kernels.h"
 #include "shading/path_vertex.h"
+#include "util/check.h"
 
 namespace wavetrace {
 namespace {
 
 void append_shadow(
     const Ray& ray, Color contribution, size_t path, ShadowQueue& shadows, size_t& s) {
+    WT_DCHECK_LT(s, shadows.capacity);
     shadows.origin[s] = ray.o;
     shadows.dir[s] = ray.d;
     shadows.tmax[s] = ray.tmax;

@@ -1,4 +1,4 @@
-// Warps from [0,1)^2 to directions over lanes (shading/warp.h has the scalar ones, some of
+// Warps from [0,1)^2 to directions over lanes (sampling/warp.h has the scalar ones, some of
 // which are the one-lane instances of these). Per-target header, see math/lanes-inl.h.
 #if defined(WAVETRACE_SAMPLING_WARP_INL_H_) == defined(HWY_TARGET_TOGGLE)
 #ifdef WAVETRACE_SAMPLING_WARP_INL_H_
