@@ -31,6 +31,15 @@ std::string q(const std::filesystem::path& p) {
 const std::string kRender =
     "render " + scene_path("cornell-smoke").string() + " --width 40 --height 30 --seed 3 ";
 
+// Shell commands that wait until the render in the background has written its first
+// checkpoint, dir/part.film (at most 60 s): the render has then started, its signal handlers
+// are installed and a pass is done, however slow the start-up (a sanitized build on a slow
+// machine takes over a second to load and build the BVH).
+std::string after_first_checkpoint(const TempDir& dir) {
+    return "for i in $(seq 1200); do [ -e " + q(dir.path() / "part.film") +
+           " ] && break; sleep 0.05; done; ";
+}
+
 }  // namespace
 
 // A render interrupted by SIGINT (its film written at the end, its checkpoints refreshed
@@ -46,12 +55,12 @@ TEST(Films, InterruptedAndResumedEqualsUninterruptedBitForBit) {
                              q(dir.path() / "full.exr") + " --film " + q(dir.path() / "full.film"))
                 .code,
             0);
-        // Interrupt after 0.5 s, checkpointing every 0.1 s meanwhile.
-        const std::string script = "'" + cli_path().string() + "' " + common + " --spp " +
-                                   std::to_string(spp) + " --checkpoint-every 0.1 -o " +
-                                   q(dir.path() / "part.exr") + " --film " +
-                                   q(dir.path() / "part.film") + " 2> " + q(dir.path() / "err") +
-                                   " > /dev/null & p=$!; sleep 0.5; kill -INT $p; wait $p";
+        // Interrupt after the first checkpoint, checkpointing every 0.1 s meanwhile.
+        const std::string script =
+            "'" + cli_path().string() + "' " + common + " --spp " + std::to_string(spp) +
+            " --checkpoint-every 0.1 -o " + q(dir.path() / "part.exr") + " --film " +
+            q(dir.path() / "part.film") + " 2> " + q(dir.path() / "err") + " > /dev/null & p=$!; " +
+            after_first_checkpoint(dir) + "kill -INT $p; wait $p";
         const int status = std::system(script.c_str());
         ASSERT_EQ(WEXITSTATUS(status), 130) << engine << bytes_of(dir.path() / "err");
         auto [part, info] = load_film(dir.path() / "part.film");
@@ -178,10 +187,11 @@ TEST(Films, CheckpointSurvivesAKillAndResumesBitForBit) {
                                q(dir.path() / "full.film"))
                   .code,
               0);
-    const std::string script =
-        "'" + cli_path().string() + "' " + common + " --checkpoint-every 0.1 -o " +
-        q(dir.path() / "part.exr") + " --film " + q(dir.path() / "part.film") +
-        " 2> /dev/null > /dev/null & p=$!; sleep 0.7; kill -KILL $p; wait $p";
+    const std::string script = "'" + cli_path().string() + "' " + common +
+                               " --checkpoint-every 0.1 -o " + q(dir.path() / "part.exr") +
+                               " --film " + q(dir.path() / "part.film") +
+                               " 2> /dev/null > /dev/null & p=$!; " + after_first_checkpoint(dir) +
+                               "kill -KILL $p; wait $p";
     std::system(script.c_str());
     EXPECT_FALSE(std::filesystem::exists(dir.path() / "part.exr"));
     auto [film, info] = load_film(dir.path() / "part.film");
