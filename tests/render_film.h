@@ -7,15 +7,23 @@
 #include "wavetrace/film/film.h"
 
 template <class Tracer>
+wavetrace::Film film_of(const wavetrace::Scene& scene,
+                        const Tracer& tracer,
+                        const wavetrace::RenderRequest& request,
+                        wavetrace::RenderStats* stats) {
+    wavetrace::Film film(request.width, request.height);
+    const wavetrace::RenderStats s = render(scene, tracer, request, film);
+    if (stats) *stats = s;
+    return film;
+}
+
+template <class Tracer>
 wavetrace::Film megakernel_film(const wavetrace::Scene& scene,
                                 const Tracer& tracer,
                                 wavetrace::RenderRequest request,
                                 wavetrace::RenderStats* stats = nullptr) {
     request.engine = wavetrace::Engine::Megakernel;
-    wavetrace::Film film(request.width, request.height);
-    const wavetrace::RenderStats s = render(scene, tracer, request, film);
-    if (stats) *stats = s;
-    return film;
+    return film_of(scene, tracer, request, stats);
 }
 
 template <class Tracer>
@@ -26,8 +34,5 @@ wavetrace::Film wavefront_film(const wavetrace::Scene& scene,
                                wavetrace::RenderStats* stats = nullptr) {
     request.engine = wavetrace::Engine::Wavefront;
     request.wavefront = options;
-    wavetrace::Film film(request.width, request.height);
-    const wavetrace::RenderStats s = render(scene, tracer, request, film);
-    if (stats) *stats = s;
-    return film;
+    return film_of(scene, tracer, request, stats);
 }

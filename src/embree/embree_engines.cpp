@@ -1,7 +1,6 @@
 #include "embree/embree_engines.h"
 
-#include "engines/megakernel.h"
-#include "engines/wavefront.h"
+#include "engines/dispatch.h"
 
 namespace wavetrace {
 
@@ -12,9 +11,7 @@ RenderStats render(const Scene& scene,
                    const RenderRequest& request,
                    Film& film,
                    RenderObserver* observer) {
-    if (request.engine == Engine::Megakernel)
-        return megakernel(scene, embree, request, film, observer);
-    return wavefront(scene, embree, request, film, observer);
+    return render_with(scene, embree, request, film, observer);
 }
 
 }  // namespace wavetrace

@@ -1,7 +1,7 @@
 // The megakernel: per pixel sample, a recursive ray_color in the style of *Ray Tracing in One
 // Weekend* (depth-limited, with Russian roulette). Every step of a path is a call into
 // shading/path_vertex.h, the code the wavefront kernels call too. Generic over the intersector:
-// megakernel.cpp instantiates it for our BVH, src/embree for Embree.
+// engines/dispatch.h instantiates it for our BVH and for Embree (src/embree).
 #pragma once
 
 #include <tbb/blocked_range.h>
@@ -134,19 +134,7 @@ RenderStats megakernel(const Scene& scene,
     };
     const int done = run_passes(request, film, observer, render_pass);
 
-    RenderStats stats;
-    stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    stats.paths = static_cast<uint64_t>(width) * height * done;
-    stats.rays = rays.load();
-    stats.spp_done = done;
-    return stats;
+    return render_stats(request, start, done, rays.load());
 }
-
-// The engine on our BVH (megakernel.cpp).
-RenderStats render_megakernel(const Scene& scene,
-                              const Bvh& bvh,
-                              const RenderRequest& request,
-                              Film& film,
-                              RenderObserver* observer = nullptr);
 
 }  // namespace wavetrace

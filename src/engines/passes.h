@@ -38,4 +38,17 @@ int run_passes(const RenderRequest& request,
     return done;
 }
 
+// What a render of `done` samples per pixel that started at `start` reports.
+inline RenderStats render_stats(const RenderRequest& request,
+                                std::chrono::steady_clock::time_point start,
+                                int done,
+                                uint64_t rays) {
+    RenderStats stats;
+    stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    stats.paths = static_cast<uint64_t>(request.width) * request.height * done;
+    stats.rays = rays;
+    stats.spp_done = done;
+    return stats;
+}
+
 }  // namespace wavetrace

@@ -1,7 +1,7 @@
 #include "wavetrace/engines/render.h"
 
-#include "engines/megakernel.h"
-#include "engines/wavefront.h"
+#include "engines/dispatch.h"
+#include "wavetrace/accel/bvh.h"
 
 namespace wavetrace {
 
@@ -26,9 +26,7 @@ RenderStats render(const Scene& scene,
                    const RenderRequest& request,
                    Film& film,
                    RenderObserver* observer) {
-    if (request.engine == Engine::Megakernel)
-        return render_megakernel(scene, bvh, request, film, observer);
-    return render_wavefront(scene, bvh, request, film, observer);
+    return render_with(scene, bvh, request, film, observer);
 }
 
 }  // namespace wavetrace

@@ -47,12 +47,4 @@ size_t wavefront_bytes_per_path() {
     return WaveQueues::bytes_per_path();
 }
 
-RenderStats render_wavefront(const Scene& scene,
-                             const Bvh& bvh,
-                             const RenderRequest& request,
-                             Film& film,
-                             RenderObserver* observer) {
-    return wavefront(scene, bvh, request, film, observer);
-}
-
 }  // namespace wavetrace

@@ -5,7 +5,7 @@
 // stage, bounce after bounce and sample after sample of a pass, in queues it reuses from wave to
 // wave, so that a wave's queues stay in that core's cache (the per-thread queues of Áfra et
 // al., HPG 2016, and of MoonRay, rather than pbrt-v4's one global wave). Generic over the
-// intersector: wavefront.cpp instantiates it for our BVH, src/embree for Embree.
+// intersector: engines/dispatch.h instantiates it for our BVH and for Embree (src/embree).
 #pragma once
 
 #include <tbb/blocked_range.h>
@@ -143,19 +143,7 @@ RenderStats wavefront(const Scene& scene,
     };
     const int done = run_passes(request, film, observer, render_pass);
 
-    RenderStats stats;
-    stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    stats.paths = static_cast<uint64_t>(pixels) * done;
-    stats.rays = rays.load();
-    stats.spp_done = done;
-    return stats;
+    return render_stats(request, start, done, rays.load());
 }
-
-// The engine on our BVH (wavefront.cpp).
-RenderStats render_wavefront(const Scene& scene,
-                             const Bvh& bvh,
-                             const RenderRequest& request,
-                             Film& film,
-                             RenderObserver* observer = nullptr);
 
 }  // namespace wavetrace
