@@ -32,8 +32,9 @@ struct Captured {
     WaveQueues unsorted;  // after generate + intersect
     WaveQueues q;         // ... + sort_by_material
     KeyRanges ranges{};
-    WaveQueues shaded;  // after shade + intersect_shadow
+    WaveQueues shaded;  // after shade + light_sample + intersect_shadow
     size_t n = 0, shadows = 0;
+    ShadeCounts found;
 
     explicit Captured(const std::string& name) {
         scene = load_scene(std::string(WAVETRACE_SCENES_DIR) + "/" + name + ".json");
@@ -52,10 +53,12 @@ struct Captured {
         generate(*in, 0, 0, 0, n, q.paths, q.rays);
         intersect(bvh, q.rays, 0, n, q.hits);
         unsorted = q;
-        ranges = sort_by_material(scene, n, q.key, q.paths, q.rays, q.hits);
+        ranges = sort_by_material(scene, 0, n, q.key, q.paths, q.rays, q.hits);
         shaded = q;
-        shadows = shade(*in, 0, shaded.hits, 0, n, shaded.paths, shaded.rays, shaded.keep,
-                        shaded.shadows, 0);
+        found = shade(*in, 0, shaded.hits, 0, n, shaded.paths, shaded.rays, shaded.keep,
+                      shaded.light_samples, 0, shaded.emissions, 0);
+        shadows =
+            light_sample(*in, shaded.light_samples, 0, found.light_samples, shaded.shadows, 0);
         intersect_shadow(bvh, *in, shaded.shadows, shaded.paths, 0, shadows, shaded.transmittance);
     }
 };
@@ -88,12 +91,12 @@ void BM_SortByMaterial(benchmark::State& st, const char* name) {
         st.PauseTiming();
         q = c.unsorted;
         st.ResumeTiming();
-        benchmark::DoNotOptimize(sort_by_material(c.scene, c.n, q.key, q.paths, q.rays, q.hits));
+        benchmark::DoNotOptimize(sort_by_material(c.scene, 0, c.n, q.key, q.paths, q.rays, q.hits));
     }
     st.SetItemsProcessed(st.iterations() * c.n);
 }
 
-// Shading one sort key's range (light sampling included): contiguous after sort_by_material.
+// Shading one sort key's range: contiguous after sort_by_material.
 void BM_ShadeKind(benchmark::State& st, const char* name, int kind) {
     Captured& c = scene(name);
     const size_t begin = c.ranges[kind], end = c.ranges[kind + 1];
@@ -107,10 +110,19 @@ void BM_ShadeKind(benchmark::State& st, const char* name, int kind) {
         q.paths = c.q.paths;  // shade consumes path state and rays: restore them
         q.rays = c.q.rays;
         st.ResumeTiming();
-        benchmark::DoNotOptimize(
-            shade(*c.in, 0, q.hits, begin, end, q.paths, q.rays, q.keep, q.shadows, 0));
+        benchmark::DoNotOptimize(shade(*c.in, 0, q.hits, begin, end, q.paths, q.rays, q.keep,
+                                       q.light_samples, 0, q.emissions, 0));
     }
     st.SetItemsProcessed(st.iterations() * (end - begin));
+}
+
+void BM_LightSample(benchmark::State& st, const char* name) {
+    Captured& c = scene(name);
+    WaveQueues q = c.shaded;
+    for (auto _ : st)
+        benchmark::DoNotOptimize(
+            light_sample(*c.in, q.light_samples, 0, c.found.light_samples, q.shadows, 0));
+    st.SetItemsProcessed(st.iterations() * c.found.light_samples);
 }
 
 void BM_IntersectShadow(benchmark::State& st, const char* name) {
@@ -125,8 +137,10 @@ void BM_IntersectShadow(benchmark::State& st, const char* name) {
 void BM_MisCombine(benchmark::State& st, const char* name) {
     Captured& c = scene(name);
     WaveQueues q = c.shaded;
-    for (auto _ : st) mis_combine(q.shadows, q.transmittance, 0, c.shadows, q.paths);
-    st.SetItemsProcessed(st.iterations() * c.shadows);
+    for (auto _ : st)
+        mis_combine(c.config.estimator, q.emissions, {0, c.found.emissions}, q.shadows,
+                    q.transmittance, {0, c.shadows}, q.paths);
+    st.SetItemsProcessed(st.iterations() * (c.shadows + c.found.emissions));
 }
 
 void BM_Compact(benchmark::State& st, const char* name) {
@@ -216,33 +230,27 @@ void BM_VertexSamples(benchmark::State& st, bool lanes) {
     st.SetItemsProcessed(st.iterations() * n);
 }
 
-// Shade's work on Lambertian vertices: the light sample towards the quad light and the
-// continuation. One lane: next_event and continue_path per vertex. Lanes: gathering the rows
-// (push), then the vector kernel.
-void fill(LambertianRows& r, SurfaceBlock& block) {
+// The continuation at Lambertian vertices. One lane: continue_path per vertex. Lanes: gathering
+// the rows (push), then the vector kernel.
+void fill(LambertianRows& r, VertexBlock& block) {
     block.n = 0;
     for (size_t k = 0; k < r.v.size(); ++k) {
         const size_t row = block.push(k, r.v[k], r.wo[k], r.beta[k]);
-        const LightChoice light = r.c.lights->select(r.u[k].light_select);
-        block.set_light_sample(row, r.c.lights->quad_emitter_index(light), light.probability,
-                               r.u[k].light_u, r.u[k].light_v);
         block.set_step(row, r.u[k].continuation, r.u[k].roulette, true);
     }
 }
 
-void BM_LambertianVertices(benchmark::State& st, bool lanes) {
+void BM_LambertianSteps(benchmark::State& st, bool lanes) {
     LambertianRows& r = lambertian_rows();
     const size_t n = r.v.size();
-    SurfaceBlock block;
+    VertexBlock block;
     for (auto _ : st) {
         if (lanes) {
             fill(r, block);
-            surface_vertices(block, *r.c.lights, true, MisHeuristic::Power);
+            step_vertices(block);
             benchmark::DoNotOptimize(block);
         } else {
             for (size_t k = 0; k < n; ++k) {
-                benchmark::DoNotOptimize(next_event(r.c.scene, *r.c.lights, r.c.config.estimator,
-                                                    r.v[k], r.wo[k], r.u[k]));
                 MediumStack media;
                 benchmark::DoNotOptimize(continue_path(r.c.scene, *r.c.lights, r.c.config.estimator,
                                                        r.v[k], r.wo[k], 4, r.beta[k], media,
@@ -253,17 +261,46 @@ void BM_LambertianVertices(benchmark::State& st, bool lanes) {
     st.SetItemsProcessed(st.iterations() * n);
 }
 
-// The vector kernel alone, on a block gathered once: what the gathering costs is the difference
-// to BM_LambertianVertices/lanes.
-void BM_LambertianVerticesKernel(benchmark::State& st) {
-    LambertianRows& r = lambertian_rows();
-    SurfaceBlock block;
-    fill(r, block);
-    for (auto _ : st) {
-        surface_vertices(block, *r.c.lights, true, MisHeuristic::Power);
-        benchmark::DoNotOptimize(block);
+// The light samples of the same vertices towards the quad light. One lane: next_event per
+// vertex. Lanes: gathering the rows, then the vector kernel.
+void fill(LambertianRows& r, LightSampleBlock& block) {
+    block.n = 0;
+    for (size_t k = 0; k < r.v.size(); ++k) {
+        const size_t row = block.n++;
+        for (int a = 0; a < 3; ++a) {
+            block.p[a][row] = r.v[k].p[a];
+            block.ng[a][row] = r.v[k].ng[a];
+            block.ns[a][row] = r.v[k].frame.n[a];
+            block.wo[a][row] = r.wo[k][a];
+            block.albedo[a][row] = r.v[k].bsdf.albedo[a];
+        }
+        block.alpha[row] = r.v[k].bsdf.alpha;
+        block.lobe[row] = int32_t(LaneLobe::Lambertian);
+        const LightChoice light = r.c.lights->select(r.u[k].light_select);
+        block.quad[row] = r.c.lights->quad_emitter_index(light);
+        block.sphere[row] = -1;
+        block.select_prob[row] = light.probability;
+        block.u1[row] = r.u[k].light_u;
+        block.u2[row] = r.u[k].light_v;
     }
-    st.SetItemsProcessed(st.iterations() * block.n);
+}
+
+void BM_LambertianLightSamples(benchmark::State& st, bool lanes) {
+    LambertianRows& r = lambertian_rows();
+    const size_t n = r.v.size();
+    LightSampleBlock block;
+    for (auto _ : st) {
+        if (lanes) {
+            fill(r, block);
+            sample_lights_in_lanes(block, *r.c.lights);
+            benchmark::DoNotOptimize(block);
+        } else {
+            for (size_t k = 0; k < n; ++k)
+                benchmark::DoNotOptimize(next_event(r.c.scene, *r.c.lights, r.c.config.estimator,
+                                                    r.v[k], r.wo[k], r.u[k]));
+        }
+    }
+    st.SetItemsProcessed(st.iterations() * n);
 }
 
 }  // namespace
@@ -301,6 +338,10 @@ BENCHMARK_CAPTURE(BM_ShadeKind,
 BENCHMARK_CAPTURE(BM_ShadeKind, cornell_light, "cornell", 1 + int(MaterialKind::DiffuseLight))
     ->Unit(benchmark::kMicrosecond)
     ->UseRealTime();
+WAVETRACE_KERNEL_BENCH(BM_LightSample, cornell);
+BENCHMARK_CAPTURE(BM_LightSample, veach_mis, "veach-mis")
+    ->Unit(benchmark::kMicrosecond)
+    ->UseRealTime();
 WAVETRACE_KERNEL_BENCH(BM_IntersectShadow, cornell);
 WAVETRACE_KERNEL_BENCH(BM_IntersectShadow, dragon);
 WAVETRACE_KERNEL_BENCH(BM_MisCombine, cornell);
@@ -313,7 +354,7 @@ WAVETRACE_KERNEL_BENCH(BM_Compact, cornell);
     BENCHMARK_CAPTURE(fn, lanes, true)->Unit(benchmark::kMicrosecond)->UseRealTime()
 WAVETRACE_LANES_BENCH(BM_CameraRays);
 WAVETRACE_LANES_BENCH(BM_VertexSamples);
-WAVETRACE_LANES_BENCH(BM_LambertianVertices);
-BENCHMARK(BM_LambertianVerticesKernel)->Unit(benchmark::kMicrosecond)->UseRealTime();
+WAVETRACE_LANES_BENCH(BM_LambertianSteps);
+WAVETRACE_LANES_BENCH(BM_LambertianLightSamples);
 
 BENCHMARK_MAIN();

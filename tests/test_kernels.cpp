@@ -8,6 +8,7 @@
 #include "engines/wavefront.h"
 #include "kernels/kernels.h"
 #include "sampling/sampler.h"
+#include "shading/mis.h"
 #include "shading/path_vertex.h"
 #include "wavetrace/accel/bvh.h"
 
@@ -135,7 +136,8 @@ TEST(Kernels, SortByMaterialMakesKindsContiguousAndMovesWholeEntries) {
         w.q.rays.origin[i].z = static_cast<float>(i);
     }
     std::vector<PrimRef> prim_before(w.q.hits.prim.begin(), w.q.hits.prim.begin() + n);
-    const KeyRanges ranges = sort_by_material(w.scene, n, w.q.key, w.q.paths, w.q.rays, w.q.hits);
+    const KeyRanges ranges =
+        sort_by_material(w.scene, 0, n, w.q.key, w.q.paths, w.q.rays, w.q.hits);
 
     EXPECT_EQ(ranges[kSortKeys], n);
     std::vector<int> tags;
@@ -160,29 +162,33 @@ TEST(Kernels, SortByMaterialMakesKindsContiguousAndMovesWholeEntries) {
         3u);
 }
 
-TEST(Kernels, ShadeSamplesTheLightAppendsAShadowRayAndContinues) {
+TEST(Kernels, ShadeQueuesALightSampleAndTheEmissionFoundAndContinues) {
     World w;
     const Point3 o{0.1f, 0.5f, 0.05f};
     w.start(0, Ray{o, {0, -1, 0}});         // the floor below the light
     w.start(1, Ray{o, {0, 1, 0}});          // the light's front
     w.start(2, Ray{{0, 3, 0}, {1, 0, 0}});  // nothing: a black background
     const uint32_t sample = 3;
-    const size_t shadows =
-        shade(*w.in, sample, w.q.hits, 0, 3, w.q.paths, w.q.rays, w.q.keep, w.q.shadows, 0);
+    const ShadeCounts found = shade(*w.in, sample, w.q.hits, 0, 3, w.q.paths, w.q.rays, w.q.keep,
+                                    w.q.light_samples, 0, w.q.emissions, 0);
 
-    // The floor: one shadow ray, with exactly the megakernel's light sample (NEE weight 1).
-    ASSERT_EQ(shadows, 1u);
-    EXPECT_EQ(w.q.shadows.path[0], 0u);
+    // The floor: one light sample queued, the vertex as the megakernel resolves it.
+    ASSERT_EQ(found.light_samples, 1u);
     const SurfaceHit s = surface_at(w.scene, Ray{o, {0, -1, 0}}, hit_at(w.q.hits, 0));
     const Vertex v = surface_vertex(w.scene, s);
     const VertexSamples u = vertex_samples(w.config.seed, 10, sample, 0);
-    const DirectSample d = sample_direct(w.scene, *w.lights, v, {0, 1, 0},
-                                         w.lights->select(u.light_select), u.light_u, u.light_v);
-    ASSERT_TRUE(d.valid);
-    EXPECT_EQ(w.q.shadows.origin[0], d.shadow.o);
-    EXPECT_EQ(w.q.shadows.dir[0], d.shadow.d);
-    EXPECT_EQ(w.q.shadows.tmax[0], d.shadow.tmax);
-    EXPECT_EQ(w.q.shadows.contribution[0], Color(1.0f) * (d.value * 1.0f));
+    const LightSampleQueue& ls = w.q.light_samples;
+    EXPECT_EQ(ls.path[0], 0u);
+    EXPECT_EQ(ls.p[0], v.p);
+    EXPECT_EQ(ls.ng[0], v.ng);
+    EXPECT_EQ(ls.ns[0], v.frame.n);
+    EXPECT_EQ(ls.wo[0], (Vec3{0, 1, 0}));
+    EXPECT_EQ(ls.albedo[0], v.bsdf.albedo);
+    EXPECT_EQ(ls.kind[0], MaterialKind::Lambertian);
+    EXPECT_EQ(ls.beta[0], Color(1.0f));
+    EXPECT_EQ(ls.u_select[0], u.light_select);
+    EXPECT_EQ(ls.u1[0], u.light_u);
+    EXPECT_EQ(ls.u2[0], u.light_v);
     // ... and it goes on upwards from the floor (no roulette before rr_depth).
     EXPECT_EQ(w.q.keep[0], 1);
     EXPECT_EQ(w.q.paths.bounce[0], 1);
@@ -191,19 +197,53 @@ TEST(Kernels, ShadeSamplesTheLightAppendsAShadowRayAndContinues) {
     EXPECT_EQ(w.q.paths.counts_fully[0], 0);  // a Lambertian vertex samples lights
     EXPECT_EQ(w.q.paths.radiance[0], Color(0.0f));
 
-    // The light seen by a camera-like ray: its full emission, and the path ends.
+    // The light seen by a camera-like ray: its emission queued, unweighted, and the path ends.
+    ASSERT_EQ(found.emissions, 1u);
+    EXPECT_EQ(w.q.emissions.path[0], 1u);
+    EXPECT_EQ(w.q.emissions.radiance[0], Color(4, 3, 2));
+    EXPECT_EQ(w.q.emissions.counts_fully[0], 1);
     EXPECT_EQ(w.q.keep[1], 0);
-    EXPECT_EQ(w.q.paths.radiance[1], Color(4, 3, 2));
+    EXPECT_EQ(w.q.paths.radiance[1], Color(0.0f));  // mis_combine adds it
     // The background is black: nothing, and the path ends.
     EXPECT_EQ(w.q.keep[2], 0);
     EXPECT_EQ(w.q.paths.radiance[2], Color(0.0f));
 }
 
+// The light sample of a queued vertex: exactly the megakernel's (next_event), unweighted.
+TEST(Kernels, LightSampleAppendsTheMegakernelsShadowRay) {
+    World w;
+    const Point3 o{0.1f, 0.5f, 0.05f};
+    w.start(0, Ray{o, {0, -1, 0}});
+    const uint32_t sample = 3;
+    const ShadeCounts found = shade(*w.in, sample, w.q.hits, 0, 1, w.q.paths, w.q.rays, w.q.keep,
+                                    w.q.light_samples, 0, w.q.emissions, 0);
+    ASSERT_EQ(found.light_samples, 1u);
+    const size_t shadows = light_sample(*w.in, w.q.light_samples, 0, 1, w.q.shadows, 0);
+    ASSERT_EQ(shadows, 1u);
+    const SurfaceHit s = surface_at(w.scene, Ray{o, {0, -1, 0}}, hit_at(w.q.hits, 0));
+    const Vertex v = surface_vertex(w.scene, s);
+    const VertexSamples u = vertex_samples(w.config.seed, 10, sample, 0);
+    const DirectSample d = next_event(w.scene, *w.lights, w.config.estimator, v, {0, 1, 0}, u);
+    ASSERT_TRUE(d.valid);
+    EXPECT_EQ(w.q.shadows.path[0], 0u);
+    EXPECT_EQ(w.q.shadows.origin[0], d.shadow.o);
+    EXPECT_EQ(w.q.shadows.dir[0], d.shadow.d);
+    EXPECT_EQ(w.q.shadows.tmax[0], d.shadow.tmax);
+    EXPECT_EQ(w.q.shadows.contribution[0], Color(1.0f) * d.value);
+    EXPECT_EQ(w.q.shadows.pdf_light[0], d.pdf_light);
+    EXPECT_EQ(w.q.shadows.pdf_bsdf[0], d.pdf_bsdf);
+    // The same sample by the scalar route (sample_direct) agrees to rounding.
+    const DirectSample scalar = sample_direct(
+        w.scene, *w.lights, v, {0, 1, 0}, w.lights->select(u.light_select), u.light_u, u.light_v);
+    ASSERT_TRUE(scalar.valid);
+    EXPECT_NEAR(scalar.pdf_light, d.pdf_light, 1e-5f * d.pdf_light);
+}
+
 TEST(Kernels, IntersectShadowSeesBlockersAndCountsRays) {
     World w;
     // From the floor to the light: clear. From below the lower quad up to the light: blocked.
-    w.q.shadows.store(0, {{0, 1e-3f, 0}, {0, 1, 0}, 0.99f, Color(1.0f), 0});
-    w.q.shadows.store(1, {{0, -2, 0}, {0, 1, 0}, 2.99f, Color(1.0f), 1});
+    w.q.shadows.store(0, {{0, 1e-3f, 0}, {0, 1, 0}, 0.99f, Color(1.0f), 1.0f, 0.0f, 0});
+    w.q.shadows.store(1, {{0, -2, 0}, {0, 1, 0}, 2.99f, Color(1.0f), 1.0f, 0.0f, 1});
     generate(*w.in, 0, 0, 0, 2, w.q.paths, w.q.rays);  // the paths' (empty) media
     const uint64_t rays =
         intersect_shadow(w.bvh, *w.in, w.q.shadows, w.q.paths, 0, 2, w.q.transmittance);
@@ -212,17 +252,31 @@ TEST(Kernels, IntersectShadowSeesBlockersAndCountsRays) {
     EXPECT_EQ(w.q.transmittance[1], 0.0f);
 }
 
-TEST(Kernels, MisCombineAddsEachContributionToItsPath) {
-    World w;
-    generate(*w.in, 0, 0, 0, 3, w.q.paths, w.q.rays);
-    w.q.paths.radiance[2] = Color(1.0f);
-    w.q.shadows.store(0, {{}, {}, 1.0f, Color(2, 4, 8), 2});
-    w.q.shadows.store(1, {{}, {}, 1.0f, Color(1, 1, 1), 0});
-    const float tr[] = {0.5f, 0.0f};
-    mis_combine(w.q.shadows, tr, 0, 2, w.q.paths);
-    EXPECT_EQ(w.q.paths.radiance[0], Color(0.0f));  // blocked
-    EXPECT_EQ(w.q.paths.radiance[1], Color(0.0f));  // no shadow ray
-    EXPECT_EQ(w.q.paths.radiance[2], Color(2, 3, 5));
+TEST(Kernels, MisCombineWeightsEachContributionAndAddsItToItsPath) {
+    for (Strategy st : {Strategy::Nee, Strategy::Mis}) {
+        World w;
+        Estimator est = w.config.estimator;
+        est.strategy = st;
+        est.heuristic = MisHeuristic::Power;
+        generate(*w.in, 0, 0, 0, 4, w.q.paths, w.q.rays);
+        w.q.paths.radiance[2] = Color(1.0f);
+        // Shadow rays with light and BSDF densities 2 and 1 (power heuristic: 4/5), one blocked.
+        w.q.shadows.store(0, {{}, {}, 1.0f, Color(2, 4, 8), 2.0f, 1.0f, 2});
+        w.q.shadows.store(1, {{}, {}, 1.0f, Color(1, 1, 1), 2.0f, 1.0f, 0});
+        const float tr[] = {0.5f, 0.0f};
+        // Emission found by a BSDF-sampled segment (densities 1 and 3: power weight 1/10) and by
+        // a camera ray (full weight).
+        w.q.emissions.store(0, {3, Color(10, 20, 30), 1.0f, 3.0f, 0});
+        w.q.emissions.store(1, {1, Color(5, 5, 5), 0.0f, 0.0f, 1});
+        mis_combine(est, w.q.emissions, {0, 2}, w.q.shadows, tr, {0, 2}, w.q.paths);
+        const float ws = st == Strategy::Mis ? mis_weight(MisHeuristic::Power, 2.0f, 1.0f) : 1.0f;
+        const float we = st == Strategy::Mis ? mis_weight(MisHeuristic::Power, 1.0f, 3.0f) : 0.0f;
+        EXPECT_NEAR(ws, st == Strategy::Mis ? 0.8f : 1.0f, 1e-6f);
+        EXPECT_EQ(w.q.paths.radiance[0], Color(0.0f));  // blocked
+        EXPECT_EQ(w.q.paths.radiance[1], Color(5, 5, 5));
+        EXPECT_EQ(w.q.paths.radiance[2], Color(1.0f) + Color(2, 4, 8) * (ws * 0.5f));
+        EXPECT_EQ(w.q.paths.radiance[3], Color(10, 20, 30) * we);
+    }
 }
 
 TEST(Kernels, AccumulateFilmAddsOnlyThePathsThatEnded) {
@@ -231,7 +285,7 @@ TEST(Kernels, AccumulateFilmAddsOnlyThePathsThatEnded) {
     for (size_t i = 0; i < 4; ++i) w.q.paths.radiance[i] = Color(float(i));
     Film film(4, 3);
     const uint8_t keep[] = {1, 0, 0, 1};
-    accumulate_film(w.q.paths, keep, 4, film);
+    accumulate_film(w.q.paths, keep, 0, 4, film);
     EXPECT_EQ(film.samples(0), 0u);
     EXPECT_EQ(film.samples(1), 1u);
     EXPECT_EQ(film.samples(2), 1u);
@@ -254,6 +308,23 @@ TEST(Kernels, CompactKeepsTheLiveEntriesInOrderAndWhole) {
         EXPECT_EQ(w.q.rays.origin[k], origin[expect[k]]);
     }
     EXPECT_EQ(compact(std::vector<uint8_t>(n, 0), n, w.q.paths, w.q.rays), 0u);
+}
+
+// The stage schedule's compaction into a second pair of queues: a part of the kept entries to
+// a given place, in order, and nothing else written.
+TEST(Kernels, CompactIntoMovesTheKeptEntriesOfARange) {
+    World w;
+    const size_t n = 9;
+    generate(*w.in, 0, 0, 0, n, w.q.paths, w.q.rays);
+    WaveQueues next;
+    next.resize(16);
+    for (size_t i = 0; i < 16; ++i) next.paths.pixel[i] = 99;
+    const std::vector<uint8_t> keep = {0, 1, 1, 0, 0, 1, 0, 1, 0};
+    // Entries [2, 8) of the wave: 2, 5 and 7 kept, to entries 4, 5, 6.
+    ASSERT_EQ(compact_into(keep, 2, 8, w.q.paths, w.q.rays, 4, next.paths, next.rays), 3u);
+    const uint32_t expect[] = {99, 99, 99, 99, 2, 5, 7, 99};
+    for (size_t k = 0; k < std::size(expect); ++k) EXPECT_EQ(next.paths.pixel[k], expect[k]) << k;
+    EXPECT_EQ(next.rays.dir[5], w.q.rays.dir[5]);
 }
 
 // Over several of compact's blocks of entries: a block whose entries all stay where they are,
@@ -313,8 +384,10 @@ TEST(Kernels, PackedMediaRoundTrip) {
     }
 }
 
-// The budget: at most 160 bytes of queues per path in flight, from the declarations.
-TEST(Kernels, QueuesTakeAtMost160BytesPerPath) {
-    EXPECT_LE(wavefront_bytes_per_path(), 160u);
+// The queues' bytes per path in flight, from the declarations (docs/architecture.md counts
+// them): 100 for the path, its ray and its hit, 93 for a light sample, 52 for a shadow ray, 25
+// for emission found, 6 of per-entry scratch. A budget, so that a field added is a decision.
+TEST(Kernels, QueuesTakeAtMost280BytesPerPath) {
+    EXPECT_LE(wavefront_bytes_per_path(), 280u);
     EXPECT_EQ(wavefront_bytes_per_path(), WaveQueues::bytes_per_path());
 }

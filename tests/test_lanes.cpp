@@ -65,9 +65,9 @@ Vertex lane_vertex_at(Point3 p, Dim u, LaneKind kind) {
 }
 
 // Lambertian, rough metal and medium vertices around the lights of `scene`, quads and spheres
-// (the vertices outside them): the vector light samples give next_event's shadow rays and
-// contributions bit for bit, for NEE and for MIS with either heuristic. Counts in *spheres the
-// rows whose light was a sphere.
+// (the vertices outside them): the vector light samples give next_event's shadow rays,
+// unweighted contributions and densities bit for bit. Counts in *spheres the rows whose light
+// was a sphere.
 void expect_light_samples_are_next_event(const Scene& scene, size_t* spheres) {
     const LightSet lights(scene);
     const size_t n = 59;
@@ -91,57 +91,55 @@ void expect_light_samples_are_next_event(const Scene& scene, size_t* spheres) {
     }
     size_t appended = 0, skipped = 0;
     *spheres = 0;
-    for (Strategy strategy : {Strategy::Nee, Strategy::Mis})
-        for (MisHeuristic heuristic : {MisHeuristic::Power, MisHeuristic::Balance})
-            for (int64_t target : wide_simd_targets()) {
-                use_wide_simd_target(target);
-                SCOPED_TRACE(wide_simd_target());
-                Estimator config;
-                config.strategy = strategy;
-                config.heuristic = heuristic;
-                SurfaceBlock block;
-                for (size_t k = 0; k < n; ++k) {
-                    const Case& c = cases[k];
-                    ASSERT_TRUE(samples_lights(config, c.v, lights));
-                    const LightChoice light = lights.select(c.u.light_select);
-                    const int32_t quad = quad_light_sample_at(c.v, lights, light);
-                    const int32_t sphere = sphere_light_sample_at(c.v, lights, light);
-                    ASSERT_TRUE(quad >= 0 || sphere >= 0);
-                    *spheres += sphere >= 0;
-                    const size_t row = block.push(k, c.v, c.wo, c.beta);
-                    // Every third row without a light sample: its lanes must stay out.
-                    if (k % 3 != 2 && quad >= 0)
-                        block.set_light_sample(row, quad, light.probability, c.u.light_u,
-                                               c.u.light_v);
-                    else if (k % 3 != 2)
-                        block.set_sphere_light_sample(row, sphere, light.probability, c.u.light_u,
-                                                      c.u.light_v);
-                }
-                surface_vertices(block, lights, strategy == Strategy::Mis, heuristic);
-                for (size_t k = 0; k < n; ++k) {
-                    const Case& c = cases[k];
-                    ASSERT_EQ(block.alive[k], 0.0f);  // no step asked
-                    if (k % 3 == 2) {
-                        ASSERT_EQ(block.shadow[k], 0.0f) << "row " << k;
-                        continue;
-                    }
-                    const WeightedDirect d = next_event(scene, lights, config, c.v, c.wo, c.u);
-                    ASSERT_EQ(d.weight > 0.0f, block.shadow[k] != 0.0f) << "row " << k;
-                    if (d.weight <= 0.0f) {
-                        ++skipped;
-                        continue;
-                    }
-                    ++appended;
-                    EXPECT_TRUE(same_bits(d.sample.shadow.o, block_row(block.shadow_origin, k)))
-                        << "row " << k;
-                    EXPECT_TRUE(same_bits(d.sample.shadow.d, block_row(block.shadow_dir, k)))
-                        << "row " << k;
-                    EXPECT_TRUE(same_bits(d.sample.shadow.tmax, block.tmax[k])) << "row " << k;
-                    EXPECT_TRUE(same_bits(c.beta * (d.sample.value * d.weight),
-                                          block_row(block.contribution, k)))
-                        << "row " << k;
-                }
+    Estimator config;
+    config.strategy = Strategy::Mis;
+    for (int64_t target : wide_simd_targets()) {
+        use_wide_simd_target(target);
+        SCOPED_TRACE(wide_simd_target());
+        LightSampleBlock block;
+        block.n = 0;
+        for (size_t k = 0; k < n; ++k) {
+            const Case& c = cases[k];
+            ASSERT_TRUE(samples_lights(config, c.v, lights));
+            const LightChoice light = lights.select(c.u.light_select);
+            const int32_t quad = quad_light_sample_at(c.v, lights, light);
+            const int32_t sphere = quad < 0 ? sphere_light_sample_at(c.v, lights, light) : -1;
+            ASSERT_TRUE(quad >= 0 || sphere >= 0);
+            *spheres += sphere >= 0;
+            const size_t row = block.n++;
+            for (int a = 0; a < 3; ++a) {
+                block.p[a][row] = c.v.p[a];
+                block.ng[a][row] = c.v.ng[a];
+                block.ns[a][row] = c.v.frame.n[a];
+                block.wo[a][row] = c.wo[a];
+                block.albedo[a][row] = c.v.bsdf.albedo[a];
             }
+            block.alpha[row] = c.v.bsdf.alpha;
+            block.lobe[row] = int32_t(lane_lobe(c.v.bsdf.kind));
+            block.quad[row] = quad;
+            block.sphere[row] = sphere;
+            block.select_prob[row] = light.probability;
+            block.u1[row] = c.u.light_u;
+            block.u2[row] = c.u.light_v;
+        }
+        sample_lights_in_lanes(block, lights);
+        for (size_t k = 0; k < n; ++k) {
+            const Case& c = cases[k];
+            const DirectSample d = next_event(scene, lights, config, c.v, c.wo, c.u);
+            ASSERT_EQ(d.valid, block.valid[k] != 0) << "row " << k;
+            if (!d.valid) {
+                ++skipped;
+                continue;
+            }
+            ++appended;
+            EXPECT_TRUE(same_bits(d.shadow.o, block_row(block.origin, k))) << "row " << k;
+            EXPECT_TRUE(same_bits(d.shadow.d, block_row(block.wi, k))) << "row " << k;
+            EXPECT_TRUE(same_bits(d.shadow.tmax, block.tmax[k])) << "row " << k;
+            EXPECT_TRUE(same_bits(d.value, block_row(block.value, k))) << "row " << k;
+            EXPECT_TRUE(same_bits(d.pdf_light, block.pdf_light[k])) << "row " << k;
+            EXPECT_TRUE(same_bits(d.pdf_bsdf, block.pdf_bsdf[k])) << "row " << k;
+        }
+    }
     use_wide_simd_target(0);
     EXPECT_GT(appended, 0u);
     EXPECT_GT(skipped, 0u);  // back faces, directions below the surface
@@ -251,21 +249,20 @@ TEST(Lanes, LaneStepsAreContinuePathOnEverySimdTarget) {
     for (int64_t target : wide_simd_targets()) {
         use_wide_simd_target(target);
         SCOPED_TRACE(wide_simd_target());
-        SurfaceBlock block;
+        VertexBlock block;
         for (size_t k = 0; k < n; ++k) {
             const Case& c = cases[k];
             ASSERT_TRUE(takes_lane_step(config, c.v, lights));
             const size_t row = block.push(k, c.v, c.wo, c.beta);
             block.set_step(row, c.u, c.u_rr, c.bounce + 1 >= config.rr_depth);
         }
-        surface_vertices(block, lights, true, MisHeuristic::Power);
-        for (size_t k = 0; k < n; ++k) ASSERT_EQ(block.shadow[k], 0.0f);  // no light sample asked
+        step_vertices(block);
         for (size_t k = 0; k < n; ++k) {
             const Case& c = cases[k];
             MediumStack media;
             const PathStep one = continue_path(scene, lights, config, c.v, c.wo, c.bounce, c.beta,
                                                media, c.u, c.u_rr);
-            ASSERT_EQ(one.alive, block.alive[k] != 0.0f) << "row " << k;
+            ASSERT_EQ(one.alive, block.alive[k] != 0) << "row " << k;
             if (!one.alive) {
                 ++dead;
                 continue;
@@ -511,7 +508,7 @@ TEST(Lanes, HitsResolvedInLanesAreSurfaceAtOnEverySimdTarget) {
     for (int64_t target : wide_simd_targets()) {
         use_wide_simd_target(target);
         SCOPED_TRACE(wide_simd_target());
-        SurfaceBlock hits, given;
+        VertexBlock hits, given;
         for (size_t k = 0; k < n; ++k) {
             const Case& c = cases[k];
             const uint32_t index = c.hit.prim.index();
@@ -547,16 +544,16 @@ TEST(Lanes, HitsResolvedInLanesAreSurfaceAtOnEverySimdTarget) {
         }
         resolve_surface_hits(hits);
         resolve_surface_hits(given);  // nothing to resolve: the rows stay as given
-        surface_vertices(hits, lights, true, MisHeuristic::Power);
-        surface_vertices(given, lights, true, MisHeuristic::Power);
+        step_vertices(hits);
+        step_vertices(given);
         for (size_t k = 0; k < n; ++k) {
             for (auto rows :
-                 {&SurfaceBlock::p, &SurfaceBlock::ng, &SurfaceBlock::ns, &SurfaceBlock::wo})
+                 {&VertexBlock::p, &VertexBlock::ng, &VertexBlock::ns, &VertexBlock::wo})
                 ASSERT_TRUE(same_bits(block_row(hits.*rows, k), block_row(given.*rows, k)))
                     << "row " << k;
             ASSERT_EQ(hits.alive[k], given.alive[k]) << "row " << k;
-            if (given.alive[k] == 0.0f) continue;
-            for (auto rows : {&SurfaceBlock::origin, &SurfaceBlock::wi, &SurfaceBlock::weight})
+            if (given.alive[k] == 0) continue;
+            for (auto rows : {&VertexBlock::origin, &VertexBlock::wi, &VertexBlock::weight})
                 ASSERT_TRUE(same_bits(block_row(hits.*rows, k), block_row(given.*rows, k)))
                     << "row " << k;
             ASSERT_TRUE(same_bits(hits.pdf[k], given.pdf[k])) << "row " << k;

@@ -20,6 +20,7 @@ struct RenderOptions {
     std::optional<int> width, height, spp, max_depth;
     std::optional<long long> wave_size;
     bool sort_by_material = false;
+    std::string schedule = "resident";
     std::optional<double> time_limit;        // seconds: start no pass after this
     std::string variance;                    // where to write the variance of the pixel means
     std::string film;                        // where to write the film file (sums) at the end

@@ -53,6 +53,12 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
     cmd->add_option("--wave-size", o.wave_size,
                     "wavefront: paths a thread carries at once (default 4096, at most the pixel "
                     "count)");
+    cmd->add_option("--schedule", o.schedule,
+                    "wavefront: how threads share the kernels: resident (each thread carries its "
+                    "own wave through every kernel) or stage (each kernel a parallel loop over one "
+                    "wave); the image is the same")
+        ->check(CLI::IsMember({"resident", "stage"}))
+        ->capture_default_str();
     cmd->add_flag("--sort-by-material", o.sort_by_material,
                   "wavefront: reorder each bounce's paths by material kind before shading (off by "
                   "default: it costs more than it gains; the image is the same)");
@@ -263,6 +269,7 @@ Rendered render_to_image(const RenderOptions& o,
         request.estimator.max_depth = o.max_depth.value_or(scene.render.max_depth);
         if (o.wave_size) request.wavefront.wave_size = static_cast<size_t>(*o.wave_size);
         request.wavefront.sort_by_material = o.sort_by_material;
+        request.wavefront.schedule = *parse_schedule(o.schedule);
         // Samples [offset, offset + requested) in all; a resumed film holds the first ones.
         const int requested = o.spp.value_or(scene.render.spp);
         const uint32_t offset = static_cast<uint32_t>(o.sample_offset.value_or(0));

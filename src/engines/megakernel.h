@@ -52,28 +52,35 @@ Color ray_color(PathContext<Tracer>& ctx,
         Hit hit = ctx.bvh.intersect(ray);
         SegmentResult seg =
             resolve_segment(ctx.scene, ctx.lights, cfg, ray, hit, media, flight, prev);
+        // Emission found, weighted for the strategy (zero but on an emitter or in the
+        // background, or at an emitter that also reflects).
+        const Color emission =
+            max_component(seg.emission) > 0.0f
+                ? seg.emission * emission_weight(cfg, prev, seg.emission_pdf_light)
+                : Color(0.0f);
         switch (seg.event) {
             case SegmentEvent::Cross:
                 ray = seg.next;
                 continue;
             case SegmentEvent::Emission:
-                return seg.emission;
+                return emission;
             case SegmentEvent::End:
                 return {};
             case SegmentEvent::Scatter:
                 break;
         }
-        if (!may_scatter(cfg, bounce)) return seg.emission;
+        if (!may_scatter(cfg, bounce)) return emission;
         const Vertex& v = seg.vertex;
         VertexSamples u = vertex_samples(ctx.seed, ctx.pixel, ctx.sample, bounce);
 
         // Next-event estimation: a shadow ray to a light sample, weighted for the strategy.
-        Color radiance = seg.emission;  // zero but at an emitter that also reflects
-        const WeightedDirect d = next_event(ctx.scene, ctx.lights, cfg, v, seg.wo, u);
-        if (d.weight > 0.0f)
-            radiance +=
-                d.sample.value *
-                (d.weight * transmittance(ctx.scene, ctx.bvh, d.sample.shadow, media, &ctx.rays));
+        Color radiance = emission;
+        if (const DirectSample d = next_event(ctx.scene, ctx.lights, cfg, v, seg.wo, u); d.valid) {
+            const float w = direct_weight(cfg.strategy, cfg.heuristic, d.pdf_light, d.pdf_bsdf);
+            if (w > 0.0f)
+                radiance +=
+                    d.value * (w * transmittance(ctx.scene, ctx.bvh, d.shadow, media, &ctx.rays));
+        }
 
         // The continuation, recursively.
         PathStep step = continue_path(ctx.scene, ctx.lights, cfg, v, seg.wo, bounce, beta, media,

@@ -15,6 +15,16 @@ std::optional<Engine> parse_engine(const std::string& name) {
     return std::nullopt;
 }
 
+const char* to_string(Schedule s) {
+    return s == Schedule::Stage ? "stage" : "resident";
+}
+
+std::optional<Schedule> parse_schedule(const std::string& name) {
+    for (Schedule s : {Schedule::Resident, Schedule::Stage})
+        if (name == to_string(s)) return s;
+    return std::nullopt;
+}
+
 bool RenderObserver::on_pass(int, int, const Film&) {
     return true;
 }

@@ -1,11 +1,16 @@
 // The wavefront engine's outer loop: a readable script of kernel launches (pbrt-v4's
-// WavefrontPathIntegrator::Render() is the model). The image is cut into waves of consecutive
-// pixels that shrink towards the end of a pass (wavefront_waves); the threads take them in
-// order, and each thread carries its wave through every
-// stage, bounce after bounce and sample after sample of a pass, in queues it reuses from wave to
-// wave, so that a wave's queues stay in that core's cache (the per-thread queues of Áfra et
-// al., HPG 2016, and of MoonRay, rather than pbrt-v4's one global wave). Generic over the
-// intersector: engines/dispatch.h instantiates it for our BVH and for Embree (src/embree).
+// WavefrontPathIntegrator::Render() is the model), in two schedules of the same kernels.
+// - resident (the default): the image is cut into waves of consecutive pixels that shrink
+//   towards the end of a pass (wavefront_waves); the threads take them in order, and each
+//   thread carries its wave through every kernel, bounce after bounce and sample after sample
+//   of a pass, in queues it reuses from wave to wave, so that a wave's queues stay in that
+//   core's cache (the per-thread queues of Áfra et al., HPG 2016, and of MoonRay).
+// - stage: one wave of the pass's pixels at a time, as large as all the threads' waves
+//   together, each kernel a tbb::parallel_for over fixed chunks of it (pbrt-v4's CPU wavefront):
+//   the threads meet after every kernel, and the queues live in memory rather than in one
+//   core's cache.
+// Generic over the intersector: engines/dispatch.h instantiates it for our BVH and for Embree
+// (src/embree).
 #pragma once
 
 #include <tbb/blocked_range.h>
@@ -45,7 +50,8 @@ size_t wavefront_wave_size(size_t pixels, size_t threads, const WavefrontOptions
 namespace wavefront_detail {
 
 // Carries the wave of the pass's pixels [first, first + n) (in pass order) through all its
-// bounces and adds its paths to the film; returns the rays traced.
+// bounces and adds its paths to the film, one thread running every kernel; returns the rays
+// traced.
 template <Intersector Tracer>
 uint64_t run_wave(const WaveInputs& in,
                   const Tracer& bvh,
@@ -64,15 +70,129 @@ uint64_t run_wave(const WaveInputs& in,
         else
             intersect(bvh, q.rays, 0, n, q.hits);
         rays += n;
-        if (sort) sort_by_material(in.scene, n, q.key, q.paths, q.rays, q.hits);
+        if (sort) sort_by_material(in.scene, 0, n, q.key, q.paths, q.rays, q.hits);
+        const ShadeCounts found = shade(in, sample, q.hits, 0, n, q.paths, q.rays, q.keep,
+                                        q.light_samples, 0, q.emissions, 0);
         const size_t shadows =
-            shade(in, sample, q.hits, 0, n, q.paths, q.rays, q.keep, q.shadows, 0);
+            light_sample(in, q.light_samples, 0, found.light_samples, q.shadows, 0);
         WT_DCHECK_LE(shadows, n);  // at most one shadow ray per path per bounce
         rays += intersect_shadow(bvh, in, q.shadows, q.paths, 0, shadows, q.transmittance,
                                  camera_rays ? &q.hits : nullptr);
-        mis_combine(q.shadows, q.transmittance, 0, shadows, q.paths);
-        accumulate_film(q.paths, q.keep, n, film);
+        mis_combine(in.estimator, q.emissions, {0, found.emissions}, q.shadows, q.transmittance,
+                    {0, shadows}, q.paths);
+        accumulate_film(q.paths, q.keep, 0, n, film);
         const size_t left = compact(q.keep, n, q.paths, q.rays);
+        WT_DCHECK_LE(left, n);
+        n = left;
+    }
+    return rays;
+}
+
+// The stage schedule's chunks: entries [kStageChunk c, kStageChunk (c + 1)) of the wave, a
+// whole number of shade chunks and ray batches. Fixed, so that the queues' order does not depend
+// on the thread count (the image does not depend on it either way).
+inline constexpr size_t kStageChunk = 1024;
+
+// The stage schedule's wave: the queues, with a second path and ray queue that compaction fills
+// (the chunks compact at once, so not in place), and each chunk's counts. Each chunk appends
+// to the light-sample, shadow and emission queues from its own first entry, so the chunks need
+// no counts of one another's; only compaction adds them up.
+struct StageWave {
+    WaveQueues q;
+    PathQueue next_paths;
+    RayQueue next_rays;
+    struct ChunkCounts {
+        ShadeCounts found;
+        size_t shadows = 0, kept = 0, first_kept = 0;
+        uint64_t shadow_rays = 0;
+    };
+    std::vector<ChunkCounts> chunks;
+
+    void resize(size_t n) {
+        q.resize(n);
+        next_paths.resize(n);
+        next_rays.resize(n);
+        chunks.resize((n + kStageChunk - 1) / kStageChunk);
+    }
+};
+
+// body(chunk, begin, end) for each chunk of entries [0, n), in parallel.
+template <class Body>
+void each_chunk(size_t n, const Body& body) {
+    const size_t chunks = (n + kStageChunk - 1) / kStageChunk;
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, chunks, 1),
+                      [&](const tbb::blocked_range<size_t>& r) {
+                          for (size_t c = r.begin(); c < r.end(); ++c)
+                              body(c, c * kStageChunk, std::min(n, (c + 1) * kStageChunk));
+                      });
+}
+
+// run_wave's script with each kernel a parallel loop over the wave's chunks.
+template <Intersector Tracer>
+uint64_t run_wave_in_stages(const WaveInputs& in,
+                            const Tracer& bvh,
+                            uint32_t sample,
+                            uint32_t first,
+                            size_t n,
+                            bool sort,
+                            StageWave& w,
+                            Film& film) {
+    WaveQueues& q = w.q;
+    WT_CHECK_LE(n, q.paths.capacity);
+    auto& chunk = w.chunks;
+    uint64_t rays = 0;
+    each_chunk(
+        n, [&](size_t, size_t b, size_t e) { generate(in, sample, first, b, e, q.paths, q.rays); });
+    for (bool camera_rays = true; n > 0; camera_rays = false) {
+        each_chunk(n, [&](size_t, size_t b, size_t e) {
+            if (camera_rays)
+                intersect_coherent(bvh, q.rays, b, e, q.hits);
+            else
+                intersect(bvh, q.rays, b, e, q.hits);
+        });
+        rays += n;
+        if (sort)
+            each_chunk(n, [&](size_t, size_t b, size_t e) {
+                sort_by_material(in.scene, b, e, q.key, q.paths, q.rays, q.hits);
+            });
+        each_chunk(n, [&](size_t c, size_t b, size_t e) {
+            chunk[c].found = shade(in, sample, q.hits, b, e, q.paths, q.rays, q.keep,
+                                   q.light_samples, b, q.emissions, b);
+        });
+        each_chunk(n, [&](size_t c, size_t b, size_t) {
+            chunk[c].shadows = light_sample(in, q.light_samples, b,
+                                            b + chunk[c].found.light_samples, q.shadows, b);
+        });
+        each_chunk(n, [&](size_t c, size_t b, size_t) {
+            chunk[c].shadow_rays =
+                intersect_shadow(bvh, in, q.shadows, q.paths, b, b + chunk[c].shadows,
+                                 q.transmittance, camera_rays ? &q.hits : nullptr);
+        });
+        each_chunk(n, [&](size_t c, size_t b, size_t) {
+            mis_combine(in.estimator, q.emissions, {b, b + chunk[c].found.emissions}, q.shadows,
+                        q.transmittance, {b, b + chunk[c].shadows}, q.paths);
+        });
+        each_chunk(
+            n, [&](size_t, size_t b, size_t e) { accumulate_film(q.paths, q.keep, b, e, film); });
+        // Compaction as a parallel prefix sum: each chunk counts the paths it keeps, a scan of
+        // the chunks' counts gives each chunk where its paths go, and the chunks move them there.
+        each_chunk(n, [&](size_t c, size_t b, size_t e) {
+            chunk[c].kept = size_t(std::count_if(q.keep.begin() + b, q.keep.begin() + e,
+                                                 [](uint8_t k) { return k != 0; }));
+        });
+        const size_t chunks = (n + kStageChunk - 1) / kStageChunk;
+        size_t left = 0;
+        for (size_t c = 0; c < chunks; ++c) {
+            chunk[c].first_kept = left;
+            left += chunk[c].kept;
+            rays += chunk[c].shadow_rays;
+        }
+        each_chunk(n, [&](size_t c, size_t b, size_t e) {
+            compact_into(q.keep, b, e, q.paths, q.rays, chunk[c].first_kept, w.next_paths,
+                         w.next_rays);
+        });
+        std::swap(q.paths, w.next_paths);
+        std::swap(q.rays, w.next_rays);
         WT_DCHECK_LE(left, n);
         n = left;
     }
@@ -106,42 +226,64 @@ RenderStats wavefront(const Scene& scene,
         std::max(1, std::min<int>(tbb::this_task_arena::max_concurrency(),
                                   static_cast<int>(tbb::global_control::active_value(
                                       tbb::global_control::max_allowed_parallelism)))));
-    const std::vector<WaveRange> waves = wavefront_waves(pixels, threads, options);
-    tbb::enumerable_thread_specific<WaveQueues> queues([&] {
-        WaveQueues q;
-        q.resize(waves.empty() ? 1 : waves.front().n);
-        return q;
-    });
     std::atomic<uint64_t> rays{0};
     std::atomic<uint64_t> paths_done{0};  // pixels times the samples carried for them
-
-    // A pass over all waves: each wave carries its pixels through the pass's samples in order,
-    // so every pixel receives its samples in sample order whatever the wave size, the thread
-    // count or which thread ran which wave. The waves are taken in their order (one counter),
-    // so that the small ones at the end of the schedule are the last to start.
-    auto render_pass = [&](uint32_t first_sample, int count) {
-        std::atomic<size_t> next{0};
-        tbb::parallel_for(
-            tbb::blocked_range<size_t>(0, threads, 1),
-            [&](const tbb::blocked_range<size_t>&) {
-                WaveQueues& q = queues.local();
-                uint64_t traced = 0;
-                for (size_t w; (w = next.fetch_add(1, std::memory_order_relaxed)) < waves.size();) {
-                    const WaveRange wave = waves[w];
+    auto carried = [&](size_t n, int count) {
+        const uint64_t c = uint64_t(n) * uint64_t(count);
+        const double finished = double(paths_done.fetch_add(c) + c);
+        if (observer) observer->on_progress(finished / (double(pixels) * request.spp));
+    };
+    const int done = [&] {
+        if (options.schedule == Schedule::Stage) {
+            // The pass's pixels in consecutive waves of as many paths as the resident
+            // schedule's threads hold at once at most.
+            const size_t wave = std::min(pixels, threads * std::max<size_t>(options.wave_size, 1));
+            wavefront_detail::StageWave w;
+            w.resize(std::max<size_t>(wave, 1));
+            return run_passes(request, film, observer, [&](uint32_t first_sample, int count) {
+                for (size_t first = 0; first < pixels; first += wave) {
+                    const size_t n = std::min(wave, pixels - first);
                     for (uint32_t sample = first_sample; sample < first_sample + uint32_t(count);
                          ++sample)
-                        traced += wavefront_detail::run_wave(
-                            in, bvh, sample, static_cast<uint32_t>(wave.first), wave.n,
-                            options.sort_by_material, q, film);
-                    const uint64_t carried = uint64_t(wave.n) * uint64_t(count);
-                    const double finished = double(paths_done.fetch_add(carried) + carried);
-                    if (observer) observer->on_progress(finished / (double(pixels) * request.spp));
+                        rays += wavefront_detail::run_wave_in_stages(
+                            in, bvh, sample, static_cast<uint32_t>(first), n,
+                            options.sort_by_material, w, film);
+                    carried(n, count);
                 }
-                rays.fetch_add(traced, std::memory_order_relaxed);
-            },
-            tbb::simple_partitioner());
-    };
-    const int done = run_passes(request, film, observer, render_pass);
+            });
+        }
+        const std::vector<WaveRange> waves = wavefront_waves(pixels, threads, options);
+        tbb::enumerable_thread_specific<WaveQueues> queues([&] {
+            WaveQueues q;
+            q.resize(waves.empty() ? 1 : waves.front().n);
+            return q;
+        });
+        // A pass over all waves: each wave carries its pixels through the pass's samples in
+        // order, so every pixel receives its samples in sample order whatever the wave size, the
+        // thread count or which thread ran which wave. The waves are taken in their order (one
+        // counter), so that the small ones at the end of the schedule are the last to start.
+        return run_passes(request, film, observer, [&](uint32_t first_sample, int count) {
+            std::atomic<size_t> next{0};
+            tbb::parallel_for(
+                tbb::blocked_range<size_t>(0, threads, 1),
+                [&](const tbb::blocked_range<size_t>&) {
+                    WaveQueues& q = queues.local();
+                    uint64_t traced = 0;
+                    for (size_t w;
+                         (w = next.fetch_add(1, std::memory_order_relaxed)) < waves.size();) {
+                        const WaveRange wave = waves[w];
+                        for (uint32_t sample = first_sample;
+                             sample < first_sample + uint32_t(count); ++sample)
+                            traced += wavefront_detail::run_wave(
+                                in, bvh, sample, static_cast<uint32_t>(wave.first), wave.n,
+                                options.sort_by_material, q, film);
+                        carried(wave.n, count);
+                    }
+                    rays.fetch_add(traced, std::memory_order_relaxed);
+                },
+                tbb::simple_partitioner());
+        });
+    }();
 
     return render_stats(request, start, done, rays.load());
 }

@@ -2,6 +2,7 @@
 #include <cstdint>
 
 #include "kernels/kernels.h"
+#include "util/check.h"
 
 namespace wavetrace {
 
@@ -26,6 +27,32 @@ size_t compact(std::span<const uint8_t> keep, size_t n, PathQueue& paths, RayQue
         k += m;
     }
     return k;
+}
+
+size_t compact_into(std::span<const uint8_t> keep,
+                    size_t begin,
+                    size_t end,
+                    const PathQueue& paths,
+                    const RayQueue& rays,
+                    size_t to,
+                    PathQueue& next_paths,
+                    RayQueue& next_rays) {
+    constexpr size_t kBlock = 256;
+    size_t k = to;
+    for (size_t b = begin; b < end; b += kBlock) {
+        const size_t block_end = std::min(end, b + kBlock);
+        uint32_t from[kBlock];
+        size_t m = 0;
+        for (size_t i = b; i < block_end; ++i) {
+            from[m] = static_cast<uint32_t>(i);
+            m += keep[i] != 0;
+        }
+        WT_DCHECK_LE(k + m, next_paths.capacity);
+        next_paths.copy(k, paths, from, m);
+        next_rays.copy(k, rays, from, m);
+        k += m;
+    }
+    return k - to;
 }
 
 }  // namespace wavetrace

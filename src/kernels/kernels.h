@@ -1,8 +1,12 @@
-// The wavefront's stages, one per file, each a free function over entries [begin, end) of one
-// thread's wave. Per bounce:
-//   intersect -> sort_by_material -> shade (light sample appended as a shadow ray)
-//   -> intersect_shadow -> mis_combine -> accumulate_film (paths that ended) -> compact
-// after generate has filled the wave with camera rays.
+// The wavefront's kernels, one per file, each a free function over entries [begin, end) of a
+// wave's queues: its inputs const, its outputs mutable. After generate has filled the wave with
+// camera rays, per bounce:
+//   intersect -> [sort_by_material] -> shade -> light_sample -> intersect_shadow
+//   -> mis_combine -> accumulate_film (the paths that ended) -> compact
+// A kernel that appends to a queue writes at most one entry per entry it reads, from a first
+// entry its caller gives, and returns how many it wrote: the resident schedule appends each
+// bounce's entries from 0, the stage schedule each chunk's from the chunk's own first entry
+// (engines/wavefront.h).
 #pragma once
 
 #include <array>
@@ -49,47 +53,80 @@ void generate(const WaveInputs& in,
 
 // Misses, then each MaterialKind of the hit's material.
 inline constexpr int kSortKeys = 8;
-// Start of each key's range after sort_by_material; entry kSortKeys is n.
+// Start of each key's range after sort_by_material; entry kSortKeys is the range's end.
 using KeyRanges = std::array<uint32_t, kSortKeys + 1>;
 int sort_key(const Scene& scene, PrimRef prim);
 
-// Reorders entries [0, n) of paths, rays and hits together, in place, so that each sort key's
-// entries are contiguous (an in-place counting sort, "American flag sort": McIlroy, Bostic and
-// McIlroy 1993). Moves the data, not indices, so shading reads each range contiguously.
+// Reorders entries [begin, end) of paths, rays and hits together, in place, so that each sort
+// key's entries are contiguous (an in-place counting sort, "American flag sort": McIlroy, Bostic
+// and McIlroy 1993). Moves the data, not indices, so shading reads each range contiguously.
 KeyRanges sort_by_material(const Scene& scene,
-                           size_t n,
+                           size_t begin,
+                           size_t end,
                            std::span<uint8_t> key,
                            PathQueue& paths,
                            RayQueue& rays,
                            HitQueue& hits);
 
-// Entries [begin, end): resolves the segment (medium scattering, emission with its weight,
-// boundary crossings); at a scattering vertex samples a light, appending the shadow ray and
-// its weighted, unoccluded contribution at shadows[first_shadow + k], then samples the
-// continuation with Russian roulette and writes the next ray over the entry. keep[i] = 1 if
-// the path goes on. Returns the shadow rays appended.
-size_t shade(const WaveInputs& in,
-             uint32_t sample,
-             const HitQueue& hits,
-             size_t begin,
-             size_t end,
-             PathQueue& paths,
-             RayQueue& rays,
-             std::span<uint8_t> keep,
-             ShadowQueue& shadows,
-             size_t first_shadow);
+// Entries [begin, end): resolves each path's segment (medium scattering, emission found,
+// boundary crossings, the vertex it scatters at), appending the emission found, unweighted with
+// the densities its weight needs, to `emissions` from entry first_emission, and each scattering
+// vertex that samples a light to `light_samples` from entry first_light_sample; then samples
+// the continuation with Russian roulette and writes the next ray over the entry. keep[i] = 1 if
+// the path goes on.
+struct ShadeCounts {
+    size_t light_samples = 0, emissions = 0;  // entries appended
+};
+ShadeCounts shade(const WaveInputs& in,
+                  uint32_t sample,
+                  const HitQueue& hits,
+                  size_t begin,
+                  size_t end,
+                  PathQueue& paths,
+                  RayQueue& rays,
+                  std::span<uint8_t> keep,
+                  LightSampleQueue& light_samples,
+                  size_t first_light_sample,
+                  EmissionQueue& emissions,
+                  size_t first_emission);
 
-// Adds each shadow ray's contribution, times its transmittance, to its path.
-void mis_combine(const ShadowQueue& shadows,
+// Entries [begin, end) of the light-sample queue: picks each vertex's light and a point on it,
+// evaluates the BSDF towards it and appends the shadow ray with its unweighted contribution
+// and both densities at shadows[first_shadow + k]. Returns the shadow rays appended.
+size_t light_sample(const WaveInputs& in,
+                    const LightSampleQueue& queue,
+                    size_t begin,
+                    size_t end,
+                    ShadowQueue& shadows,
+                    size_t first_shadow);
+
+// Weights and adds to their paths the emission found (entries `found` of emissions) and each
+// shadow ray's contribution times its transmittance (entries `shadowed`): the MIS weights of
+// the strategy (shading/path_vertex.h's emission_weight and direct_weight), computed only here.
+void mis_combine(const Estimator& estimator,
+                 const EmissionQueue& emissions,
+                 EntryRange found,
+                 const ShadowQueue& shadows,
                  std::span<const float> transmittance,
-                 size_t begin,
-                 size_t end,
+                 EntryRange shadowed,
                  PathQueue& paths);
 
-// Adds the radiance of the paths that ended (keep[i] == 0) among entries [0, n) to the film.
-void accumulate_film(const PathQueue& paths, std::span<const uint8_t> keep, size_t n, Film& film);
+// Adds the radiance of the paths that ended (keep[i] == 0) among entries [begin, end) to the
+// film.
+void accumulate_film(
+    const PathQueue& paths, std::span<const uint8_t> keep, size_t begin, size_t end, Film& film);
 
 // Moves the entries with keep[i] != 0 among [0, n) to the front, in order; returns their count.
 size_t compact(std::span<const uint8_t> keep, size_t n, PathQueue& paths, RayQueue& rays);
+// The same from one pair of queues to another: the kept entries among [begin, end) of `paths`
+// and `rays` to next_paths and next_rays from entry `to`, in order; returns their count.
+size_t compact_into(std::span<const uint8_t> keep,
+                    size_t begin,
+                    size_t end,
+                    const PathQueue& paths,
+                    const RayQueue& rays,
+                    size_t to,
+                    PathQueue& next_paths,
+                    RayQueue& next_rays);
 
 }  // namespace wavetrace

@@ -11,11 +11,12 @@
 #include "math/lanes-inl.h"
 #include "sampling/sampler-inl.h"
 #include "scene/camera_ray-inl.h"
+#include "shading/light_sample-inl.h"
 #include "shading/medium_flight-inl.h"
-#include "shading/quad_light_nee-inl.h"
 #include "shading/sphere_light-inl.h"
 #include "shading/surface_point-inl.h"
 #include "shading/surface_step-inl.h"
+#include "util/check.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace wavetrace {
@@ -151,7 +152,7 @@ void MediumSegments(MediumSegmentBlock* b, size_t n) {
     }
 }
 
-void ResolveSurfaceHits(SurfaceBlock* b) {
+void ResolveSurfaceHits(VertexBlock* b) {
     using D = hn::CappedTag<float, kShadeChunk>;
     using L = FloatLanes<D>;
     using F = hn::Vec<D>;
@@ -160,65 +161,66 @@ void ResolveSurfaceHits(SurfaceBlock* b) {
     const size_t N = hn::Lanes(d);
     if (b->n == 0) return;
     const size_t padded = Padded(b->n, N);
-    PadTail<float>({b->hit_u, b->hit_v, b->smooth}, b->n, padded);
+    PadTail<float>({b->hit_u, b->hit_v}, b->n, padded);
     PadTail3({b->p, b->ng, b->ns, b->wo, b->dir, b->corner[0], b->corner[1], b->corner[2],
               b->vertex_normal[0], b->vertex_normal[1], b->vertex_normal[2]},
              b->n, padded);
-    PadTail<int32_t>({b->hit_kind}, b->n, padded);
-    const F zero = hn::Zero(d);
+    PadTail<int32_t>({b->shape, b->smooth}, b->n, padded);
+    auto is = [&](hn::Vec<decltype(di)> shape, HitShape s) {
+        return hn::RebindMask(d, hn::Eq(shape, hn::Set(di, int32_t(s))));
+    };
     for (size_t k = 0; k < b->n; k += N) {
         V3<F> p = Load3(d, b->p, k), ng = Load3(d, b->ng, k), ns = Load3(d, b->ns, k),
               wo = Load3(d, b->wo, k);
         // The vertices to resolve from their hits: surface_at's point and normals, and the
         // unit direction back along the ray, -d / |d|, as resolve_segment computes it.
-        const auto kind = hn::Load(di, b->hit_kind + k);
-        const auto quad_hit = hn::RebindMask(d, hn::Eq(kind, hn::Set(di, 1)));
-        const auto triangle_hit = hn::RebindMask(d, hn::Eq(kind, hn::Set(di, 2)));
-        const auto sphere_hit = hn::RebindMask(d, hn::Eq(kind, hn::Set(di, 3)));
-        const auto any_hit = hn::Or(hn::Or(quad_hit, triangle_hit), sphere_hit);
-        if (!hn::AllFalse(d, any_hit)) {
-            // Each kind's rows take its point and normals.
-            auto take = [&](hn::Mask<D> m, const SurfacePoint<L>& s) {
-                p = Select3<L>(m, s.p, p);
-                ng = Select3<L>(m, s.ng, ng);
-                ns = Select3<L>(m, s.ns, ns);
-            };
-            const F u = hn::Load(d, b->hit_u + k), v = hn::Load(d, b->hit_v + k);
-            const V3<F> c[3] = {Load3(d, b->corner[0], k), Load3(d, b->corner[1], k),
-                                Load3(d, b->corner[2], k)};
-            if (!hn::AllFalse(d, quad_hit)) {
-                const SurfacePoint<L> s = QuadPoint<L>(c[0], c[1], c[2], u, v);
-                take(quad_hit, s);
-            }
-            if (!hn::AllFalse(d, triangle_hit)) {
-                const V3<F> vn[3] = {Load3(d, b->vertex_normal[0], k),
-                                     Load3(d, b->vertex_normal[1], k),
-                                     Load3(d, b->vertex_normal[2], k)};
-                const SurfacePoint<L> s =
-                    TrianglePoint<L>(c, vn, hn::Gt(hn::Load(d, b->smooth + k), zero), u, v);
-                take(triangle_hit, s);
-            }
-            if (!hn::AllFalse(d, sphere_hit)) {
-                const SurfacePoint<L> s = SpherePoint<L>(c[0], c[1], u);
-                take(sphere_hit, s);
-            }
-            const V3<F> dir = Normalize<L>(Load3(d, b->dir, k));
-            wo = Select3<L>(any_hit, Neg3<L>(dir), wo);
-            Store3(d, p, b->p, k);
-            Store3(d, ng, b->ng, k);
-            Store3(d, ns, b->ns, k);
-            Store3(d, wo, b->wo, k);
+        const auto shape = hn::Load(di, b->shape + k);
+        const auto quad_hit = is(shape, HitShape::Quad);
+        const auto triangle_hit = is(shape, HitShape::Triangle);
+        const auto sphere_hit = is(shape, HitShape::Sphere);
+        const auto any_hit = hn::Not(is(shape, HitShape::Given));
+        if (hn::AllFalse(d, any_hit)) continue;
+        // Each shape's rows take its point and normals.
+        auto take = [&](hn::Mask<D> m, const SurfacePoint<L>& s) {
+            p = Select3<L>(m, s.p, p);
+            ng = Select3<L>(m, s.ng, ng);
+            ns = Select3<L>(m, s.ns, ns);
+        };
+        const F u = hn::Load(d, b->hit_u + k), v = hn::Load(d, b->hit_v + k);
+        const V3<F> c[3] = {Load3(d, b->corner[0], k), Load3(d, b->corner[1], k),
+                            Load3(d, b->corner[2], k)};
+        if (!hn::AllFalse(d, quad_hit)) take(quad_hit, QuadPoint<L>(c[0], c[1], c[2], u, v));
+        if (!hn::AllFalse(d, triangle_hit)) {
+            const V3<F> vn[3] = {Load3(d, b->vertex_normal[0], k), Load3(d, b->vertex_normal[1], k),
+                                 Load3(d, b->vertex_normal[2], k)};
+            const auto smooth =
+                hn::RebindMask(d, hn::Ne(hn::Load(di, b->smooth + k), hn::Zero(di)));
+            take(triangle_hit, TrianglePoint<L>(c, vn, smooth, u, v));
         }
+        if (!hn::AllFalse(d, sphere_hit)) take(sphere_hit, SpherePoint<L>(c[0], c[1], u));
+        const V3<F> dir = Normalize<L>(Load3(d, b->dir, k));
+        wo = Select3<L>(any_hit, Neg3<L>(dir), wo);
+        Store3(d, p, b->p, k);
+        Store3(d, ng, b->ng, k);
+        Store3(d, ns, b->ns, k);
+        Store3(d, wo, b->wo, k);
     }
-    // Every vertex is given now.
-    std::fill(b->hit_kind, b->hit_kind + b->n, 0);
 }
 
-void SurfaceVertices(SurfaceBlock* b,
-                     const QuadEmitterColumns* lights,
-                     const SphereEmitterColumns* spheres,
-                     bool mis,
-                     MisHeuristic heuristic) {
+// Masks of the rows of each lobe.
+template <class D>
+struct LobeMasks {
+    hn::Mask<D> lambertian, metal, phase;
+};
+template <class D>
+HWY_INLINE LobeMasks<D> LobesAt(D d, const int32_t* lobe, size_t k) {
+    const hn::RebindToSigned<D> di;
+    const auto l = hn::Load(di, lobe + k);
+    auto is = [&](LaneLobe x) { return hn::RebindMask(d, hn::Eq(l, hn::Set(di, int32_t(x)))); };
+    return {is(LaneLobe::Lambertian), is(LaneLobe::RoughMetal), is(LaneLobe::Phase)};
+}
+
+void StepVertices(VertexBlock* b) {
     using D = hn::CappedTag<float, kShadeChunk>;
     using L = FloatLanes<D>;
     using F = hn::Vec<D>;
@@ -228,105 +230,114 @@ void SurfaceVertices(SurfaceBlock* b,
     if (b->n == 0) return;
     const size_t padded = Padded(b->n, N);
     PadTail3({b->p, b->ng, b->ns, b->wo, b->albedo, b->beta}, b->n, padded);
-    PadTail<float>({b->select_prob, b->light_u1, b->light_u2, b->step, b->dir_u1, b->dir_u2,
-                    b->u_rr, b->roulette, b->alpha, b->metal, b->phase},
-                   b->n, padded);
-    PadTail<int32_t>({b->light, b->sphere_light}, b->n, padded);
-    const F zero = hn::Zero(d), one = hn::Set(d, 1.0f);
+    PadTail<float>({b->u1, b->u2, b->u_rr, b->alpha}, b->n, padded);
+    PadTail<int32_t>({b->lobe, b->roulette}, b->n, padded);
     for (size_t k = 0; k < b->n; k += N) {
-        const V3<F> p = Load3(d, b->p, k), ng = Load3(d, b->ng, k), ns = Load3(d, b->ns, k),
-                    wo = Load3(d, b->wo, k), albedo = Load3(d, b->albedo, k),
-                    beta = Load3(d, b->beta, k);
-        const F alpha = hn::Load(d, b->alpha + k);
-        const auto metal = hn::Gt(hn::Load(d, b->metal + k), zero);
-        const auto phase = hn::Gt(hn::Load(d, b->phase + k), zero);
+        const StepVertex<L> v{
+            Load3(d, b->p, k),
+            Load3(d, b->ng, k),
+            Load3(d, b->ns, k),
+            Load3(d, b->wo, k),
+            Load3(d, b->albedo, k),
+            hn::Load(d, b->alpha + k),
+            Load3(d, b->beta, k),
+            hn::Load(d, b->u1 + k),
+            hn::Load(d, b->u2 + k),
+            hn::Load(d, b->u_rr + k),
+            hn::RebindMask(d, hn::Ne(hn::Load(di, b->roulette + k), hn::Zero(di)))};
+        // Each lane's lobe: vectors of one lobe run one step, mixed ones each of theirs.
+        const LobeMasks<D> lobes = LobesAt(d, b->lobe, k);
+        StepResult<L> r;
+        bool first = true;
+        auto take = [&](hn::Mask<D> m, auto lobe_step) {
+            if (hn::AllFalse(d, m)) return;
+            const StepResult<L> s = lobe_step(v);
+            if (first) {
+                r = s;
+                first = false;
+                return;
+            }
+            r.alive = hn::Or(hn::And(m, s.alive), hn::AndNot(m, r.alive));
+            r.origin = Select3<L>(m, s.origin, r.origin);
+            r.wi = Select3<L>(m, s.wi, r.wi);
+            r.weight = Select3<L>(m, s.weight, r.weight);
+            r.pdf = hn::IfThenElse(m, s.pdf, r.pdf);
+        };
+        take(lobes.lambertian, [](const StepVertex<L>& x) { return LambertianStep(x); });
+        take(lobes.metal, [](const StepVertex<L>& x) { return MetalStep(x); });
+        take(lobes.phase, [](const StepVertex<L>& x) { return PhaseStep(x); });
+        Store3(d, r.origin, b->origin, k);
+        Store3(d, r.wi, b->wi, k);
+        Store3(d, r.weight, b->weight, k);
+        hn::Store(r.pdf, d, b->pdf + k);
+        hn::Store(hn::IfThenElseZero(hn::RebindMask(di, r.alive), hn::Set(di, 1)), di,
+                  b->alive + k);
+    }
+}
 
-        // The light sample, towards each row's own quad or sphere light: gathered from the
-        // columns, or broadcast when the rows share one light (a scene with one light, or a
-        // chunk whose samples picked the same), which saves the gathers.
-        const auto quad = hn::Load(di, b->light + k);
-        const auto sphere = hn::Load(di, b->sphere_light + k);
+void SampleLights(LightSampleBlock* b,
+                  const QuadEmitterColumns* quads,
+                  const SphereEmitterColumns* spheres) {
+    using D = hn::CappedTag<float, kShadeChunk>;
+    using L = FloatLanes<D>;
+    using F = hn::Vec<D>;
+    const D d;
+    const hn::RebindToSigned<D> di;
+    const size_t N = hn::Lanes(d);
+    if (b->n == 0) return;
+    const size_t padded = Padded(b->n, N);
+    PadTail3({b->p, b->ng, b->ns, b->wo, b->albedo}, b->n, padded);
+    PadTail<float>({b->select_prob, b->u1, b->u2, b->alpha}, b->n, padded);
+    PadTail<int32_t>({b->lobe, b->quad, b->sphere}, b->n, padded);
+    for (size_t k = 0; k < b->n; k += N) {
+        const LobeMasks<D> lobes = LobesAt(d, b->lobe, k);
+        const F u1 = hn::Load(d, b->u1 + k), u2 = hn::Load(d, b->u2 + k);
+        const LightSampleVertex<L> v{Load3(d, b->p, k),
+                                     Load3(d, b->ng, k),
+                                     Load3(d, b->ns, k),
+                                     Load3(d, b->wo, k),
+                                     Load3(d, b->albedo, k),
+                                     hn::Load(d, b->alpha + k),
+                                     lobes.metal,
+                                     lobes.phase,
+                                     u1,
+                                     u2};
+        // Each row's own quad or sphere light: gathered from the columns, or broadcast when the
+        // rows share one light (a scene with one light, or a chunk whose samples picked the
+        // same), which saves the gathers.
+        const auto quad = hn::Load(di, b->quad + k);
+        const auto sphere = hn::Load(di, b->sphere + k);
         const auto has_quad = hn::RebindMask(d, hn::Gt(quad, hn::Set(di, -1)));
         const auto has_sphere = hn::RebindMask(d, hn::Gt(sphere, hn::Set(di, -1)));
-        const auto has_light = hn::Or(has_quad, has_sphere);
-        if (!hn::AllFalse(d, has_light)) {
-            auto fetcher = [&](hn::Vec<decltype(di)> light) {
-                const auto index = hn::Max(light, hn::Zero(di));
-                const int32_t first = hn::GetLane(index);
-                const bool shared = hn::AllTrue(di, hn::Eq(index, hn::Set(di, first)));
-                return [=, &d](const std::vector<float>& column) {
-                    return shared ? hn::Set(d, column[size_t(first)])
-                                  : hn::GatherIndex(d, column.data(), index);
-                };
+        auto fetcher = [&](hn::Vec<decltype(di)> light) {
+            const auto index = hn::Max(light, hn::Zero(di));
+            const int32_t first = hn::GetLane(index);
+            const bool shared = hn::AllTrue(di, hn::Eq(index, hn::Set(di, first)));
+            return [=, &d](const std::vector<float>& column) {
+                return shared ? hn::Set(d, column[size_t(first)])
+                              : hn::GatherIndex(d, column.data(), index);
             };
-            const F select_prob = hn::Load(d, b->select_prob + k);
-            const F u1 = hn::Load(d, b->light_u1 + k), u2 = hn::Load(d, b->light_u2 + k);
-            LightPoint<L> point;
-            const bool any_quad = !hn::AllFalse(d, has_quad);
-            if (any_quad)
-                point = QuadLightPoint(p, QuadLightFrom<L>(*lights, fetcher(quad), select_prob), u1,
-                                       u2);
-            if (!hn::AllFalse(d, has_sphere)) {
-                const LightPoint<L> on_sphere = SphereLightPoint(
-                    p, SphereLightFrom<L>(*spheres, fetcher(sphere), select_prob), u1, u2);
-                point = any_quad ? SelectLightPoint<L>(has_sphere, on_sphere, point) : on_sphere;
-            }
-            const NeeVertex<L> v{p, ng, ns, wo, albedo, alpha, metal, phase, u1, u2};
-            const QuadLightNee<L> r = SurfaceLightSample(v, point, mis, heuristic);
-            // As shade appends a scalar next_event's: beta (value weight), when the weight is > 0.
-            Store3(d, beta * (r.value * r.weight), b->contribution, k);
-            Store3(d, r.origin, b->shadow_origin, k);
-            Store3(d, r.wi, b->shadow_dir, k);
-            hn::Store(r.tmax, d, b->tmax + k);
-            const auto append = hn::And(has_light, hn::And(r.valid, hn::Gt(r.weight, zero)));
-            hn::Store(hn::IfThenElseZero(append, one), d, b->shadow + k);
-        } else {
-            hn::Store(zero, d, b->shadow + k);
+        };
+        const F select_prob = hn::Load(d, b->select_prob + k);
+        LightPoint<L> point;
+        const bool any_quad = !hn::AllFalse(d, has_quad);
+        if (any_quad)
+            point =
+                QuadLightPoint(v.p, QuadLightFrom<L>(*quads, fetcher(quad), select_prob), u1, u2);
+        if (!hn::AllFalse(d, has_sphere)) {
+            const LightPoint<L> on_sphere = SphereLightPoint(
+                v.p, SphereLightFrom<L>(*spheres, fetcher(sphere), select_prob), u1, u2);
+            point = any_quad ? SelectLightPoint<L>(has_sphere, on_sphere, point) : on_sphere;
         }
-
-        // The continuation.
-        const auto step = hn::Gt(hn::Load(d, b->step + k), zero);
-        if (!hn::AllFalse(d, step)) {
-            const StepVertex<L> v{p,
-                                  ng,
-                                  ns,
-                                  wo,
-                                  albedo,
-                                  alpha,
-                                  beta,
-                                  hn::Load(d, b->dir_u1 + k),
-                                  hn::Load(d, b->dir_u2 + k),
-                                  hn::Load(d, b->u_rr + k),
-                                  hn::Gt(hn::Load(d, b->roulette + k), zero)};
-            // Each lane's lobe: vectors of one kind run one step, mixed ones each of theirs.
-            const auto lambertian = hn::Not(hn::Or(metal, phase));
-            StepResult<L> r;
-            bool first = true;
-            auto take = [&](hn::Mask<D> m, auto lobe_step) {
-                if (hn::AllFalse(d, m)) return;
-                const StepResult<L> s = lobe_step(v);
-                if (first) {
-                    r = s;
-                    first = false;
-                    return;
-                }
-                r.alive = hn::Or(hn::And(m, s.alive), hn::AndNot(m, r.alive));
-                r.origin = Select3<L>(m, s.origin, r.origin);
-                r.wi = Select3<L>(m, s.wi, r.wi);
-                r.weight = Select3<L>(m, s.weight, r.weight);
-                r.pdf = hn::IfThenElse(m, s.pdf, r.pdf);
-            };
-            take(lambertian, [](const StepVertex<L>& x) { return LambertianStep(x); });
-            take(metal, [](const StepVertex<L>& x) { return MetalStep(x); });
-            take(phase, [](const StepVertex<L>& x) { return PhaseStep(x); });
-            Store3(d, r.origin, b->origin, k);
-            Store3(d, r.wi, b->wi, k);
-            Store3(d, r.weight, b->weight, k);
-            hn::Store(r.pdf, d, b->pdf + k);
-            hn::Store(hn::IfThenElseZero(hn::And(step, r.alive), one), d, b->alive + k);
-        } else {
-            hn::Store(zero, d, b->alive + k);
-        }
+        const VertexLightSample<L> r = SampleTowards(v, point);
+        Store3(d, r.value, b->value, k);
+        hn::Store(r.pdf_light, d, b->pdf_light + k);
+        hn::Store(r.pdf_bsdf, d, b->pdf_bsdf + k);
+        Store3(d, r.origin, b->origin, k);
+        Store3(d, r.wi, b->wi, k);
+        hn::Store(r.tmax, d, b->tmax + k);
+        hn::Store(hn::IfThenElseZero(hn::RebindMask(di, r.valid), hn::Set(di, 1)), di,
+                  b->valid + k);
     }
 }
 
@@ -339,17 +350,10 @@ namespace wavetrace {
 
 HWY_EXPORT(DrawCameraRays);
 HWY_EXPORT(DrawVertexSamples);
-HWY_EXPORT(ResolveSurfaceHits);
 HWY_EXPORT(MediumSegments);
-
-void medium_segments(MediumSegmentBlock& b, size_t n) {
-    HWY_DYNAMIC_DISPATCH(MediumSegments)(&b, n);
-}
-HWY_EXPORT(SurfaceVertices);
-
-void resolve_surface_hits(SurfaceBlock& b) {
-    HWY_DYNAMIC_DISPATCH(ResolveSurfaceHits)(&b);
-}
+HWY_EXPORT(ResolveSurfaceHits);
+HWY_EXPORT(StepVertices);
+HWY_EXPORT(SampleLights);
 
 void draw_camera_rays(const CameraRays& camera,
                       uint64_t seed,
@@ -374,48 +378,69 @@ void draw_vertex_samples(uint64_t seed,
     HWY_DYNAMIC_DISPATCH(DrawVertexSamples)(seed, sample, pixel, bounce, n, flights, &out);
 }
 
-void surface_vertices(SurfaceBlock& b, const LightSet& lights, bool mis, MisHeuristic heuristic) {
-    HWY_DYNAMIC_DISPATCH(SurfaceVertices)
-    (&b, &lights.quad_emitter_columns(), &lights.sphere_emitter_columns(), mis, heuristic);
+void medium_segments(MediumSegmentBlock& b, size_t n) {
+    HWY_DYNAMIC_DISPATCH(MediumSegments)(&b, n);
 }
 
-size_t SurfaceBlock::push(size_t entry_, const Vertex& v, Vec3 wo_, Color beta_) {
+void resolve_surface_hits(VertexBlock& b) {
+    HWY_DYNAMIC_DISPATCH(ResolveSurfaceHits)(&b);
+}
+
+void step_vertices(VertexBlock& b) {
+    HWY_DYNAMIC_DISPATCH(StepVertices)(&b);
+}
+
+void sample_lights_in_lanes(LightSampleBlock& b, const LightSet& lights) {
+    HWY_DYNAMIC_DISPATCH(SampleLights)
+    (&b, &lights.quad_emitter_columns(), &lights.sphere_emitter_columns());
+}
+
+LaneLobe lane_lobe(MaterialKind kind) {
+    return kind == MaterialKind::Metal       ? LaneLobe::RoughMetal
+           : kind == MaterialKind::Isotropic ? LaneLobe::Phase
+                                             : LaneLobe::Lambertian;
+}
+
+MaterialKind material_kind(LaneLobe lobe) {
+    return lobe == LaneLobe::RoughMetal ? MaterialKind::Metal
+           : lobe == LaneLobe::Phase    ? MaterialKind::Isotropic
+                                        : MaterialKind::Lambertian;
+}
+
+size_t VertexBlock::start_row(size_t entry_, HitShape shape_, const BsdfParams& bsdf, Color beta_) {
+    WT_DCHECK_LT(n, kShadeChunk);
     const size_t k = n++;
+    shape[k] = int32_t(shape_);
+    for (int a = 0; a < 3; ++a) {
+        albedo[a][k] = bsdf.albedo[a];
+        beta[a][k] = beta_[a];
+    }
+    alpha[k] = bsdf.alpha;
+    lobe[k] = int32_t(lane_lobe(bsdf.kind));
+    smooth[k] = 0;
+    entry[k] = static_cast<uint32_t>(entry_);
+    return k;
+}
+
+size_t VertexBlock::push(size_t entry_, const Vertex& v, Vec3 wo_, Color beta_) {
+    const size_t k = start_row(entry_, HitShape::Given, v.bsdf, beta_);
     for (int a = 0; a < 3; ++a) {
         p[a][k] = v.p[a];
         ng[a][k] = v.ng[a];
         ns[a][k] = v.frame.n[a];
         wo[a][k] = wo_[a];
     }
-    start_row(k, entry_, v.bsdf, beta_);
     return k;
 }
 
-void SurfaceBlock::start_row(size_t k, size_t entry_, const BsdfParams& bsdf, Color beta_) {
-    for (int a = 0; a < 3; ++a) {
-        albedo[a][k] = bsdf.albedo[a];
-        beta[a][k] = beta_[a];
-    }
-    alpha[k] = bsdf.alpha;
-    metal[k] = bsdf.kind == MaterialKind::Metal ? 1.0f : 0.0f;
-    phase[k] = bsdf.kind == MaterialKind::Isotropic ? 1.0f : 0.0f;
-    light[k] = sphere_light[k] = -1;
-    select_prob[k] = light_u1[k] = light_u2[k] = 0.0f;
-    step[k] = dir_u1[k] = dir_u2[k] = u_rr[k] = roulette[k] = 0.0f;
-    hit_kind[k] = 0;
-    entry[k] = static_cast<uint32_t>(entry_);
-}
-
-size_t SurfaceBlock::push_quad_hit(size_t entry_,
-                                   Vec3 d,
-                                   float u,
-                                   float v,
-                                   const Quad& quad,
-                                   const BsdfParams& bsdf,
-                                   Color beta_) {
-    const size_t k = n++;
-    start_row(k, entry_, bsdf, beta_);
-    hit_kind[k] = 1;
+size_t VertexBlock::push_quad_hit(size_t entry_,
+                                  Vec3 d,
+                                  float u,
+                                  float v,
+                                  const Quad& quad,
+                                  const BsdfParams& bsdf,
+                                  Color beta_) {
+    const size_t k = start_row(entry_, HitShape::Quad, bsdf, beta_);
     hit_u[k] = u;
     hit_v[k] = v;
     for (int a = 0; a < 3; ++a) {
@@ -424,15 +449,12 @@ size_t SurfaceBlock::push_quad_hit(size_t entry_,
         corner[1][a][k] = quad.u[a];
         corner[2][a][k] = quad.v[a];
     }
-    smooth[k] = 0.0f;
     return k;
 }
 
-size_t SurfaceBlock::push_sphere_hit(
+size_t VertexBlock::push_sphere_hit(
     size_t entry_, Vec3 d, Point3 p_, const Sphere& sphere, const BsdfParams& bsdf, Color beta_) {
-    const size_t k = n++;
-    start_row(k, entry_, bsdf, beta_);
-    hit_kind[k] = 3;
+    const size_t k = start_row(entry_, HitShape::Sphere, bsdf, beta_);
     hit_u[k] = sphere.radius;
     hit_v[k] = 0.0f;
     for (int a = 0; a < 3; ++a) {
@@ -441,21 +463,18 @@ size_t SurfaceBlock::push_sphere_hit(
         corner[1][a][k] = sphere.center[a];
         corner[2][a][k] = 0.0f;
     }
-    smooth[k] = 0.0f;
     return k;
 }
 
-size_t SurfaceBlock::push_triangle_hit(size_t entry_,
-                                       Vec3 d,
-                                       float u,
-                                       float v,
-                                       const Point3 (&vertices)[3],
-                                       const Normal3* normals,
-                                       const BsdfParams& bsdf,
-                                       Color beta_) {
-    const size_t k = n++;
-    start_row(k, entry_, bsdf, beta_);
-    hit_kind[k] = 2;
+size_t VertexBlock::push_triangle_hit(size_t entry_,
+                                      Vec3 d,
+                                      float u,
+                                      float v,
+                                      const Point3 (&vertices)[3],
+                                      const Normal3* normals,
+                                      const BsdfParams& bsdf,
+                                      Color beta_) {
+    const size_t k = start_row(entry_, HitShape::Triangle, bsdf, beta_);
     hit_u[k] = u;
     hit_v[k] = v;
     for (int a = 0; a < 3; ++a) {
@@ -465,35 +484,18 @@ size_t SurfaceBlock::push_triangle_hit(size_t entry_,
             vertex_normal[c][a][k] = normals ? normals[c][a] : 0.0f;
         }
     }
-    smooth[k] = normals ? 1.0f : 0.0f;
+    smooth[k] = normals ? 1 : 0;
     return k;
 }
 
-void SurfaceBlock::set_light_sample(
-    size_t row, int32_t quad, float probability, float u1, float u2) {
-    light[row] = quad;
-    select_prob[row] = probability;
-    light_u1[row] = u1;
-    light_u2[row] = u2;
-}
-
-void SurfaceBlock::set_sphere_light_sample(
-    size_t row, int32_t sphere, float probability, float u1, float u2) {
-    sphere_light[row] = sphere;
-    select_prob[row] = probability;
-    light_u1[row] = u1;
-    light_u2[row] = u2;
-}
-
-void SurfaceBlock::set_step(size_t row,
-                            const ContinuationSamples& u,
-                            float u_roulette,
-                            bool applies) {
-    step[row] = 1.0f;
-    dir_u1[row] = u.bsdf_u1;
-    dir_u2[row] = u.bsdf_u2;
+void VertexBlock::set_step(size_t row,
+                           const ContinuationSamples& u,
+                           float u_roulette,
+                           bool applies) {
+    u1[row] = u.bsdf_u1;
+    u2[row] = u.bsdf_u2;
     u_rr[row] = u_roulette;
-    roulette[row] = applies ? 1.0f : 0.0f;
+    roulette[row] = applies ? 1 : 0;
 }
 
 }  // namespace wavetrace

@@ -1,10 +1,10 @@
-// The wavefront's kernels that run in SIMD lanes, over a chunk of a wave: camera rays
+// The wavefront's kernels that run in SIMD lanes, over a chunk of a queue: camera rays
 // (scene/camera_ray-inl.h), the uniform numbers of each vertex (sampling/sampler-inl.h), the
-// points and normals of surface hits (shading/surface_point-inl.h), the light samples towards quad
-// lights (shading/quad_light_nee-inl.h) and the continuation (shading/surface_step-inl.h) of
-// Lambertian and rough metal vertices. The formulas are the ones the megakernel
-// runs in one lane; these run them a vector at a time, on the best target the CPU has
-// (Highway's dynamic dispatch), with the same bits.
+// points and normals of surface hits (shading/surface_point-inl.h), the continuation
+// (shading/surface_step-inl.h) of Lambertian, rough metal and isotropic-phase vertices, and
+// their light samples towards quad and sphere lights (shading/light_sample-inl.h). The formulas are
+// the ones the megakernel runs in one lane; these run them a vector at a time, on the best target
+// the CPU has (Highway's dynamic dispatch), with the same bits.
 #pragma once
 
 #include <cstddef>
@@ -86,62 +86,57 @@ struct MediumSegmentBlock {
 // Rows k < n of b: scatters_in_medium's result, bit for bit.
 void medium_segments(MediumSegmentBlock& b, size_t n);
 
-// Lambertian and rough metal surface vertices, and medium vertices of isotropic phase function,
-// gathered by shade (SoA, `n` rows): each row's
-// light sample towards a quad light (next_event's, where light[k] >= 0) and its continuation
-// (continue_path's, where step[k] = 1), computed in one pass over the rows. A row's vertex is
-// either given (p, ng, ns, wo: push) or resolved from its hit on a quad, a triangle or a sphere
-// (push_*_hit, then resolve_surface_hits: surface_at's point and normals, resolve_segment's wo).
-struct SurfaceBlock {
-    // in: the vertices
-    alignas(64) float p[3][kShadeChunk];
-    alignas(64) float ng[3][kShadeChunk];
-    alignas(64) float ns[3][kShadeChunk];
-    alignas(64) float wo[3][kShadeChunk];
-    alignas(64) float albedo[3][kShadeChunk];
-    alignas(64) float alpha[kShadeChunk], metal[kShadeChunk];  // metal = 1: a rough metal
-    alignas(64) float phase[kShadeChunk];  // phase = 1: in a medium (ng = 0, ns = +z), isotropic
-    alignas(64) float beta[3][kShadeChunk];
-    // in: the light sample: the light's index among the LightSet's quad emitters (-1: none),
-    // its selection probability and the point on it
-    alignas(64) int32_t light[kShadeChunk];
-    alignas(64) int32_t sphere_light[kShadeChunk];  // or its index among the sphere emitters
-    alignas(64) float select_prob[kShadeChunk], light_u1[kShadeChunk], light_u2[kShadeChunk];
-    // in: the continuation (step = 1: take it here), its direction and roulette samples
-    alignas(64) float step[kShadeChunk], dir_u1[kShadeChunk], dir_u2[kShadeChunk];
-    alignas(64) float u_rr[kShadeChunk], roulette[kShadeChunk];  // roulette = 1: it applies
-    uint32_t entry[kShadeChunk];                                 // the wave entry of each row
-    // in: the hits of rows whose vertex is resolved here (hit_kind 1: a quad, 2: a triangle,
-    // 3: a sphere; 0: the vertex is given): the ray's direction, the hit's (u, v) (sphere: the
-    // radius), the corners (quad: q, u, v; triangle: p0, p1, p2; sphere: the hit point o + t d
-    // and the centre) and, for triangles of a mesh with normals (smooth = 1), the vertex
-    // normals
-    alignas(64) int32_t hit_kind[kShadeChunk];
+// How a VertexBlock row's vertex is found: given, or resolved from its hit on a shape.
+enum class HitShape : int32_t { Given, Quad, Triangle, Sphere };
+// The BSDFs the lane formulas take (is_lane_vertex).
+enum class LaneLobe : int32_t { Lambertian, RoughMetal, Phase };
+LaneLobe lane_lobe(MaterialKind kind);
+MaterialKind material_kind(LaneLobe lobe);
+
+// Vertices of a chunk that run in SIMD lanes (SoA, `n` rows): Lambertian and rough metal
+// surface vertices, and medium vertices of isotropic phase function, each given (push) or
+// resolved from its hit on a quad, a triangle or a sphere (push_*_hit, then
+// resolve_surface_hits: surface_at's point and normals, resolve_segment's wo); then each row's
+// continuation, continue_path's (step_vertices). Flags are int32 rows (0 or 1), and kinds
+// int32 enums, so that a vector compare makes them masks.
+struct VertexBlock {
+    // in: the hit of a row whose vertex is resolved here: the ray's direction, the hit's (u, v)
+    // (sphere: u is the radius), the corners (quad: q, u, v; triangle: p0, p1, p2; sphere: the
+    // hit point o + t d and the centre) and, for triangles of a mesh with normals (smooth), the
+    // vertex normals
+    alignas(64) int32_t shape[kShadeChunk];  // HitShape
     alignas(64) float dir[3][kShadeChunk];
     alignas(64) float hit_u[kShadeChunk], hit_v[kShadeChunk];
     alignas(64) float corner[3][3][kShadeChunk];
     alignas(64) float vertex_normal[3][3][kShadeChunk];
-    alignas(64) float smooth[kShadeChunk];
+    alignas(64) int32_t smooth[kShadeChunk];
+    // the vertex: in for given rows, out of resolve_surface_hits for the others
+    alignas(64) float p[3][kShadeChunk];
+    alignas(64) float ng[3][kShadeChunk];  // zero in a medium
+    alignas(64) float ns[3][kShadeChunk];  // +z in a medium
+    alignas(64) float wo[3][kShadeChunk];
+    alignas(64) float albedo[3][kShadeChunk];
+    alignas(64) float alpha[kShadeChunk];   // rough metal: GGX alpha
+    alignas(64) int32_t lobe[kShadeChunk];  // LaneLobe
+    alignas(64) float beta[3][kShadeChunk];
+    // in: the continuation's direction and roulette samples, and whether roulette applies
+    alignas(64) float u1[kShadeChunk], u2[kShadeChunk], u_rr[kShadeChunk];
+    alignas(64) int32_t roulette[kShadeChunk];
+    uint32_t entry[kShadeChunk];  // the wave entry of each row
     size_t n = 0;
-    // out: the shadow ray and its contribution beta f |cos| Le / p_light times the weight, for
-    // rows with shadow = 1 (a light sample of weight > 0)
-    alignas(64) float shadow_origin[3][kShadeChunk];
-    alignas(64) float shadow_dir[3][kShadeChunk];
-    alignas(64) float contribution[3][kShadeChunk];
-    alignas(64) float tmax[kShadeChunk], shadow[kShadeChunk];
     // out: the next ray, the throughput factor and the BSDF density, for rows with alive = 1
     alignas(64) float origin[3][kShadeChunk];
     alignas(64) float wi[3][kShadeChunk];
     alignas(64) float weight[3][kShadeChunk];
-    alignas(64) float pdf[kShadeChunk], alive[kShadeChunk];
+    alignas(64) float pdf[kShadeChunk];
+    alignas(64) int32_t alive[kShadeChunk];
 
-    // Appends the vertex of wave entry `entry` (is_lane_vertex) with neither a light sample nor
-    // a step; returns its row.
+    // Appends the vertex v (is_lane_vertex) of wave entry `entry`, arriving from wo with
+    // throughput beta; returns its row.
     size_t push(size_t entry, const Vertex& v, Vec3 wo, Color beta);
     // The same for a vertex to resolve from the ray direction `d` and its hit at (u, v) on a
-    // quad (q, eu, ev), a triangle (p, and vertex normals n or nullptr) or a sphere (at its point
-    // p = o + t d), of the BSDF `bsdf`
-    // (Lambertian or rough metal).
+    // quad, a triangle (p, and vertex normals n or nullptr) or a sphere (at its point
+    // p = o + t d), of the BSDF `bsdf` (Lambertian or rough metal).
     size_t push_quad_hit(size_t entry,
                          Vec3 d,
                          float u,
@@ -159,20 +154,48 @@ struct SurfaceBlock {
                              const Normal3* n,
                              const BsdfParams& bsdf,
                              Color beta);
-    void set_light_sample(size_t row, int32_t quad, float probability, float u1, float u2);
-    void set_sphere_light_sample(size_t row, int32_t sphere, float probability, float u1, float u2);
+    // Row `row`'s continuation samples; roulette: whether Russian roulette applies.
     void set_step(size_t row, const ContinuationSamples& u, float u_roulette, bool roulette);
 
   private:
-    void start_row(size_t row, size_t entry, const BsdfParams& bsdf, Color beta);
+    size_t start_row(size_t entry, HitShape shape, const BsdfParams& bsdf, Color beta);
 };
 
 // Rows k < b.n pushed with a hit: their p, ng, ns, wo (surface_at's and resolve_segment's), bit
-// for bit; afterwards every row's vertex is given.
-void resolve_surface_hits(SurfaceBlock& b);
+// for bit.
+void resolve_surface_hits(VertexBlock& b);
 
-// Rows k < b.n, whose vertices are given (resolve_surface_hits): next_event's light sample
-// (times beta) and continue_path's step, bit for bit.
-void surface_vertices(SurfaceBlock& b, const LightSet& lights, bool mis, MisHeuristic heuristic);
+// Rows k < b.n, whose vertices are given (resolve_surface_hits): continue_path's step, bit for
+// bit.
+void step_vertices(VertexBlock& b);
+
+// Light samples of a chunk of the light-sample queue towards a quad light of constant radiance,
+// or a sphere light of constant radiance seen from outside (SoA, `n` rows): next_event's
+// sample (shading/light_sample-inl.h), unweighted, bit for bit.
+struct LightSampleBlock {
+    // in: the vertex
+    alignas(64) float p[3][kShadeChunk];
+    alignas(64) float ng[3][kShadeChunk];
+    alignas(64) float ns[3][kShadeChunk];
+    alignas(64) float wo[3][kShadeChunk];
+    alignas(64) float albedo[3][kShadeChunk];
+    alignas(64) float alpha[kShadeChunk];
+    alignas(64) int32_t lobe[kShadeChunk];  // LaneLobe
+    // in: the light, as its index among the LightSet's quad emitters or its sphere emitters
+    // (-1: not that kind), its selection probability and the point's uniform numbers
+    alignas(64) int32_t quad[kShadeChunk], sphere[kShadeChunk];
+    alignas(64) float select_prob[kShadeChunk], u1[kShadeChunk], u2[kShadeChunk];
+    size_t n = 0;
+    // out: f |cos| Le / p_light, both densities and the shadow ray, for rows with valid = 1
+    alignas(64) float value[3][kShadeChunk];
+    alignas(64) float pdf_light[kShadeChunk], pdf_bsdf[kShadeChunk];
+    alignas(64) float origin[3][kShadeChunk];
+    alignas(64) float wi[3][kShadeChunk];
+    alignas(64) float tmax[kShadeChunk];
+    alignas(64) int32_t valid[kShadeChunk];
+};
+
+// Rows k < b.n of b: their light samples.
+void sample_lights_in_lanes(LightSampleBlock& b, const LightSet& lights);
 
 }  // namespace wavetrace

@@ -1,18 +1,35 @@
 #include "kernels/kernels.h"
+#include "shading/path_vertex.h"
 #include "util/check.h"
 
 namespace wavetrace {
 
-// One shadow ray per path per bounce, so entries never share a path.
-void mis_combine(const ShadowQueue& shadows,
+// The strategy's weight of each contribution, from the two densities of its sample: emission a
+// BSDF-sampled segment found (emission_weight) and each shadow ray's light sample
+// (direct_weight). A path has at most one of each per bounce, so entries never share a path;
+// its emission is added first, as the megakernel adds it.
+void mis_combine(const Estimator& estimator,
+                 const EmissionQueue& emissions,
+                 EntryRange found,
+                 const ShadowQueue& shadows,
                  std::span<const float> transmittance,
-                 size_t begin,
-                 size_t end,
+                 EntryRange shadowed,
                  PathQueue& paths) {
-    WT_DCHECK_LE(end, shadows.capacity);
-    for (size_t i = begin; i < end; ++i) {
+    WT_DCHECK_LE(found.end, emissions.capacity);
+    WT_DCHECK_LE(shadowed.end, shadows.capacity);
+    for (size_t i = found.begin; i < found.end; ++i) {
+        WT_DCHECK_LT(emissions.path[i], paths.capacity);
+        const float w =
+            emission_weight(estimator.strategy, estimator.heuristic, emissions.counts_fully[i] != 0,
+                            emissions.pdf_bsdf[i], emissions.pdf_light[i]);
+        paths.radiance[emissions.path[i]] += emissions.radiance[i] * w;
+    }
+    for (size_t i = shadowed.begin; i < shadowed.end; ++i) {
         WT_DCHECK_LT(shadows.path[i], paths.capacity);
-        paths.radiance[shadows.path[i]] += shadows.contribution[i] * transmittance[i];
+        const float w = direct_weight(estimator.strategy, estimator.heuristic, shadows.pdf_light[i],
+                                      shadows.pdf_bsdf[i]);
+        if (w > 0.0f)
+            paths.radiance[shadows.path[i]] += shadows.contribution[i] * (w * transmittance[i]);
     }
 }
 

@@ -9,13 +9,15 @@ int sort_key(const Scene& scene, PrimRef prim) {
 }
 
 KeyRanges sort_by_material(const Scene& scene,
-                           size_t n,
+                           size_t begin,
+                           size_t end,
                            std::span<uint8_t> key,
                            PathQueue& paths,
                            RayQueue& rays,
                            HitQueue& hits) {
     KeyRanges start{};
-    for (size_t i = 0; i < n; ++i) {
+    start[0] = static_cast<uint32_t>(begin);
+    for (size_t i = begin; i < end; ++i) {
         key[i] = static_cast<uint8_t>(sort_key(scene, hits.prim[i]));
         ++start[key[i] + 1];
     }

@@ -6,7 +6,9 @@ void WaveQueues::resize(size_t n) {
     paths.resize(n);
     rays.resize(n);
     hits.resize(n);
-    shadows.resize(n);  // at most one shadow ray per path per bounce
+    light_samples.resize(n);  // at most one light sample per path per bounce
+    shadows.resize(n);        // and so one shadow ray
+    emissions.resize(n);      // and one emitter found
     transmittance.resize(n);
     keep.resize(n);
     key.resize(n);

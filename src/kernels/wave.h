@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "queues/emission_queue.h"
+#include "queues/light_sample_queue.h"
 #include "queues/path_state.h"
 #include "queues/ray_queue.h"
 #include "queues/shadow_queue.h"
@@ -30,12 +32,20 @@ struct WaveInputs {
     MediumStack camera_media;
 };
 
-// Entry i of paths, rays and hits belongs to one path; shadow entries name theirs.
+// Entries [begin, end) of a queue.
+struct EntryRange {
+    size_t begin = 0, end = 0;
+};
+
+// Entry i of paths, rays and hits belongs to one path; the entries of the appended queues
+// (light samples, shadows, emission) name theirs. Each holds one entry per path at most.
 struct WaveQueues {
     PathQueue paths;
     RayQueue rays;
     HitQueue hits;
+    LightSampleQueue light_samples;
     ShadowQueue shadows;
+    EmissionQueue emissions;
     std::vector<float> transmittance;  // per shadow entry, from intersect_shadow
     std::vector<uint8_t> keep;         // per entry: 1 if the path goes on after shading
     std::vector<uint8_t> key;          // per entry: sort_by_material's scratch
@@ -44,7 +54,8 @@ struct WaveQueues {
     // Bytes of queue memory per path in flight, from the queues' field declarations.
     static constexpr size_t bytes_per_path() {
         return PathQueue::kBytesPerEntry + RayQueue::kBytesPerEntry + HitQueue::kBytesPerEntry +
-               ShadowQueue::kBytesPerEntry + sizeof(float) + 2 * sizeof(uint8_t);
+               LightSampleQueue::kBytesPerEntry + ShadowQueue::kBytesPerEntry +
+               EmissionQueue::kBytesPerEntry + sizeof(float) + 2 * sizeof(uint8_t);
     }
 };
 

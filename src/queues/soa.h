@@ -21,30 +21,40 @@
         type* field = name.data();                                         \
         for (size_t j = 0; j < count; ++j) field[to + j] = field[from[j]]; \
     }
+#define WAVETRACE_SOA_COPY_(type, name, comment)                      \
+    {                                                                 \
+        const type* in = src.name.data();                             \
+        type* out = name.data();                                      \
+        for (size_t j = 0; j < count; ++j) out[to + j] = in[from[j]]; \
+    }
 #define WAVETRACE_SOA_SWAP_(type, name, comment) std::swap(name[a], name[b]);
 
-#define WAVETRACE_SOA(Name, FIELDS)                                              \
-    struct Name {                                                                \
-        struct Entry {                                                           \
-            FIELDS(WAVETRACE_SOA_ENTRY_)                                         \
-        };                                                                       \
-        FIELDS(WAVETRACE_SOA_MEMBER_)                                            \
-        size_t capacity = 0;                                                     \
-        void resize(size_t n) {                                                  \
-            FIELDS(WAVETRACE_SOA_RESIZE_)                                        \
-            capacity = n;                                                        \
-        }                                                                        \
-        static constexpr size_t kBytesPerEntry = 0 FIELDS(WAVETRACE_SOA_BYTES_); \
-        Entry load(size_t i) const {                                             \
-            Entry e;                                                             \
-            FIELDS(WAVETRACE_SOA_LOAD_)                                          \
-            return e;                                                            \
-        }                                                                        \
-        void store(size_t i, const Entry& e) { FIELDS(WAVETRACE_SOA_STORE_) }    \
-        /* entries from[0..count) to to, to + 1, ...: one field at a time, in    \
-           place, from[j] >= to + j increasing */                                \
-        void gather(size_t to, const uint32_t* from, size_t count) {             \
-            FIELDS(WAVETRACE_SOA_GATHER_)                                        \
-        }                                                                        \
-        void swap(size_t a, size_t b) { FIELDS(WAVETRACE_SOA_SWAP_) }            \
+#define WAVETRACE_SOA(Name, FIELDS)                                                 \
+    struct Name {                                                                   \
+        struct Entry {                                                              \
+            FIELDS(WAVETRACE_SOA_ENTRY_)                                            \
+        };                                                                          \
+        FIELDS(WAVETRACE_SOA_MEMBER_)                                               \
+        size_t capacity = 0;                                                        \
+        void resize(size_t n) {                                                     \
+            FIELDS(WAVETRACE_SOA_RESIZE_)                                           \
+            capacity = n;                                                           \
+        }                                                                           \
+        static constexpr size_t kBytesPerEntry = 0 FIELDS(WAVETRACE_SOA_BYTES_);    \
+        Entry load(size_t i) const {                                                \
+            Entry e;                                                                \
+            FIELDS(WAVETRACE_SOA_LOAD_)                                             \
+            return e;                                                               \
+        }                                                                           \
+        void store(size_t i, const Entry& e) { FIELDS(WAVETRACE_SOA_STORE_) }       \
+        /* entries from[0..count) to to, to + 1, ...: one field at a time, in       \
+           place, from[j] >= to + j increasing */                                   \
+        void gather(size_t to, const uint32_t* from, size_t count) {                \
+            FIELDS(WAVETRACE_SOA_GATHER_)                                           \
+        }                                                                           \
+        /* entries from[0..count) of another queue to to, to + 1, ... */            \
+        void copy(size_t to, const Name& src, const uint32_t* from, size_t count) { \
+            FIELDS(WAVETRACE_SOA_COPY_)                                             \
+        }                                                                           \
+        void swap(size_t a, size_t b) { FIELDS(WAVETRACE_SOA_SWAP_) }               \
     }

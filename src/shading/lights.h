@@ -30,7 +30,7 @@ struct LightSample {
 };
 
 // The quad lights of constant radiance (the case next-event estimation at Lambertian vertices
-// samples in SIMD lanes, src/shading/quad_light_nee-inl.h) as columns, entry k for quad emitter
+// samples in SIMD lanes, src/shading/light_sample-inl.h) as columns, entry k for quad emitter
 // k (quad_emitter_index()): corner q, edges u and v, the front normal n = normalize(cross(u,
 // v)), the area, the radiance, and two_sided (1 or 0).
 struct QuadEmitterColumns {

@@ -7,9 +7,9 @@
 #include "sampling/sampler.h"
 #include "sampling/warp.h"
 #include "scene/camera_ray-inl.h"
+#include "shading/light_sample-inl.h"
 #include "shading/medium_flight-inl.h"
 #include "shading/mis-inl.h"
-#include "shading/quad_light_nee-inl.h"
 #include "shading/sphere_light-inl.h"
 #include "shading/surface_step-inl.h"
 #include "wavetrace/scene/scene.h"
@@ -183,66 +183,58 @@ int32_t quad_light_sample_at(const Vertex& v, const LightSet& lights, LightChoic
     return lights.quad_emitter_index(choice);
 }
 
-WeightedDirect next_event(const Scene& scene,
-                          const LightSet& lights,
-                          const Estimator& config,
-                          const Vertex& v,
-                          Vec3 wo,
-                          const VertexSamples& u) {
+DirectSample next_event(const Scene& scene,
+                        const LightSet& lights,
+                        const Estimator& config,
+                        const Vertex& v,
+                        Vec3 wo,
+                        const VertexSamples& u) {
     if (!samples_lights(config, v, lights)) return {};
-    return next_event(scene, lights, config, v, wo, u, lights.select(u.light_select));
+    return next_event(scene, lights, v, wo, u, lights.select(u.light_select));
 }
 
-WeightedDirect next_event(const Scene& scene,
-                          const LightSet& lights,
-                          const Estimator& config,
-                          const Vertex& v,
-                          Vec3 wo,
-                          const VertexSamples& u,
-                          LightChoice choice) {
-    WeightedDirect d;
+DirectSample next_event(const Scene& scene,
+                        const LightSet& lights,
+                        const Vertex& v,
+                        Vec3 wo,
+                        const VertexSamples& u,
+                        LightChoice choice) {
     const int32_t quad = quad_light_sample_at(v, lights, choice);
     const int32_t sphere = quad < 0 ? sphere_light_sample_at(v, lights, choice) : -1;
-    if (quad >= 0 || sphere >= 0) {
-        using lanes::to_lanes, lanes::to_vec3;
-        const lanes::NeeVertex<OneLane> lv{to_lanes(v.p),
-                                           to_lanes(v.ng),
-                                           to_lanes(v.frame.n),
-                                           to_lanes(wo),
-                                           to_lanes(v.bsdf.albedo),
-                                           v.bsdf.alpha,
-                                           v.bsdf.kind == MaterialKind::Metal,
-                                           v.bsdf.kind == MaterialKind::Isotropic,
-                                           u.light_u,
-                                           u.light_v};
-        const size_t k = size_t(quad >= 0 ? quad : sphere);
-        auto fetch = [&](const std::vector<float>& column) { return column[k]; };
-        const lanes::LightPoint<OneLane> point =
-            quad >= 0
-                ? lanes::QuadLightPoint(lv.p,
-                                        lanes::QuadLightFrom<OneLane>(lights.quad_emitter_columns(),
-                                                                      fetch, choice.probability),
-                                        u.light_u, u.light_v)
-                : lanes::SphereLightPoint(
-                      lv.p,
-                      lanes::SphereLightFrom<OneLane>(lights.sphere_emitter_columns(), fetch,
-                                                      choice.probability),
-                      u.light_u, u.light_v);
-        const lanes::QuadLightNee<OneLane> r = lanes::SurfaceLightSample(
-            lv, point, config.strategy == Strategy::Mis, config.heuristic);
-        if (!r.valid) return d;
-        d.sample.value = to_vec3(r.value);
-        d.sample.pdf_light = r.pdf_light;
-        d.sample.pdf_bsdf = r.pdf_bsdf;
-        d.sample.shadow = Ray{to_vec3(r.origin), to_vec3(r.wi), 0.0f, r.tmax};
-        d.sample.valid = true;
-        d.weight = r.weight;
-        return d;
-    }
-    d.sample = sample_direct(scene, lights, v, wo, choice, u.light_u, u.light_v);
-    if (d.sample.valid)
-        d.weight =
-            direct_weight(config.strategy, config.heuristic, d.sample.pdf_light, d.sample.pdf_bsdf);
+    if (quad < 0 && sphere < 0)
+        return sample_direct(scene, lights, v, wo, choice, u.light_u, u.light_v);
+    using lanes::to_lanes, lanes::to_vec3;
+    const lanes::LightSampleVertex<OneLane> lv{to_lanes(v.p),
+                                               to_lanes(v.ng),
+                                               to_lanes(v.frame.n),
+                                               to_lanes(wo),
+                                               to_lanes(v.bsdf.albedo),
+                                               v.bsdf.alpha,
+                                               v.bsdf.kind == MaterialKind::Metal,
+                                               v.bsdf.kind == MaterialKind::Isotropic,
+                                               u.light_u,
+                                               u.light_v};
+    const size_t k = size_t(quad >= 0 ? quad : sphere);
+    auto fetch = [&](const std::vector<float>& column) { return column[k]; };
+    const lanes::LightPoint<OneLane> point =
+        quad >= 0
+            ? lanes::QuadLightPoint(lv.p,
+                                    lanes::QuadLightFrom<OneLane>(lights.quad_emitter_columns(),
+                                                                  fetch, choice.probability),
+                                    u.light_u, u.light_v)
+            : lanes::SphereLightPoint(
+                  lv.p,
+                  lanes::SphereLightFrom<OneLane>(lights.sphere_emitter_columns(), fetch,
+                                                  choice.probability),
+                  u.light_u, u.light_v);
+    const lanes::VertexLightSample<OneLane> r = lanes::SampleTowards(lv, point);
+    DirectSample d;
+    if (!r.valid) return d;
+    d.value = to_vec3(r.value);
+    d.pdf_light = r.pdf_light;
+    d.pdf_bsdf = r.pdf_bsdf;
+    d.shadow = Ray{to_vec3(r.origin), to_vec3(r.wi), 0.0f, r.tmax};
+    d.valid = true;
     return d;
 }
 
@@ -259,6 +251,11 @@ float emission_weight(
             return counts_fully ? 1.0f : lanes::MisWeight<OneLane>(heuristic, pdf_bsdf, pdf_light);
     }
     return 0.0f;
+}
+
+float emission_weight(const Estimator& config, const PreviousVertex& prev, float pdf_light) {
+    return emission_weight(config.strategy, config.heuristic, prev.counts_fully, prev.pdf_bsdf,
+                           pdf_light);
 }
 
 float direct_weight(Strategy strategy, MisHeuristic heuristic, float pdf_light, float pdf_bsdf) {
@@ -301,20 +298,17 @@ SegmentResult resolve_segment(const Scene& scene,
         r.wo = -dir;
         return r;
     }
-    // Emission found by this segment, weighted for the strategy (MIS needs the density with
-    // which the previous vertex's light sampling would have produced it).
-    auto weighted = [&](Color le, PrimRef prim, float dist) {
-        float pdf_light = 0.0f;
-        if (config.strategy == Strategy::Mis && !prev.counts_fully)
-            pdf_light = prim.valid() ? lights.pdf_prim(scene, prev.p, prim, dir, dist)
-                                     : lights.pdf_background(scene, dir);
+    // Emission found by this segment, with the density with which the previous vertex's light
+    // sampling would have produced it, which the MIS weight needs.
+    auto found = [&](Color le, PrimRef prim, float dist) {
         r.event = SegmentEvent::Emission;
-        r.emission = le * emission_weight(config.strategy, config.heuristic, prev.counts_fully,
-                                          prev.pdf_bsdf, pdf_light);
+        r.emission = le;
+        if (config.strategy == Strategy::Mis && !prev.counts_fully)
+            r.emission_pdf_light = prim.valid() ? lights.pdf_prim(scene, prev.p, prim, dir, dist)
+                                                : lights.pdf_background(scene, dir);
     };
     if (!hit.found()) {
-        if (!scene.background.is_black())
-            weighted(eval_background(scene, dir), PrimRef{}, kInfinity);
+        if (!scene.background.is_black()) found(eval_background(scene, dir), PrimRef{}, kInfinity);
         return r;
     }
     SurfaceHit s = surface_at(scene, ray, hit);
@@ -326,7 +320,7 @@ SegmentResult resolve_segment(const Scene& scene,
     }
     if (kind == MaterialKind::DiffuseLight) {
         Color le = emitted_radiance(scene, s);
-        if (max_component(le) > 0.0f) weighted(le, hit.prim, length(s.p - prev.p));
+        if (max_component(le) > 0.0f) found(le, hit.prim, length(s.p - prev.p));
         // An emitter that also reflects (an albedo, e.g. an MTL light with Kd): its emission
         // is counted here and the path scatters on, Lambertian.
         if (scene.materials[s.material].albedo == kNone) return r;

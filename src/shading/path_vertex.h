@@ -100,11 +100,14 @@ Continuation sample_continuation(Strategy strategy,
                                  Vec3 wo,
                                  const ContinuationSamples& u);
 
+// The strategies' MIS weights (Veach 1997, §9.2), the one place they are decided: the
+// megakernel calls them at each vertex, the wavefront in its mis_combine kernel.
 // Weight of emission Le found by a ray whose previous vertex chose it with BSDF density
 // pdf_bsdf, when a light sample from that vertex would have had density pdf_light.
 // `counts_fully`: a camera ray, or the previous vertex could not sample lights (delta lobes).
 float emission_weight(
     Strategy strategy, MisHeuristic heuristic, bool counts_fully, float pdf_bsdf, float pdf_light);
+
 // Weight of a next-event (shadow ray) contribution: 1 for NEE, w(p_l, p_b) for MIS.
 float direct_weight(Strategy strategy, MisHeuristic heuristic, float pdf_light, float pdf_bsdf);
 
@@ -115,11 +118,13 @@ struct PreviousVertex {
     float pdf_bsdf = 0.0f;
     bool counts_fully = true;  // camera ray, or a vertex that could not sample lights
 };
+// emission_weight for the segment that left `prev`.
+float emission_weight(const Estimator& config, const PreviousVertex& prev, float pdf_light);
 
 enum class SegmentEvent : uint8_t {
     Scatter,   // the path scatters at `vertex` (a surface or a point in a medium), after adding
-               // `emission` (weighted; non-zero only at an emitter that also reflects)
-    Emission,  // the segment ends on an emitter or in the background: `emission` (weighted)
+               // `emission` (non-zero only at an emitter that also reflects)
+    Emission,  // the segment ends on an emitter or in the background: `emission`
     Cross,     // the segment crossed a medium boundary and goes on as `next`
     End,       // absorbed: a black background, the back of an emitter, or too many crossings
 };
@@ -128,8 +133,11 @@ struct SegmentResult {
     SegmentEvent event = SegmentEvent::End;
     Vertex vertex;
     Vec3 wo;               // Scatter: unit direction back along the segment
-    Color emission{0.0f};  // Emission, Scatter: radiance times the strategy's weight
-    Ray next;              // Cross: the continuing ray
+    Color emission{0.0f};  // Emission, Scatter: the radiance found, unweighted
+    // The density with which the previous vertex's light sample would have found it, where the
+    // MIS weight needs it (emission_weight; else 0).
+    float emission_pdf_light = 0.0f;
+    Ray next;  // Cross: the continuing ray
 };
 
 // The medium part of a segment in medium m (kNone: none) towards its closest hit, for a ray of
@@ -208,30 +216,25 @@ VertexSamples vertex_samples_of(DimValue u) {
             u(kDimRoulette)};
 }
 // Next-event estimation at a scattering vertex as the strategy does it, for both engines: the
-// light sample and its weight (1 for NEE, w(p_l, p_b) for MIS); weight 0 when the strategy
-// samples no lights, the vertex cannot, or the sample is invalid. The contribution is
-// sample.value * weight times the shadow ray's transmittance.
-struct WeightedDirect {
-    DirectSample sample;
-    float weight = 0.0f;
-};
-WeightedDirect next_event(const Scene& scene,
-                          const LightSet& lights,
-                          const Estimator& config,
-                          const Vertex& v,
-                          Vec3 wo,
-                          const VertexSamples& u);
+// light sample, unweighted (its weight is direct_weight's); invalid when the strategy samples no
+// lights, the vertex cannot, or the sample has no contribution. The contribution is
+// value * weight times the shadow ray's transmittance.
+DirectSample next_event(const Scene& scene,
+                        const LightSet& lights,
+                        const Estimator& config,
+                        const Vertex& v,
+                        Vec3 wo,
+                        const VertexSamples& u);
 // The same with the light already chosen, where samples_lights(config, v, lights) holds.
-WeightedDirect next_event(const Scene& scene,
-                          const LightSet& lights,
-                          const Estimator& config,
-                          const Vertex& v,
-                          Vec3 wo,
-                          const VertexSamples& u,
-                          LightChoice light);
+DirectSample next_event(const Scene& scene,
+                        const LightSet& lights,
+                        const Vertex& v,
+                        Vec3 wo,
+                        const VertexSamples& u,
+                        LightChoice light);
 // Whether next-event estimation happens at v: the strategy samples lights and v can.
 bool samples_lights(const Estimator& config, const Vertex& v, const LightSet& lights);
-// The light next_event samples at v in SIMD lanes (shading/quad_light_nee-inl.h), as its index
+// The light next_event samples at v in SIMD lanes (shading/light_sample-inl.h), as its index
 // among the LightSet's quad emitters, or -1: at a lane vertex (is_lane_vertex) that
 // samples_lights(), a chosen quad of constant radiance.
 int32_t quad_light_sample_at(const Vertex& v, const LightSet& lights, LightChoice choice);

@@ -14,8 +14,8 @@
 
 #include "accel/sphere_hit-inl.h"
 #include "math/lanes-inl.h"
+#include "shading/light_sample-inl.h"
 #include "shading/lights.h"
-#include "shading/quad_light_nee-inl.h"
 #include "shading/surface_point-inl.h"
 #include "wavetrace/math/constants.h"
 

@@ -22,11 +22,23 @@ enum class Engine { Wavefront, Megakernel };
 const char* to_string(Engine e);
 std::optional<Engine> parse_engine(const std::string& name);
 
+// How the wavefront's threads share its kernels (the image is the same either way, bit for bit):
+// - Resident: each thread carries a wave of its own through every kernel, bounce after bounce,
+//   so that the wave's queues stay in its core's cache.
+// - Stage: one wave for all threads, each kernel a parallel loop over it, the threads meeting
+//   between kernels (pbrt-v4's CPU wavefront).
+enum class Schedule { Resident, Stage };
+
+const char* to_string(Schedule s);
+std::optional<Schedule> parse_schedule(const std::string& name);
+
 struct WavefrontOptions {
     // Most paths a thread carries through the kernels at once (a wave holds one sample of
     // consecutive pixels, and the waves shrink towards the end of a pass). 4096 paths keep a
-    // wave's queues within a core's L2 cache.
+    // wave's queues within a core's L2 cache. The stage schedule's one wave holds as many
+    // paths as all the threads' waves together.
     size_t wave_size = 4096;
+    Schedule schedule = Schedule::Resident;
     // Whether each bounce's entries are reordered by material kind before shading. Off: shade
     // gathers the vertices its SIMD kernels run over by itself, which costs less. The image is
     // the same either way.

@@ -1,21 +1,21 @@
-// Next-event estimation at a Lambertian or a rough metal surface vertex, or a vertex in a medium
-// of isotropic phase function, towards a quad light of
-// constant radiance: the light point (uniform by area), its solid-angle density, the BSDF value and
-// density, the MIS weight and the shadow ray; what next_event computes for such a vertex and
-// light, written once over lanes. The megakernel runs it with OneLane inside next_event; the
-// wavefront's shade kernel runs it over the vertices of a chunk whose light sample picked such
-// a light (kernels/lane_kernels.cpp). Per-target header, see math/lanes-inl.h.
-#if defined(WAVETRACE_SHADING_QUAD_LIGHT_NEE_INL_H_) == defined(HWY_TARGET_TOGGLE)
-#ifdef WAVETRACE_SHADING_QUAD_LIGHT_NEE_INL_H_
-#undef WAVETRACE_SHADING_QUAD_LIGHT_NEE_INL_H_
+// A light sample at a Lambertian or a rough metal surface vertex, or a vertex in a medium of
+// isotropic phase function, towards a quad light of constant radiance (the light point, uniform
+// by area, and its solid-angle density) or a point sphere_light-inl.h found: the BSDF value and
+// density and the shadow ray; what next_event computes for such a vertex and light, written
+// once over lanes. Unweighted: the MIS weight is the caller's (the megakernel's loop, the
+// wavefront's mis_combine). The megakernel runs it with OneLane inside next_event; the
+// wavefront's light_sample kernel runs it over the queued vertices whose sample picked such a
+// light (kernels/lane_kernels.cpp). Per-target header, see math/lanes-inl.h.
+#if defined(WAVETRACE_SHADING_LIGHT_SAMPLE_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef WAVETRACE_SHADING_LIGHT_SAMPLE_INL_H_
+#undef WAVETRACE_SHADING_LIGHT_SAMPLE_INL_H_
 #else
-#define WAVETRACE_SHADING_QUAD_LIGHT_NEE_INL_H_
+#define WAVETRACE_SHADING_LIGHT_SAMPLE_INL_H_
 #endif
 
 #include "math/lanes-inl.h"
 #include "shading/ggx-inl.h"
 #include "shading/lights.h"
-#include "shading/mis-inl.h"
 #include "wavetrace/math/constants.h"
 
 HWY_BEFORE_NAMESPACE();
@@ -55,8 +55,9 @@ HWY_INLINE QuadLightLanes<L> QuadLightFrom(const QuadEmitterColumns& c,
             select_prob};
 }
 
+// The vertex a light sample starts from.
 template <class L>
-struct NeeVertex {
+struct LightSampleVertex {
     V3<typename L::F> p, ng, ns, wo, albedo;
     typename L::F alpha;   // metal: GGX roughness (> 0)
     typename L::M metal;   // a rough metal; else Lambertian
@@ -64,11 +65,11 @@ struct NeeVertex {
     typename L::F u1, u2;  // the point on the light
 };
 
+// The light sample seen from the vertex: what it contributes and the shadow ray that tests it.
 template <class L>
-struct QuadLightNee {
+struct VertexLightSample {
     typename L::M valid;      // false: no contribution (back face, below the surface ...)
     V3<typename L::F> value;  // f |cos| Le / p_light: unweighted, unoccluded
-    typename L::F weight;     // of the strategy: w(p_light, p_bsdf) for MIS, else 1
     typename L::F pdf_light, pdf_bsdf;
     V3<typename L::F> origin, wi;  // the shadow ray, t in [0, tmax]
     typename L::F tmax;
@@ -118,16 +119,14 @@ HWY_INLINE LightPoint<L> QuadLightPoint(V3<typename L::F> ref,
     return r;
 }
 
-// The light sample at a surface vertex towards a light point: the BSDF value and density, the
-// MIS weight and the shadow ray.
+// The light sample at a vertex towards a light point: the BSDF value and density and the
+// shadow ray.
 template <class L>
-HWY_INLINE QuadLightNee<L> SurfaceLightSample(const NeeVertex<L>& v,
-                                              const LightPoint<L>& l,
-                                              bool mis,
-                                              MisHeuristic heuristic) {
+HWY_INLINE VertexLightSample<L> SampleTowards(const LightSampleVertex<L>& v,
+                                              const LightPoint<L>& l) {
     using F = typename L::F;
     const F zero = L::Set(0.0f), one = L::Set(1.0f);
-    QuadLightNee<L> r;
+    VertexLightSample<L> r;
     r.wi = l.wi;
     r.pdf_light = l.pdf;
     auto ok = l.valid;
@@ -164,7 +163,6 @@ HWY_INLINE QuadLightNee<L> SurfaceLightSample(const NeeVertex<L>& v,
     ok = L::And(ok, MaxComponent<L>(f) > zero);
     r.valid = ok;
     r.value = f * l.radiance * (one / l.pdf);
-    r.weight = mis ? MisWeight<L>(heuristic, l.pdf, pdf_bsdf) : one;
     // Stop short of the light itself: 1e-4 relative, plus the origin offset.
     const F eps = OriginOffset<L>(v.p);
     r.origin = v.p + v.ng * L::Select(wi_ng > zero, eps, L::Neg(eps));
@@ -172,16 +170,8 @@ HWY_INLINE QuadLightNee<L> SurfaceLightSample(const NeeVertex<L>& v,
     return r;
 }
 
-template <class L>
-HWY_INLINE QuadLightNee<L> QuadLightSample(const NeeVertex<L>& v,
-                                           const QuadLightLanes<L>& e,
-                                           bool mis,
-                                           MisHeuristic heuristic) {
-    return SurfaceLightSample(v, QuadLightPoint(v.p, e, v.u1, v.u2), mis, heuristic);
-}
-
 }  // namespace HWY_NAMESPACE
 }  // namespace wavetrace
 HWY_AFTER_NAMESPACE();
 
-#endif  // WAVETRACE_SHADING_QUAD_LIGHT_NEE_INL_H_
+#endif  // WAVETRACE_SHADING_LIGHT_SAMPLE_INL_H_
