@@ -262,38 +262,37 @@ void BM_LambertianSteps(benchmark::State& st, bool lanes) {
 }
 
 // The light samples of the same vertices towards the quad light. One lane: next_event per
-// vertex. Lanes: gathering the rows, then the vector kernel.
-void fill(LambertianRows& r, LightSampleBlock& block) {
-    block.n = 0;
+// vertex. Lanes: queueing the rows, then the vector kernel.
+void fill(LambertianRows& r, LightSampleQueue& queue, LightSampleBlock& block) {
+    queue.resize(r.v.size());
+    block.queue = &queue;
+    block.first = 0;
+    block.n = r.v.size();
     for (size_t k = 0; k < r.v.size(); ++k) {
-        const size_t row = block.n++;
-        for (int a = 0; a < 3; ++a) {
-            block.p[a][row] = r.v[k].p[a];
-            block.ng[a][row] = r.v[k].ng[a];
-            block.ns[a][row] = r.v[k].frame.n[a];
-            block.wo[a][row] = r.wo[k][a];
-            block.albedo[a][row] = r.v[k].bsdf.albedo[a];
-        }
-        block.alpha[row] = r.v[k].bsdf.alpha;
-        block.lobe[row] = int32_t(LaneLobe::Lambertian);
+        const Vertex& v = r.v[k];
+        store_queued_vertex(
+            queue, k,
+            {uint32_t(k), v.p, v.ng, v.frame.n, r.wo[k], v.bsdf.albedo, v.bsdf.alpha, v.bsdf.kind,
+             r.beta[k], r.u[k].light_select, r.u[k].light_u, r.u[k].light_v});
         const LightChoice light = r.c.lights->select(r.u[k].light_select);
-        block.quad[row] = r.c.lights->quad_emitter_index(light);
-        block.sphere[row] = -1;
-        block.select_prob[row] = light.probability;
-        block.u1[row] = r.u[k].light_u;
-        block.u2[row] = r.u[k].light_v;
+        block.lobe[k] = int32_t(LaneLobe::Lambertian);
+        block.quad[k] = r.c.lights->quad_emitter_index(light);
+        block.sphere[k] = -1;
+        block.select_prob[k] = light.probability;
     }
 }
 
 void BM_LambertianLightSamples(benchmark::State& st, bool lanes) {
     LambertianRows& r = lambertian_rows();
     const size_t n = r.v.size();
+    LightSampleQueue queue;
     LightSampleBlock block;
+    ShadowQueue shadows;
+    shadows.resize(n);
     for (auto _ : st) {
         if (lanes) {
-            fill(r, block);
-            sample_lights_in_lanes(block, *r.c.lights);
-            benchmark::DoNotOptimize(block);
+            fill(r, queue, block);
+            benchmark::DoNotOptimize(sample_lights_in_lanes(block, *r.c.lights, shadows, 0));
         } else {
             for (size_t k = 0; k < n; ++k)
                 benchmark::DoNotOptimize(next_event(r.c.scene, *r.c.lights, r.c.config.estimator,

@@ -179,13 +179,13 @@ TEST(Kernels, ShadeQueuesALightSampleAndTheEmissionFoundAndContinues) {
     const VertexSamples u = vertex_samples(w.config.seed, 10, sample, 0);
     const LightSampleQueue& ls = w.q.light_samples;
     EXPECT_EQ(ls.path[0], 0u);
-    EXPECT_EQ(ls.p[0], v.p);
-    EXPECT_EQ(ls.ng[0], v.ng);
-    EXPECT_EQ(ls.ns[0], v.frame.n);
-    EXPECT_EQ(ls.wo[0], (Vec3{0, 1, 0}));
-    EXPECT_EQ(ls.albedo[0], v.bsdf.albedo);
+    EXPECT_EQ(WAVETRACE_XYZ_AT(ls, p, 0), v.p);
+    EXPECT_EQ(WAVETRACE_XYZ_AT(ls, ng, 0), v.ng);
+    EXPECT_EQ(WAVETRACE_XYZ_AT(ls, ns, 0), v.frame.n);
+    EXPECT_EQ(WAVETRACE_XYZ_AT(ls, wo, 0), (Vec3{0, 1, 0}));
+    EXPECT_EQ(WAVETRACE_XYZ_AT(ls, albedo, 0), v.bsdf.albedo);
     EXPECT_EQ(ls.kind[0], MaterialKind::Lambertian);
-    EXPECT_EQ(ls.beta[0], Color(1.0f));
+    EXPECT_EQ(WAVETRACE_XYZ_AT(ls, beta, 0), Color(1.0f));
     EXPECT_EQ(ls.u_select[0], u.light_select);
     EXPECT_EQ(ls.u1[0], u.light_u);
     EXPECT_EQ(ls.u2[0], u.light_v);
@@ -226,10 +226,10 @@ TEST(Kernels, LightSampleAppendsTheMegakernelsShadowRay) {
     const DirectSample d = next_event(w.scene, *w.lights, w.config.estimator, v, {0, 1, 0}, u);
     ASSERT_TRUE(d.valid);
     EXPECT_EQ(w.q.shadows.path[0], 0u);
-    EXPECT_EQ(w.q.shadows.origin[0], d.shadow.o);
-    EXPECT_EQ(w.q.shadows.dir[0], d.shadow.d);
+    EXPECT_EQ(WAVETRACE_XYZ_AT(w.q.shadows, origin, 0), d.shadow.o);
+    EXPECT_EQ(WAVETRACE_XYZ_AT(w.q.shadows, dir, 0), d.shadow.d);
     EXPECT_EQ(w.q.shadows.tmax[0], d.shadow.tmax);
-    EXPECT_EQ(w.q.shadows.contribution[0], Color(1.0f) * d.value);
+    EXPECT_EQ(WAVETRACE_XYZ_AT(w.q.shadows, contribution, 0), Color(1.0f) * d.value);
     EXPECT_EQ(w.q.shadows.pdf_light[0], d.pdf_light);
     EXPECT_EQ(w.q.shadows.pdf_bsdf[0], d.pdf_bsdf);
     // The same sample by the scalar route (sample_direct) agrees to rounding.
@@ -242,8 +242,8 @@ TEST(Kernels, LightSampleAppendsTheMegakernelsShadowRay) {
 TEST(Kernels, IntersectShadowSeesBlockersAndCountsRays) {
     World w;
     // From the floor to the light: clear. From below the lower quad up to the light: blocked.
-    w.q.shadows.store(0, {{0, 1e-3f, 0}, {0, 1, 0}, 0.99f, Color(1.0f), 1.0f, 0.0f, 0});
-    w.q.shadows.store(1, {{0, -2, 0}, {0, 1, 0}, 2.99f, Color(1.0f), 1.0f, 0.0f, 1});
+    store_shadow_ray(w.q.shadows, 0, {{0, 1e-3f, 0}, {0, 1, 0}, 0.99f, Color(1.0f), 1.0f, 0.0f, 0});
+    store_shadow_ray(w.q.shadows, 1, {{0, -2, 0}, {0, 1, 0}, 2.99f, Color(1.0f), 1.0f, 0.0f, 1});
     generate(*w.in, 0, 0, 0, 2, w.q.paths, w.q.rays);  // the paths' (empty) media
     const uint64_t rays =
         intersect_shadow(w.bvh, *w.in, w.q.shadows, w.q.paths, 0, 2, w.q.transmittance);
@@ -261,8 +261,8 @@ TEST(Kernels, MisCombineWeightsEachContributionAndAddsItToItsPath) {
         generate(*w.in, 0, 0, 0, 4, w.q.paths, w.q.rays);
         w.q.paths.radiance[2] = Color(1.0f);
         // Shadow rays with light and BSDF densities 2 and 1 (power heuristic: 4/5), one blocked.
-        w.q.shadows.store(0, {{}, {}, 1.0f, Color(2, 4, 8), 2.0f, 1.0f, 2});
-        w.q.shadows.store(1, {{}, {}, 1.0f, Color(1, 1, 1), 2.0f, 1.0f, 0});
+        store_shadow_ray(w.q.shadows, 0, {{}, {}, 1.0f, Color(2, 4, 8), 2.0f, 1.0f, 2});
+        store_shadow_ray(w.q.shadows, 1, {{}, {}, 1.0f, Color(1, 1, 1), 2.0f, 1.0f, 0});
         const float tr[] = {0.5f, 0.0f};
         // Emission found by a BSDF-sampled segment (densities 1 and 3: power weight 1/10) and by
         // a camera ray (full weight).

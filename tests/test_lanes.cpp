@@ -66,8 +66,8 @@ Vertex lane_vertex_at(Point3 p, Dim u, LaneKind kind) {
 
 // Lambertian, rough metal and medium vertices around the lights of `scene`, quads and spheres
 // (the vertices outside them): the vector light samples give next_event's shadow rays,
-// unweighted contributions and densities bit for bit. Counts in *spheres the rows whose light
-// was a sphere.
+// unweighted contributions (times beta) and densities bit for bit, packed in row order. Counts in
+// *spheres the rows whose light was a sphere.
 void expect_light_samples_are_next_event(const Scene& scene, size_t* spheres) {
     const LightSet lights(scene);
     const size_t n = 59;
@@ -96,8 +96,12 @@ void expect_light_samples_are_next_event(const Scene& scene, size_t* spheres) {
     for (int64_t target : wide_simd_targets()) {
         use_wide_simd_target(target);
         SCOPED_TRACE(wide_simd_target());
+        LightSampleQueue queue;
+        queue.resize(n);
         LightSampleBlock block;
-        block.n = 0;
+        block.queue = &queue;
+        block.first = 0;
+        block.n = n;
         for (size_t k = 0; k < n; ++k) {
             const Case& c = cases[k];
             ASSERT_TRUE(samples_lights(config, c.v, lights));
@@ -106,39 +110,41 @@ void expect_light_samples_are_next_event(const Scene& scene, size_t* spheres) {
             const int32_t sphere = quad < 0 ? sphere_light_sample_at(c.v, lights, light) : -1;
             ASSERT_TRUE(quad >= 0 || sphere >= 0);
             *spheres += sphere >= 0;
-            const size_t row = block.n++;
-            for (int a = 0; a < 3; ++a) {
-                block.p[a][row] = c.v.p[a];
-                block.ng[a][row] = c.v.ng[a];
-                block.ns[a][row] = c.v.frame.n[a];
-                block.wo[a][row] = c.wo[a];
-                block.albedo[a][row] = c.v.bsdf.albedo[a];
-            }
-            block.alpha[row] = c.v.bsdf.alpha;
-            block.lobe[row] = int32_t(lane_lobe(c.v.bsdf.kind));
-            block.quad[row] = quad;
-            block.sphere[row] = sphere;
-            block.select_prob[row] = light.probability;
-            block.u1[row] = c.u.light_u;
-            block.u2[row] = c.u.light_v;
+            store_queued_vertex(
+                queue, k,
+                {uint32_t(k), c.v.p, c.v.ng, c.v.frame.n, c.wo, c.v.bsdf.albedo, c.v.bsdf.alpha,
+                 c.v.bsdf.kind, c.beta, c.u.light_select, c.u.light_u, c.u.light_v});
+            block.lobe[k] = int32_t(lane_lobe(c.v.bsdf.kind));
+            block.quad[k] = quad;
+            block.sphere[k] = sphere;
+            block.select_prob[k] = light.probability;
         }
-        sample_lights_in_lanes(block, lights);
+        ShadowQueue shadows;
+        shadows.resize(n + 1);
+        shadows.path[n] = 12345;  // past the rows' shadows: left alone
+        const size_t count = sample_lights_in_lanes(block, lights, shadows, 0);
+        size_t s = 0;  // the valid rows' shadow rays, in row order
         for (size_t k = 0; k < n; ++k) {
             const Case& c = cases[k];
             const DirectSample d = next_event(scene, lights, config, c.v, c.wo, c.u);
-            ASSERT_EQ(d.valid, block.valid[k] != 0) << "row " << k;
             if (!d.valid) {
                 ++skipped;
                 continue;
             }
             ++appended;
-            EXPECT_TRUE(same_bits(d.shadow.o, block_row(block.origin, k))) << "row " << k;
-            EXPECT_TRUE(same_bits(d.shadow.d, block_row(block.wi, k))) << "row " << k;
-            EXPECT_TRUE(same_bits(d.shadow.tmax, block.tmax[k])) << "row " << k;
-            EXPECT_TRUE(same_bits(d.value, block_row(block.value, k))) << "row " << k;
-            EXPECT_TRUE(same_bits(d.pdf_light, block.pdf_light[k])) << "row " << k;
-            EXPECT_TRUE(same_bits(d.pdf_bsdf, block.pdf_bsdf[k])) << "row " << k;
+            ASSERT_LT(s, count) << "row " << k;
+            ASSERT_EQ(shadows.path[s], k);
+            EXPECT_TRUE(same_bits(d.shadow.o, WAVETRACE_XYZ_AT(shadows, origin, s))) << "row " << k;
+            EXPECT_TRUE(same_bits(d.shadow.d, WAVETRACE_XYZ_AT(shadows, dir, s))) << "row " << k;
+            EXPECT_TRUE(same_bits(d.shadow.tmax, shadows.tmax[s])) << "row " << k;
+            EXPECT_TRUE(same_bits(c.beta * d.value, WAVETRACE_XYZ_AT(shadows, contribution, s)))
+                << "row " << k;
+            EXPECT_TRUE(same_bits(d.pdf_light, shadows.pdf_light[s])) << "row " << k;
+            EXPECT_TRUE(same_bits(d.pdf_bsdf, shadows.pdf_bsdf[s])) << "row " << k;
+            ++s;
         }
+        EXPECT_EQ(s, count);
+        EXPECT_EQ(shadows.path[n], 12345u);
     }
     use_wide_simd_target(0);
     EXPECT_GT(appended, 0u);
@@ -403,6 +409,34 @@ TEST(Lanes, MisWeightKeepsItsGuards) {
 }
 
 // Camera rays of a pinhole and of a thin-lens camera: the vector ones are generate_camera_ray's.
+// mis_combine's weights of a queue's shadow rays, a vector at a time: direct_weight's, bit for
+// bit, for every strategy and heuristic, guards included (zero and infinite densities), over
+// lengths that end in a partial vector.
+TEST(Lanes, DirectWeightsAreDirectWeightOnEverySimdTarget) {
+    const size_t n = 61;
+    std::vector<float> pl(n), pb(n), w(n);
+    for (uint32_t i = 0; i < n; ++i) {
+        pl[i] = i % 11 == 0 ? 0.0f : i % 13 == 0 ? kInfinity : 10.0f * sample_1d(4, i, 0, 0);
+        pb[i] = i % 7 == 0 ? 0.0f : i % 17 == 0 ? kInfinity : 10.0f * sample_1d(4, i, 0, 1);
+    }
+    for (int64_t target : wide_simd_targets()) {
+        use_wide_simd_target(target);
+        SCOPED_TRACE(wide_simd_target());
+        for (Strategy st :
+             {Strategy::Bsdf, Strategy::Light, Strategy::Mixture, Strategy::Nee, Strategy::Mis})
+            for (MisHeuristic h : {MisHeuristic::Power, MisHeuristic::Balance})
+                for (size_t m : {n, size_t(3), size_t(0)}) {
+                    std::fill(w.begin(), w.end(), -1.0f);
+                    direct_weights(st, h, pl.data(), pb.data(), m, w.data());
+                    for (size_t k = 0; k < n; ++k)
+                        ASSERT_TRUE(
+                            same_bits(w[k], k < m ? direct_weight(st, h, pl[k], pb[k]) : -1.0f))
+                            << to_string(st) << " row " << k << " of " << m;
+                }
+    }
+    use_wide_simd_target(0);
+}
+
 TEST(Lanes, CameraRaysAreTheScalarOnesOnEverySimdTarget) {
     for (float aperture : {0.0f, 0.5f}) {
         Camera camera;

@@ -8,6 +8,8 @@
 #include "sampling/sampler.h"
 #include "sampling/warp.h"
 #include "shading/lights.h"
+#include "shading/path_vertex.h"
+#include "wavetrace/accel/bvh.h"
 #include "temp_dir.h"
 #include "wavetrace/image/image.h"
 #include "wavetrace/scene/scene.h"
@@ -177,4 +179,54 @@ TEST(Lights, SelectionFollowsPower) {
     LightSet lights(s);
     EXPECT_NEAR(lights.selection_probability(PrimRef::make(PrimKind::Quad, 0)), 0.6f, 1e-6f);
     EXPECT_NEAR(lights.selection_probability(PrimRef::make(PrimKind::Quad, 1)), 0.4f, 1e-6f);
+}
+
+// MIS is unbiased only while the density a light sample had equals the density that weighting
+// emission found by a BSDF-sampled ray assigns to the same point. For every light kind: a light
+// sample from the reference point, then the ray along its direction resolved as either engine
+// resolves a segment (resolve_segment, under MIS, after a vertex that sampled lights) finds that
+// emitter (or the background) with the sampler's density; and where next_event takes the sample
+// in SIMD lanes (quads, spheres from outside, at a Lambertian vertex facing the light) its
+// density is the same too.
+TEST(Lights, PdfOfEmissionFoundIsTheSamplersPdf) {
+    TempDir dir;
+    Estimator mis;
+    mis.strategy = Strategy::Mis;
+    for (LightCase& c : cases(dir)) {
+        const LightSet lights(c.scene);
+        const Bvh bvh = Bvh::build(c.scene);
+        size_t compared = 0;
+        for (uint32_t i = 0; i < 2000; ++i) {
+            const float us = u(17, i, 0), u1 = u(17, i, 1), u2 = u(17, i, 2);
+            const LightSample ls = lights.sample(c.scene, c.ref, us, u1, u2);
+            ASSERT_TRUE(ls.valid) << c.name;
+            if (max_component(ls.radiance) <= 0.0f) continue;  // a back face: nothing is found
+            const Ray ray{c.ref, ls.wi};
+            MediumStack media;
+            float flight = 0.0f;
+            const SegmentResult seg =
+                resolve_segment(c.scene, lights, mis, ray, bvh.intersect(ray), media, flight,
+                                PreviousVertex{c.ref, 1.0f, false});
+            ASSERT_EQ(seg.event, SegmentEvent::Emission) << c.name << " sample " << i;
+            EXPECT_NEAR(seg.emission_pdf_light, ls.pdf, 1e-3f * ls.pdf) << c.name << " " << i;
+
+            Vertex v;
+            v.p = c.ref;
+            v.ng = ls.wi;
+            v.frame = Frame::from_normal(ls.wi);
+            v.bsdf.albedo = Color(0.5f);
+            VertexSamples vs{};
+            vs.light_select = us;
+            vs.light_u = u1;
+            vs.light_v = u2;
+            const DirectSample d = next_event(c.scene, lights, mis, v, ls.wi, vs);
+            ASSERT_TRUE(d.valid) << c.name << " " << i;
+            EXPECT_NEAR(d.pdf_light, ls.pdf, 1e-4f * ls.pdf) << c.name << " " << i;
+            ++compared;
+        }
+        if (c.name == "quad-behind")
+            EXPECT_EQ(compared, 0u);  // it sees only the light's back
+        else
+            EXPECT_GT(compared, 1000u) << c.name;
+    }
 }

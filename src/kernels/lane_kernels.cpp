@@ -13,6 +13,7 @@
 #include "scene/camera_ray-inl.h"
 #include "shading/light_sample-inl.h"
 #include "shading/medium_flight-inl.h"
+#include "shading/mis-inl.h"
 #include "shading/sphere_light-inl.h"
 #include "shading/surface_point-inl.h"
 #include "shading/surface_step-inl.h"
@@ -275,33 +276,44 @@ void StepVertices(VertexBlock* b) {
     }
 }
 
-void SampleLights(LightSampleBlock* b,
-                  const QuadEmitterColumns* quads,
-                  const SphereEmitterColumns* spheres) {
+// Rows k .. k + Lanes(d) of a queue's column; rows at or past n repeat row 0, so that the last
+// vector computes on ordinary values and reads nothing past the rows.
+template <class D>
+HWY_INLINE hn::Vec<D> LoadColumn(D d, const float* column, size_t k, size_t n) {
+    const size_t N = hn::Lanes(d);
+    if (k + N <= n) return hn::LoadU(d, column + k);
+    HWY_ALIGN float rows[kShadeChunk];
+    for (size_t j = 0; j < N; ++j) rows[j] = column[k + j < n ? k + j : 0];
+    return hn::Load(d, rows);
+}
+
+size_t SampleLights(LightSampleBlock* b,
+                    const QuadEmitterColumns* quads,
+                    const SphereEmitterColumns* spheres,
+                    ShadowQueue* shadows,
+                    size_t first_shadow) {
     using D = hn::CappedTag<float, kShadeChunk>;
     using L = FloatLanes<D>;
     using F = hn::Vec<D>;
     const D d;
     const hn::RebindToSigned<D> di;
+    const hn::RebindToUnsigned<D> du;
     const size_t N = hn::Lanes(d);
-    if (b->n == 0) return;
-    const size_t padded = Padded(b->n, N);
-    PadTail3({b->p, b->ng, b->ns, b->wo, b->albedo}, b->n, padded);
-    PadTail<float>({b->select_prob, b->u1, b->u2, b->alpha}, b->n, padded);
-    PadTail<int32_t>({b->lobe, b->quad, b->sphere}, b->n, padded);
-    for (size_t k = 0; k < b->n; k += N) {
-        const LobeMasks<D> lobes = LobesAt(d, b->lobe, k);
-        const F u1 = hn::Load(d, b->u1 + k), u2 = hn::Load(d, b->u2 + k);
-        const LightSampleVertex<L> v{Load3(d, b->p, k),
-                                     Load3(d, b->ng, k),
-                                     Load3(d, b->ns, k),
-                                     Load3(d, b->wo, k),
-                                     Load3(d, b->albedo, k),
-                                     hn::Load(d, b->alpha + k),
-                                     lobes.metal,
-                                     lobes.phase,
-                                     u1,
-                                     u2};
+    const size_t n = b->n;
+    if (n == 0) return 0;
+    const LightSampleQueue& q = *b->queue;
+    const size_t at = b->first;
+    PadTail<float>({b->select_prob}, n, Padded(n, N));
+    PadTail<int32_t>({b->lobe, b->quad, b->sphere}, n, Padded(n, N));
+    size_t s = first_shadow;
+    for (size_t k = 0; k < n; k += N) {
+        auto column = [&](const std::vector<float>& c) {
+            return LoadColumn(d, c.data() + at, k, n);
+        };
+        auto column3 = [&](const std::vector<float>& x, const std::vector<float>& y,
+                           const std::vector<float>& z) {
+            return V3<F>{column(x), column(y), column(z)};
+        };
         // Each row's own quad or sphere light: gathered from the columns, or broadcast when the
         // rows share one light (a scene with one light, or a chunk whose samples picked the
         // same), which saves the gathers.
@@ -309,13 +321,26 @@ void SampleLights(LightSampleBlock* b,
         const auto sphere = hn::Load(di, b->sphere + k);
         const auto has_quad = hn::RebindMask(d, hn::Gt(quad, hn::Set(di, -1)));
         const auto has_sphere = hn::RebindMask(d, hn::Gt(sphere, hn::Set(di, -1)));
+        const auto has_light = hn::Or(has_quad, has_sphere);
+        if (hn::AllFalse(d, has_light)) continue;
+        const LobeMasks<D> lobes = LobesAt(d, b->lobe, k);
+        const F u1 = column(q.u1), u2 = column(q.u2);
+        const LightSampleVertex<L> v{column3(q.p_x, q.p_y, q.p_z),
+                                     column3(q.ng_x, q.ng_y, q.ng_z),
+                                     column3(q.ns_x, q.ns_y, q.ns_z),
+                                     column3(q.wo_x, q.wo_y, q.wo_z),
+                                     column3(q.albedo_x, q.albedo_y, q.albedo_z),
+                                     column(q.alpha),
+                                     lobes.metal,
+                                     lobes.phase,
+                                     u1,
+                                     u2};
         auto fetcher = [&](hn::Vec<decltype(di)> light) {
             const auto index = hn::Max(light, hn::Zero(di));
             const int32_t first = hn::GetLane(index);
             const bool shared = hn::AllTrue(di, hn::Eq(index, hn::Set(di, first)));
-            return [=, &d](const std::vector<float>& column) {
-                return shared ? hn::Set(d, column[size_t(first)])
-                              : hn::GatherIndex(d, column.data(), index);
+            return [=, &d](const std::vector<float>& c) {
+                return shared ? hn::Set(d, c[size_t(first)]) : hn::GatherIndex(d, c.data(), index);
             };
         };
         const F select_prob = hn::Load(d, b->select_prob + k);
@@ -330,15 +355,60 @@ void SampleLights(LightSampleBlock* b,
             point = any_quad ? SelectLightPoint<L>(has_sphere, on_sphere, point) : on_sphere;
         }
         const VertexLightSample<L> r = SampleTowards(v, point);
-        Store3(d, r.value, b->value, k);
-        hn::Store(r.pdf_light, d, b->pdf_light + k);
-        hn::Store(r.pdf_bsdf, d, b->pdf_bsdf + k);
-        Store3(d, r.origin, b->origin, k);
-        Store3(d, r.wi, b->wi, k);
-        hn::Store(r.tmax, d, b->tmax + k);
-        hn::Store(hn::IfThenElseZero(hn::RebindMask(di, r.valid), hn::Set(di, 1)), di,
-                  b->valid + k);
+        // The rows that append, packed to the queue's next entries in row order (the rows past
+        // n repeat row 0 and stay out).
+        const auto append = hn::And(hn::FirstN(d, n - k), hn::And(has_light, r.valid));
+        const size_t count = hn::CountTrue(d, append);
+        if (count == 0) continue;
+        WT_DCHECK_LE(s + count, shadows->capacity);
+        const V3<F> contribution = column3(q.beta_x, q.beta_y, q.beta_z) * r.value;
+        const F out[] = {r.origin.x,     r.origin.y,     r.origin.z,  r.wi.x,
+                         r.wi.y,         r.wi.z,         r.tmax,      contribution.x,
+                         contribution.y, contribution.z, r.pdf_light, r.pdf_bsdf};
+        float* const rows[] = {shadows->origin_x.data(),       shadows->origin_y.data(),
+                               shadows->origin_z.data(),       shadows->dir_x.data(),
+                               shadows->dir_y.data(),          shadows->dir_z.data(),
+                               shadows->tmax.data(),           shadows->contribution_x.data(),
+                               shadows->contribution_y.data(), shadows->contribution_z.data(),
+                               shadows->pdf_light.data(),      shadows->pdf_bsdf.data()};
+        constexpr size_t kRows = std::size(rows);
+        if (count == N) {  // every row appends: whole vectors
+            for (size_t j = 0; j < kRows; ++j) hn::StoreU(out[j], d, rows[j] + s);
+            std::copy(q.path.begin() + at + k, q.path.begin() + at + k + N,
+                      shadows->path.begin() + s);
+        } else {  // row by row, from the vectors stored aside
+            HWY_ALIGN float lanes[kRows][kShadeChunk];
+            HWY_ALIGN int32_t appends[kShadeChunk];
+            for (size_t j = 0; j < kRows; ++j) hn::Store(out[j], d, lanes[j]);
+            hn::Store(hn::VecFromMask(di, hn::RebindMask(di, append)), di, appends);
+            for (size_t l = 0, to = s; l < N; ++l) {
+                if (appends[l] == 0) continue;
+                for (size_t j = 0; j < kRows; ++j) rows[j][to] = lanes[j][l];
+                shadows->path[to++] = q.path[at + k + l];
+            }
+        }
+        s += count;
     }
+    return s - first_shadow;
+}
+
+void MisWeights(MisHeuristic h, const float* pdf_a, const float* pdf_b, size_t n, float* out) {
+    using D = hn::CappedTag<float, kShadeChunk>;
+    using L = FloatLanes<D>;
+    const D d;
+    const size_t N = hn::Lanes(d);
+    size_t k = 0;
+    for (; k + N <= n; k += N)
+        hn::StoreU(MisWeight<L>(h, hn::LoadU(d, pdf_a + k), hn::LoadU(d, pdf_b + k)), d, out + k);
+    if (k == n) return;
+    // The tail, through whole vectors of its values and the first row's.
+    HWY_ALIGN float a[kShadeChunk], b[kShadeChunk], w[kShadeChunk];
+    for (size_t j = 0; j < N; ++j) {
+        a[j] = pdf_a[k + j < n ? k + j : 0];
+        b[j] = pdf_b[k + j < n ? k + j : 0];
+    }
+    hn::Store(MisWeight<L>(h, hn::Load(d, a), hn::Load(d, b)), d, w);
+    std::copy(w, w + (n - k), out + k);
 }
 
 }  // namespace HWY_NAMESPACE
@@ -354,6 +424,7 @@ HWY_EXPORT(MediumSegments);
 HWY_EXPORT(ResolveSurfaceHits);
 HWY_EXPORT(StepVertices);
 HWY_EXPORT(SampleLights);
+HWY_EXPORT(MisWeights);
 
 void draw_camera_rays(const CameraRays& camera,
                       uint64_t seed,
@@ -390,21 +461,26 @@ void step_vertices(VertexBlock& b) {
     HWY_DYNAMIC_DISPATCH(StepVertices)(&b);
 }
 
-void sample_lights_in_lanes(LightSampleBlock& b, const LightSet& lights) {
-    HWY_DYNAMIC_DISPATCH(SampleLights)
-    (&b, &lights.quad_emitter_columns(), &lights.sphere_emitter_columns());
+size_t sample_lights_in_lanes(LightSampleBlock& b,
+                              const LightSet& lights,
+                              ShadowQueue& shadows,
+                              size_t first_shadow) {
+    return HWY_DYNAMIC_DISPATCH(SampleLights)(&b, &lights.quad_emitter_columns(),
+                                              &lights.sphere_emitter_columns(), &shadows,
+                                              first_shadow);
 }
 
-LaneLobe lane_lobe(MaterialKind kind) {
-    return kind == MaterialKind::Metal       ? LaneLobe::RoughMetal
-           : kind == MaterialKind::Isotropic ? LaneLobe::Phase
-                                             : LaneLobe::Lambertian;
-}
-
-MaterialKind material_kind(LaneLobe lobe) {
-    return lobe == LaneLobe::RoughMetal ? MaterialKind::Metal
-           : lobe == LaneLobe::Phase    ? MaterialKind::Isotropic
-                                        : MaterialKind::Lambertian;
+void direct_weights(Strategy strategy,
+                    MisHeuristic heuristic,
+                    const float* pdf_light,
+                    const float* pdf_bsdf,
+                    size_t n,
+                    float* out) {
+    if (strategy != Strategy::Mis) {
+        std::fill(out, out + n, 1.0f);  // direct_weight's rule
+        return;
+    }
+    HWY_DYNAMIC_DISPATCH(MisWeights)(heuristic, pdf_light, pdf_bsdf, n, out);
 }
 
 size_t VertexBlock::start_row(size_t entry_, HitShape shape_, const BsdfParams& bsdf, Color beta_) {

@@ -10,6 +10,8 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "queues/light_sample_queue.h"
+#include "queues/shadow_queue.h"
 #include "sampling/sampler.h"
 #include "shading/path_vertex.h"
 #include "wavetrace/scene/camera.h"
@@ -90,8 +92,16 @@ void medium_segments(MediumSegmentBlock& b, size_t n);
 enum class HitShape : int32_t { Given, Quad, Triangle, Sphere };
 // The BSDFs the lane formulas take (is_lane_vertex).
 enum class LaneLobe : int32_t { Lambertian, RoughMetal, Phase };
-LaneLobe lane_lobe(MaterialKind kind);
-MaterialKind material_kind(LaneLobe lobe);
+inline LaneLobe lane_lobe(MaterialKind kind) {
+    return kind == MaterialKind::Metal       ? LaneLobe::RoughMetal
+           : kind == MaterialKind::Isotropic ? LaneLobe::Phase
+                                             : LaneLobe::Lambertian;
+}
+inline MaterialKind material_kind(LaneLobe lobe) {
+    return lobe == LaneLobe::RoughMetal ? MaterialKind::Metal
+           : lobe == LaneLobe::Phase    ? MaterialKind::Isotropic
+                                        : MaterialKind::Lambertian;
+}
 
 // Vertices of a chunk that run in SIMD lanes (SoA, `n` rows): Lambertian and rough metal
 // surface vertices, and medium vertices of isotropic phase function, each given (push) or
@@ -169,33 +179,36 @@ void resolve_surface_hits(VertexBlock& b);
 // bit.
 void step_vertices(VertexBlock& b);
 
-// Light samples of a chunk of the light-sample queue towards a quad light of constant radiance,
-// or a sphere light of constant radiance seen from outside (SoA, `n` rows): next_event's
-// sample (shading/light_sample-inl.h), unweighted, bit for bit.
+// Light samples of rows [first, first + n) of the light-sample queue towards a quad light of
+// constant radiance, or a sphere light of constant radiance seen from outside: next_event's
+// sample (shading/light_sample-inl.h), unweighted, bit for bit. The vertices are read from the
+// queue where they are; the block holds what the kernel adds per row.
 struct LightSampleBlock {
-    // in: the vertex
-    alignas(64) float p[3][kShadeChunk];
-    alignas(64) float ng[3][kShadeChunk];
-    alignas(64) float ns[3][kShadeChunk];
-    alignas(64) float wo[3][kShadeChunk];
-    alignas(64) float albedo[3][kShadeChunk];
-    alignas(64) float alpha[kShadeChunk];
-    alignas(64) int32_t lobe[kShadeChunk];  // LaneLobe
-    // in: the light, as its index among the LightSet's quad emitters or its sphere emitters
-    // (-1: not that kind), its selection probability and the point's uniform numbers
+    const LightSampleQueue* queue = nullptr;
+    size_t first = 0, n = 0;
+    // the vertex's lobe (LaneLobe); the light, as its index among the LightSet's quad emitters
+    // or its sphere emitters (both -1: the row's light is another kind, not sampled here), and
+    // its selection probability
+    alignas(64) int32_t lobe[kShadeChunk];
     alignas(64) int32_t quad[kShadeChunk], sphere[kShadeChunk];
-    alignas(64) float select_prob[kShadeChunk], u1[kShadeChunk], u2[kShadeChunk];
-    size_t n = 0;
-    // out: f |cos| Le / p_light, both densities and the shadow ray, for rows with valid = 1
-    alignas(64) float value[3][kShadeChunk];
-    alignas(64) float pdf_light[kShadeChunk], pdf_bsdf[kShadeChunk];
-    alignas(64) float origin[3][kShadeChunk];
-    alignas(64) float wi[3][kShadeChunk];
-    alignas(64) float tmax[kShadeChunk];
-    alignas(64) int32_t valid[kShadeChunk];
+    alignas(64) float select_prob[kShadeChunk];
 };
 
-// Rows k < b.n of b: their light samples.
-void sample_lights_in_lanes(LightSampleBlock& b, const LightSet& lights);
+// The rows of b with a light sample that contributes (next_event's valid ones), in row order, as
+// shadow rays appended to `shadows` from entry `first_shadow` (contribution: the row's beta
+// times the sample's value); returns how many.
+size_t sample_lights_in_lanes(LightSampleBlock& b,
+                              const LightSet& lights,
+                              ShadowQueue& shadows,
+                              size_t first_shadow);
+
+// out[k] = direct_weight(strategy, heuristic, pdf_light[k], pdf_bsdf[k]) for k < n, bit for bit:
+// the MIS weights a vector at a time.
+void direct_weights(Strategy strategy,
+                    MisHeuristic heuristic,
+                    const float* pdf_light,
+                    const float* pdf_bsdf,
+                    size_t n,
+                    float* out);
 
 }  // namespace wavetrace

@@ -1,4 +1,7 @@
+#include <algorithm>
+
 #include "kernels/kernels.h"
+#include "kernels/lane_kernels.h"
 #include "shading/path_vertex.h"
 #include "util/check.h"
 
@@ -24,12 +27,19 @@ void mis_combine(const Estimator& estimator,
                             emissions.pdf_bsdf[i], emissions.pdf_light[i]);
         paths.radiance[emissions.path[i]] += emissions.radiance[i] * w;
     }
-    for (size_t i = shadowed.begin; i < shadowed.end; ++i) {
-        WT_DCHECK_LT(shadows.path[i], paths.capacity);
-        const float w = direct_weight(estimator.strategy, estimator.heuristic, shadows.pdf_light[i],
-                                      shadows.pdf_bsdf[i]);
-        if (w > 0.0f)
-            paths.radiance[shadows.path[i]] += shadows.contribution[i] * (w * transmittance[i]);
+    // The shadow rays' weights a chunk at a time, in SIMD lanes.
+    float weight[kShadeChunk];
+    for (size_t c = shadowed.begin; c < shadowed.end; c += kShadeChunk) {
+        const size_t m = std::min(kShadeChunk, shadowed.end - c);
+        direct_weights(estimator.strategy, estimator.heuristic, &shadows.pdf_light[c],
+                       &shadows.pdf_bsdf[c], m, weight);
+        for (size_t k = 0; k < m; ++k) {
+            const size_t i = c + k;
+            WT_DCHECK_LT(shadows.path[i], paths.capacity);
+            if (weight[k] > 0.0f)
+                paths.radiance[shadows.path[i]] +=
+                    WAVETRACE_XYZ_AT(shadows, contribution, i) * (weight[k] * transmittance[i]);
+        }
     }
 }
 

@@ -216,9 +216,9 @@ void append_light_sample(size_t path,
                          const VertexSamples& u,
                          ShadeOutputs& out) {
     WT_DCHECK_LT(out.light_sample_end, out.light_samples.capacity);
-    out.light_samples.store(out.light_sample_end++,
-                            {static_cast<uint32_t>(path), p, ng, ns, wo, bsdf.albedo, bsdf.alpha,
-                             bsdf.kind, beta, u.light_select, u.light_u, u.light_v});
+    store_queued_vertex(out.light_samples, out.light_sample_end++,
+                        {static_cast<uint32_t>(path), p, ng, ns, wo, bsdf.albedo, bsdf.alpha,
+                         bsdf.kind, beta, u.light_select, u.light_u, u.light_v});
 }
 
 // Route Cross: the ray goes on past the boundary, with the optical depth left after the segment.
@@ -360,18 +360,36 @@ void look_up_textures(const Scene& scene, size_t rows, Chunk& c) {
     }
 }
 
-// The light samples of the block's rows [first, last), once their vertices are resolved.
+// The light samples of the block's rows [first, last), once their vertices are resolved: the
+// block's rows copied to the queue's as they are.
 void queue_lane_light_samples(size_t first, size_t last, const Chunk& c, ShadeOutputs& out) {
     const VertexBlock& b = c.block;
+    LightSampleQueue& q = out.light_samples;
+    const size_t at = out.light_sample_end, n = last - first;
+    WT_DCHECK_LE(at + n, q.capacity);
+    auto rows = [&](const float(*block)[kShadeChunk], std::vector<float>& x, std::vector<float>& y,
+                    std::vector<float>& z) {
+        std::copy(block[0] + first, block[0] + last, x.begin() + at);
+        std::copy(block[1] + first, block[1] + last, y.begin() + at);
+        std::copy(block[2] + first, block[2] + last, z.begin() + at);
+    };
+    rows(b.p, q.p_x, q.p_y, q.p_z);
+    rows(b.ng, q.ng_x, q.ng_y, q.ng_z);
+    rows(b.ns, q.ns_x, q.ns_y, q.ns_z);
+    rows(b.wo, q.wo_x, q.wo_y, q.wo_z);
+    rows(b.albedo, q.albedo_x, q.albedo_y, q.albedo_z);
+    rows(b.beta, q.beta_x, q.beta_y, q.beta_z);
+    std::copy(b.alpha + first, b.alpha + last, q.alpha.begin() + at);
+    std::copy(b.entry + first, b.entry + last, q.path.begin() + at);
     for (size_t k = first; k < last; ++k) {
-        BsdfParams bsdf;
-        bsdf.kind = material_kind(LaneLobe(b.lobe[k]));
-        bsdf.albedo = block_row(b.albedo, k);
-        bsdf.alpha = b.alpha[k];
-        append_light_sample(b.entry[k], block_row(b.p, k), block_row(b.ng, k), block_row(b.ns, k),
-                            block_row(b.wo, k), bsdf, block_row(b.beta, k),
-                            c.samples.at(b.entry[k] - c.begin), out);
+        const size_t j = at + (k - first);
+        q.kind[j] = material_kind(LaneLobe(b.lobe[k]));
+        const VertexSamples u = c.samples.at(b.entry[k] - c.begin);
+        q.u_select[j] = u.light_select;
+        q.u1[j] = u.light_u;
+        q.u2[j] = u.light_v;
     }
+    out.light_sample_end += n;
 }
 
 // The block's continuations, back to their entries.

@@ -5,8 +5,8 @@
 
 #include <cstdint>
 
-#include "wavetrace/scene/scene.h"
 #include "shading/medium_stack.h"
+#include "wavetrace/scene/scene.h"
 
 namespace wavetrace {
 

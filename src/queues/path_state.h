@@ -6,8 +6,8 @@
 
 #include "queues/packed_media.h"
 #include "queues/soa.h"
-#include "wavetrace/math/vec3.h"
 #include "shading/path_vertex.h"
+#include "wavetrace/math/vec3.h"
 
 namespace wavetrace {
 

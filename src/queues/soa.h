@@ -58,3 +58,10 @@
         }                                                                           \
         void swap(size_t a, size_t b) { FIELDS(WAVETRACE_SOA_SWAP_) }               \
     }
+
+// A vector field as three rows (name_x, name_y, name_z), where a kernel copies or loads a block
+// of entries' vectors as whole rows; WAVETRACE_XYZ_AT reads entry i's as a Vec3.
+#define WAVETRACE_XYZ_FIELD(F, name, comment) \
+    F(float, name##_x, comment) F(float, name##_y, "") F(float, name##_z, "")
+#define WAVETRACE_XYZ_AT(queue, name, i) \
+    (Vec3{(queue).name##_x[i], (queue).name##_y[i], (queue).name##_z[i]})

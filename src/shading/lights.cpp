@@ -115,14 +115,6 @@ LightChoice LightSet::select_in_table(float u_select) const {
     return c;
 }
 
-int32_t LightSet::quad_emitter_index(LightChoice choice) const {
-    return choice.index < quad_of_.size() ? quad_of_[choice.index] : -1;
-}
-
-int32_t LightSet::sphere_emitter_index(LightChoice choice) const {
-    return choice.index < sphere_of_.size() ? sphere_of_[choice.index] : -1;
-}
-
 LightSample LightSet::sample(
     const Scene& scene, Point3 ref, float u_select, float u1, float u2) const {
     if (count_ == 0) return {};

@@ -68,10 +68,14 @@ class LightSet {
     }
     // The chosen light's index among the quad emitters if it is a quad of constant radiance,
     // else -1.
-    int32_t quad_emitter_index(LightChoice choice) const;
+    int32_t quad_emitter_index(LightChoice choice) const {
+        return choice.index < quad_of_.size() ? quad_of_[choice.index] : -1;
+    }
     const QuadEmitterColumns& quad_emitter_columns() const { return quad_columns_; }
     // The same for spheres of constant radiance.
-    int32_t sphere_emitter_index(LightChoice choice) const;
+    int32_t sphere_emitter_index(LightChoice choice) const {
+        return choice.index < sphere_of_.size() ? sphere_of_[choice.index] : -1;
+    }
     const SphereEmitterColumns& sphere_emitter_columns() const { return sphere_columns_; }
 
     // Samples a point on the chosen light as seen from `ref` with two uniform numbers.

@@ -178,10 +178,6 @@ int32_t sphere_light_sample_at(const Vertex& v, const LightSet& lights, LightCho
                                                                                             : -1;
 }
 
-int32_t quad_light_sample_at(const Vertex& v, const LightSet& lights, LightChoice choice) {
-    if (!is_lane_vertex(v)) return -1;
-    return lights.quad_emitter_index(choice);
-}
 
 DirectSample next_event(const Scene& scene,
                         const LightSet& lights,
@@ -238,29 +234,9 @@ DirectSample next_event(const Scene& scene,
     return d;
 }
 
-float emission_weight(
-    Strategy strategy, MisHeuristic heuristic, bool counts_fully, float pdf_bsdf, float pdf_light) {
-    switch (strategy) {
-        case Strategy::Bsdf:
-        case Strategy::Light:
-        case Strategy::Mixture:
-            return 1.0f;
-        case Strategy::Nee:
-            return counts_fully ? 1.0f : 0.0f;
-        case Strategy::Mis:
-            return counts_fully ? 1.0f : lanes::MisWeight<OneLane>(heuristic, pdf_bsdf, pdf_light);
-    }
-    return 0.0f;
-}
-
 float emission_weight(const Estimator& config, const PreviousVertex& prev, float pdf_light) {
     return emission_weight(config.strategy, config.heuristic, prev.counts_fully, prev.pdf_bsdf,
                            pdf_light);
-}
-
-float direct_weight(Strategy strategy, MisHeuristic heuristic, float pdf_light, float pdf_bsdf) {
-    return strategy == Strategy::Mis ? lanes::MisWeight<OneLane>(heuristic, pdf_light, pdf_bsdf)
-                                     : 1.0f;
 }
 
 bool scatters_in_medium(const Scene& scene,
@@ -335,11 +311,6 @@ SegmentResult resolve_segment(const Scene& scene,
     return r;
 }
 
-bool is_lane_vertex(const Vertex& v) {
-    if (!v.on_surface()) return v.bsdf.kind == MaterialKind::Isotropic;
-    return v.bsdf.kind == MaterialKind::Lambertian ||
-           (v.bsdf.kind == MaterialKind::Metal && v.bsdf.alpha > 0.0f);
-}
 
 bool takes_lane_step(const Estimator& config, const Vertex& v, const LightSet& lights) {
     return is_lane_vertex(v) && !one_sample_continuation(config.strategy, v, lights);

@@ -10,6 +10,7 @@
 #include "shading/bsdf.h"
 #include "shading/lights.h"
 #include "shading/medium_stack.h"
+#include "shading/mis.h"
 #include "wavetrace/accel/bvh.h"
 #include "wavetrace/math/frame.h"
 #include "wavetrace/math/ray.h"
@@ -105,11 +106,23 @@ Continuation sample_continuation(Strategy strategy,
 // Weight of emission Le found by a ray whose previous vertex chose it with BSDF density
 // pdf_bsdf, when a light sample from that vertex would have had density pdf_light.
 // `counts_fully`: a camera ray, or the previous vertex could not sample lights (delta lobes).
-float emission_weight(
-    Strategy strategy, MisHeuristic heuristic, bool counts_fully, float pdf_bsdf, float pdf_light);
+// Bsdf, Light and Mixture count all emission found (Light and Mixture weight their one-sample
+// continuation instead), NEE only where no light sample could have found it.
+inline float emission_weight(
+    Strategy strategy, MisHeuristic heuristic, bool counts_fully, float pdf_bsdf, float pdf_light) {
+    if (counts_fully || strategy == Strategy::Bsdf || strategy == Strategy::Light ||
+        strategy == Strategy::Mixture)
+        return 1.0f;
+    return strategy == Strategy::Mis ? mis_weight(heuristic, pdf_bsdf, pdf_light) : 0.0f;
+}
 
 // Weight of a next-event (shadow ray) contribution: 1 for NEE, w(p_l, p_b) for MIS.
-float direct_weight(Strategy strategy, MisHeuristic heuristic, float pdf_light, float pdf_bsdf);
+inline float direct_weight(Strategy strategy,
+                           MisHeuristic heuristic,
+                           float pdf_light,
+                           float pdf_bsdf) {
+    return strategy == Strategy::Mis ? mis_weight(heuristic, pdf_light, pdf_bsdf) : 1.0f;
+}
 
 // --- path segments ----------------------------------------------------------------------
 // What the vertex a segment starts from leaves for the emission the segment may find.
@@ -175,7 +188,13 @@ bool takes_lane_step(const Estimator& config, const Vertex& v, const LightSet& l
 // A Lambertian or rough metal surface, or a medium's isotropic phase function: the vertices the
 // lane formulas of next-event estimation towards quad and sphere lights and of the continuation
 // take.
-bool is_lane_vertex(const Vertex& v);
+inline bool is_lane_vertex(Normal3 ng, MaterialKind kind, float alpha) {
+    if (ng.x == 0 && ng.y == 0 && ng.z == 0) return kind == MaterialKind::Isotropic;  // a medium
+    return kind == MaterialKind::Lambertian || (kind == MaterialKind::Metal && alpha > 0.0f);
+}
+inline bool is_lane_vertex(const Vertex& v) {
+    return is_lane_vertex(v.ng, v.bsdf.kind, v.bsdf.alpha);
+}
 
 // The continuation of a path at a scattering vertex, Russian roulette included: the next ray,
 // the factor for the path throughput, the record for weighting emission the next segment
@@ -237,7 +256,9 @@ bool samples_lights(const Estimator& config, const Vertex& v, const LightSet& li
 // The light next_event samples at v in SIMD lanes (shading/light_sample-inl.h), as its index
 // among the LightSet's quad emitters, or -1: at a lane vertex (is_lane_vertex) that
 // samples_lights(), a chosen quad of constant radiance.
-int32_t quad_light_sample_at(const Vertex& v, const LightSet& lights, LightChoice choice);
+inline int32_t quad_light_sample_at(const Vertex& v, const LightSet& lights, LightChoice choice) {
+    return is_lane_vertex(v) ? lights.quad_emitter_index(choice) : -1;
+}
 // The same for a chosen sphere of constant radiance with v outside it (shading/sphere_light-inl.h),
 // as its index among the LightSet's sphere emitters, or -1.
 int32_t sphere_light_sample_at(const Vertex& v, const LightSet& lights, LightChoice choice);
