@@ -1,6 +1,7 @@
 // Both engines at equal settings on each benchmark scene, each with our BVH and with Embree as
 // its intersector (the megakernel with Embree is a plain Embree path tracer: the in-house
-// anchor), repetitions interleaved (A B C D A B C D) so that the machine's drift hits all alike.
+// anchor), and the wavefront's stage schedule on our BVH; repetitions interleaved (A B C D E A B
+// C D E) so that the machine's drift hits all alike.
 #include <tbb/global_control.h>
 #include <tbb/task_arena.h>
 #include <unistd.h>
@@ -62,7 +63,10 @@ void bench_engines(const Options& o, Results& r) {
                         "wavefront_embree_mpaths",
                         "megakernel_ours_over_embree",
                         "wavefront_ours_over_embree",
-                        "wavefront_over_megakernel_embree"});
+                        "wavefront_over_megakernel_embree",
+                        "stage_mpaths",
+                        "stage_over_megakernel",
+                        "stage_over_resident"});
     struct Case {
         const char* scene;
         int w, h, spp;
@@ -92,7 +96,10 @@ void bench_engines(const Options& o, Results& r) {
             cfg.seed = 1;
             cfg.estimator.max_depth = scene.render.max_depth;
             std::vector<double> ratio, mk_paths, wf_paths, mk_rays, wf_rays, mke_paths, wfe_paths,
-                mk_vs_embree, wf_vs_embree, wf_vs_mke;
+                mk_vs_embree, wf_vs_embree, wf_vs_mke, st_paths, st_vs_mk, st_vs_wf;
+            // The wavefront's stage schedule, the same kernels with each a parallel loop.
+            RenderRequest staged = cfg;
+            staged.wavefront.schedule = Schedule::Stage;
             Image mk_img, wf_img;
             for (int rep = 0; rep < reps; ++rep) {
                 RenderStats mk, wf, mke, wfe;
@@ -100,6 +107,10 @@ void bench_engines(const Options& o, Results& r) {
                 wf = render_once(scene, bvh, cfg, Engine::Wavefront, &wf_img);
                 mke = render_once(scene, embree, cfg, Engine::Megakernel);
                 wfe = render_once(scene, embree, cfg, Engine::Wavefront);
+                const RenderStats st = render_once(scene, bvh, staged, Engine::Wavefront);
+                st_paths.push_back(st.paths / st.seconds * 1e-6);
+                st_vs_mk.push_back(mk.seconds / st.seconds);
+                st_vs_wf.push_back(wf.seconds / st.seconds);
                 mke_paths.push_back(mke.paths / mke.seconds * 1e-6);
                 wfe_paths.push_back(wfe.paths / wfe.seconds * 1e-6);
                 mk_vs_embree.push_back(mke.seconds / mk.seconds);  // > 1: ours is faster
@@ -140,14 +151,19 @@ void bench_engines(const Options& o, Results& r) {
                               spread(wfe_paths).median,
                               spread(mk_vs_embree).median,
                               spread(wf_vs_embree).median,
-                              spread(wf_vs_mke).median});
+                              spread(wf_vs_mke).median,
+                              spread(st_paths).median,
+                              spread(st_vs_mk).median,
+                              spread(st_vs_wf).median});
             std::printf(
                 "engines %-10s %d thr megakernel %6.3f Mpaths/s  wavefront %6.3f Mpaths/s  "
                 "wavefront/megakernel %.2f [%.2f, %.2f] | with Embree: megakernel %6.3f, wavefront "
-                "%6.3f Mpaths/s; ours/Embree: megakernel %.2f, wavefront %.2f\n",
+                "%6.3f Mpaths/s; ours/Embree: megakernel %.2f, wavefront %.2f | stage %6.3f "
+                "Mpaths/s, stage/megakernel %.2f, stage/resident %.2f\n",
                 c.scene, threads, spread(mk_paths).median, spread(wf_paths).median, s.median, s.min,
                 s.max, spread(mke_paths).median, spread(wfe_paths).median,
-                spread(mk_vs_embree).median, spread(wf_vs_embree).median);
+                spread(mk_vs_embree).median, spread(wf_vs_embree).median, spread(st_paths).median,
+                spread(st_vs_mk).median, spread(st_vs_wf).median);
             std::fflush(stdout);
         }
 }
