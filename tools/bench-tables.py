@@ -45,6 +45,17 @@ def engines(results):
            "rel. MSE between", "peak MiB (mk / wf)"], body)
 
 
+def schedules(results):
+    body = []
+    for r in rows(results, "engines"):
+        body.append([r["scene"], r["threads"], f(r["megakernel_mpaths"]),
+                     f(r["wavefront_mpaths"]), f(r["stage_mpaths"]),
+                     f"**{f(r['ratio_median'])}**", f"**{f(r['stage_over_megakernel'])}**",
+                     f(r["stage_over_resident"])])
+    table(["scene", "threads", "megakernel Mpaths/s", "resident Mpaths/s", "stage Mpaths/s",
+           "resident / megakernel", "stage / megakernel", "stage / resident"], body)
+
+
 def bvh(results):
     by = {}
     for r in rows(results, "bvh"):
@@ -125,7 +136,7 @@ def kernels(results):
 
 def main():
     results = sys.argv[1] if len(sys.argv) > 1 else "results"
-    for title, section in [("engines", engines), ("bvh", bvh), ("scaling", scaling),
+    for title, section in [("engines", engines), ("schedules", schedules), ("bvh", bvh), ("scaling", scaling),
                            ("waves", waves), ("convergence", convergence),
                            ("kernels", kernels)]:
         print(f"<!-- {title} -->\n")

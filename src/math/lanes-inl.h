@@ -311,6 +311,17 @@ HWY_INLINE typename L::F OriginOffset(V3<typename L::F> p) {
     return L::Set(2e-5f) * (L::Set(1.0f) + m);
 }
 
+// A ray origin just off a surface at p (geometric normal ng) on the side the direction w leaves
+// towards, so that the ray does not find the surface it starts on; p itself where ng = 0 (in a
+// medium).
+template <class L>
+HWY_INLINE V3<typename L::F> OffsetRayOrigin(V3<typename L::F> p,
+                                             V3<typename L::F> ng,
+                                             V3<typename L::F> w) {
+    const typename L::F eps = OriginOffset<L>(p);
+    return p + ng * L::Select(Dot(w, ng) > L::Set(0.0f), eps, L::Neg(eps));
+}
+
 }  // namespace HWY_NAMESPACE
 }  // namespace wavetrace
 HWY_AFTER_NAMESPACE();

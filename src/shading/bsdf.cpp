@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "sampling/warp.h"
+#include "shading/diffuse-inl.h"
 #include "shading/ggx-inl.h"
 #include "wavetrace/math/constants.h"
 
@@ -38,17 +39,20 @@ float fresnel_dielectric(float cos_i, float eta) {
 
 Color bsdf_eval(const BsdfParams& b, Vec3 wo, Vec3 wi) {
     switch (b.kind) {
-        case MaterialKind::Lambertian:
-            if (wo.z * wi.z <= 0.0f) return {};
-            return b.albedo * (kInvPi * std::fabs(wi.z));
+        case MaterialKind::Lambertian: {
+            float pdf;
+            return to_vec3(lanes::LambertianEval<OneLane>(to_lanes(b.albedo), wo.z, wi.z, &pdf));
+        }
         case MaterialKind::Metal: {
             if (b.alpha == 0.0f) return {};
             float pdf;
             return to_vec3(lanes::MetalEval<OneLane>(to_lanes(b.albedo), b.alpha, to_lanes(wo),
                                                      to_lanes(wi), &pdf));
         }
-        case MaterialKind::Isotropic:
-            return b.albedo * (0.25f * kInvPi);
+        case MaterialKind::Isotropic: {
+            float pdf;
+            return to_vec3(lanes::PhaseEval<OneLane>(to_lanes(b.albedo), &pdf));
+        }
         default:
             return {};  // delta lobes, emitters and interfaces do not scatter smoothly
     }
@@ -56,8 +60,11 @@ Color bsdf_eval(const BsdfParams& b, Vec3 wo, Vec3 wi) {
 
 float bsdf_pdf(const BsdfParams& b, Vec3 wo, Vec3 wi) {
     switch (b.kind) {
-        case MaterialKind::Lambertian:
-            return wo.z * wi.z <= 0.0f ? 0.0f : kInvPi * std::fabs(wi.z);
+        case MaterialKind::Lambertian: {
+            float pdf;
+            lanes::LambertianEval<OneLane>(to_lanes(b.albedo), wo.z, wi.z, &pdf);
+            return pdf;
+        }
         case MaterialKind::Metal: {
             if (b.alpha == 0.0f) return 0.0f;
             float pdf;
@@ -66,7 +73,7 @@ float bsdf_pdf(const BsdfParams& b, Vec3 wo, Vec3 wi) {
             return pdf;
         }
         case MaterialKind::Isotropic:
-            return uniform_sphere_pdf();
+            return lanes::PhasePdf<OneLane>();
         default:
             return 0.0f;
     }
@@ -76,12 +83,13 @@ BsdfSample bsdf_sample(const BsdfParams& b, Vec3 wo, float u_lobe, float u1, flo
     BsdfSample s;
     if (wo.z == 0.0f && b.kind != MaterialKind::Isotropic) return s;
     // Reflective lobes work on wo's side of the surface: both directions mirrored into the
-    // upper hemisphere when wo is below (two-sided shading, as Ray Tracing in One Weekend's front_face flip).
+    // upper hemisphere when wo is below (two-sided shading, as Ray Tracing in One Weekend's
+    // front_face flip).
     const float side = lanes::SideOf<OneLane>(to_lanes(wo));
     switch (b.kind) {
         case MaterialKind::Lambertian: {
             s.wi = to_vec3(lanes::Upper<OneLane>(to_lanes(sample_cosine_hemisphere(u1, u2)), side));
-            s.pdf = kInvPi * std::fabs(s.wi.z);
+            s.pdf = lanes::LambertianPdf<OneLane>(s.wi.z);
             s.weight = b.albedo;
             s.valid = s.pdf > 0.0f;
             return s;
@@ -131,7 +139,7 @@ BsdfSample bsdf_sample(const BsdfParams& b, Vec3 wo, float u_lobe, float u1, flo
         }
         case MaterialKind::Isotropic:
             s.wi = sample_uniform_sphere(u1, u2);
-            s.pdf = uniform_sphere_pdf();
+            s.pdf = lanes::PhasePdf<OneLane>();
             s.weight = b.albedo;
             s.valid = true;
             return s;

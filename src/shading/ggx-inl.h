@@ -45,8 +45,8 @@ HWY_INLINE typename L::F GgxD(typename L::F hz, typename L::F alpha) {
     return L::Select(hz <= L::Set(0.0f), L::Set(0.0f), a2 / (L::Set(kPi) * t * t));
 }
 
-// Schlick's approximation with the albedo as the reflectance at normal incidence: Ray Tracing in One Weekend's
-// metal tint, made angle-dependent (Schlick 1994).
+// Schlick's approximation with the albedo as the reflectance at normal incidence: Ray Tracing in
+// One Weekend's metal tint, made angle-dependent (Schlick 1994).
 template <class L>
 HWY_INLINE V3<typename L::F> Schlick(V3<typename L::F> f0, typename L::F cos_theta) {
     using F = typename L::F;

@@ -14,6 +14,7 @@
 #endif
 
 #include "math/lanes-inl.h"
+#include "shading/diffuse-inl.h"
 #include "shading/ggx-inl.h"
 #include "shading/lights.h"
 #include "wavetrace/math/constants.h"
@@ -74,6 +75,13 @@ struct VertexLightSample {
     V3<typename L::F> origin, wi;  // the shadow ray, t in [0, tmax]
     typename L::F tmax;
 };
+
+// Where a shadow ray towards a light point at distance dist ends: 1e-4 relative short of it, so
+// that the ray does not find the light itself (a point at infinity stays there).
+template <class L>
+HWY_INLINE typename L::F ShadowRayEnd(typename L::F dist) {
+    return dist * L::Set(1.0f - 1e-4f);
+}
 
 // A point sampled on a light, seen from the vertex: the unit direction to it and its distance,
 // the density of that direction (times the light's selection probability) and the radiance
@@ -137,13 +145,8 @@ HWY_INLINE VertexLightSample<L> SampleTowards(const LightSampleVertex<L>& v,
     ok = L::And(ok, L::Or(v.phase, Dot(v.wo, v.ng) * wi_ng > zero));
     V3<F> f{zero, zero, zero};
     F pdf_bsdf = zero;
-    if (L::Any(L::Not(v.metal))) {
-        // Lambertian: f |cos| = albedo / pi |cos theta_i|.
-        const F li_z = Dot(r.wi, v.ns);
-        const auto same_side = Dot(v.wo, v.ns) * li_z > zero;
-        pdf_bsdf = L::Select(same_side, L::Set(kInvPi) * L::Abs(li_z), zero);
-        f = v.albedo * pdf_bsdf;
-    }
+    if (L::Any(L::Not(v.metal)))
+        f = LambertianEval<L>(v.albedo, Dot(v.wo, v.ns), Dot(r.wi, v.ns), &pdf_bsdf);
     if (L::Any(v.metal)) {
         V3<F> s, t;
         OrthonormalBasis<L>(v.ns, &s, &t);
@@ -155,18 +158,16 @@ HWY_INLINE VertexLightSample<L> SampleTowards(const LightSampleVertex<L>& v,
         pdf_bsdf = L::Select(v.metal, pdf_metal, pdf_bsdf);
     }
     if (L::Any(v.phase)) {
-        const F uniform = L::Set(0.25f * kInvPi);
-        f = Select3<L>(v.phase, v.albedo * uniform, f);
-        pdf_bsdf = L::Select(v.phase, uniform, pdf_bsdf);
+        F pdf_phase;
+        f = Select3<L>(v.phase, PhaseEval<L>(v.albedo, &pdf_phase), f);
+        pdf_bsdf = L::Select(v.phase, pdf_phase, pdf_bsdf);
     }
     r.pdf_bsdf = pdf_bsdf;
     ok = L::And(ok, MaxComponent<L>(f) > zero);
     r.valid = ok;
     r.value = f * l.radiance * (one / l.pdf);
-    // Stop short of the light itself: 1e-4 relative, plus the origin offset.
-    const F eps = OriginOffset<L>(v.p);
-    r.origin = v.p + v.ng * L::Select(wi_ng > zero, eps, L::Neg(eps));
-    r.tmax = l.dist * L::Set(1.0f - 1e-4f);
+    r.origin = OffsetRayOrigin<L>(v.p, v.ng, r.wi);
+    r.tmax = ShadowRayEnd<L>(l.dist);
     return r;
 }
 

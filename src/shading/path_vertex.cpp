@@ -59,8 +59,8 @@ bool can_sample_lights(const Vertex& v, const LightSet& lights) {
 
 Point3 offset_origin(const Vertex& v, Vec3 w) {
     if (!v.on_surface()) return v.p;
-    float eps = lanes::OriginOffset<OneLane>(lanes::to_lanes(v.p));
-    return v.p + (dot(w, v.ng) > 0.0f ? eps : -eps) * v.ng;
+    return lanes::to_vec3(lanes::OffsetRayOrigin<OneLane>(
+        lanes::to_lanes(v.p), lanes::to_lanes(v.ng), lanes::to_lanes(w)));
 }
 
 namespace {
@@ -101,10 +101,7 @@ DirectSample sample_direct(const Scene& scene,
     if (max_component(f) <= 0.0f) return d;
     d.value = f * ls.radiance / ls.pdf;
     d.pdf_light = ls.pdf;
-    Point3 o = offset_origin(v, ls.wi);
-    // Stop short of the light itself: 1e-4 relative, plus the origin offset.
-    float tmax = std::isinf(ls.dist) ? kInfinity : ls.dist * (1.0f - 1e-4f);
-    d.shadow = Ray{o, ls.wi, 0.0f, tmax};
+    d.shadow = Ray{offset_origin(v, ls.wi), ls.wi, 0.0f, lanes::ShadowRayEnd<OneLane>(ls.dist)};
     d.valid = true;
     return d;
 }
@@ -177,7 +174,6 @@ int32_t sphere_light_sample_at(const Vertex& v, const LightSet& lights, LightCho
     return lanes::SphereOutside<OneLane>(lanes::to_lanes(v.p), centre, c.radius[size_t(k)]) ? k
                                                                                             : -1;
 }
-
 
 DirectSample next_event(const Scene& scene,
                         const LightSet& lights,
@@ -310,7 +306,6 @@ SegmentResult resolve_segment(const Scene& scene,
     r.wo = -dir;
     return r;
 }
-
 
 bool takes_lane_step(const Estimator& config, const Vertex& v, const LightSet& lights) {
     return is_lane_vertex(v) && !one_sample_continuation(config.strategy, v, lights);

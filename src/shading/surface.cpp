@@ -11,7 +11,8 @@ namespace wavetrace {
 namespace lanes = HWY_NAMESPACE;
 using lanes::OneLane, lanes::to_lanes, lanes::to_vec3;
 
-// The sphere mapping of Ray Tracing: The Next Week: u = phi / 2 pi around -x..+z.., v = theta / pi from -y.
+// The sphere mapping of Ray Tracing: The Next Week: u = phi / 2 pi around -x..+z.., v = theta / pi
+// from -y.
 Vec2 sphere_uv(Normal3 ng) {
     const float theta = std::acos(std::fmax(-1.0f, std::fmin(1.0f, -ng.y)));
     const float phi = std::atan2(-ng.z, ng.x) + kPi;

@@ -14,6 +14,7 @@
 
 #include "math/lanes-inl.h"
 #include "sampling/warp-inl.h"
+#include "shading/diffuse-inl.h"
 #include "shading/ggx-inl.h"
 #include "wavetrace/math/constants.h"
 
@@ -69,8 +70,7 @@ HWY_INLINE StepResult<L> FinishStep(const StepVertex<L>& v,
     ok = L::And(ok, L::Or(L::AndNot(v.roulette, ok), v.u_rr < q));
     r.alive = ok;
     r.weight = weight * L::Select(v.roulette, one / q, one);
-    const F eps = OriginOffset<L>(v.p);
-    r.origin = v.p + v.ng * L::Select(wi_ng > zero, eps, L::Neg(eps));
+    r.origin = OffsetRayOrigin<L>(v.p, v.ng, wi);
     return r;
 }
 
@@ -84,7 +84,7 @@ HWY_INLINE StepResult<L> LambertianStep(const StepVertex<L>& v) {
     const F wo_z = Dot(v.wo, v.ns);
     const V3<F> h = CosineHemisphere<L>(v.u1, v.u2);
     const F wi_z = h.z * L::Select(wo_z < zero, L::Neg(one), one);
-    const F pdf = L::Set(kInvPi) * L::Abs(wi_z);
+    const F pdf = LambertianPdf<L>(wi_z);
     const V3<F> wi = s * h.x + t * h.y + v.ns * wi_z;
     return FinishStep(v, wi, v.albedo, pdf, L::And(wo_z != zero, pdf > zero));
 }
@@ -105,7 +105,7 @@ HWY_INLINE StepResult<L> MetalStep(const StepVertex<L>& v) {
 template <class L>
 HWY_INLINE StepResult<L> PhaseStep(const StepVertex<L>& v) {
     const V3<typename L::F> wi = UniformSphere<L>(v.u1, v.u2);
-    return FinishStep(v, wi, v.albedo, L::Set(0.25f * kInvPi), L::All());
+    return FinishStep(v, wi, v.albedo, PhasePdf<L>(), L::All());
 }
 
 }  // namespace HWY_NAMESPACE
