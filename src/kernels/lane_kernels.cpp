@@ -224,7 +224,6 @@ HWY_INLINE LobeMasks<D> LobesAt(D d, const int32_t* lobe, size_t k) {
 void StepVertices(VertexBlock* b) {
     using D = hn::CappedTag<float, kShadeChunk>;
     using L = FloatLanes<D>;
-    using F = hn::Vec<D>;
     const D d;
     const hn::RebindToSigned<D> di;
     const size_t N = hn::Lanes(d);
@@ -248,25 +247,19 @@ void StepVertices(VertexBlock* b) {
             hn::RebindMask(d, hn::Ne(hn::Load(di, b->roulette + k), hn::Zero(di)))};
         // Each lane's lobe: vectors of one lobe run one step, mixed ones each of theirs.
         const LobeMasks<D> lobes = LobesAt(d, b->lobe, k);
-        StepResult<L> r;
-        bool first = true;
-        auto take = [&](hn::Mask<D> m, auto lobe_step) {
-            if (hn::AllFalse(d, m)) return;
-            const StepResult<L> s = lobe_step(v);
-            if (first) {
-                r = s;
-                first = false;
-                return;
-            }
+        // The first lobe present gives the vector's result, the others' lanes are selected in.
+        const bool lambertian = !hn::AllFalse(d, lobes.lambertian),
+                   metal = !hn::AllFalse(d, lobes.metal), phase = !hn::AllFalse(d, lobes.phase);
+        StepResult<L> r = lambertian ? LambertianStep(v) : metal ? MetalStep(v) : PhaseStep(v);
+        auto take = [&](hn::Mask<D> m, const StepResult<L>& s) {
             r.alive = hn::Or(hn::And(m, s.alive), hn::AndNot(m, r.alive));
             r.origin = Select3<L>(m, s.origin, r.origin);
             r.wi = Select3<L>(m, s.wi, r.wi);
             r.weight = Select3<L>(m, s.weight, r.weight);
             r.pdf = hn::IfThenElse(m, s.pdf, r.pdf);
         };
-        take(lobes.lambertian, [](const StepVertex<L>& x) { return LambertianStep(x); });
-        take(lobes.metal, [](const StepVertex<L>& x) { return MetalStep(x); });
-        take(lobes.phase, [](const StepVertex<L>& x) { return PhaseStep(x); });
+        if (lambertian && metal) take(lobes.metal, MetalStep(v));
+        if ((lambertian || metal) && phase) take(lobes.phase, PhaseStep(v));
         Store3(d, r.origin, b->origin, k);
         Store3(d, r.wi, b->wi, k);
         Store3(d, r.weight, b->weight, k);
@@ -297,7 +290,6 @@ size_t SampleLights(LightSampleBlock* b,
     using F = hn::Vec<D>;
     const D d;
     const hn::RebindToSigned<D> di;
-    const hn::RebindToUnsigned<D> du;
     const size_t N = hn::Lanes(d);
     const size_t n = b->n;
     if (n == 0) return 0;
@@ -562,16 +554,6 @@ size_t VertexBlock::push_triangle_hit(size_t entry_,
     }
     smooth[k] = normals ? 1 : 0;
     return k;
-}
-
-void VertexBlock::set_step(size_t row,
-                           const ContinuationSamples& u,
-                           float u_roulette,
-                           bool applies) {
-    u1[row] = u.bsdf_u1;
-    u2[row] = u.bsdf_u2;
-    u_rr[row] = u_roulette;
-    roulette[row] = applies ? 1 : 0;
 }
 
 }  // namespace wavetrace

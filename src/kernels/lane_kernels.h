@@ -165,7 +165,12 @@ struct VertexBlock {
                              const BsdfParams& bsdf,
                              Color beta);
     // Row `row`'s continuation samples; roulette: whether Russian roulette applies.
-    void set_step(size_t row, const ContinuationSamples& u, float u_roulette, bool roulette);
+    void set_step(size_t row, const ContinuationSamples& u, float u_roulette, bool applies) {
+        u1[row] = u.bsdf_u1;
+        u2[row] = u.bsdf_u2;
+        u_rr[row] = u_roulette;
+        roulette[row] = applies ? 1 : 0;
+    }
 
   private:
     size_t start_row(size_t entry, HitShape shape, const BsdfParams& bsdf, Color beta);
