@@ -224,9 +224,10 @@ TEST(Lights, PdfOfEmissionFoundIsTheSamplersPdf) {
             EXPECT_NEAR(d.pdf_light, ls.pdf, 1e-4f * ls.pdf) << c.name << " " << i;
             ++compared;
         }
-        if (c.name == "quad-behind")
+        if (c.name == "quad-behind") {
             EXPECT_EQ(compared, 0u);  // it sees only the light's back
-        else
+        } else {
             EXPECT_GT(compared, 1000u) << c.name;
+        }
     }
 }

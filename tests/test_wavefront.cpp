@@ -129,7 +129,9 @@ TEST(Wavefront, StageScheduleEqualsResidentBitForBit) {
             RenderStats rs, ss;
             const Image a = wavefront_film(scene, bvh, c, resident, &rs).mean();
             const Image b = wavefront_film(scene, bvh, c, stage, &ss).mean();
-            if (scene.media.empty()) EXPECT_EQ(rs.rays, ss.rays) << name << " " << to_string(st);
+            if (scene.media.empty()) {
+                EXPECT_EQ(rs.rays, ss.rays) << name << " " << to_string(st);
+            }
             for (size_t i = 0; i < a.pixels.size(); ++i)
                 ASSERT_EQ(a.pixels[i], b.pixels[i])
                     << name << " " << to_string(st) << " pixel " << i;

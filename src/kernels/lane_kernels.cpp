@@ -389,18 +389,16 @@ void MisWeights(MisHeuristic h, const float* pdf_a, const float* pdf_b, size_t n
     using L = FloatLanes<D>;
     const D d;
     const size_t N = hn::Lanes(d);
-    size_t k = 0;
-    for (; k + N <= n; k += N)
-        hn::StoreU(MisWeight<L>(h, hn::LoadU(d, pdf_a + k), hn::LoadU(d, pdf_b + k)), d, out + k);
-    if (k == n) return;
-    // The tail, through whole vectors of its values and the first row's.
-    HWY_ALIGN float a[kShadeChunk], b[kShadeChunk], w[kShadeChunk];
-    for (size_t j = 0; j < N; ++j) {
-        a[j] = pdf_a[k + j < n ? k + j : 0];
-        b[j] = pdf_b[k + j < n ? k + j : 0];
+    for (size_t k = 0; k < n; k += N) {
+        const auto w = MisWeight<L>(h, LoadColumn(d, pdf_a, k, n), LoadColumn(d, pdf_b, k, n));
+        if (k + N <= n) {
+            hn::StoreU(w, d, out + k);
+        } else {  // the tail's rows of the last vector
+            HWY_ALIGN float rows[kShadeChunk];
+            hn::Store(w, d, rows);
+            std::copy(rows, rows + (n - k), out + k);
+        }
     }
-    hn::Store(MisWeight<L>(h, hn::Load(d, a), hn::Load(d, b)), d, w);
-    std::copy(w, w + (n - k), out + k);
 }
 
 }  // namespace HWY_NAMESPACE

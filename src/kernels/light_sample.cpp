@@ -48,10 +48,8 @@ size_t light_sample(const WaveInputs& in,
             block.lobe[row] = int32_t(lane_lobe(queue.kind[i]));
             block.select_prob[row] = light.probability;
             block.sphere[row] = -1;
-            // quad_light_sample_at, without building the vertex
-            const bool lane =
-                is_lane_vertex(WAVETRACE_XYZ_AT(queue, ng, i), queue.kind[i], queue.alpha[i]);
-            block.quad[row] = lane ? in.lights.quad_emitter_index(light) : -1;
+            block.quad[row] = quad_light_sample_at(WAVETRACE_XYZ_AT(queue, ng, i), queue.kind[i],
+                                                   queue.alpha[i], in.lights, light);
             if (block.quad[row] >= 0) continue;
             Vertex v = queued_vertex(queue, i);
             block.sphere[row] = sphere_light_sample_at(v, in.lights, light);

@@ -133,18 +133,6 @@ bool lane_vertices_sample_lights(const WaveInputs& in) {
     return (s == Strategy::Nee || s == Strategy::Mis) && !in.lights.empty();
 }
 
-MaterialId hit_material(const Scene& scene, PrimRef prim) {
-    switch (prim.kind()) {
-        case PrimKind::Quad:
-            return scene.quads[prim.index()].material;
-        case PrimKind::Triangle:
-            return scene.meshes[scene.triangles[prim.index()].mesh].material;
-        case PrimKind::Sphere:
-            return scene.spheres[prim.index()].material;
-    }
-    return kNone;
-}
-
 // The route of each of the chunk's entries.
 void classify(const WaveInputs& in, const HitQueue& hits, const PathQueue& paths, Chunk& c) {
     const Scene& scene = in.scene;
@@ -163,7 +151,7 @@ void classify(const WaveInputs& in, const HitQueue& hits, const PathQueue& paths
             const PrimRef prim = hits.prim[i];
             if (!prim.valid())
                 return scene.background.is_black() ? ShadeRoute::End : ShadeRoute::Resolve;
-            const MaterialId m = hit_material(scene, prim);
+            const MaterialId m = scene.prim_material(prim);
             if (scene.is_boundary(m)) return ShadeRoute::Cross;
             // Textured meshes stay scalar: their texture coordinates come from the mesh's
             // vertices.

@@ -246,18 +246,6 @@ Aabb Scene::bounds() const {
     return box;
 }
 
-MaterialId Scene::prim_material(PrimRef prim) const {
-    switch (prim.kind()) {
-        case PrimKind::Triangle:
-            return meshes[triangles[prim.index()].mesh].material;
-        case PrimKind::Quad:
-            return quads[prim.index()].material;
-        case PrimKind::Sphere:
-            return spheres[prim.index()].material;
-    }
-    return kNone;
-}
-
 MediumId Scene::prim_interior(PrimRef prim) const {
     switch (prim.kind()) {
         case PrimKind::Triangle:

@@ -96,7 +96,18 @@ struct Scene {
     size_t primitive_count() const { return spheres.size() + quads.size() + triangles.size(); }
     Aabb bounds() const;
     Aabb prim_bounds(PrimRef prim) const;
-    MaterialId prim_material(PrimRef prim) const;
+    // Inline: the wavefront's shade asks it of every hit.
+    MaterialId prim_material(PrimRef prim) const {
+        switch (prim.kind()) {
+            case PrimKind::Triangle:
+                return meshes[triangles[prim.index()].mesh].material;
+            case PrimKind::Quad:
+                return quads[prim.index()].material;
+            case PrimKind::Sphere:
+                return spheres[prim.index()].material;
+        }
+        return kNone;
+    }
     MediumId prim_interior(PrimRef prim) const;
     float prim_area(PrimRef prim) const;
     // Whether `material` (kNone: no) marks a medium boundary, an Interface with no surface.
