@@ -12,6 +12,7 @@
 
 #include "kernels/kernels.h"
 #include "kernels/lane_kernels.h"
+#include "shading/lane_routes.h"
 #include "shading/path_vertex.h"
 #include "wavetrace/wavetrace.h"
 

@@ -11,6 +11,7 @@
 #include "kernels/lane_kernels.h"
 #include "sampling/sampler.h"
 #include "sampling/warp.h"
+#include "shading/lane_routes.h"
 #include "shading/lights.h"
 #include "shading/mis.h"
 #include "shading/path_vertex.h"

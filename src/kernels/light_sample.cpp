@@ -5,6 +5,7 @@
 
 #include "kernels/kernels.h"
 #include "kernels/lane_kernels.h"
+#include "shading/lane_routes.h"
 #include "shading/path_vertex.h"
 #include "util/check.h"
 

@@ -32,6 +32,16 @@ HWY_INLINE V3<typename L::F> UniformSphere(typename L::F u1, typename L::F u2) {
     const typename L::F r = L::Sqrt(L::Max(L::Set(0.0f), L::Set(1.0f) - z * z));
     return {r * cos_phi, r * sin_phi, z};
 }
+
+// A density per unit area turned into one per unit solid angle at a point distance^2 = dist2
+// away, seen at |cos theta| = cos_l from the surface's normal: p_w = p_A r^2 / |cos theta|
+// (Veach 1997, eq. 8.10), here for the uniform density 1 / area.
+template <class L>
+HWY_INLINE typename L::F UniformAreaToSolidAngle(typename L::F dist2,
+                                                 typename L::F cos_l,
+                                                 typename L::F area) {
+    return dist2 / (cos_l * area);
+}
 }  // namespace HWY_NAMESPACE
 }  // namespace wavetrace
 HWY_AFTER_NAMESPACE();

@@ -42,6 +42,14 @@ inline float uniform_cone_pdf(float cos_max) {
     return 1.0f / (2.0f * kPi * (1.0f - cos_max));
 }
 
+// The density per unit solid angle of a point drawn uniformly on a surface of area `area`,
+// distance^2 = dist2 away, seen at |cos theta| = cos_l. (The one-lane instance of
+// UniformAreaToSolidAngle.)
+inline float uniform_area_to_solid_angle(float dist2, float cos_l, float area) {
+    namespace lanes = HWY_NAMESPACE;
+    return lanes::UniformAreaToSolidAngle<lanes::OneLane>(dist2, cos_l, area);
+}
+
 // Uniform barycentrics (b1, b2) on a triangle (the square-root warp). pdf = 1 / area.
 inline void sample_uniform_triangle(float u1, float u2, float* b1, float* b2) {
     float s = std::sqrt(u1);

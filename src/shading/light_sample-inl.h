@@ -14,7 +14,9 @@
 #endif
 
 #include "math/lanes-inl.h"
+#include "sampling/warp-inl.h"
 #include "shading/diffuse-inl.h"
+#include "shading/geometric_side-inl.h"
 #include "shading/ggx-inl.h"
 #include "shading/lights.h"
 #include "wavetrace/math/constants.h"
@@ -119,7 +121,7 @@ HWY_INLINE LightPoint<L> QuadLightPoint(V3<typename L::F> ref,
     r.dist = L::Sqrt(dist2);
     r.wi = d * (one / r.dist);
     const F cos_l = L::Abs(Dot(e.n, r.wi));
-    r.pdf = dist2 / (cos_l * e.area) * e.select_prob;
+    r.pdf = UniformAreaToSolidAngle<L>(dist2, cos_l, e.area) * e.select_prob;
     const auto emits = L::Or(Dot(d, e.n) < zero, e.two_sided);
     r.radiance = Select3<L>(emits, e.radiance, V3<F>{zero, zero, zero});
     r.valid = L::And(L::And(dist2 > zero, cos_l > zero), L::And(L::IsFinite(r.pdf), r.pdf > zero));
@@ -138,11 +140,10 @@ HWY_INLINE VertexLightSample<L> SampleTowards(const LightSampleVertex<L>& v,
     r.wi = l.wi;
     r.pdf_light = l.pdf;
     auto ok = l.valid;
-    // The BSDF's f |cos| and density, zero unless wo and wi lie on one side of the geometric
-    // surface (eval_world) and of the shading surface (each lobe); in a medium, the phase
-    // function's f = albedo / (4 pi), the density of a uniform direction.
-    const F wi_ng = Dot(r.wi, v.ng);
-    ok = L::And(ok, L::Or(v.phase, Dot(v.wo, v.ng) * wi_ng > zero));
+    // The BSDF's f |cos| and density, zero where wi leaves through the geometric surface
+    // (eval_world) or the shading surface (each lobe); in a medium, the phase function's
+    // f = albedo / (4 pi), the density of a uniform direction.
+    ok = L::AndNot(CrossesGeometricSurface<L>(v.wo, r.wi, v.ng), ok);
     V3<F> f{zero, zero, zero};
     F pdf_bsdf = zero;
     if (L::Any(L::Not(v.metal)))

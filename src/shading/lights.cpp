@@ -188,10 +188,9 @@ LightSample LightSet::sample(
     ls.wi = d / ls.dist;
     SurfaceHit sh = surface_at(scene, Ray{ref, d}, hit);
     if (pdf_solid == 0.0f) {
-        // Uniform by area, converted to solid angle: p_w = r^2 / (|cos theta_l| A).
         float cos_l = std::fabs(dot(sh.ng, ls.wi));
         if (cos_l <= 0.0f) return ls;
-        pdf_solid = dist2 / (cos_l * scene.prim_area(prim));
+        pdf_solid = uniform_area_to_solid_angle(dist2, cos_l, scene.prim_area(prim));
     }
     ls.radiance = emitted_radiance(scene, sh);
     ls.pdf = pdf_solid * select_prob;
@@ -224,7 +223,7 @@ float LightSet::prim_pdf_given_selection(
     }
     float cos_l = std::fabs(dot(normalize(n), wi));
     if (cos_l <= 0.0f) return 0.0f;
-    return dist * dist / (cos_l * scene.prim_area(prim));
+    return uniform_area_to_solid_angle(dist * dist, cos_l, scene.prim_area(prim));
 }
 
 float LightSet::pdf_prim(const Scene& scene, Point3 ref, PrimRef prim, Vec3 wi, float dist) const {

@@ -7,6 +7,8 @@
 #include "sampling/sampler.h"
 #include "sampling/warp.h"
 #include "scene/camera_ray-inl.h"
+#include "shading/geometric_side-inl.h"
+#include "shading/lane_routes.h"
 #include "shading/light_sample-inl.h"
 #include "shading/medium_flight-inl.h"
 #include "shading/mis-inl.h"
@@ -72,11 +74,11 @@ bool one_sample_continuation(Strategy strategy, const Vertex& v, const LightSet&
            can_sample_lights(v, lights);
 }
 
-// f |cos| at a vertex for world directions, with the geometric-normal test that keeps
-// reflection-only materials from leaking light through the surface when shading and
-// geometric normals disagree.
+// f |cos| at a vertex for world directions, zero where wi leaves through the geometric surface
+// (CrossesGeometricSurface).
 Color eval_world(const Vertex& v, Vec3 wo, Vec3 wi, float* pdf) {
-    if (v.on_surface() && dot(wo, v.ng) * dot(wi, v.ng) <= 0.0f) {
+    using lanes::to_lanes;
+    if (lanes::CrossesGeometricSurface<OneLane>(to_lanes(wo), to_lanes(wi), to_lanes(v.ng))) {
         *pdf = 0.0f;
         return {};
     }
@@ -348,12 +350,10 @@ PathStep continue_path(const Scene& scene,
     }
     Continuation c = sample_continuation(config.strategy, scene, lights, v, wo, u);
     if (!c.valid) return step;
-    step.weight = c.weight;
-    if (bounce + 1 >= config.rr_depth) {
-        float q = survival_probability(beta * step.weight);
-        if (u_roulette >= q) return step;
-        step.weight /= q;
-    }
+    const lanes::Roulette<OneLane> rr = lanes::RussianRoulette<OneLane>(
+        lanes::to_lanes(beta * c.weight), u_roulette, bounce + 1 >= config.rr_depth);
+    if (!rr.survives) return step;
+    step.weight = c.weight * rr.scale;
     if (c.transmitted) media.cross(v.interior, dot(c.wi, v.ng) < 0.0f);
     step.prev = {v.p, c.pdf_bsdf, c.delta || !can_sample_lights(v, lights)};
     step.next = Ray{offset_origin(v, c.wi), c.wi};
@@ -381,10 +381,6 @@ float segment_flight(
     const uint64_t state = lanes::PathState<OneLane>(seed, pixel, sample);
     return lanes::OpticalDepth<OneLane>(
         lanes::SampleDim<OneLane>(state, bounce_dim(bounce, kDimMediumDistance)));
-}
-
-float survival_probability(Color beta) {
-    return lanes::SurvivalProbability<OneLane>(lanes::to_lanes(beta));
 }
 
 float sample_free_flight(float density, float u) {

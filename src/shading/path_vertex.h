@@ -181,21 +181,6 @@ SegmentResult resolve_segment(const Scene& scene,
                               float& flight,
                               const PreviousVertex& prev);
 
-// Whether the continuation at v is a lane step (shading/surface_step-inl.h): a lane vertex
-// whose direction the strategy samples from the BSDF or phase function. The wavefront runs
-// these vertices' steps in SIMD lanes, continue_path the same formula in one lane.
-bool takes_lane_step(const Estimator& config, const Vertex& v, const LightSet& lights);
-// A Lambertian or rough metal surface, or a medium's isotropic phase function: the vertices the
-// lane formulas of next-event estimation towards quad and sphere lights and of the continuation
-// take.
-inline bool is_lane_vertex(Normal3 ng, MaterialKind kind, float alpha) {
-    if (ng.x == 0 && ng.y == 0 && ng.z == 0) return kind == MaterialKind::Isotropic;  // a medium
-    return kind == MaterialKind::Lambertian || (kind == MaterialKind::Metal && alpha > 0.0f);
-}
-inline bool is_lane_vertex(const Vertex& v) {
-    return is_lane_vertex(v.ng, v.bsdf.kind, v.bsdf.alpha);
-}
-
 // The continuation of a path at a scattering vertex, Russian roulette included: the next ray,
 // the factor for the path throughput, the record for weighting emission the next segment
 // finds, and the media after a transmission. `alive` is false when the path ends here.
@@ -253,19 +238,6 @@ DirectSample next_event(const Scene& scene,
                         LightChoice light);
 // Whether next-event estimation happens at v: the strategy samples lights and v can.
 bool samples_lights(const Estimator& config, const Vertex& v, const LightSet& lights);
-// The light next_event samples at v in SIMD lanes (shading/light_sample-inl.h), as its index
-// among the LightSet's quad emitters, or -1: at a lane vertex (is_lane_vertex) that
-// samples_lights(), a chosen quad of constant radiance.
-inline int32_t quad_light_sample_at(
-    Normal3 ng, MaterialKind kind, float alpha, const LightSet& lights, LightChoice choice) {
-    return is_lane_vertex(ng, kind, alpha) ? lights.quad_emitter_index(choice) : -1;
-}
-inline int32_t quad_light_sample_at(const Vertex& v, const LightSet& lights, LightChoice choice) {
-    return quad_light_sample_at(v.ng, v.bsdf.kind, v.bsdf.alpha, lights, choice);
-}
-// The same for a chosen sphere of constant radiance with v outside it (shading/sphere_light-inl.h),
-// as its index among the LightSet's sphere emitters, or -1.
-int32_t sphere_light_sample_at(const Vertex& v, const LightSet& lights, LightChoice choice);
 // Optical depth a segment reaching vertex `bounce` may travel before scattering in a medium.
 // Without media no segment consumes it, so it is not drawn (its log1p was 5-7% of a render).
 float segment_flight(
@@ -279,9 +251,6 @@ Ray generate_camera_ray(
 inline bool may_scatter(const Estimator& config, int bounce) {
     return bounce + 1 < config.max_depth;
 }
-
-// Russian roulette survival probability for path throughput beta.
-float survival_probability(Color beta);
 
 // --- media ----------------------------------------------------------------------------------
 // Free-flight distance (world units) in a homogeneous medium of extinction `density`,

@@ -15,6 +15,7 @@
 #include "math/lanes-inl.h"
 #include "sampling/warp-inl.h"
 #include "shading/diffuse-inl.h"
+#include "shading/geometric_side-inl.h"
 #include "shading/ggx-inl.h"
 #include "wavetrace/math/constants.h"
 
@@ -26,6 +27,22 @@ namespace HWY_NAMESPACE {
 template <class L>
 HWY_INLINE typename L::F SurvivalProbability(V3<typename L::F> beta) {
     return L::Min(L::Max(MaxComponent<L>(beta), L::Set(0.05f)), L::Set(0.95f));
+}
+
+template <class L>
+struct Roulette {
+    typename L::M survives;
+    typename L::F scale;  // the factor for the surviving throughput: 1 / q, or 1
+};
+// Russian roulette on the throughput beta after a vertex, where `applies` (the path is deep
+// enough): the path survives with probability q = SurvivalProbability(beta), u < q, and its
+// throughput is divided by q so that the estimate stays unbiased.
+template <class L>
+HWY_INLINE Roulette<L> RussianRoulette(V3<typename L::F> beta,
+                                       typename L::F u,
+                                       typename L::M applies) {
+    const typename L::F q = SurvivalProbability<L>(beta);
+    return {L::Or(L::Not(applies), u < q), L::Select(applies, L::Set(1.0f) / q, L::Set(1.0f))};
 }
 
 // A medium vertex has ng = 0 (Vertex::on_surface) and ns = +z (its frame): the geometric-side
@@ -59,17 +76,13 @@ HWY_INLINE StepResult<L> FinishStep(const StepVertex<L>& v,
                                     V3<typename L::F> weight,
                                     typename L::F pdf,
                                     typename L::M ok) {
-    using F = typename L::F;
-    const F zero = L::Set(0.0f), one = L::Set(1.0f);
     StepResult<L> r;
     r.wi = wi;
     r.pdf = pdf;
-    const F wi_ng = Dot(wi, v.ng);
-    ok = L::AndNot(Dot(v.wo, v.ng) * wi_ng < zero, ok);
-    const F q = SurvivalProbability<L>(v.beta * weight);
-    ok = L::And(ok, L::Or(L::AndNot(v.roulette, ok), v.u_rr < q));
-    r.alive = ok;
-    r.weight = weight * L::Select(v.roulette, one / q, one);
+    ok = L::AndNot(CrossesGeometricSurface<L>(v.wo, wi, v.ng), ok);
+    const Roulette<L> rr = RussianRoulette<L>(v.beta * weight, v.u_rr, v.roulette);
+    r.alive = L::And(ok, rr.survives);
+    r.weight = weight * rr.scale;
     r.origin = OffsetRayOrigin<L>(v.p, v.ng, wi);
     return r;
 }

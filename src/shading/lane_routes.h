@@ -1,0 +1,44 @@
+// Which vertices the lane formulas take (shading/*-inl.h templates over SIMD lanes): the
+// routing both engines follow. The megakernel runs those formulas with one lane inside
+// continue_path and next_event; the wavefront's shade and light_sample kernels gather the same
+// vertices into lane blocks. One rule for both, so that a vertex takes the same formula in each.
+#pragma once
+
+#include <cstdint>
+
+#include "shading/lights.h"
+#include "shading/path_vertex.h"
+#include "wavetrace/shading/estimator.h"
+
+namespace wavetrace {
+
+// Whether the continuation at v is a lane step (shading/surface_step-inl.h): a lane vertex
+// whose direction the strategy samples from the BSDF or phase function. The wavefront runs
+// these vertices' steps in SIMD lanes, continue_path the same formula in one lane.
+bool takes_lane_step(const Estimator& config, const Vertex& v, const LightSet& lights);
+// A Lambertian or rough metal surface, or a medium's isotropic phase function: the vertices the
+// lane formulas of next-event estimation towards quad and sphere lights and of the continuation
+// take.
+inline bool is_lane_vertex(Normal3 ng, MaterialKind kind, float alpha) {
+    if (ng.x == 0 && ng.y == 0 && ng.z == 0) return kind == MaterialKind::Isotropic;  // a medium
+    return kind == MaterialKind::Lambertian || (kind == MaterialKind::Metal && alpha > 0.0f);
+}
+inline bool is_lane_vertex(const Vertex& v) {
+    return is_lane_vertex(v.ng, v.bsdf.kind, v.bsdf.alpha);
+}
+
+// The light next_event samples at v in SIMD lanes (shading/light_sample-inl.h), as its index
+// among the LightSet's quad emitters, or -1: at a lane vertex (is_lane_vertex) that
+// samples_lights(), a chosen quad of constant radiance.
+inline int32_t quad_light_sample_at(
+    Normal3 ng, MaterialKind kind, float alpha, const LightSet& lights, LightChoice choice) {
+    return is_lane_vertex(ng, kind, alpha) ? lights.quad_emitter_index(choice) : -1;
+}
+inline int32_t quad_light_sample_at(const Vertex& v, const LightSet& lights, LightChoice choice) {
+    return quad_light_sample_at(v.ng, v.bsdf.kind, v.bsdf.alpha, lights, choice);
+}
+// The same for a chosen sphere of constant radiance with v outside it (shading/sphere_light-inl.h),
+// as its index among the LightSet's sphere emitters, or -1.
+int32_t sphere_light_sample_at(const Vertex& v, const LightSet& lights, LightChoice choice);
+
+}  // namespace wavetrace
