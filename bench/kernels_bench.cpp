@@ -274,7 +274,7 @@ void fill(LambertianRows& r, LightSampleQueue& queue, LightSampleBlock& block) {
         store_queued_vertex(
             queue, k,
             {uint32_t(k), v.p, v.ng, v.frame.n, r.wo[k], v.bsdf.albedo, v.bsdf.alpha, v.bsdf.kind,
-             r.beta[k], r.u[k].light_select, r.u[k].light_u, r.u[k].light_v});
+             kNone, r.beta[k], r.u[k].light_select, r.u[k].light_u, r.u[k].light_v});
         const LightChoice light = r.c.lights->select(r.u[k].light_select);
         block.lobe[k] = int32_t(LaneLobe::Lambertian);
         block.quad[k] = r.c.lights->quad_emitter_index(light);

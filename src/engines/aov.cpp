@@ -6,6 +6,7 @@
 #include <algorithm>
 
 #include "sampling/sampler.h"
+#include "shading/fresnel.h"
 #include "shading/path_vertex.h"
 #include "wavetrace/accel/bvh.h"
 #include "wavetrace/scene/scene.h"
@@ -26,6 +27,8 @@ Color albedo_of(const Scene& scene, const SurfaceHit& s) {
             return eval_texture(scene, m.albedo, s.uv, s.p);
         case MaterialKind::Dielectric:
             return Color(1.0f);
+        case MaterialKind::Conductor:  // its reflectance at normal incidence
+            return eval_texture(scene, m.albedo, s.uv, s.p) * fresnel_conductor(1.0f, m.eta, m.k);
         case MaterialKind::DiffuseLight: {
             Color e = eval_texture(scene, m.emission, s.uv, s.p);
             float peak = max_component(e);

@@ -52,7 +52,7 @@ void generate(const WaveInputs& in,
               RayQueue& rays);
 
 // Misses, then each MaterialKind of the hit's material.
-inline constexpr int kSortKeys = 8;
+inline constexpr int kSortKeys = 1 + kMaterialKinds;
 // Start of each key's range after sort_by_material; entry kSortKeys is the range's end.
 using KeyRanges = std::array<uint32_t, kSortKeys + 1>;
 int sort_key(const Scene& scene, PrimRef prim);

@@ -14,10 +14,15 @@ namespace {
 
 // The vertex of queue entry i, as next_event sees it, but for its frame (which only
 // sample_direct needs).
-Vertex queued_vertex(const LightSampleQueue& q, size_t i) {
+Vertex queued_vertex(const Scene& scene, const LightSampleQueue& q, size_t i) {
     Vertex v;
     v.p = WAVETRACE_XYZ_AT(q, p, i);
     v.ng = WAVETRACE_XYZ_AT(q, ng, i);
+    v.material = q.material[i];
+    if (v.material != kNone) {
+        v.bsdf = material_bsdf(scene.materials[v.material], WAVETRACE_XYZ_AT(q, albedo, i));
+        return v;
+    }
     v.bsdf.kind = q.kind[i];
     v.bsdf.albedo = WAVETRACE_XYZ_AT(q, albedo, i);
     v.bsdf.alpha = q.alpha[i];
@@ -52,7 +57,7 @@ size_t light_sample(const WaveInputs& in,
             block.quad[row] = quad_light_sample_at(WAVETRACE_XYZ_AT(queue, ng, i), queue.kind[i],
                                                    queue.alpha[i], in.lights, light);
             if (block.quad[row] >= 0) continue;
-            Vertex v = queued_vertex(queue, i);
+            Vertex v = queued_vertex(in.scene, queue, i);
             block.sphere[row] = sphere_light_sample_at(v, in.lights, light);
             if (block.sphere[row] >= 0) continue;
             v.frame = Frame::from_normal(WAVETRACE_XYZ_AT(queue, ns, i));

@@ -201,13 +201,14 @@ void append_light_sample(size_t path,
                          Normal3 ns,
                          Vec3 wo,
                          const BsdfParams& bsdf,
+                         MaterialId material,
                          Color beta,
                          const VertexSamples& u,
                          ShadeOutputs& out) {
     WT_DCHECK_LT(out.light_sample_end, out.light_samples.capacity);
     store_queued_vertex(out.light_samples, out.light_sample_end++,
                         {static_cast<uint32_t>(path), p, ng, ns, wo, bsdf.albedo, bsdf.alpha,
-                         bsdf.kind, beta, u.light_select, u.light_u, u.light_v});
+                         bsdf.kind, material, beta, u.light_select, u.light_u, u.light_v});
 }
 
 // Route Cross: the ray goes on past the boundary, with the optical depth left after the segment.
@@ -319,7 +320,7 @@ void resolve_in_scalar(const WaveInputs& in, const HitQueue& hits, Chunk& c, Sha
         const Vertex& v = seg.vertex;
         const VertexSamples u = c.samples.at(row);
         if (samples_lights(cfg, v, in.lights))
-            append_light_sample(i, v.p, v.ng, v.frame.n, seg.wo, v.bsdf, beta, u, out);
+            append_light_sample(i, v.p, v.ng, v.frame.n, seg.wo, v.bsdf, v.material, beta, u, out);
         if (takes_lane_step(cfg, v, in.lights)) {
             const size_t k = c.block.push(i, v, seg.wo, beta);
             c.block.set_step(k, u.continuation, u.roulette, bounce + 1 >= cfg.rr_depth);
@@ -378,6 +379,7 @@ void queue_lane_light_samples(size_t first, size_t last, const Chunk& c, ShadeOu
         const size_t j = at + (k - first);
         q.path[j] = b.entry[k];
         q.kind[j] = material_kind(LaneLobe(b.lobe[k]));
+        q.material[j] = kNone;
         const VertexSamples u = c.samples.at(b.entry[k] - c.begin);
         q.u_select[j] = u.light_select;
         q.u1[j] = u.light_u;

@@ -195,6 +195,35 @@ class Loader {
         return scene_.add_texture(t);
     }
 
+    // A conductor: eta and k per channel (default 0 and 1: every direction reflects fully, as
+    // Mitsuba's conductor "none"), a roughness alpha (0: smooth) and its distribution, and
+    // a reflectance texture scaling the Fresnel term.
+    void read_conductor(Object& o, Material& m) {
+        m.kind = MaterialKind::Conductor;
+        m.eta = Color(0.0f);
+        m.k = Color(1.0f);
+        const std::optional<Value> eta = o.optional("eta"), k = o.optional("k");
+        if (eta) m.eta = eta->color();
+        if (k) m.k = k->color();
+        for (int c = 0; c < 3; ++c)
+            if (m.eta[c] == 0.0f && m.k[c] == 0.0f)
+                (k ? *k : *eta)
+                    .fail("eta and k are both 0 in channel " + std::to_string(c) +
+                          ": a conductor needs eta > 0 or k > 0");
+        if (auto x = o.optional("alpha")) m.alpha_u = m.alpha_v = x->in_range(0.0f, 1.0f);
+        if (auto x = o.optional("distribution")) {
+            const std::string d = x->string();
+            if (d == "ggx")
+                m.distribution = Microfacet::Ggx;
+            else if (d == "beckmann")
+                m.distribution = Microfacet::Beckmann;
+            else
+                x->fail("unknown distribution \"" + d + "\" (expected ggx or beckmann)");
+        }
+        auto x = o.optional("reflectance");
+        m.albedo = x ? read_texture(*x, Range::Reflectance) : scene_.add_solid(Vec3(1.0f));
+    }
+
     void read_materials(const Value& v) {
         Object all(v);
         for (const auto& [name, unused] : v.raw().items()) {
@@ -218,6 +247,8 @@ class Loader {
             } else if (type == "dielectric") {
                 m.kind = MaterialKind::Dielectric;
                 m.ior = o.required("ior").positive();
+            } else if (type == "conductor") {
+                read_conductor(o, m);
             } else if (type == "diffuse_light") {
                 m.kind = MaterialKind::DiffuseLight;
                 m.emission = read_texture(o.required("radiance"), Range::Radiance);
@@ -226,8 +257,8 @@ class Loader {
                 if (auto x = o.optional("albedo")) m.albedo = read_texture(*x, Range::Reflectance);
             } else {
                 type_value.fail("unknown material type \"" + type +
-                                "\" (expected lambertian, metal, mirror, dielectric or "
-                                "diffuse_light; media are declared under /media)");
+                                "\" (expected lambertian, metal, mirror, dielectric, "
+                                "conductor or diffuse_light; media are declared under /media)");
             }
             o.finish();
             materials_[name] = scene_.add_material(std::move(m));

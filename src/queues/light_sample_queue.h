@@ -11,20 +11,22 @@
 
 namespace wavetrace {
 
-// Every vertex that samples lights is Lambertian, a rough metal or a medium's isotropic phase
-// function (can_sample_lights): an albedo and a roughness describe its BSDF.
-#define WAVETRACE_LIGHT_SAMPLE_FIELDS(F)                                         \
-    F(uint32_t, path, "entry of the path queue it belongs to")                   \
-    WAVETRACE_XYZ_FIELD(F, p, "vertex position")                                 \
-    WAVETRACE_XYZ_FIELD(F, ng, "geometric normal, outward; zero in a medium")    \
-    WAVETRACE_XYZ_FIELD(F, ns, "shading normal, the frame's z")                  \
-    WAVETRACE_XYZ_FIELD(F, wo, "unit direction back along the ray that arrived") \
-    WAVETRACE_XYZ_FIELD(F, albedo, "the BSDF's albedo at the vertex")            \
-    F(float, alpha, "rough metal: GGX alpha")                                    \
-    F(MaterialKind, kind, "Lambertian, Metal or Isotropic")                      \
-    WAVETRACE_XYZ_FIELD(F, beta, "path throughput arriving at the vertex")       \
-    F(float, u_select, "uniform number that picks the light")                    \
-    F(float, u1, "uniform numbers of the point on the light")                    \
+// A Lambertian or rough metal vertex, or a medium's isotropic phase function, is described by
+// its albedo and roughness (the light_sample kernel's lanes read them); any other BSDF by its
+// material besides (a conductor's index of refraction comes from there).
+#define WAVETRACE_LIGHT_SAMPLE_FIELDS(F)                                                \
+    F(uint32_t, path, "entry of the path queue it belongs to")                          \
+    WAVETRACE_XYZ_FIELD(F, p, "vertex position")                                        \
+    WAVETRACE_XYZ_FIELD(F, ng, "geometric normal, outward; zero in a medium")           \
+    WAVETRACE_XYZ_FIELD(F, ns, "shading normal, the frame's z")                         \
+    WAVETRACE_XYZ_FIELD(F, wo, "unit direction back along the ray that arrived")        \
+    WAVETRACE_XYZ_FIELD(F, albedo, "the BSDF's albedo at the vertex")                   \
+    F(float, alpha, "rough metal: GGX alpha")                                           \
+    F(MaterialKind, kind, "the BSDF's kind")                                            \
+    F(MaterialId, material, "the material, or kNone where kind, albedo, alpha say all") \
+    WAVETRACE_XYZ_FIELD(F, beta, "path throughput arriving at the vertex")              \
+    F(float, u_select, "uniform number that picks the light")                           \
+    F(float, u1, "uniform numbers of the point on the light")                           \
     F(float, u2, "")
 
 WAVETRACE_SOA(LightSampleQueue, WAVETRACE_LIGHT_SAMPLE_FIELDS);
@@ -38,14 +40,16 @@ struct QueuedVertex {
     Color albedo;
     float alpha;
     MaterialKind kind;
+    MaterialId material;
     Color beta;
     float u_select, u1, u2;
 };
 
 inline void store_queued_vertex(LightSampleQueue& q, size_t i, const QueuedVertex& v) {
-    q.store(i, {v.path,  v.p.x,  v.p.y,    v.p.z,    v.ng.x,   v.ng.y,     v.ng.z,     v.ns.x,
-                v.ns.y,  v.ns.z, v.wo.x,   v.wo.y,   v.wo.z,   v.albedo.x, v.albedo.y, v.albedo.z,
-                v.alpha, v.kind, v.beta.x, v.beta.y, v.beta.z, v.u_select, v.u1,       v.u2});
+    q.store(i, {v.path,     v.p.x,      v.p.y,   v.p.z,  v.ng.x,     v.ng.y,   v.ng.z,
+                v.ns.x,     v.ns.y,     v.ns.z,  v.wo.x, v.wo.y,     v.wo.z,   v.albedo.x,
+                v.albedo.y, v.albedo.z, v.alpha, v.kind, v.material, v.beta.x, v.beta.y,
+                v.beta.z,   v.u_select, v.u1,    v.u2});
 }
 
 }  // namespace wavetrace

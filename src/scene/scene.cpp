@@ -22,6 +22,8 @@ const char* to_string(MaterialKind kind) {
             return "isotropic";
         case MaterialKind::Interface:
             return "interface";
+        case MaterialKind::Conductor:
+            return "conductor";
     }
     return "?";
 }

@@ -4,7 +4,9 @@
 #include <cmath>
 
 #include "sampling/warp.h"
+#include "shading/conductor.h"
 #include "shading/diffuse-inl.h"
+#include "shading/fresnel.h"
 #include "shading/ggx-inl.h"
 #include "wavetrace/math/constants.h"
 
@@ -13,7 +15,8 @@ namespace lanes = HWY_NAMESPACE;
 using lanes::OneLane, lanes::to_lanes, lanes::to_vec3;
 bool BsdfParams::is_delta() const {
     return kind == MaterialKind::Mirror || kind == MaterialKind::Dielectric ||
-           (kind == MaterialKind::Metal && alpha == 0.0f);
+           (kind == MaterialKind::Metal && alpha == 0.0f) ||
+           (kind == MaterialKind::Conductor && alpha == 0.0f && alpha_v == 0.0f);
 }
 
 float ggx_d(Vec3 h, float alpha) {
@@ -25,16 +28,7 @@ float ggx_g1(Vec3 w, float alpha) {
 }
 
 Vec3 ggx_sample_visible_normal(Vec3 wo, float alpha, float u1, float u2) {
-    return to_vec3(lanes::GgxVisibleNormal<OneLane>(to_lanes(wo), alpha, u1, u2));
-}
-
-float fresnel_dielectric(float cos_i, float eta) {
-    float sin2_t = std::max(0.0f, 1.0f - cos_i * cos_i) / (eta * eta);
-    if (sin2_t >= 1.0f) return 1.0f;  // total internal reflection
-    float cos_t = std::sqrt(1.0f - sin2_t);
-    float r_par = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
-    float r_perp = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
-    return 0.5f * (r_par * r_par + r_perp * r_perp);
+    return to_vec3(lanes::GgxVisibleNormal<OneLane>(to_lanes(wo), alpha, alpha, u1, u2));
 }
 
 Color bsdf_eval(const BsdfParams& b, Vec3 wo, Vec3 wi) {
@@ -52,6 +46,10 @@ Color bsdf_eval(const BsdfParams& b, Vec3 wo, Vec3 wi) {
         case MaterialKind::Isotropic: {
             float pdf;
             return to_vec3(lanes::PhaseEval<OneLane>(to_lanes(b.albedo), &pdf));
+        }
+        case MaterialKind::Conductor: {
+            float pdf;
+            return conductor_eval(b, wo, wi, &pdf);
         }
         default:
             return {};  // delta lobes, emitters and interfaces do not scatter smoothly
@@ -74,6 +72,11 @@ float bsdf_pdf(const BsdfParams& b, Vec3 wo, Vec3 wi) {
         }
         case MaterialKind::Isotropic:
             return lanes::PhasePdf<OneLane>();
+        case MaterialKind::Conductor: {
+            float pdf;
+            conductor_eval(b, wo, wi, &pdf);
+            return pdf;
+        }
         default:
             return 0.0f;
     }
@@ -137,6 +140,8 @@ BsdfSample bsdf_sample(const BsdfParams& b, Vec3 wo, float u_lobe, float u1, flo
             s.transmitted = true;
             return s;
         }
+        case MaterialKind::Conductor:
+            return conductor_sample(b, wo, u1, u2);
         case MaterialKind::Isotropic:
             s.wi = sample_uniform_sphere(u1, u2);
             s.pdf = lanes::PhasePdf<OneLane>();

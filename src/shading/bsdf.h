@@ -18,8 +18,14 @@ namespace wavetrace {
 struct BsdfParams {
     MaterialKind kind = MaterialKind::Lambertian;
     Color albedo{0.0f};
-    float alpha = 0.0f;  // Metal: GGX roughness alpha = roughness^2 (0: a perfect mirror)
+    float alpha = 0.0f;  // Metal: GGX roughness alpha = roughness^2 (0: a perfect mirror);
+                         // Conductor: the microfacet roughness alpha_u (0: smooth)
     float eta = 1.0f;    // Dielectric: IOR inside / IOR outside as seen by the ray (front: ior)
+    // Conductor (shading/conductor.h): the complex index of refraction, the roughness along the
+    // frame's y axis and the distribution.
+    Color conductor_eta{1.0f}, conductor_k{0.0f};
+    float alpha_v = 0.0f;
+    Microfacet distribution = Microfacet::Ggx;
 
     bool is_delta() const;  // every lobe is a Dirac delta: never light-sampled
 };
@@ -44,7 +50,5 @@ float ggx_g1(Vec3 w, float alpha);
 // A visible normal for wo (wo.z > 0): Heitz, "Sampling the GGX Distribution of Visible
 // Normals", JCGT 7(4), 2018.
 Vec3 ggx_sample_visible_normal(Vec3 wo, float alpha, float u1, float u2);
-// Unpolarized Fresnel reflectance of a smooth dielectric, cos_i > 0 on the incident side.
-float fresnel_dielectric(float cos_i, float eta);
 
 }  // namespace wavetrace

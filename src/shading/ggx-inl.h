@@ -56,17 +56,19 @@ HWY_INLINE V3<typename L::F> Schlick(V3<typename L::F> f0, typename L::F cos_the
     return f0 + V3<F>{one - f0.x, one - f0.y, one - f0.z} * m5;
 }
 
-// A visible normal of the GGX distribution seen from o (upper hemisphere): stretch to the
-// hemisphere configuration, sample the projected half-disk, unstretch (Heitz 2018, "Sampling
-// the GGX Distribution of Visible Normals", JCGT 7(4)).
+// A visible normal of the GGX distribution of roughness alpha_x, alpha_y along the frame's x
+// and y seen from o (upper hemisphere): stretch to the hemisphere configuration, sample the
+// projected half-disk, unstretch (Heitz 2018, "Sampling the GGX Distribution of Visible
+// Normals", JCGT 7(4)).
 template <class L>
 HWY_INLINE V3<typename L::F> GgxVisibleNormal(V3<typename L::F> o,
-                                              typename L::F alpha,
+                                              typename L::F alpha_x,
+                                              typename L::F alpha_y,
                                               typename L::F u1,
                                               typename L::F u2) {
     using F = typename L::F;
     const F zero = L::Set(0.0f), one = L::Set(1.0f);
-    const V3<F> vh = Normalize<L>(V3<F>{alpha * o.x, alpha * o.y, o.z});
+    const V3<F> vh = Normalize<L>(V3<F>{alpha_x * o.x, alpha_y * o.y, o.z});
     const F lensq = vh.x * vh.x + vh.y * vh.y;
     const F inv = one / L::Sqrt(lensq);
     const auto tilted = lensq > zero;
@@ -80,7 +82,7 @@ HWY_INLINE V3<typename L::F> GgxVisibleNormal(V3<typename L::F> o,
     const F s = L::Set(0.5f) * (one + vh.z);
     const F p2 = (one - s) * L::Sqrt(L::Max(zero, one - p1 * p1)) + s * (r * sin_phi);
     const V3<F> nh = t1 * p1 + t2 * p2 + vh * L::Sqrt(L::Max(zero, one - p1 * p1 - p2 * p2));
-    return Normalize<L>(V3<F>{alpha * nh.x, alpha * nh.y, L::Max(L::Set(1e-7f), nh.z)});
+    return Normalize<L>(V3<F>{alpha_x * nh.x, alpha_y * nh.y, L::Max(L::Set(1e-7f), nh.z)});
 }
 
 // Both directions mirrored into the upper hemisphere when wo is below (two-sided shading).
@@ -138,7 +140,7 @@ HWY_INLINE MetalSampleResult<L> MetalSample(V3<typename L::F> albedo,
     MetalSampleResult<L> s;
     const F side = SideOf<L>(wo);
     const V3<F> o = Upper<L>(wo, side);
-    const V3<F> m = GgxVisibleNormal<L>(o, alpha, u1, u2);
+    const V3<F> m = GgxVisibleNormal<L>(o, alpha, alpha, u1, u2);
     const V3<F> i = m * (L::Set(2.0f) * Dot(o, m)) - o;
     const V3<F> h = Normalize<L>(o + i);
     const F g1 = GgxG1<L>(o.z, alpha);

@@ -37,6 +37,7 @@ Vertex surface_vertex(const Scene& scene, const SurfaceHit& hit) {
     v.ng = hit.ng;
     v.frame = frame_from_normal(hit.ns);
     v.interior = hit.interior;
+    v.material = hit.material;
     const Material& m = scene.materials[hit.material];
     v.bsdf = material_bsdf(
         m, m.albedo != kNone ? eval_texture(scene, m.albedo, hit.uv, hit.p) : Color(0.0f));
@@ -47,7 +48,8 @@ Vertex medium_vertex(const Scene& scene, MediumId medium, Point3 p) {
     Vertex v;
     v.p = p;
     v.frame = Frame::from_normal({0, 0, 1});
-    const Material& phase = scene.materials[scene.media[medium].phase];
+    v.material = scene.media[medium].phase;
+    const Material& phase = scene.materials[v.material];
     v.bsdf.kind = MaterialKind::Isotropic;
     v.bsdf.albedo = eval_texture(scene, phase.albedo, {}, p);
     return v;
@@ -56,7 +58,7 @@ Vertex medium_vertex(const Scene& scene, MediumId medium, Point3 p) {
 bool can_sample_lights(const Vertex& v, const LightSet& lights) {
     return !lights.empty() && !v.bsdf.is_delta() &&
            (v.bsdf.kind == MaterialKind::Lambertian || v.bsdf.kind == MaterialKind::Metal ||
-            v.bsdf.kind == MaterialKind::Isotropic);
+            v.bsdf.kind == MaterialKind::Isotropic || v.bsdf.kind == MaterialKind::Conductor);
 }
 
 Point3 offset_origin(const Vertex& v, Vec3 w) {

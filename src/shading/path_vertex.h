@@ -28,7 +28,8 @@ struct Vertex {
     Frame frame;       // local z = shading normal (surfaces) or any axis (media)
     Normal3 ng{0.0f};  // geometric normal, outward; zero inside a medium
     BsdfParams bsdf;
-    MediumId interior = kNone;  // the surface's inside medium, for transmission
+    MediumId interior = kNone;    // the surface's inside medium, for transmission
+    MaterialId material = kNone;  // whose BSDF it is (a medium's: its phase function)
     bool on_surface() const { return ng.x != 0 || ng.y != 0 || ng.z != 0; }
 };
 
@@ -41,6 +42,13 @@ inline BsdfParams material_bsdf(const Material& m, Color albedo) {
     b.albedo = albedo;
     b.alpha = m.roughness * m.roughness;
     b.eta = m.ior;
+    if (m.kind == MaterialKind::Conductor) {
+        b.alpha = m.alpha_u;
+        b.alpha_v = m.alpha_v;
+        b.conductor_eta = m.eta;
+        b.conductor_k = m.k;
+        b.distribution = m.distribution;
+    }
     return b;
 }
 Vertex medium_vertex(const Scene& scene, MediumId medium, Point3 p);

@@ -1,0 +1,19 @@
+// Fresnel reflectance at a smooth interface, unpolarized (the mean of the s and p
+// polarizations), for light arriving at cos_i > 0 from the outside.
+#pragma once
+
+#include "wavetrace/math/vec3.h"
+
+namespace wavetrace {
+
+// A dielectric of relative index of refraction eta = n_inside / n_outside; 1 under total
+// internal reflection (eta < 1 past the critical angle).
+float fresnel_dielectric(float cos_i, float eta);
+
+// A conductor of relative complex index of refraction eta + i k, per channel: the exact
+// unpolarized reflectance (Born & Wolf, Principles of Optics, §14.2; in the form of
+// Lazányi & Szirmay-Kalos 2005, "Fresnel term approximations for metals", eqs. 2-3). At normal
+// incidence ((eta - 1)^2 + k^2) / ((eta + 1)^2 + k^2); with k = 0 it is fresnel_dielectric.
+Color fresnel_conductor(float cos_i, Color eta, Color k);
+
+}  // namespace wavetrace
