@@ -4,12 +4,12 @@
 
 #include <cmath>
 
+#include "bsdfs/bsdf.h"
+#include "bsdfs/fresnel.h"
+#include "bsdfs/microfacet.h"
 #include "chi2.h"
 #include "sampling/sampler.h"
 #include "sampling/warp.h"
-#include "shading/bsdf.h"
-#include "shading/fresnel.h"
-#include "shading/microfacet.h"
 
 using namespace wavetrace;
 

@@ -26,7 +26,8 @@ const std::vector<std::string> kLayers = {
     "film",      // per-pixel sums and film files
     "loaders",   // scene files and mesh files into a Scene
     "accel",     // the BVH: build, wide layout, traversal, primitive tests
-    "shading",   // what both engines share: surfaces, BSDFs, lights, MIS, media, path vertices
+    "bsdfs",     // how surfaces and media scatter: BSDFs, Fresnel, microfacet distributions
+    "shading",   // what both engines share: surfaces, lights, MIS, media, path vertices
     "queues",    // the wavefront's structure-of-arrays queues
     "kernels",   // the wavefront's kernels
     "engines",   // both engines, the AOV renderer, render()

@@ -345,3 +345,31 @@ TEST(SceneLoader, ReflectancesAboveOneAndFarGeometryAreRejected) {
         "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "white"}]})";
     EXPECT_EQ(load_error(dir, typo), ": /materals: unknown key (did you mean \"materials\"?)");
 }
+
+// A conductor's optical constants and roughness are checked where they are written.
+TEST(SceneLoader, ConductorParametersAreValidated) {
+    TempDir dir;
+    auto with = [](const std::string& gold) {
+        return std::string("{") + kCamera + R"(, "materials": {"gold": )" + gold +
+               R"(}, "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "gold"}]})";
+    };
+    EXPECT_EQ(
+        load_error(
+            dir,
+            with(
+                R"({"type": "conductor", "eta": [0.2, 0.4, 1.4], "k": [3.6, 2.4, 1.9], "alpha": 0.1, "distribution": "beckmann"})")),
+        "");
+    EXPECT_EQ(load_error(dir, with(R"({"type": "conductor"})")), "");  // a full reflector
+    EXPECT_EQ(load_error(dir, with(R"({"type": "conductor", "eta": [0.2, -0.4, 1.4]})")),
+              ": /materials/gold/eta/1: expected a non-negative number, got -0.4");
+    EXPECT_EQ(load_error(dir, with(R"({"type": "conductor", "eta": 0, "k": [1, 0, 1]})")),
+              ": /materials/gold/k: eta and k are both 0 in channel 1: a conductor needs eta > 0 "
+              "or k > 0");
+    EXPECT_EQ(load_error(dir, with(R"({"type": "conductor", "alpha": -0.1})")),
+              ": /materials/gold/alpha: expected a number in [0.0, 1.0], got -0.1");
+    EXPECT_EQ(load_error(dir, with(R"({"type": "conductor", "k": [1, "x", 1]})")),
+              ": /materials/gold/k/1: expected a non-negative number, got \"x\"");
+    EXPECT_EQ(load_error(dir, with(R"({"type": "conductor", "distribution": "phong"})")),
+              ": /materials/gold/distribution: unknown distribution \"phong\" (expected ggx or "
+              "beckmann)");
+}

@@ -6,7 +6,7 @@
 #include <algorithm>
 
 #include "sampling/sampler.h"
-#include "shading/fresnel.h"
+#include "bsdfs/fresnel.h"
 #include "shading/path_vertex.h"
 #include "wavetrace/accel/bvh.h"
 #include "wavetrace/scene/scene.h"

@@ -141,6 +141,7 @@ class Loader {
             bg.radiance = Vec3(1.0f);
             if (auto x = o.optional("scale")) bg.radiance = x->color();
             if (auto x = o.optional("rotation")) bg.rotation = x->number();
+            if (auto x = o.optional("rows_at_poles")) bg.rows_at_poles = x->boolean();
         } else {
             o.required("type").fail("unknown background type \"" + type +
                                     "\" (expected constant or environment)");

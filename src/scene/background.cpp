@@ -26,8 +26,13 @@ Color eval_background(const Scene& scene, Vec3 d) {
     const Background& bg = scene.background;
     if (bg.kind == Background::Kind::Constant) return bg.radiance;
     Vec2 uv = environment_uv(bg, normalize(d));
+    const ImageData& image = scene.images[bg.image];
+    if (bg.rows_at_poles) {  // bilinear() puts row j at (j + 0.5) / H: move row to match
+        const float h = static_cast<float>(image.height);
+        uv.y = (uv.y * (h - 1.0f) + 0.5f) / h;
+    }
     // bilinear() takes v bottom-to-top.
-    return bg.radiance * scene.images[bg.image].bilinear(uv.x, 1.0f - uv.y, /*wrap_v=*/false);
+    return bg.radiance * image.bilinear(uv.x, 1.0f - uv.y, /*wrap_v=*/false);
 }
 
 }  // namespace wavetrace

@@ -15,9 +15,9 @@
 
 #include "math/lanes-inl.h"
 #include "sampling/warp-inl.h"
-#include "shading/diffuse-inl.h"
+#include "bsdfs/diffuse-inl.h"
 #include "shading/geometric_side-inl.h"
-#include "shading/ggx-inl.h"
+#include "bsdfs/ggx-inl.h"
 #include "shading/lights.h"
 #include "wavetrace/math/constants.h"
 

@@ -7,7 +7,7 @@
 #include <cstdint>
 
 #include "sampling/sampler.h"
-#include "shading/bsdf.h"
+#include "bsdfs/bsdf.h"
 #include "shading/lights.h"
 #include "shading/medium_stack.h"
 #include "shading/mis.h"

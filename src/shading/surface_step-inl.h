@@ -14,9 +14,9 @@
 
 #include "math/lanes-inl.h"
 #include "sampling/warp-inl.h"
-#include "shading/diffuse-inl.h"
+#include "bsdfs/diffuse-inl.h"
 #include "shading/geometric_side-inl.h"
-#include "shading/ggx-inl.h"
+#include "bsdfs/ggx-inl.h"
 #include "wavetrace/math/constants.h"
 
 HWY_BEFORE_NAMESPACE();

@@ -15,6 +15,10 @@ struct Background {
     Color radiance{0.0f};  // Constant: the radiance. Environment: a per-channel scale.
     ImageId image = kNone;
     float rotation = 0.0f;  // Environment: rotation about +y, degrees
+    // Environment: where the image's rows lie. False: row j of H at v = (j + 0.5) / H, each row
+    // the centre of its band (pbrt's, Tungsten's). True: at v = j / (H - 1), the first and last
+    // rows on the poles (Mitsuba 3's envmap). Columns are centred either way.
+    bool rows_at_poles = false;
 
     bool is_black() const {
         return kind == Kind::Constant && radiance.x == 0 && radiance.y == 0 && radiance.z == 0;

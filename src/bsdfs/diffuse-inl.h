@@ -3,11 +3,11 @@
 // instances, the light samples and the continuations of lane vertices (light_sample-inl.h,
 // surface_step-inl.h) the same templates, so that the density a light sample reports for the
 // BSDF is the one a BSDF sample of that direction has. Per-target header, see math/lanes-inl.h.
-#if defined(WAVETRACE_SHADING_DIFFUSE_INL_H_) == defined(HWY_TARGET_TOGGLE)
-#ifdef WAVETRACE_SHADING_DIFFUSE_INL_H_
-#undef WAVETRACE_SHADING_DIFFUSE_INL_H_
+#if defined(WAVETRACE_BSDFS_DIFFUSE_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef WAVETRACE_BSDFS_DIFFUSE_INL_H_
+#undef WAVETRACE_BSDFS_DIFFUSE_INL_H_
 #else
-#define WAVETRACE_SHADING_DIFFUSE_INL_H_
+#define WAVETRACE_BSDFS_DIFFUSE_INL_H_
 #endif
 
 #include "math/lanes-inl.h"
@@ -53,4 +53,4 @@ HWY_INLINE V3<typename L::F> PhaseEval(V3<typename L::F> albedo, typename L::F* 
 }  // namespace wavetrace
 HWY_AFTER_NAMESPACE();
 
-#endif  // WAVETRACE_SHADING_DIFFUSE_INL_H_
+#endif  // WAVETRACE_BSDFS_DIFFUSE_INL_H_

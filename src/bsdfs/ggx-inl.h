@@ -4,11 +4,11 @@
 // wavefront's shade kernel runs them over the metal vertices of a chunk
 // (kernels/lane_kernels.cpp). Directions are in the shading frame, z along the normal. Per-target
 // header, see math/lanes-inl.h.
-#if defined(WAVETRACE_SHADING_GGX_INL_H_) == defined(HWY_TARGET_TOGGLE)
-#ifdef WAVETRACE_SHADING_GGX_INL_H_
-#undef WAVETRACE_SHADING_GGX_INL_H_
+#if defined(WAVETRACE_BSDFS_GGX_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef WAVETRACE_BSDFS_GGX_INL_H_
+#undef WAVETRACE_BSDFS_GGX_INL_H_
 #else
-#define WAVETRACE_SHADING_GGX_INL_H_
+#define WAVETRACE_BSDFS_GGX_INL_H_
 #endif
 
 #include "math/lanes-inl.h"
@@ -156,4 +156,4 @@ HWY_INLINE MetalSampleResult<L> MetalSample(V3<typename L::F> albedo,
 }  // namespace wavetrace
 HWY_AFTER_NAMESPACE();
 
-#endif  // WAVETRACE_SHADING_GGX_INL_H_
+#endif  // WAVETRACE_BSDFS_GGX_INL_H_

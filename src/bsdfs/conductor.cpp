@@ -1,9 +1,9 @@
-#include "shading/conductor.h"
+#include "bsdfs/conductor.h"
 
 #include <cmath>
 
-#include "shading/fresnel.h"
-#include "shading/microfacet.h"
+#include "bsdfs/fresnel.h"
+#include "bsdfs/microfacet.h"
 
 namespace wavetrace {
 namespace {

@@ -1,13 +1,13 @@
-#include "shading/bsdf.h"
+#include "bsdfs/bsdf.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include "sampling/warp.h"
-#include "shading/conductor.h"
-#include "shading/diffuse-inl.h"
-#include "shading/fresnel.h"
-#include "shading/ggx-inl.h"
+#include "bsdfs/conductor.h"
+#include "bsdfs/diffuse-inl.h"
+#include "bsdfs/fresnel.h"
+#include "bsdfs/ggx-inl.h"
 #include "wavetrace/math/constants.h"
 
 namespace wavetrace {

@@ -13,7 +13,7 @@
 // below the surface, as for `metal`; wo and wi on opposite sides give 0.
 #pragma once
 
-#include "shading/bsdf.h"
+#include "bsdfs/bsdf.h"
 
 namespace wavetrace {
 

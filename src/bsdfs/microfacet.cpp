@@ -1,9 +1,9 @@
-#include "shading/microfacet.h"
+#include "bsdfs/microfacet.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "shading/ggx-inl.h"
+#include "bsdfs/ggx-inl.h"
 #include "wavetrace/math/constants.h"
 
 namespace wavetrace {

@@ -1,4 +1,4 @@
-#include "shading/fresnel.h"
+#include "bsdfs/fresnel.h"
 
 #include <algorithm>
 #include <cmath>
