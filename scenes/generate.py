@@ -124,6 +124,35 @@ def everything():
     }
 
 
+def conductors():
+    """Named metals from smooth to rough, GGX and Beckmann, on a grey floor under the
+    environment map and a small quad light: the conductor in both engines."""
+    row = [("Au", 0.0, "ggx"), ("Au", 0.1, "ggx"), ("Cu", 0.2, "beckmann"),
+           ("Ag", 0.3, "ggx"), ("Al", 0.05, "beckmann"), ("Cr", 0.5, "ggx")]
+    materials = {"floor": {"type": "lambertian", "albedo": 0.4},
+                 "lamp": {"type": "diffuse_light", "radiance": 12}}
+    objects = [{"type": "quad", "q": [-10, 0, 10], "u": [20, 0, 0], "v": [0, 0, -20],
+                "material": "floor"},
+               {"type": "quad", "q": [-1.5, 6, -1.5], "u": [3, 0, 0], "v": [0, 0, 3],
+                "material": "lamp"}]
+    for i, (metal, alpha, distribution) in enumerate(row):
+        name = "%s-%s-%g" % (metal, distribution, alpha)
+        materials[name] = {"type": "conductor", "metal": metal, "alpha": alpha,
+                           "distribution": distribution}
+        objects.append({"type": "sphere", "center": [-5 + 2 * i, 0.9, 0], "radius": 0.9,
+                        "material": name})
+    return {
+        "description": "Six named metals (Au, Cu, Ag, Al, Cr) from smooth to rough, GGX and "
+                       "Beckmann, under an environment map and a quad light",
+        "render": {"width": 640, "height": 240, "spp": 64, "max_depth": 32},
+        "camera": {"look_from": [0, 3, 12], "look_at": [0, 0.9, 0], "vfov": 24},
+        "background": {"type": "environment", "file": "textures/tungsten_envmap.hdr",
+                       "rotation": 90, "scale": 0.5},
+        "materials": materials,
+        "objects": objects,
+    }
+
+
 def veach_mis():
     """Veach's multiple-importance-sampling scene (thesis, 1997, fig. 9.2): four glossy plates of
     increasing smoothness, each reflecting four spherical lights of increasing size and equal
@@ -229,6 +258,7 @@ SCENES = {
         "objects": [{"type": "mesh", "file": "meshes/dragon_100k.obj", "material": "grey",
                      "normals": "flat"}],
     },
+    "conductors": conductors(),
 }
 
 

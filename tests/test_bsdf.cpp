@@ -2,7 +2,9 @@
 // 1e-3), and every density's integral over the sphere against the probability of a sample.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "bsdfs/bsdf.h"
 #include "bsdfs/fresnel.h"
@@ -10,6 +12,7 @@
 #include "chi2.h"
 #include "sampling/sampler.h"
 #include "sampling/warp.h"
+#include "scene/named_metals.h"
 
 using namespace wavetrace;
 
@@ -326,5 +329,34 @@ TEST(Bsdf, ConductorFurnaceAndReciprocity) {
                 const float fca = bsdf_eval(r, c, a).x / std::fabs(a.z);
                 EXPECT_NEAR(fac, fca, 1e-4f * std::max(1.0f, fac));
             }
+        }
+}
+
+// The named metals keep the colours their spectra give: gold and copper reflect red most and
+// blue least at normal incidence, silver and aluminium reflect over 85% in every channel.
+TEST(Bsdf, NamedMetalsHaveTheirColours) {
+    auto r0 = [](const char* name) {
+        for (const NamedMetal& m : named_metals())
+            if (std::string(name) == m.name) return fresnel_conductor(1.0f, m.eta, m.k);
+        ADD_FAILURE() << name << " missing";
+        return Color(0.0f);
+    };
+    for (const char* warm : {"Au", "Cu"}) {
+        const Color c = r0(warm);
+        std::printf("%s: normal-incidence reflectance %.3f %.3f %.3f\n", warm, c.x, c.y, c.z);
+        EXPECT_GT(c.x, c.y) << warm;
+        EXPECT_GT(c.y, c.z) << warm;
+    }
+    for (const char* white : {"Ag", "Al"}) {
+        const Color c = r0(white);
+        std::printf("%s: normal-incidence reflectance %.3f %.3f %.3f\n", white, c.x, c.y, c.z);
+        EXPECT_GT(std::min({c.x, c.y, c.z}), 0.85f) << white;
+    }
+    for (const NamedMetal& m : named_metals())
+        for (int c = 0; c < 3; ++c) {
+            EXPECT_TRUE(std::isfinite(m.eta[c]) && std::isfinite(m.k[c]) && m.eta[c] >= 0 &&
+                        m.k[c] >= 0)
+                << m.name;
+            EXPECT_TRUE(m.eta[c] > 0 || m.k[c] > 0) << m.name;
         }
 }

@@ -360,6 +360,12 @@ TEST(SceneLoader, ConductorParametersAreValidated) {
                 R"({"type": "conductor", "eta": [0.2, 0.4, 1.4], "k": [3.6, 2.4, 1.9], "alpha": 0.1, "distribution": "beckmann"})")),
         "");
     EXPECT_EQ(load_error(dir, with(R"({"type": "conductor"})")), "");  // a full reflector
+    EXPECT_EQ(load_error(dir, with(R"({"type": "conductor", "metal": "Au", "alpha": 0.2})")), "");
+    EXPECT_EQ(load_error(dir, with(R"({"type": "conductor", "metal": "none"})")), "");
+    EXPECT_EQ(load_error(dir, with(R"({"type": "conductor", "metal": "gold"})")).substr(0, 65),
+              ": /materials/gold/metal: unknown metal \"gold\" (expected none, a-C");
+    EXPECT_EQ(load_error(dir, with(R"({"type": "conductor", "metal": "Au", "k": 1})")),
+              ": /materials/gold/metal: give either \"metal\" or \"eta\" and \"k\", not both");
     EXPECT_EQ(load_error(dir, with(R"({"type": "conductor", "eta": [0.2, -0.4, 1.4]})")),
               ": /materials/gold/eta/1: expected a non-negative number, got -0.4");
     EXPECT_EQ(load_error(dir, with(R"({"type": "conductor", "eta": 0, "k": [1, 0, 1]})")),

@@ -34,7 +34,7 @@ RenderRequest config(Strategy st, int w, int h, int spp, uint64_t seed = 11) {
 // absolute) in at least 99.9% of pixel channels, image means within 1e-5 relative.
 TEST(Wavefront, EqualsTheMegakernel) {
     for (const char* name : {"cornell", "cornell-glass", "cornell-mirror", "cornell-smoke",
-                             "everything", "bunny", "dragon", "veach-mis"}) {
+                             "everything", "bunny", "dragon", "veach-mis", "conductors"}) {
         Scene scene = load_scene(scene_path(name));
         Bvh bvh = Bvh::build(scene);
         for (Strategy st :
@@ -116,8 +116,8 @@ TEST(Wavefront, BitIdenticalForAnyThreadCountAndWaveSize) {
 // shadow rays from one primitive go as packets of eight consecutive queue entries, which the
 // two schedules' queues group differently: the count of tests differs, not their result.)
 TEST(Wavefront, StageScheduleEqualsResidentBitForBit) {
-    for (const char* name :
-         {"cornell", "cornell-glass", "cornell-smoke", "everything", "dragon", "veach-mis"}) {
+    for (const char* name : {"cornell", "cornell-glass", "cornell-smoke", "everything", "dragon",
+                             "veach-mis", "conductors"}) {
         Scene scene = load_scene(scene_path(name));
         Bvh bvh = Bvh::build(scene);
         for (Strategy st :

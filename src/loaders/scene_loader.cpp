@@ -10,6 +10,7 @@
 #include "files/input_file.h"
 #include "loaders/json_reader.h"
 #include "loaders/mesh_file.h"
+#include "scene/named_metals.h"
 #include "wavetrace/image/image.h"
 #include "wavetrace/loaders/load_scene.h"
 #include "wavetrace/scene/scene.h"
@@ -196,14 +197,30 @@ class Loader {
         return scene_.add_texture(t);
     }
 
-    // A conductor: eta and k per channel (default 0 and 1: every direction reflects fully, as
-    // Mitsuba's conductor "none"), a roughness alpha (0: smooth) and its distribution, and
-    // a reflectance texture scaling the Fresnel term.
+    // A conductor: a named metal, or eta and k per channel (default 0 and 1: every direction
+    // reflects fully, as Mitsuba's conductor "none"); a roughness alpha (0: smooth) and its
+    // distribution; a reflectance texture scaling the Fresnel term.
     void read_conductor(Object& o, Material& m) {
         m.kind = MaterialKind::Conductor;
         m.eta = Color(0.0f);
         m.k = Color(1.0f);
         const std::optional<Value> eta = o.optional("eta"), k = o.optional("k");
+        if (auto name = o.optional("metal")) {
+            if (eta || k) name->fail("give either \"metal\" or \"eta\" and \"k\", not both");
+            const std::string wanted = name->string();
+            std::string known;
+            for (const NamedMetal& metal : named_metals()) {
+                if (wanted == metal.name) {
+                    m.eta = metal.eta;
+                    m.k = metal.k;
+                    known.clear();
+                    break;
+                }
+                known += std::string(known.empty() ? "" : ", ") + metal.name;
+            }
+            if (!known.empty() && wanted != "none")
+                name->fail("unknown metal \"" + wanted + "\" (expected none, " + known + ")");
+        }
         if (eta) m.eta = eta->color();
         if (k) m.k = k->color();
         for (int c = 0; c < 3; ++c)
