@@ -54,12 +54,14 @@ size_t light_sample(const WaveInputs& in,
             block.lobe[row] = int32_t(lane_lobe(queue.kind[i]));
             block.select_prob[row] = light.probability;
             block.sphere[row] = -1;
-            block.quad[row] = quad_light_sample_at(WAVETRACE_XYZ_AT(queue, ng, i), queue.kind[i],
-                                                   queue.alpha[i], in.lights, light);
+            const Normal3 ng = WAVETRACE_XYZ_AT(queue, ng, i);
+            block.quad[row] =
+                quad_light_sample_at(ng, queue.kind[i], queue.alpha[i], in.lights, light);
             if (block.quad[row] >= 0) continue;
-            Vertex v = queued_vertex(in.scene, queue, i);
-            block.sphere[row] = sphere_light_sample_at(v, in.lights, light);
+            block.sphere[row] = sphere_light_sample_at(
+                WAVETRACE_XYZ_AT(queue, p, i), ng, queue.kind[i], queue.alpha[i], in.lights, light);
             if (block.sphere[row] >= 0) continue;
+            Vertex v = queued_vertex(in.scene, queue, i);
             v.frame = Frame::from_normal(WAVETRACE_XYZ_AT(queue, ns, i));
             scalar[row] = sample_direct(in.scene, in.lights, v, WAVETRACE_XYZ_AT(queue, wo, i),
                                         light, queue.u1[i], queue.u2[i]);

@@ -37,8 +37,16 @@ inline int32_t quad_light_sample_at(
 inline int32_t quad_light_sample_at(const Vertex& v, const LightSet& lights, LightChoice choice) {
     return quad_light_sample_at(v.ng, v.bsdf.kind, v.bsdf.alpha, lights, choice);
 }
-// The same for a chosen sphere of constant radiance with v outside it (shading/sphere_light-inl.h),
-// as its index among the LightSet's sphere emitters, or -1.
-int32_t sphere_light_sample_at(const Vertex& v, const LightSet& lights, LightChoice choice);
+// The same for a chosen sphere of constant radiance with the vertex at p outside it
+// (shading/sphere_light-inl.h), as its index among the LightSet's sphere emitters, or -1.
+int32_t sphere_light_sample_at(Point3 p,
+                               Normal3 ng,
+                               MaterialKind kind,
+                               float alpha,
+                               const LightSet& lights,
+                               LightChoice choice);
+inline int32_t sphere_light_sample_at(const Vertex& v, const LightSet& lights, LightChoice choice) {
+    return sphere_light_sample_at(v.p, v.ng, v.bsdf.kind, v.bsdf.alpha, lights, choice);
+}
 
 }  // namespace wavetrace

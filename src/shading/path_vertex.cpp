@@ -168,15 +168,19 @@ bool samples_lights(const Estimator& config, const Vertex& v, const LightSet& li
     return nee && can_sample_lights(v, lights);
 }
 
-int32_t sphere_light_sample_at(const Vertex& v, const LightSet& lights, LightChoice choice) {
-    if (!is_lane_vertex(v)) return -1;
+int32_t sphere_light_sample_at(Point3 p,
+                               Normal3 ng,
+                               MaterialKind kind,
+                               float alpha,
+                               const LightSet& lights,
+                               LightChoice choice) {
+    if (!is_lane_vertex(ng, kind, alpha)) return -1;
     const int32_t k = lights.sphere_emitter_index(choice);
     if (k < 0) return -1;
     const SphereEmitterColumns& c = lights.sphere_emitter_columns();
     const lanes::V3<float> centre{c.centre[0][size_t(k)], c.centre[1][size_t(k)],
                                   c.centre[2][size_t(k)]};
-    return lanes::SphereOutside<OneLane>(lanes::to_lanes(v.p), centre, c.radius[size_t(k)]) ? k
-                                                                                            : -1;
+    return lanes::SphereOutside<OneLane>(lanes::to_lanes(p), centre, c.radius[size_t(k)]) ? k : -1;
 }
 
 DirectSample next_event(const Scene& scene,
