@@ -126,7 +126,7 @@ def everything():
 
 def conductors():
     """Named metals from smooth to rough, GGX and Beckmann, on a grey floor under the
-    environment map and a small quad light: the conductor in both engines."""
+    environment map, a small quad light and a point light: the conductor in both engines."""
     row = [("Au", 0.0, "ggx"), ("Au", 0.1, "ggx"), ("Cu", 0.2, "beckmann"),
            ("Ag", 0.3, "ggx"), ("Al", 0.05, "beckmann"), ("Cr", 0.5, "ggx")]
     materials = {"floor": {"type": "lambertian", "albedo": 0.4},
@@ -143,11 +143,12 @@ def conductors():
                         "material": name})
     return {
         "description": "Six named metals (Au, Cu, Ag, Al, Cr) from smooth to rough, GGX and "
-                       "Beckmann, under an environment map and a quad light",
+                       "Beckmann, under an environment map, a quad light and a point light",
         "render": {"width": 640, "height": 240, "spp": 64, "max_depth": 32},
         "camera": {"look_from": [0, 3, 12], "look_at": [0, 0.9, 0], "vfov": 24},
         "background": {"type": "environment", "file": "textures/tungsten_envmap.hdr",
                        "rotation": 90, "scale": 0.5},
+        "lights": [{"type": "point", "position": [4, 5, 4], "intensity": 25}],
         "materials": materials,
         "objects": objects,
     }

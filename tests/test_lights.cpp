@@ -116,8 +116,8 @@ TEST(Lights, SamplingMatchesDensityChiSquare) {
         ++seed;
         auto result = chi2::test(
             [&](uint32_t i) -> std::optional<Vec3> {
-                LightSample ls =
-                    lights.sample(c.scene, c.ref, u(seed, i, 0), u(seed, i, 1), u(seed, i, 2));
+                LightSample ls = lights.sample_direction_light(c.scene, c.ref, u(seed, i, 0),
+                                                               u(seed, i, 1), u(seed, i, 2));
                 if (!ls.valid) return std::nullopt;
                 return ls.wi;
             },
@@ -133,7 +133,8 @@ TEST(Lights, SampledPdfAndRadianceAreConsistent) {
     for (LightCase& c : cases(dir)) {
         LightSet lights(c.scene);
         for (uint32_t i = 0; i < 3000; ++i) {
-            LightSample ls = lights.sample(c.scene, c.ref, u(3, i, 0), u(3, i, 1), u(3, i, 2));
+            LightSample ls =
+                lights.sample(c.scene, c.ref, lights.select(u(3, i, 0)), u(3, i, 1), u(3, i, 2));
             ASSERT_TRUE(ls.valid) << c.name;
             float pdf = ls.prim.valid() ? lights.pdf_prim(c.scene, c.ref, ls.prim, ls.wi, ls.dist)
                                         : lights.pdf_background(c.scene, ls.wi);
@@ -198,7 +199,7 @@ TEST(Lights, PdfOfEmissionFoundIsTheSamplersPdf) {
         size_t compared = 0;
         for (uint32_t i = 0; i < 2000; ++i) {
             const float us = u(17, i, 0), u1 = u(17, i, 1), u2 = u(17, i, 2);
-            const LightSample ls = lights.sample(c.scene, c.ref, us, u1, u2);
+            const LightSample ls = lights.sample(c.scene, c.ref, lights.select(us), u1, u2);
             ASSERT_TRUE(ls.valid) << c.name;
             if (max_component(ls.radiance) <= 0.0f) continue;  // a back face: nothing is found
             const Ray ray{c.ref, ls.wi};

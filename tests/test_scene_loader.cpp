@@ -379,3 +379,29 @@ TEST(SceneLoader, ConductorParametersAreValidated) {
               ": /materials/gold/distribution: unknown distribution \"phong\" (expected ggx or "
               "beckmann)");
 }
+
+// Point lights: a position and an intensity, checked where they are written.
+TEST(SceneLoader, PointLightsAreValidated) {
+    TempDir dir;
+    auto with = [](const std::string& lights) {
+        return scene_with_objects(
+            R"({"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "white"})",
+            R"("lights": )" + lights);
+    };
+    EXPECT_EQ(
+        load_error(dir,
+                   with(R"([{"type": "point", "position": [0, 3, 0], "intensity": [1, 2, 3]}])")),
+        "");
+    EXPECT_EQ(
+        load_error(dir, with(R"([{"type": "point", "position": [0, 3, 0], "intensity": -1}])")),
+        ": /lights/0/intensity: expected a non-negative number, got -1");
+    EXPECT_EQ(load_error(dir, with(R"([{"type": "point", "intensity": 1}])")),
+              ": /lights/0: missing required key \"position\"");
+    EXPECT_EQ(
+        load_error(dir, with(R"([{"type": "point", "position": [0, 1e9, 0], "intensity": 1}])")),
+        ": /lights/0/position: coordinate beyond +-1e7, got [0,1000000000.0,0]");
+    EXPECT_EQ(load_error(dir, with(R"([{"type": "laser", "position": [0, 1, 0]}])")),
+              ": /lights/0/type: unknown light type \"laser\" (expected point)");
+    EXPECT_EQ(load_error(dir, with(R"({"type": "point"})")),
+              ": /lights: expected an array, got {\"type\":\"point\"}");
+}

@@ -42,13 +42,14 @@ class Loader {
         json_ = json_reader::parse(text.str(), file_);
 
         Object root(Value(json_, file_, ""));
-        root.only(
-            {"description", "render", "camera", "background", "materials", "media", "objects"});
+        root.only({"description", "render", "camera", "background", "lights", "materials", "media",
+                   "objects"});
         scene_.name = path_.stem().string();
         if (auto v = root.optional("description")) v->string();
         if (auto v = root.optional("render")) read_render(*v);
         read_camera(root.required("camera"));
         if (auto v = root.optional("background")) read_background(*v);
+        if (auto v = root.optional("lights")) read_lights(*v);
         if (auto v = root.optional("materials")) read_materials(*v);
         if (auto v = root.optional("media")) read_media(*v);
         Value objects = root.required("objects");
@@ -240,6 +241,22 @@ class Loader {
         }
         auto x = o.optional("reflectance");
         m.albedo = x ? read_texture(*x, Range::Reflectance) : scene_.add_solid(Vec3(1.0f));
+    }
+
+    // Lights that are not shapes: [{"type": "point", "position": P, "intensity": COLOUR}].
+    void read_lights(const Value& v) {
+        for (size_t i = 0; i < v.size(); ++i) {
+            Object o(v[i]);
+            Value type_value = o.required("type");
+            const std::string type = type_value.string();
+            if (type != "point")
+                type_value.fail("unknown light type \"" + type + "\" (expected point)");
+            PointLight light;
+            light.position = point(o.required("position"));
+            light.intensity = o.required("intensity").color();
+            o.finish();
+            scene_.point_lights.push_back(light);
+        }
     }
 
     void read_materials(const Value& v) {

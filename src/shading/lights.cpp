@@ -67,6 +67,11 @@ LightSet::LightSet(const Scene& scene) {
             c.two_sided.push_back(m.two_sided ? 1.0f : 0.0f);
         }
     }
+    const size_t emitters = emitters_.size();
+    std::vector<float> area_power = power;
+    for (const PointLight& p : scene.point_lights)
+        power.push_back(4.0f * kPi * luminance(p.intensity));
+    delta_count_ = scene.point_lights.size();
     background_ = !scene.background.is_black();
     if (background_) {
         const Background& bg = scene.background;
@@ -94,10 +99,18 @@ LightSet::LightSet(const Scene& scene) {
             lum *= static_cast<float>(mean * 2.0 / kPi);  // mean luminance over the sphere
         }
         power.push_back(4.0f * kPi * kPi * r * r * lum);
+        area_power.push_back(power.back());
     }
     count_ = power.size();
     if (count_ > 0) select_ = Distribution1D(power);
     if (count_ == 1) only_probability_ = select_.probability(0);
+    if (delta_count_ > 0 && !area_power.empty()) {
+        area_select_ = Distribution1D(area_power);
+        double share = 0;
+        for (size_t i = 0; i < count_; ++i)
+            if (i < emitters || i >= emitters + delta_count_) share += select_.probability(i);
+        area_fraction_ = static_cast<float>(share);
+    }
 }
 
 float LightSet::selection_probability(PrimRef prim) const {
@@ -115,10 +128,16 @@ LightChoice LightSet::select_in_table(float u_select) const {
     return c;
 }
 
-LightSample LightSet::sample(
+LightSample LightSet::sample_direction_light(
     const Scene& scene, Point3 ref, float u_select, float u1, float u2) const {
-    if (count_ == 0) return {};
-    return sample(scene, ref, select(u_select), u1, u2);
+    if (!has_area_lights()) return {};
+    if (delta_count_ == 0) return sample(scene, ref, select(u_select), u1, u2);
+    // Among the other lights alone; its density's selection factor is the light's share of
+    // their power, select_'s probability / area_fraction_ (pdf_direction).
+    LightChoice c;
+    c.index = area_select_.sample_discrete(u_select, &c.probability);
+    if (c.index >= emitters_.size()) c.index = count_ - 1;  // the background
+    return sample(scene, ref, c, u1, u2);
 }
 
 LightSample LightSet::sample(
@@ -127,6 +146,21 @@ LightSample LightSet::sample(
     if (count_ == 0) return ls;
     const float select_prob = choice.probability;
     const size_t i = choice.index;
+
+    if (i >= emitters_.size() && i < emitters_.size() + delta_count_) {
+        // A point light: intensity / d^2 along the direction to it.
+        const PointLight& p = scene.point_lights[i - emitters_.size()];
+        const Vec3 d = p.position - ref;
+        const float dist2 = length_squared(d);
+        if (!(dist2 > 0.0f)) return ls;
+        ls.dist = std::sqrt(dist2);
+        ls.wi = d / ls.dist;
+        ls.radiance = p.intensity / dist2;
+        ls.pdf = select_prob;
+        ls.delta = true;
+        ls.valid = std::isfinite(ls.dist) && ls.pdf > 0.0f;
+        return ls;
+    }
 
     if (background_ && i == count_ - 1) {
         const Background& bg = scene.background;
@@ -269,7 +303,9 @@ float LightSet::pdf_direction(const Scene& scene, Point3 ref, Vec3 wi) const {
         }
         if (hit && ph.t > 0.0f) pdf += pdf_prim(scene, ref, prim, wi, ph.t);
     }
-    return pdf;
+    // The densities above select among all lights; sample_direction_light among all but the
+    // point lights.
+    return delta_count_ == 0 ? pdf : pdf / area_fraction_;
 }
 
 Color emitted_radiance(const Scene& scene, const SurfaceHit& hit) {

@@ -1,10 +1,16 @@
 // Light selection and sampling with solid-angle densities, for next-event estimation and
-// MIS. Every emissive primitive is a light; so is a non-black background.
+// MIS. Every emissive primitive is a light; so is every point light and a non-black background.
 //
 // Densities returned here include the probability of selecting the light, so they compare
 // directly with BSDF densities in MIS weights. Lights are selected in proportion to their
 // power (area x pi x luminance of the radiance, doubled if two-sided; textured emitters count
-// with luminance 1; the background as a sphere of the scene's radius, 4 pi^2 r^2 L).
+// with luminance 1; a point light 4 pi x luminance of its intensity; the background as a sphere
+// of the scene's radius, 4 pi^2 r^2 L).
+//
+// Point lights are deltas: a sample of one has "pdf" its selection probability and "radiance"
+// intensity / d^2, flagged `delta`; no direction finds one. The one-sample strategies (light,
+// mixture) sample directions from the other lights only (sample_direction_light,
+// pdf_direction), in proportion to the same powers.
 #pragma once
 
 #include <cstdint>
@@ -25,7 +31,8 @@ struct LightSample {
     float dist = kInfinity;  // to the sampled point (infinity for the background)
     Color radiance{0.0f};    // emitted towards the reference point (0 from a back face)
     float pdf = 0.0f;        // solid angle, selection included
-    PrimRef prim;            // invalid for the background
+    PrimRef prim;            // invalid for the background and point lights
+    bool delta = false;      // a point light: pdf is the selection probability alone
     bool valid = false;
 };
 
@@ -55,6 +62,8 @@ class LightSet {
     explicit LightSet(const Scene& scene);
 
     bool empty() const { return count_ == 0; }
+    // Whether any light can be found by a direction (an emitter or the background).
+    bool has_area_lights() const { return count_ > delta_count_; }
     size_t size() const { return count_; }
     bool has_background() const { return background_; }
     // Probability that sampling picks this emissive primitive (0 if it is not a light).
@@ -81,15 +90,18 @@ class LightSet {
     // Samples a point on the chosen light as seen from `ref` with two uniform numbers.
     LightSample sample(
         const Scene& scene, Point3 ref, LightChoice choice, float u1, float u2) const;
-    // Picks a light and samples a point on it as seen from `ref` with three uniform numbers.
-    LightSample sample(const Scene& scene, Point3 ref, float u_select, float u1, float u2) const;
+    // Picks a light other than a point light, in proportion to power, and samples a point on
+    // it as seen from `ref` with three uniform numbers (has_area_lights()): the light-sampled
+    // directions of the one-sample strategies, whose density is pdf_direction.
+    LightSample sample_direction_light(
+        const Scene& scene, Point3 ref, float u_select, float u1, float u2) const;
     // Density with which sample() from `ref` produces direction wi hitting emitter `prim` at
     // point p (distance dist). Zero for non-emitters.
     float pdf_prim(const Scene& scene, Point3 ref, PrimRef prim, Vec3 wi, float dist) const;
     // Density with which sample() produces background direction wi.
     float pdf_background(const Scene& scene, Vec3 wi) const;
     // Total density of direction wi from `ref` over all lights, ignoring occlusion: the
-    // density a "pick a light, then a point" sampler assigns to wi. O(number of emitters).
+    // density sample_direction_light assigns to wi. O(number of emitters).
     float pdf_direction(const Scene& scene, Point3 ref, Vec3 wi) const;
 
   private:
@@ -104,6 +116,11 @@ class LightSet {
     std::unordered_map<uint32_t, uint32_t> index_;  // PrimRef bits -> light index
     bool background_ = false;                       // the last light, if present
     size_t count_ = 0;
+    size_t delta_count_ = 0;  // point lights: lights emitters_.size() .. + delta_count_
+    // Without point lights 1 and select_; with them, the share of the other lights' power, and
+    // the selection among those alone (the background as entry emitters_.size()).
+    float area_fraction_ = 1.0f;
+    Distribution1D area_select_;
     Distribution1D select_;
     float only_probability_ = 0.0f;  // select_'s probability of light 0, when it is the only one
     LightChoice select_in_table(float u_select) const;

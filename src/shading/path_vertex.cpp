@@ -73,7 +73,7 @@ namespace {
 // and mixture, where v can sample lights) rather than by BSDF sampling alone.
 bool one_sample_continuation(Strategy strategy, const Vertex& v, const LightSet& lights) {
     return (strategy == Strategy::Mixture || strategy == Strategy::Light) &&
-           can_sample_lights(v, lights);
+           can_sample_lights(v, lights) && lights.has_area_lights();
 }
 
 // f |cos| at a vertex for world directions, zero where wi leaves through the geometric surface
@@ -103,6 +103,7 @@ DirectSample sample_direct(const Scene& scene,
     if (!ls.valid || max_component(ls.radiance) <= 0.0f) return d;
     Color f = eval_world(v, wo, ls.wi, &d.pdf_bsdf);
     if (max_component(f) <= 0.0f) return d;
+    if (ls.delta) d.pdf_bsdf = 0.0f;  // no BSDF sample finds a point light: MIS weight 1
     d.value = f * ls.radiance / ls.pdf;
     d.pdf_light = ls.pdf;
     d.shadow = Ray{offset_origin(v, ls.wi), ls.wi, 0.0f, lanes::ShadowRayEnd<OneLane>(ls.dist)};
@@ -140,7 +141,7 @@ Continuation sample_continuation(Strategy strategy,
     // a uniform sphere, a "defensive" component (Hesterberg 1995) without which light-sampled
     // directions could never find indirect light arriving from where no light is.
     if (u.technique < 0.5f) {
-        LightSample ls = lights.sample(scene, v.p, u.select, u.u1, u.u2);
+        LightSample ls = lights.sample_direction_light(scene, v.p, u.select, u.u1, u.u2);
         if (!ls.valid) return c;
         c.wi = ls.wi;
     } else if (strategy == Strategy::Light) {

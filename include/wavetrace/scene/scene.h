@@ -13,6 +13,7 @@
 #include "wavetrace/scene/background.h"
 #include "wavetrace/scene/camera.h"
 #include "wavetrace/scene/ids.h"
+#include "wavetrace/scene/light.h"
 #include "wavetrace/scene/material.h"
 #include "wavetrace/scene/medium.h"
 #include "wavetrace/scene/shapes.h"
@@ -56,6 +57,7 @@ struct Scene {
     std::vector<Point3> positions;  // mesh vertices, all meshes back to back
     std::vector<Normal3> normals;   // per vertex; zero for meshes without normals
     std::vector<Vec2> uvs;          // per vertex; zero for meshes without uvs
+    std::vector<PointLight> point_lights;
 
     // ---- builders (all transforms are baked into the stored shapes) ----
     TextureId add_texture(const Texture& texture);
