@@ -126,7 +126,8 @@ def everything():
 
 def conductors():
     """Named metals from smooth to rough, GGX and Beckmann, on a grey floor under the
-    environment map, a small quad light and a point light: the conductor in both engines."""
+    environment map, a small quad light, a point, a spot and a directional light: the conductor
+    and the delta lights in both engines."""
     row = [("Au", 0.0, "ggx"), ("Au", 0.1, "ggx"), ("Cu", 0.2, "beckmann"),
            ("Ag", 0.3, "ggx"), ("Al", 0.05, "beckmann"), ("Cr", 0.5, "ggx")]
     materials = {"floor": {"type": "lambertian", "albedo": 0.4},
@@ -143,12 +144,16 @@ def conductors():
                         "material": name})
     return {
         "description": "Six named metals (Au, Cu, Ag, Al, Cr) from smooth to rough, GGX and "
-                       "Beckmann, under an environment map, a quad light and a point light",
+                       "Beckmann, under an environment map, a quad light, a point, a spot and a "
+                       "directional light",
         "render": {"width": 640, "height": 240, "spp": 64, "max_depth": 32},
         "camera": {"look_from": [0, 3, 12], "look_at": [0, 0.9, 0], "vfov": 24},
         "background": {"type": "environment", "file": "textures/tungsten_envmap.hdr",
                        "rotation": 90, "scale": 0.5},
-        "lights": [{"type": "point", "position": [4, 5, 4], "intensity": 25}],
+        "lights": [{"type": "point", "position": [4, 5, 4], "intensity": 25},
+                   {"type": "spot", "position": [-4, 6, 3], "look_at": [-3, 0.9, 0],
+                    "intensity": 60, "cutoff": 18, "falloff_start": 12},
+                   {"type": "directional", "direction": [0.3, -1, -0.4], "irradiance": 0.4}],
         "materials": materials,
         "objects": objects,
     }

@@ -149,7 +149,7 @@ TEST(Megakernel, PointLightLightsByTheInverseSquare) {
     floor.kind = MaterialKind::Lambertian;
     floor.albedo = s.add_solid(Color(rho));
     s.add_quad({{-50, 0, -50}, {0, 0, 100}, {100, 0, 0}, s.add_material(floor), kNone});
-    s.point_lights.push_back({{-x, h, 0}, Color(intensity)});
+    s.lights.push_back(Light::point({-x, h, 0}, Color(intensity)));
     s.camera.look_from = {0, 0.5f, -3};
     s.camera.look_at = {0, 0, 0};
     s.camera.vfov = 0.01f;  // one pixel seeing a 0.5 mm patch around the origin
@@ -305,5 +305,62 @@ TEST(Megakernel, MisEarnsItsName) {
         double e = rmse(images[st], 0, 0, w, h);
         std::printf("mis-overall %-6s rMSE %.4g (mis %.4g)\n", to_string(st), e, mis_all);
         EXPECT_LT(mis_all, e) << to_string(st);
+    }
+}
+
+// A spot light's falloff and a directional light's irradiance on a diffuse plane, against
+// their closed forms (next-event estimation; the others see black, as for a point light).
+TEST(Megakernel, SpotAndDirectionalLightsMatchTheirClosedForms) {
+    const float rho = 0.6f;
+    auto plane = [&](Light light) {
+        Scene s;
+        Material floor;
+        floor.kind = MaterialKind::Lambertian;
+        floor.albedo = s.add_solid(Color(rho));
+        s.add_quad({{-50, 0, -50}, {0, 0, 100}, {100, 0, 0}, s.add_material(floor), kNone});
+        s.lights.push_back(light);
+        s.camera.look_from = {0, 0.5f, -3};
+        s.camera.look_at = {0, 0, 0};
+        s.camera.vfov = 0.01f;
+        return s;
+    };
+    const double kPi = 3.14159265358979;
+    // A spot 2 above the origin aimed 26.57 degrees away from it: the origin lies in the
+    // falloff band between 20 and 35 degrees.
+    for (Light::Falloff falloff : {Light::Falloff::Linear, Light::Falloff::Smoothstep}) {
+        Light spot;
+        spot.kind = Light::Kind::Spot;
+        spot.position = {0, 2, 0};
+        spot.direction = normalize(Vec3(1.0f, -2.0f, 0.0f));  // the origin is 26.57 deg off axis
+        spot.intensity = Color(9.0f);
+        spot.cutoff_degrees = 35;
+        spot.falloff_start_degrees = 20;
+        spot.falloff = falloff;
+        const double off = std::atan(0.5) * 180 / kPi;  // degrees between axis and the origin
+        const double cos_off = std::cos(off * kPi / 180);
+        double f;
+        if (falloff == Light::Falloff::Linear) {
+            f = (35 - off) / (35 - 20);
+        } else {
+            const double c0 = std::cos(35 * kPi / 180), c1 = std::cos(20 * kPi / 180);
+            const double t = (cos_off - c0) / (c1 - c0);
+            f = t * t * (3 - 2 * t);
+        }
+        const double expected = rho / kPi * 9.0 * f / 4.0;  // cos = 1 at the origin, d = 2
+        const double mean =
+            luminance(render(plane(spot), Strategy::Mis, 1, 1, 16, 3, 2).mean().at(0, 0));
+        std::printf("spot (%s falloff) %.6f (closed form %.6f)\n",
+                    falloff == Light::Falloff::Linear ? "linear" : "smoothstep", mean, expected);
+        EXPECT_NEAR(mean, expected, 1e-3 * expected);
+    }
+    Light sun;
+    sun.kind = Light::Kind::Directional;
+    sun.direction = normalize(Vec3(0.6f, -0.8f, 0.0f));
+    sun.intensity = Color(3.0f);
+    const double expected = rho / kPi * 3.0 * 0.8;  // E cos(theta) rho / pi
+    for (Strategy st : {Strategy::Nee, Strategy::Mis, Strategy::Bsdf}) {
+        const double mean = luminance(render(plane(sun), st, 1, 1, 16, 3, 2).mean().at(0, 0));
+        std::printf("directional %-8s %.6f (closed form %.6f)\n", to_string(st), mean, expected);
+        EXPECT_NEAR(mean, st == Strategy::Bsdf ? 0.0 : expected, 1e-3 * expected);
     }
 }

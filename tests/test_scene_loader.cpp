@@ -380,8 +380,8 @@ TEST(SceneLoader, ConductorParametersAreValidated) {
               "beckmann)");
 }
 
-// Point lights: a position and an intensity, checked where they are written.
-TEST(SceneLoader, PointLightsAreValidated) {
+// Lights that are not shapes, checked where they are written.
+TEST(SceneLoader, LightsAreValidated) {
     TempDir dir;
     auto with = [](const std::string& lights) {
         return scene_with_objects(
@@ -401,7 +401,31 @@ TEST(SceneLoader, PointLightsAreValidated) {
         load_error(dir, with(R"([{"type": "point", "position": [0, 1e9, 0], "intensity": 1}])")),
         ": /lights/0/position: coordinate beyond +-1e7, got [0,1000000000.0,0]");
     EXPECT_EQ(load_error(dir, with(R"([{"type": "laser", "position": [0, 1, 0]}])")),
-              ": /lights/0/type: unknown light type \"laser\" (expected point)");
+              ": /lights/0/type: unknown light type \"laser\" (expected point, spot or "
+              "directional)");
+    EXPECT_EQ(
+        load_error(
+            dir,
+            with(
+                R"([{"type": "spot", "position": [0, 3, 0], "look_at": [0, 0, 0], "intensity": 5, "cutoff": 30, "falloff_start": 10, "falloff": "smoothstep"}, {"type": "directional", "direction": [0, -1, 0.2], "irradiance": 2}])")),
+        "");
+    EXPECT_EQ(
+        load_error(
+            dir,
+            with(
+                R"([{"type": "spot", "position": [0, 3, 0], "look_at": [0, 3, 0], "intensity": 5}])")),
+        ": /lights/0/look_at: look_at must differ from position");
+    EXPECT_EQ(
+        load_error(
+            dir,
+            with(
+                R"([{"type": "spot", "position": [0, 3, 0], "look_at": [0, 0, 0], "intensity": 5, "cutoff": 30, "falloff_start": 40}])")),
+        ": /lights/0/falloff_start: expected a number in [0.0, 30.0], got 40");
+    EXPECT_EQ(
+        load_error(dir,
+                   with(R"([{"type": "directional", "direction": [0, 0, 0], "irradiance": 1}])"))
+            .substr(0, 32),
+        ": /lights/0/direction: expected ");
     EXPECT_EQ(load_error(dir, with(R"({"type": "point"})")),
               ": /lights: expected an array, got {\"type\":\"point\"}");
 }

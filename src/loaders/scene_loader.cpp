@@ -243,19 +243,51 @@ class Loader {
         m.albedo = x ? read_texture(*x, Range::Reflectance) : scene_.add_solid(Vec3(1.0f));
     }
 
-    // Lights that are not shapes: [{"type": "point", "position": P, "intensity": COLOUR}].
+    // Lights that are not shapes: point, spot and directional (docs/scene-format.md#lights).
     void read_lights(const Value& v) {
         for (size_t i = 0; i < v.size(); ++i) {
             Object o(v[i]);
             Value type_value = o.required("type");
             const std::string type = type_value.string();
-            if (type != "point")
-                type_value.fail("unknown light type \"" + type + "\" (expected point)");
-            PointLight light;
-            light.position = point(o.required("position"));
-            light.intensity = o.required("intensity").color();
+            Light light;
+            if (type == "point") {
+                light.position = point(o.required("position"));
+                light.intensity = o.required("intensity").color();
+            } else if (type == "spot") {
+                light.kind = Light::Kind::Spot;
+                light.position = point(o.required("position"));
+                Value at = o.required("look_at");
+                const Vec3 axis = point(at) - light.position;
+                if (!(length(axis) > 1e-6f * std::max(1.0f, max_component(abs(light.position)))))
+                    at.fail("look_at must differ from position");
+                light.direction = normalize(axis);
+                light.intensity = o.required("intensity").color();
+                if (auto x = o.optional("cutoff")) {
+                    light.cutoff_degrees = x->in_range(0.0f, 90.0f);
+                    if (!(light.cutoff_degrees > 0.0f)) x->fail("a spot's cutoff must be > 0");
+                }
+                light.falloff_start_degrees = 0.75f * light.cutoff_degrees;  // Mitsuba's default
+                if (auto x = o.optional("falloff_start"))
+                    light.falloff_start_degrees = x->in_range(0.0f, light.cutoff_degrees);
+                if (auto x = o.optional("falloff")) {
+                    const std::string f = x->string();
+                    if (f == "linear")
+                        light.falloff = Light::Falloff::Linear;
+                    else if (f == "smoothstep")
+                        light.falloff = Light::Falloff::Smoothstep;
+                    else
+                        x->fail("unknown falloff \"" + f + "\" (expected linear or smoothstep)");
+                }
+            } else if (type == "directional") {
+                light.kind = Light::Kind::Directional;
+                light.direction = normalize(o.required("direction").nonzero_vec3());
+                light.intensity = o.required("irradiance").color();
+            } else {
+                type_value.fail("unknown light type \"" + type +
+                                "\" (expected point, spot or directional)");
+            }
             o.finish();
-            scene_.point_lights.push_back(light);
+            scene_.lights.push_back(light);
         }
     }
 

@@ -1,5 +1,6 @@
 #include "shading/lights.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "accel/intersect.h"
@@ -27,6 +28,37 @@ SphereCone sphere_cone(const Sphere& s, Point3 ref) {
 }
 
 }  // namespace
+
+float spot_falloff(const Light& l, float cos_theta) {
+    const float cos_cutoff = std::cos(radians(l.cutoff_degrees));
+    const float cos_start = std::cos(radians(l.falloff_start_degrees));
+    if (cos_theta <= cos_cutoff) return 0.0f;
+    if (cos_theta >= cos_start) return 1.0f;
+    if (l.falloff == Light::Falloff::Smoothstep) {
+        const float t = (cos_theta - cos_cutoff) / (cos_start - cos_cutoff);
+        return t * t * (3.0f - 2.0f * t);
+    }
+    const float theta = std::acos(std::clamp(cos_theta, -1.0f, 1.0f));
+    return (radians(l.cutoff_degrees) - theta) /
+           (radians(l.cutoff_degrees) - radians(l.falloff_start_degrees));
+}
+
+float delta_light_power(const Light& l, float scene_radius) {
+    const float lum = luminance(l.intensity);
+    switch (l.kind) {
+        case Light::Kind::Point:
+            return 4.0f * kPi * lum;
+        case Light::Kind::Spot: {
+            // Full within the falloff start, about half across the falloff (pbrt-v4's Phi).
+            const float cos_start = std::cos(radians(l.falloff_start_degrees));
+            const float cos_cutoff = std::cos(radians(l.cutoff_degrees));
+            return 2.0f * kPi * lum * ((1.0f - cos_start) + 0.5f * (cos_start - cos_cutoff));
+        }
+        case Light::Kind::Directional:
+            return kPi * scene_radius * scene_radius * lum;
+    }
+    return 0.0f;
+}
 
 LightSet::LightSet(const Scene& scene) {
     emitters_ = collect_emitters(scene);
@@ -69,14 +101,14 @@ LightSet::LightSet(const Scene& scene) {
     }
     const size_t emitters = emitters_.size();
     std::vector<float> area_power = power;
-    for (const PointLight& p : scene.point_lights)
-        power.push_back(4.0f * kPi * luminance(p.intensity));
-    delta_count_ = scene.point_lights.size();
+    const Aabb bounds = scene.bounds();
+    const float scene_radius = bounds.empty() ? 1.0f : 0.5f * length(bounds.extent());
+    for (const Light& l : scene.lights) power.push_back(delta_light_power(l, scene_radius));
+    delta_count_ = scene.lights.size();
     background_ = !scene.background.is_black();
     if (background_) {
         const Background& bg = scene.background;
-        Aabb b = scene.bounds();
-        float r = b.empty() ? 1.0f : 0.5f * length(b.extent());
+        const float r = scene_radius;
         float lum = luminance(bg.radiance);
         if (bg.kind == Background::Kind::Environment) {
             const ImageData& img = scene.images[bg.image];
@@ -148,16 +180,23 @@ LightSample LightSet::sample(
     const size_t i = choice.index;
 
     if (i >= emitters_.size() && i < emitters_.size() + delta_count_) {
-        // A point light: intensity / d^2 along the direction to it.
-        const PointLight& p = scene.point_lights[i - emitters_.size()];
-        const Vec3 d = p.position - ref;
+        const Light& l = scene.lights[i - emitters_.size()];
+        ls.pdf = select_prob;
+        ls.delta = true;
+        if (l.kind == Light::Kind::Directional) {  // irradiance from the one direction
+            ls.wi = -l.direction;
+            ls.radiance = l.intensity;
+            ls.valid = ls.pdf > 0.0f;
+            return ls;
+        }
+        // Intensity / d^2 along the direction to the light, a spot's falloff times that.
+        const Vec3 d = l.position - ref;
         const float dist2 = length_squared(d);
         if (!(dist2 > 0.0f)) return ls;
         ls.dist = std::sqrt(dist2);
         ls.wi = d / ls.dist;
-        ls.radiance = p.intensity / dist2;
-        ls.pdf = select_prob;
-        ls.delta = true;
+        ls.radiance = l.intensity / dist2;
+        if (l.kind == Light::Kind::Spot) ls.radiance *= spot_falloff(l, dot(-ls.wi, l.direction));
         ls.valid = std::isfinite(ls.dist) && ls.pdf > 0.0f;
         return ls;
     }

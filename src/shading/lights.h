@@ -7,8 +7,9 @@
 // with luminance 1; a point light 4 pi x luminance of its intensity; the background as a sphere
 // of the scene's radius, 4 pi^2 r^2 L).
 //
-// Point lights are deltas: a sample of one has "pdf" its selection probability and "radiance"
-// intensity / d^2, flagged `delta`; no direction finds one. The one-sample strategies (light,
+// Point, spot and directional lights are deltas: a sample of one has "pdf" its selection
+// probability and "radiance" intensity / d^2 (times a spot's falloff; a directional light's
+// irradiance), flagged `delta`; no direction finds one. The one-sample strategies (light,
 // mixture) sample directions from the other lights only (sample_direction_light,
 // pdf_direction), in proportion to the same powers.
 #pragma once
@@ -116,7 +117,7 @@ class LightSet {
     std::unordered_map<uint32_t, uint32_t> index_;  // PrimRef bits -> light index
     bool background_ = false;                       // the last light, if present
     size_t count_ = 0;
-    size_t delta_count_ = 0;  // point lights: lights emitters_.size() .. + delta_count_
+    size_t delta_count_ = 0;  // Scene::lights: lights emitters_.size() .. + delta_count_
     // Without point lights 1 and select_; with them, the share of the other lights' power, and
     // the selection among those alone (the background as entry emitters_.size()).
     float area_fraction_ = 1.0f;
@@ -126,6 +127,16 @@ class LightSet {
     LightChoice select_in_table(float u_select) const;
     Distribution2D environment_;  // over the environment image's texels, luminance x sin(theta)
 };
+
+// A spot light's falloff for a direction at cos_theta from its axis: 1 within the falloff
+// start, 0 beyond the cutoff, between them linear in the angle (Mitsuba 3) or smoothstep in the
+// cosine (pbrt-v4), as l.falloff says.
+struct Light;
+float spot_falloff(const Light& l, float cos_theta);
+// The power light selection gives a light that is not a shape: a point 4 pi I, a spot
+// 2 pi I ((1 - cos start) + (cos start - cos cutoff) / 2), a directional light the irradiance
+// over a disk of the scene's radius, pi r^2 E (luminances).
+float delta_light_power(const Light& l, float scene_radius);
 
 // Radiance a surface emits towards the side the ray came from (0 unless the material emits;
 // one-sided emitters emit only on their front).

@@ -1,16 +1,42 @@
 #pragma once
 
+#include <cstdint>
+
 #include "wavetrace/math/vec3.h"
 
 namespace wavetrace {
 
-// A point light: radiant intensity `intensity` (W sr^-1 per channel) from one point in every
-// direction, so that a surface at distance d facing it receives intensity / d^2. A Dirac delta
-// in position: no ray can hit it, so only next-event estimation (strategies nee and mis)
-// reaches it, as in pbrt-v4 and Mitsuba 3 (their `point` lights).
-struct PointLight {
-    Point3 position;
+// A light that is not a shape: a Dirac delta in position (point, spot) or in direction
+// (directional). No ray can hit one, so only next-event estimation (strategies nee and mis)
+// reaches it, as in pbrt-v4 and Mitsuba 3.
+struct Light {
+    enum class Kind : uint8_t {
+        Point,        // radiant intensity `intensity` (W sr^-1 per channel) in every direction
+        Spot,         // the same within a cone about `direction`, with a falloff towards its edge
+        Directional,  // parallel light travelling along `direction`: irradiance `intensity`
+                      // (W m^-2 per channel) on a surface facing it
+    };
+    // How a spot light's intensity falls from the falloff start to the cutoff.
+    enum class Falloff : uint8_t {
+        Linear,      // linearly in the angle (Mitsuba 3's spot)
+        Smoothstep,  // smoothstep in the cosine (pbrt-v4's spotlight)
+    };
+    Kind kind = Kind::Point;
+    Point3 position;  // point, spot
+    Vec3 direction{0.0f, 0.0f,
+                   -1.0f};  // spot: the cone's axis; directional: where light goes; unit
     Color intensity{0.0f};
+    float cutoff_degrees = 20.0f;         // spot: the half-angle beyond which it is dark
+    float falloff_start_degrees = 15.0f;  // spot: the half-angle within which it is full
+    Falloff falloff = Falloff::Linear;
+
+    // A point light of `intensity` at `position`.
+    static Light point(Point3 position, Color intensity) {
+        Light l;
+        l.position = position;
+        l.intensity = intensity;
+        return l;
+    }
 };
 
 }  // namespace wavetrace
