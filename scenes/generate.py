@@ -124,30 +124,43 @@ def everything():
     }
 
 
-def conductors():
-    """Named metals from smooth to rough, GGX and Beckmann, on a grey floor under the
-    environment map, a small quad light, a point, a spot and a directional light: the conductor
-    and the delta lights in both engines."""
-    row = [("Au", 0.0, "ggx"), ("Au", 0.1, "ggx"), ("Cu", 0.2, "beckmann"),
-           ("Ag", 0.3, "ggx"), ("Al", 0.05, "beckmann"), ("Cr", 0.5, "ggx")]
+def materials():
+    """A grid of the material kinds side by side: named metals from smooth to rough, GGX and
+    Beckmann, in the back row; glass smooth and rough, a Lambertian and a rough metal in the
+    front; on a grey floor under the environment map, a small quad light, a point, a spot and
+    a directional light. Both engines, every kind and the delta lights."""
+    back = [("Au", 0.0, "ggx"), ("Au", 0.1, "ggx"), ("Cu", 0.2, "beckmann"),
+            ("Ag", 0.3, "ggx"), ("Al", 0.05, "beckmann"), ("Cr", 0.5, "ggx")]
     materials = {"floor": {"type": "lambertian", "albedo": 0.4},
-                 "lamp": {"type": "diffuse_light", "radiance": 12}}
+                 "lamp": {"type": "diffuse_light", "radiance": 12},
+                 "glass": {"type": "dielectric", "ior": "bk7"},
+                 "glass-ggx-0.05": {"type": "dielectric", "ior": "bk7", "alpha": 0.05},
+                 "glass-beckmann-0.3": {"type": "dielectric", "ior": 1.5, "alpha": 0.3,
+                                        "distribution": "beckmann"},
+                 "water-ggx-0.15": {"type": "dielectric", "ior": "water", "alpha": 0.15},
+                 "white": {"type": "lambertian", "albedo": 0.7},
+                 "steel": {"type": "metal", "albedo": [0.8, 0.8, 0.85], "roughness": 0.3}}
     objects = [{"type": "quad", "q": [-10, 0, 10], "u": [20, 0, 0], "v": [0, 0, -20],
                 "material": "floor"},
                {"type": "quad", "q": [-1.5, 6, -1.5], "u": [3, 0, 0], "v": [0, 0, 3],
                 "material": "lamp"}]
-    for i, (metal, alpha, distribution) in enumerate(row):
+    for i, (metal, alpha, distribution) in enumerate(back):
         name = "%s-%s-%g" % (metal, distribution, alpha)
         materials[name] = {"type": "conductor", "metal": metal, "alpha": alpha,
                            "distribution": distribution}
-        objects.append({"type": "sphere", "center": [-5 + 2 * i, 0.9, 0], "radius": 0.9,
+        objects.append({"type": "sphere", "center": [-5 + 2 * i, 0.9, -1.2], "radius": 0.9,
+                        "material": name})
+    front = ["glass", "glass-ggx-0.05", "glass-beckmann-0.3", "water-ggx-0.15", "white", "steel"]
+    for i, name in enumerate(front):
+        objects.append({"type": "sphere", "center": [-5 + 2 * i, 0.7, 1.2], "radius": 0.7,
                         "material": name})
     return {
-        "description": "Six named metals (Au, Cu, Ag, Al, Cr) from smooth to rough, GGX and "
-                       "Beckmann, under an environment map, a quad light, a point, a spot and a "
-                       "directional light",
-        "render": {"width": 640, "height": 240, "spp": 64, "max_depth": 32},
-        "camera": {"look_from": [0, 3, 12], "look_at": [0, 0.9, 0], "vfov": 24},
+        "description": "Material kinds side by side: six named metals (Au, Cu, Ag, Al, Cr) from "
+                       "smooth to rough, GGX and Beckmann; smooth and rough glass, water, "
+                       "Lambertian, rough metal; under an environment map, a quad light, a "
+                       "point, a spot and a directional light",
+        "render": {"width": 640, "height": 320, "spp": 64, "max_depth": 32},
+        "camera": {"look_from": [0, 4, 13], "look_at": [0, 0.7, 0], "vfov": 28},
         "background": {"type": "environment", "file": "textures/tungsten_envmap.hdr",
                        "rotation": 90, "scale": 0.5},
         "lights": [{"type": "point", "position": [4, 5, 4], "intensity": 25},
@@ -264,7 +277,7 @@ SCENES = {
         "objects": [{"type": "mesh", "file": "meshes/dragon_100k.obj", "material": "grey",
                      "normals": "flat"}],
     },
-    "conductors": conductors(),
+    "materials": materials(),
 }
 
 

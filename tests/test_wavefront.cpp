@@ -34,7 +34,7 @@ RenderRequest config(Strategy st, int w, int h, int spp, uint64_t seed = 11) {
 // absolute) in at least 99.9% of pixel channels, image means within 1e-5 relative.
 TEST(Wavefront, EqualsTheMegakernel) {
     for (const char* name : {"cornell", "cornell-glass", "cornell-mirror", "cornell-smoke",
-                             "everything", "bunny", "dragon", "veach-mis", "conductors"}) {
+                             "everything", "bunny", "dragon", "veach-mis", "materials"}) {
         Scene scene = load_scene(scene_path(name));
         Bvh bvh = Bvh::build(scene);
         for (Strategy st :
@@ -117,7 +117,7 @@ TEST(Wavefront, BitIdenticalForAnyThreadCountAndWaveSize) {
 // two schedules' queues group differently: the count of tests differs, not their result.)
 TEST(Wavefront, StageScheduleEqualsResidentBitForBit) {
     for (const char* name : {"cornell", "cornell-glass", "cornell-smoke", "everything", "dragon",
-                             "veach-mis", "conductors"}) {
+                             "veach-mis", "materials"}) {
         Scene scene = load_scene(scene_path(name));
         Bvh bvh = Bvh::build(scene);
         for (Strategy st :

@@ -7,6 +7,7 @@
 #include "bsdfs/conductor.h"
 #include "bsdfs/diffuse-inl.h"
 #include "bsdfs/fresnel.h"
+#include "bsdfs/rough_dielectric.h"
 #include "bsdfs/ggx-inl.h"
 #include "wavetrace/math/constants.h"
 
@@ -14,7 +15,7 @@ namespace wavetrace {
 namespace lanes = HWY_NAMESPACE;
 using lanes::OneLane, lanes::to_lanes, lanes::to_vec3;
 bool BsdfParams::is_delta() const {
-    return kind == MaterialKind::Mirror || kind == MaterialKind::Dielectric ||
+    return kind == MaterialKind::Mirror || (kind == MaterialKind::Dielectric && alpha == 0.0f) ||
            (kind == MaterialKind::Metal && alpha == 0.0f) ||
            (kind == MaterialKind::Conductor && alpha == 0.0f && alpha_v == 0.0f);
 }
@@ -51,6 +52,11 @@ Color bsdf_eval(const BsdfParams& b, Vec3 wo, Vec3 wi) {
             float pdf;
             return conductor_eval(b, wo, wi, &pdf);
         }
+        case MaterialKind::Dielectric: {
+            if (b.alpha == 0.0f) return {};
+            float pdf;
+            return rough_dielectric_eval(b, wo, wi, &pdf);
+        }
         default:
             return {};  // delta lobes, emitters and interfaces do not scatter smoothly
     }
@@ -75,6 +81,12 @@ float bsdf_pdf(const BsdfParams& b, Vec3 wo, Vec3 wi) {
         case MaterialKind::Conductor: {
             float pdf;
             conductor_eval(b, wo, wi, &pdf);
+            return pdf;
+        }
+        case MaterialKind::Dielectric: {
+            if (b.alpha == 0.0f) return 0.0f;
+            float pdf;
+            rough_dielectric_eval(b, wo, wi, &pdf);
             return pdf;
         }
         default:
@@ -120,6 +132,7 @@ BsdfSample bsdf_sample(const BsdfParams& b, Vec3 wo, float u_lobe, float u1, flo
             s.delta = s.valid = true;
             return s;
         case MaterialKind::Dielectric: {
+            if (b.alpha > 0.0f) return rough_dielectric_sample(b, wo, u_lobe, u1, u2);
             // Relative IOR seen by the ray: entering from the front (wo.z > 0) goes into the
             // material; from the back it leaves it.
             float eta = wo.z > 0.0f ? b.eta : 1.0f / b.eta;

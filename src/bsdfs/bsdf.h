@@ -19,10 +19,11 @@ struct BsdfParams {
     MaterialKind kind = MaterialKind::Lambertian;
     Color albedo{0.0f};
     float alpha = 0.0f;  // Metal: GGX roughness alpha = roughness^2 (0: a perfect mirror);
-                         // Conductor: the microfacet roughness alpha_u (0: smooth)
+                         // Conductor, Dielectric: the microfacet roughness alpha_u (0: smooth)
     float eta = 1.0f;    // Dielectric: IOR inside / IOR outside as seen by the ray (front: ior)
-    // Conductor (shading/conductor.h): the complex index of refraction, the roughness along the
-    // frame's y axis and the distribution.
+    // Conductor (bsdfs/conductor.h): the complex index of refraction; Conductor and rough
+    // Dielectric (bsdfs/rough_dielectric.h): the roughness along the frame's y axis and the
+    // distribution.
     Color conductor_eta{1.0f}, conductor_k{0.0f};
     float alpha_v = 0.0f;
     Microfacet distribution = Microfacet::Ggx;

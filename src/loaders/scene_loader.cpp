@@ -198,6 +198,43 @@ class Loader {
         return scene_.add_texture(t);
     }
 
+    // A microfacet roughness alpha (0: smooth) and its distribution.
+    void read_roughness(Object& o, Material& m) {
+        if (auto x = o.optional("alpha")) m.alpha_u = m.alpha_v = x->in_range(0.0f, 1.0f);
+        if (auto x = o.optional("distribution")) {
+            const std::string d = x->string();
+            if (d == "ggx")
+                m.distribution = Microfacet::Ggx;
+            else if (d == "beckmann")
+                m.distribution = Microfacet::Beckmann;
+            else
+                x->fail("unknown distribution \"" + d + "\" (expected ggx or beckmann)");
+        }
+    }
+
+    // An index of refraction: a number > 0, or a name from Mitsuba's table (Hecht, Optics, at
+    // about 589 nm and 0-20 degrees C).
+    float read_ior(const Value& v) {
+        if (!v.is_string()) return v.positive();
+        static const std::pair<const char*, float> kNamed[] = {
+            {"vacuum", 1.0f},      {"helium", 1.000036f},        {"hydrogen", 1.000132f},
+            {"air", 1.000277f},    {"carbon dioxide", 1.00045f}, {"water", 1.333f},
+            {"acetone", 1.36f},    {"ethanol", 1.361f},          {"carbon tetrachloride", 1.461f},
+            {"glycerol", 1.4729f}, {"benzene", 1.501f},          {"silicone oil", 1.52045f},
+            {"bromine", 1.661f},   {"water ice", 1.31f},         {"fused quartz", 1.458f},
+            {"pyrex", 1.47f},      {"acrylic glass", 1.49f},     {"polypropylene", 1.49f},
+            {"bk7", 1.5046f},      {"sodium chloride", 1.544f},  {"amber", 1.55f},
+            {"pet", 1.575f},       {"diamond", 2.419f}};
+        const std::string name = v.string();
+        std::string known;
+        for (const auto& [n, ior] : kNamed) {
+            if (name == n) return ior;
+            known += std::string(known.empty() ? "" : ", ") + n;
+        }
+        v.fail("unknown index of refraction \"" + name + "\" (expected a number or one of " +
+               known + ")");
+    }
+
     // A conductor: a named metal, or eta and k per channel (default 0 and 1: every direction
     // reflects fully, as Mitsuba's conductor "none"); a roughness alpha (0: smooth) and its
     // distribution; a reflectance texture scaling the Fresnel term.
@@ -229,16 +266,7 @@ class Loader {
                 (k ? *k : *eta)
                     .fail("eta and k are both 0 in channel " + std::to_string(c) +
                           ": a conductor needs eta > 0 or k > 0");
-        if (auto x = o.optional("alpha")) m.alpha_u = m.alpha_v = x->in_range(0.0f, 1.0f);
-        if (auto x = o.optional("distribution")) {
-            const std::string d = x->string();
-            if (d == "ggx")
-                m.distribution = Microfacet::Ggx;
-            else if (d == "beckmann")
-                m.distribution = Microfacet::Beckmann;
-            else
-                x->fail("unknown distribution \"" + d + "\" (expected ggx or beckmann)");
-        }
+        read_roughness(o, m);
         auto x = o.optional("reflectance");
         m.albedo = x ? read_texture(*x, Range::Reflectance) : scene_.add_solid(Vec3(1.0f));
     }
@@ -313,7 +341,11 @@ class Loader {
                 m.albedo = x ? read_texture(*x, Range::Reflectance) : scene_.add_solid(Vec3(1.0f));
             } else if (type == "dielectric") {
                 m.kind = MaterialKind::Dielectric;
-                m.ior = o.required("ior").positive();
+                m.ior = read_ior(o.required("ior"));
+                read_roughness(o, m);
+                // Index-matched, the interface is invisible however rough it is (Walter's model
+                // degenerates to a delta there): the smooth dielectric says so exactly.
+                if (m.ior == 1.0f) m.alpha_u = m.alpha_v = 0.0f;
             } else if (type == "conductor") {
                 read_conductor(o, m);
             } else if (type == "diffuse_light") {

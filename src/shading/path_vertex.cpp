@@ -58,7 +58,8 @@ Vertex medium_vertex(const Scene& scene, MediumId medium, Point3 p) {
 bool can_sample_lights(const Vertex& v, const LightSet& lights) {
     return !lights.empty() && !v.bsdf.is_delta() &&
            (v.bsdf.kind == MaterialKind::Lambertian || v.bsdf.kind == MaterialKind::Metal ||
-            v.bsdf.kind == MaterialKind::Isotropic || v.bsdf.kind == MaterialKind::Conductor);
+            v.bsdf.kind == MaterialKind::Isotropic || v.bsdf.kind == MaterialKind::Conductor ||
+            v.bsdf.kind == MaterialKind::Dielectric);
 }
 
 Point3 offset_origin(const Vertex& v, Vec3 w) {
@@ -77,14 +78,18 @@ bool one_sample_continuation(Strategy strategy, const Vertex& v, const LightSet&
 }
 
 // f |cos| at a vertex for world directions, zero where wi leaves through the geometric surface
-// (CrossesGeometricSurface).
+// (CrossesGeometricSurface) but the BSDF would reflect it, or stays on wo's side but the BSDF
+// would transmit it (a rough dielectric).
 Color eval_world(const Vertex& v, Vec3 wo, Vec3 wi, float* pdf) {
     using lanes::to_lanes;
-    if (lanes::CrossesGeometricSurface<OneLane>(to_lanes(wo), to_lanes(wi), to_lanes(v.ng))) {
+    const bool crosses =
+        lanes::CrossesGeometricSurface<OneLane>(to_lanes(wo), to_lanes(wi), to_lanes(v.ng));
+    Vec3 lo = v.frame.to_local(wo), li = v.frame.to_local(wi);
+    const bool transmits = v.bsdf.kind == MaterialKind::Dielectric && lo.z * li.z < 0.0f;
+    if (crosses != transmits) {
         *pdf = 0.0f;
         return {};
     }
-    Vec3 lo = v.frame.to_local(wo), li = v.frame.to_local(wi);
     *pdf = bsdf_pdf(v.bsdf, lo, li);
     return bsdf_eval(v.bsdf, lo, li);
 }

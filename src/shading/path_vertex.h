@@ -42,7 +42,7 @@ inline BsdfParams material_bsdf(const Material& m, Color albedo) {
     b.albedo = albedo;
     b.alpha = m.roughness * m.roughness;
     b.eta = m.ior;
-    if (m.kind == MaterialKind::Conductor) {
+    if (m.kind == MaterialKind::Conductor || m.kind == MaterialKind::Dielectric) {
         b.alpha = m.alpha_u;
         b.alpha_v = m.alpha_v;
         b.conductor_eta = m.eta;

@@ -13,7 +13,7 @@ enum class MaterialKind : uint8_t {
     Metal,   // conductor with albedo and roughness in [0, 1] (Ray Tracing in One Weekend's "fuzz");
              // 0 is a mirror
     Mirror,  // perfect specular reflection tinted by albedo
-    Dielectric,    // smooth glass with index of refraction `ior`
+    Dielectric,    // glass of index of refraction `ior`: smooth, or rough (alpha_u, alpha_v > 0)
     DiffuseLight,  // emits `emission` radiance from its front side (or both sides if `two_sided`)
     Isotropic,     // phase function of a participating medium; scattering albedo `albedo`
     Interface,     // no surface at all: a medium's boundary that rays cross unchanged
@@ -38,8 +38,9 @@ struct Material {
     float ior = 1.5f;            // Dielectric
     TextureId emission = kNone;  // DiffuseLight: radiance (W sr^-1 m^-2 per channel)
     bool two_sided = false;      // DiffuseLight
-    // Conductor: the index of refraction eta + i k per channel, relative to the outside, and
-    // the microfacet roughness along the shading frame's two tangents (0, 0: a smooth mirror).
+    // Conductor: the index of refraction eta + i k per channel, relative to the outside.
+    // Conductor and Dielectric: the microfacet roughness along the shading frame's two tangents
+    // (0, 0: smooth) and its distribution.
     Color eta{0.0f}, k{0.0f};
     Microfacet distribution = Microfacet::Ggx;
     float alpha_u = 0.0f, alpha_v = 0.0f;
