@@ -75,7 +75,8 @@ void bench_engines(const Options& o, Results& r) {
                          {"everything", 320, 320, 16},
                          {"bunny", 320, 320, 16},
                          {"dragon", 320, 320, 16},
-                         {"veach-mis", 384, 288, 16}};
+                         {"veach-mis", 384, 288, 16},
+                         {"materials", 320, 160, 16}};
     const int reps = o.repetitions();
     const int all = tbb::this_task_arena::max_concurrency();
     std::vector<int> thread_counts = {1};

@@ -28,7 +28,8 @@ int main(int argc, char** argv) {
         ->capture_default_str()
         ->check(CLI::PositiveNumber);
     app.add_option("--scene", o.only, "engines, scaling: only these bench scenes (repeatable)")
-        ->check(CLI::IsMember({"cornell", "everything", "bunny", "dragon", "veach-mis"}));
+        ->check(CLI::IsMember(
+            {"cornell", "everything", "bunny", "dragon", "veach-mis", "materials"}));
     CLI11_PARSE(app, argc, argv);
     o.scenes = scenes;
 
