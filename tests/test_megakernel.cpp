@@ -377,3 +377,48 @@ TEST(Megakernel, SpotAndDirectionalLightsMatchTheirClosedForms) {
         EXPECT_NEAR(mean, st == Strategy::Bsdf ? 0.0 : expected, 1e-3 * expected);
     }
 }
+
+// A one-sided surface reflects from its front only: seen from behind, lit from behind, it is
+// black where a two-sided one is not; from the front the two agree exactly. Both engines.
+TEST(Megakernel, OneSidedSurfacesAreBlackFromBehind) {
+    auto scene = [](bool one_sided, float side) {
+        Scene s;
+        Material m;
+        m.kind = MaterialKind::Lambertian;
+        m.albedo = s.add_solid(Color(0.5f));
+        m.one_sided = one_sided;
+        // Front faces +y (u x v = (0, 0, 2) x (2, 0, 0) = (0, 4, 0)).
+        s.add_quad({{-1, 0, -1}, {0, 0, 2}, {2, 0, 0}, s.add_material(m), kNone});
+        s.lights.push_back(Light::point({0.3f, side * 2, 0}, Color(5.0f)));
+        s.camera.look_from = {0, side * 3, 0.01f};
+        s.camera.look_at = {0, 0, 0};
+        s.camera.vfov = 20;
+        return s;
+    };
+    for (float side : {1.0f, -1.0f}) {
+        const Scene one = scene(true, side), two = scene(false, side);
+        const Film f1 = render(one, Strategy::Mis, 8, 8, 4),
+                   f2 = render(two, Strategy::Mis, 8, 8, 4);
+        RenderRequest c;
+        c.width = c.height = 8;
+        c.spp = 4;
+        c.seed = 1;
+        const Image w1 = wavefront_film(one, Bvh::build(one), c).mean();
+        double sum1 = 0, sum2 = 0, sum_w = 0;
+        for (int y = 0; y < 8; ++y)
+            for (int x = 0; x < 8; ++x) {
+                sum1 += luminance(f1.mean().at(x, y));
+                sum2 += luminance(f2.mean().at(x, y));
+                sum_w += luminance(w1.at(x, y));
+            }
+        std::printf("%s: one-sided %.5f, two-sided %.5f, one-sided wavefront %.5f\n",
+                    side > 0 ? "front" : "back ", sum1, sum2, sum_w);
+        EXPECT_GT(sum2, 0.0);
+        EXPECT_NEAR(sum_w, sum1, 1e-5 * sum2);
+        if (side > 0) {
+            EXPECT_EQ(sum1, sum2);
+        } else {
+            EXPECT_EQ(sum1, 0.0);
+        }
+    }
+}

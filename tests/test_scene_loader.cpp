@@ -362,6 +362,12 @@ TEST(SceneLoader, ConductorParametersAreValidated) {
     EXPECT_EQ(load_error(dir, with(R"({"type": "conductor"})")), "");  // a full reflector
     EXPECT_EQ(load_error(dir, with(R"({"type": "conductor", "metal": "Au", "alpha": 0.2})")), "");
     EXPECT_EQ(load_error(dir, with(R"({"type": "conductor", "metal": "none"})")), "");
+    EXPECT_EQ(load_error(dir, with(R"({"type": "conductor", "one_sided": true})")), "");
+    EXPECT_EQ(load_error(dir, with(R"({"type": "dielectric", "ior": "bk7", "one_sided": true})")),
+              ": /materials/gold/one_sided: only lambertian, metal, mirror and conductor "
+              "materials are one-sided or not");
+    EXPECT_EQ(load_error(dir, with(R"({"type": "dielectric", "ior": "glass"})")).substr(0, 72),
+              ": /materials/gold/ior: unknown index of refraction \"glass\" (expected a n");
     EXPECT_EQ(load_error(dir, with(R"({"type": "conductor", "metal": "gold"})")).substr(0, 65),
               ": /materials/gold/metal: unknown metal \"gold\" (expected none, a-C");
     EXPECT_EQ(load_error(dir, with(R"({"type": "conductor", "metal": "Au", "k": 1})")),

@@ -53,8 +53,9 @@ struct LaneSurface {
 bool lane_material(const Scene& scene, MaterialId m, LaneSurface* out) {
     if (m == kNone) return false;
     const Material& mat = scene.materials[m];
+    // One-sided materials go the scalar route, where the hit's side is known before the BSDF.
     if (!(mat.kind == MaterialKind::Lambertian || mat.kind == MaterialKind::Metal) ||
-        mat.albedo == kNone)
+        mat.albedo == kNone || mat.one_sided)
         return false;
     const Texture& albedo = scene.textures[mat.albedo];
     out->material = m;

@@ -359,6 +359,14 @@ class Loader {
                                 "\" (expected lambertian, metal, mirror, dielectric, "
                                 "conductor or diffuse_light; media are declared under /media)");
             }
+            if (auto x = o.optional("one_sided")) {
+                if (m.kind != MaterialKind::Lambertian && m.kind != MaterialKind::Metal &&
+                    m.kind != MaterialKind::Mirror && m.kind != MaterialKind::Conductor)
+                    x->fail(
+                        "only lambertian, metal, mirror and conductor materials are one-sided "
+                        "or not");
+                m.one_sided = x->boolean();
+            }
             o.finish();
             materials_[name] = scene_.add_material(std::move(m));
         }

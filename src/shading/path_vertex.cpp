@@ -41,6 +41,9 @@ Vertex surface_vertex(const Scene& scene, const SurfaceHit& hit) {
     const Material& m = scene.materials[hit.material];
     v.bsdf = material_bsdf(
         m, m.albedo != kNone ? eval_texture(scene, m.albedo, hit.uv, hit.p) : Color(0.0f));
+    // A one-sided surface seen from behind reflects nothing: its albedo (a conductor's
+    // reflectance) is 0 there.
+    if (m.one_sided && !hit.front_face) v.bsdf.albedo = Color(0.0f);
     return v;
 }
 

@@ -37,7 +37,10 @@ struct Material {
     float roughness = 0.0f;      // Metal
     float ior = 1.5f;            // Dielectric
     TextureId emission = kNone;  // DiffuseLight: radiance (W sr^-1 m^-2 per channel)
-    bool two_sided = false;      // DiffuseLight
+    bool two_sided = false;      // DiffuseLight: emits from both sides
+    // Lambertian, Metal, Mirror, Conductor: reflects nothing from behind (Mitsuba's diffuse,
+    // conductor, ...; its `twosided` wrapper is the default here).
+    bool one_sided = false;
     // Conductor: the index of refraction eta + i k per channel, relative to the outside.
     // Conductor and Dielectric: the microfacet roughness along the shading frame's two tangents
     // (0, 0: smooth) and its distribution.
