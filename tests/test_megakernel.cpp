@@ -89,6 +89,20 @@ Scene furnace_scene(float albedo) {
     return s;
 }
 
+// A diffuse plane y = 0 of albedo rho, of which a one-pixel camera sees a 0.5 mm patch around
+// the origin: the scene of the closed-form lighting tests below, which add its light.
+Scene plane_seen_at_origin(float rho) {
+    Scene s;
+    Material floor;
+    floor.kind = MaterialKind::Lambertian;
+    floor.albedo = s.add_solid(Color(rho));
+    s.add_quad({{-50, 0, -50}, {0, 0, 100}, {100, 0, 0}, s.add_material(floor), kNone});
+    s.camera.look_from = {0, 0.5f, -3};
+    s.camera.look_at = {0, 0, 0};
+    s.camera.vfov = 0.01f;
+    return s;
+}
+
 }  // namespace
 
 TEST(Megakernel, WhiteFurnace) {
@@ -110,18 +124,11 @@ TEST(Megakernel, WhiteFurnace) {
 // atan(A/sqrt(1+B^2))], A = a/h, B = b/h.
 TEST(Megakernel, IrradianceUnderAParallelSquare) {
     const float rho = 0.6f, le = 5.0f, a = 0.5f, h = 1.0f;
-    Scene s;
-    Material floor;
-    floor.kind = MaterialKind::Lambertian;
-    floor.albedo = s.add_solid(Color(rho));
+    Scene s = plane_seen_at_origin(rho);
     Material light;
     light.kind = MaterialKind::DiffuseLight;
     light.emission = s.add_solid(Color(le));
-    s.add_quad({{-50, 0, -50}, {0, 0, 100}, {100, 0, 0}, s.add_material(floor), kNone});
     s.add_quad({{-a, h, -a}, {2 * a, 0, 0}, {0, 0, 2 * a}, s.add_material(light), kNone});
-    s.camera.look_from = {0, 0.5f, -3};
-    s.camera.look_at = {0, 0, 0};
-    s.camera.vfov = 0.01f;  // one pixel seeing a 0.5 mm patch around the centre
     const double A = a / h, B = a / h;
     const double F = 2 / 3.14159265358979 *
                      (A / std::sqrt(1 + A * A) * std::atan(B / std::sqrt(1 + A * A)) +
@@ -144,15 +151,8 @@ TEST(Megakernel, IrradianceUnderAParallelSquare) {
 // Both engines give the same.
 TEST(Megakernel, PointLightLightsByTheInverseSquare) {
     const float rho = 0.6f, intensity = 7.0f, h = 1.5f, x = 0.8f;
-    Scene s;
-    Material floor;
-    floor.kind = MaterialKind::Lambertian;
-    floor.albedo = s.add_solid(Color(rho));
-    s.add_quad({{-50, 0, -50}, {0, 0, 100}, {100, 0, 0}, s.add_material(floor), kNone});
+    Scene s = plane_seen_at_origin(rho);
     s.lights.push_back(Light::point({-x, h, 0}, Color(intensity)));
-    s.camera.look_from = {0, 0.5f, -3};
-    s.camera.look_at = {0, 0, 0};
-    s.camera.vfov = 0.01f;  // one pixel seeing a 0.5 mm patch around the origin
     const double d2 = double(h) * h + double(x) * x;
     const double expected = rho * intensity * h / (3.14159265358979 * d2 * std::sqrt(d2));
     for (Strategy st : kStrategies) {
@@ -326,15 +326,8 @@ TEST(Megakernel, MisEarnsItsName) {
 TEST(Megakernel, SpotAndDirectionalLightsMatchTheirClosedForms) {
     const float rho = 0.6f;
     auto plane = [&](Light light) {
-        Scene s;
-        Material floor;
-        floor.kind = MaterialKind::Lambertian;
-        floor.albedo = s.add_solid(Color(rho));
-        s.add_quad({{-50, 0, -50}, {0, 0, 100}, {100, 0, 0}, s.add_material(floor), kNone});
+        Scene s = plane_seen_at_origin(rho);
         s.lights.push_back(light);
-        s.camera.look_from = {0, 0.5f, -3};
-        s.camera.look_at = {0, 0, 0};
-        s.camera.vfov = 0.01f;
         return s;
     };
     const double kPi = 3.14159265358979;
