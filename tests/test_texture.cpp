@@ -26,6 +26,64 @@ TEST(Texture, CheckerAlternatesInThreeDimensions) {
     EXPECT_EQ(eval_texture(s, c, {}, {-0.5f, 0.5f, 0.5f}), Color(0, 0, 1));
 }
 
+// The uv checkerboard alternates over (u, v) after its uv transform: scale 0.5 is Mitsuba's
+// checkerboard (color0 = even in [0, 0.5)^2); a 90-degree turn and an offset move the cells.
+TEST(Texture, UvCheckerAlternatesOverUvAfterItsTransform) {
+    Scene s;
+    TextureId even = s.add_solid({1, 0, 0}), odd = s.add_solid({0, 0, 1});
+    Texture t;
+    t.kind = TextureKind::UvChecker;
+    t.scale = 0.5f;
+    t.even = even;
+    t.odd = odd;
+    const TextureId c = s.add_texture(t);
+    const Point3 far{100, 200, 300};  // the 3-D position plays no part
+    EXPECT_EQ(eval_texture(s, c, {0.2f, 0.3f}, far), Color(1, 0, 0));
+    EXPECT_EQ(eval_texture(s, c, {0.7f, 0.3f}, far), Color(0, 0, 1));
+    EXPECT_EQ(eval_texture(s, c, {0.7f, 0.8f}, far), Color(1, 0, 0));
+    EXPECT_EQ(eval_texture(s, c, {-0.2f, 0.3f}, far), Color(0, 0, 1));
+    // u' = -v, v' = u (a quarter turn), then u' + 0.5.
+    t.uv[0][0] = 0;
+    t.uv[0][1] = -1;
+    t.uv[0][2] = 0.5f;
+    t.uv[1][0] = 1;
+    t.uv[1][1] = 0;
+    const TextureId turned = s.add_texture(t);
+    // (0.2, 0.3) -> (0.2, 0.2): even; (0.2, 0.8) -> (-0.3, 0.2): odd.
+    EXPECT_EQ(eval_texture(s, turned, {0.2f, 0.3f}, far), Color(1, 0, 0));
+    EXPECT_EQ(eval_texture(s, turned, {0.2f, 0.8f}, far), Color(0, 0, 1));
+    EXPECT_TRUE(texture_reads_uv(s, turned));
+}
+
+// An image's uv transform as the scene file writes it: scale, then rotate, then offset.
+TEST(Texture, UvTransformsAreReadInOrder) {
+    TempDir dir;
+    const std::string scene = R"({"camera": {"look_from": [0, 0, -5], "look_at": [0, 0, 0]},
+        "materials": {"m": {"type": "lambertian", "albedo": {"type": "uv_checker", "scale": 1,
+            "even": 0.2, "odd": 0.8,
+            "uv_transform": {"scale": [2, 1], "rotate": 90, "offset": [0.25, 0]}}}},
+        "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "m"}]})";
+    const Scene s = load_scene(dir.write("uv.json", scene));
+    const Texture& t = s.textures[s.materials[0].albedo];
+    // (u, v) -> scale (2u, v) -> rotate (-v, 2u) -> offset (-v + 0.25, 2u).
+    const Vec2 st = t.map_uv({0.3f, 0.1f});
+    EXPECT_NEAR(st.x, -0.1f + 0.25f, 1e-6f);
+    EXPECT_NEAR(st.y, 0.6f, 1e-6f);
+    const std::string bad = R"({"camera": {"look_from": [0, 0, -5], "look_at": [0, 0, 0]},
+        "materials": {"m": {"type": "lambertian", "albedo": {"type": "uv_checker", "scale": 1,
+            "even": 0.2, "odd": 0.8, "uv_transform": {"scale": [2, 0]}}}},
+        "objects": []})";
+    try {
+        load_scene(dir.write("bad.json", bad));
+        ADD_FAILURE() << "a zero uv scale loaded";
+    } catch (const SceneError& e) {
+        EXPECT_NE(std::string(e.what()).find("/materials/m/albedo/uv_transform/scale: a uv scale "
+                                             "must not be 0"),
+                  std::string::npos)
+            << e.what();
+    }
+}
+
 TEST(Texture, ImageIsBilinearAndWraps) {
     ImageData img;
     img.width = 2;

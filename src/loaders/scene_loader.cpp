@@ -187,15 +187,53 @@ class Loader {
             t.scale = o.required("scale").positive();
             t.color = Vec3(1.0f);
             if (auto x = o.optional("color")) t.color = colour(*x);
+        } else if (type == "uv_checker") {
+            t.kind = TextureKind::UvChecker;
+            t.scale = o.required("scale").positive();
+            t.even = read_texture(o.required("even"), range);
+            t.odd = read_texture(o.required("odd"), range);
+            if (auto x = o.optional("uv_transform")) read_uv_transform(*x, t);
         } else if (type == "image") {
             t.kind = TextureKind::Image;
             t.image = scene_.add_image(read_image_at(o.required("file")));
+            if (auto x = o.optional("uv_transform")) read_uv_transform(*x, t);
         } else {
             type_value.fail("unknown texture type \"" + type +
-                            "\" (expected solid, checker, noise or image)");
+                            "\" (expected solid, checker, uv_checker, noise or image)");
         }
         o.finish();
         return scene_.add_texture(t);
+    }
+
+    // {"scale": s or [su, sv], "rotate": degrees, "offset": [ou, ov]}: uv scaled, then rotated
+    // counter-clockwise about (0, 0), then offset.
+    void read_uv_transform(const Value& v, Texture& t) {
+        Object o(v);
+        float su = 1.0f, sv = 1.0f, degrees = 0.0f, ou = 0.0f, ov = 0.0f;
+        if (auto x = o.optional("scale")) {
+            if (x->is_array()) {
+                if (x->size() != 2) x->fail("expected [su, sv]");
+                su = (*x)[0].number();
+                sv = (*x)[1].number();
+            } else {
+                su = sv = x->number();
+            }
+            if (su == 0.0f || sv == 0.0f) x->fail("a uv scale must not be 0");
+        }
+        if (auto x = o.optional("rotate")) degrees = x->number();
+        if (auto x = o.optional("offset")) {
+            if (x->size() != 2) x->fail("expected [ou, ov]");
+            ou = (*x)[0].number();
+            ov = (*x)[1].number();
+        }
+        o.finish();
+        const float c = std::cos(radians(degrees)), s = std::sin(radians(degrees));
+        t.uv[0][0] = c * su;
+        t.uv[0][1] = -s * sv;
+        t.uv[0][2] = ou;
+        t.uv[1][0] = s * su;
+        t.uv[1][1] = c * sv;
+        t.uv[1][2] = ov;
     }
 
     // A microfacet roughness alpha (0: smooth) and its distribution.

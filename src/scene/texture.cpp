@@ -102,6 +102,7 @@ bool texture_reads_uv(const Scene& scene, TextureId id) {
     const Texture& t = scene.textures[id];
     switch (t.kind) {
         case TextureKind::Image:
+        case TextureKind::UvChecker:
             return true;
         case TextureKind::Checker:
             return texture_reads_uv(scene, t.even) || texture_reads_uv(scene, t.odd);
@@ -127,11 +128,23 @@ Color eval_texture(const Scene& scene, TextureId id, Vec2 uv, Point3 p) {
                 id = (sum % 2 == 0) ? t.even : t.odd;
                 continue;
             }
+            case TextureKind::UvChecker: {
+                // Cells of side `scale` in (u', v'): the parity of the sum of the cell indices
+                // (Mitsuba's checkerboard is scale 0.5, even = its color0).
+                const Vec2 st = t.map_uv(uv);
+                const float inv = 1.0f / t.scale;
+                const long sum = static_cast<long>(std::floor(inv * st.x)) +
+                                 static_cast<long>(std::floor(inv * st.y));
+                id = (sum % 2 == 0) ? t.even : t.odd;
+                continue;
+            }
             case TextureKind::Noise:
                 return t.color *
                        (0.5f * (1.0f + std::sin(t.scale * p.z + 10.0f * perlin_turbulence(p))));
-            case TextureKind::Image:
-                return scene.images[t.image].bilinear(uv.x, uv.y);
+            case TextureKind::Image: {
+                const Vec2 st = t.map_uv(uv);
+                return scene.images[t.image].bilinear(st.x, st.y);
+            }
         }
         return {};
     }

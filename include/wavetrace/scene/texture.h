@@ -10,10 +10,11 @@
 namespace wavetrace {
 
 enum class TextureKind : uint8_t {
-    Solid,    // a constant colour
-    Checker,  // 3-D checkerboard of two sub-textures, cells of size `scale` (RTNW §4.3)
-    Noise,    // Perlin turbulence "marble": 0.5 (1 + sin(scale z + 10 turb(p))) (RTNW §5)
-    Image,    // an image mapped by the surface's (u, v), bilinear, wrapping
+    Solid,      // a constant colour
+    Checker,    // 3-D checkerboard of two sub-textures, cells of size `scale` (RTNW §4.3)
+    UvChecker,  // checkerboard over the (u, v) plane, cells of side `scale` in uv units
+    Noise,      // Perlin turbulence "marble": 0.5 (1 + sin(scale z + 10 turb(p))) (RTNW §5)
+    Image,      // an image mapped by the surface's (u, v), bilinear, wrapping
 };
 
 // A texture is a plain record; which fields matter depends on `kind`.
@@ -24,6 +25,14 @@ struct Texture {
     TextureId even = kNone;  // Checker: the texture of even cells
     TextureId odd = kNone;   // Checker: the texture of odd cells
     ImageId image = kNone;   // Image: index into Scene::images
+    // Image, UvChecker: the affine map applied to the surface's (u, v) first,
+    // (u', v') = (uv[0][0] u + uv[0][1] v + uv[0][2], uv[1][0] u + uv[1][1] v + uv[1][2]).
+    float uv[2][3] = {{1.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}};
+
+    Vec2 map_uv(Vec2 st) const {
+        return {uv[0][0] * st.x + uv[0][1] * st.y + uv[0][2],
+                uv[1][0] * st.x + uv[1][1] * st.y + uv[1][2]};
+    }
 };
 
 // A decoded image held as linear RGB floats, row 0 at the top.
