@@ -3,12 +3,12 @@
 #include <algorithm>
 #include <cmath>
 
-#include "sampling/warp.h"
 #include "bsdfs/conductor.h"
 #include "bsdfs/diffuse-inl.h"
 #include "bsdfs/fresnel.h"
-#include "bsdfs/rough_dielectric.h"
 #include "bsdfs/ggx-inl.h"
+#include "bsdfs/rough_dielectric.h"
+#include "sampling/warp.h"
 #include "wavetrace/math/constants.h"
 
 namespace wavetrace {

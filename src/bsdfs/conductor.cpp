@@ -8,13 +8,9 @@
 namespace wavetrace {
 namespace {
 
-MicrofacetDistribution distribution(const BsdfParams& b) {
-    return {b.distribution, b.alpha, b.alpha_v};
-}
-
 // o and i on o's side mirrored above the surface: f cos and pdf for o.z > 0, i.z > 0.
 Color eval_upper(const BsdfParams& b, Vec3 o, Vec3 i, float* pdf) {
-    const MicrofacetDistribution md = distribution(b);
+    const MicrofacetDistribution md = microfacet_of(b);
     const Vec3 h = normalize(o + i);
     const float d = md.d(h);
     *pdf = md.g1(o) * d / (4.0f * o.z);
@@ -48,7 +44,7 @@ BsdfSample conductor_sample(const BsdfParams& b, Vec3 wo, float u1, float u2) {
         return s;
     }
     const Vec3 o{wo.x, wo.y, wo.z * side};
-    const Vec3 m = distribution(b).sample_visible(o, u1, u2);
+    const Vec3 m = microfacet_of(b).sample_visible(o, u1, u2);
     const Vec3 i = 2.0f * dot(o, m) * m - o;
     if (!(i.z > 0.0f)) return s;  // reflected below the surface: lost
     // The value and density from (o, i) as eval computes them, so that weight = eval / pdf.

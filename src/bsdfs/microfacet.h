@@ -8,6 +8,7 @@
 // both use.
 #pragma once
 
+#include "bsdfs/bsdf.h"
 #include "wavetrace/math/vec3.h"
 #include "wavetrace/scene/material.h"
 
@@ -42,5 +43,10 @@ struct MicrofacetDistribution {
     // rotate them to wo's azimuth and unstretch.
     Vec3 sample_visible(Vec3 wo, float u1, float u2) const;
 };
+
+// The distribution of a rough conductor or dielectric.
+inline MicrofacetDistribution microfacet_of(const BsdfParams& b) {
+    return {b.distribution, b.alpha, b.alpha_v};
+}
 
 }  // namespace wavetrace

@@ -8,15 +8,11 @@
 namespace wavetrace {
 namespace {
 
-MicrofacetDistribution distribution(const BsdfParams& b) {
-    return {b.distribution, b.alpha, b.alpha_v};
-}
-
 // wo.z > 0 (both directions mirrored so); eta = index of the side below over the side above.
 // f cos and pdf for wi on either side.
 Color eval_upper(const BsdfParams& b, Vec3 o, Vec3 i, float eta, float* pdf) {
     *pdf = 0.0f;
-    const MicrofacetDistribution md = distribution(b);
+    const MicrofacetDistribution md = microfacet_of(b);
     const bool reflect = i.z > 0.0f;
     Vec3 h = reflect ? o + i : -(eta * i + o);
     if (!(length_squared(h) > 0.0f)) return {};
@@ -59,7 +55,7 @@ BsdfSample rough_dielectric_sample(const BsdfParams& b, Vec3 wo, float u_lobe, f
     const float side = wo.z < 0.0f ? -1.0f : 1.0f;
     const float eta = wo.z > 0.0f ? b.eta : 1.0f / b.eta;
     const Vec3 o{wo.x, wo.y, wo.z * side};
-    const Vec3 m = distribution(b).sample_visible(o, u1, u2);
+    const Vec3 m = microfacet_of(b).sample_visible(o, u1, u2);
     const float cos_om = dot(o, m);
     if (!(cos_om > 0.0f)) return s;
     const float f = fresnel_dielectric(cos_om, eta);

@@ -133,7 +133,8 @@ Continuation sample_continuation(Strategy strategy,
         c.wi = v.frame.to_world(s.wi);
         // Reflection must stay on wo's side of the geometric surface, transmission cross it.
         if (v.on_surface()) {
-            bool crosses = dot(wo, v.ng) * dot(c.wi, v.ng) < 0.0f;
+            const bool crosses = lanes::CrossesGeometricSurface<OneLane>(
+                lanes::to_lanes(wo), lanes::to_lanes(c.wi), lanes::to_lanes(v.ng));
             if (crosses != s.transmitted) return c;
         }
         c.weight = s.weight;
