@@ -21,12 +21,12 @@ const std::vector<std::string> kLayers = {
     "math",      // small float math, SIMD lane types
     "files",     // reading an input file whole, writing an output atomically
     "sampling",  // the counter-based sampler, warps, tabulated distributions
+    "bsdfs",     // how surfaces and media scatter: BSDFs, Fresnel, microfacet distributions
     "scene",     // the scene model and its builders
     "image",     // images: OpenImageIO in and out, comparisons
     "film",      // per-pixel sums and film files
     "loaders",   // scene files and mesh files into a Scene
     "accel",     // the BVH: build, wide layout, traversal, primitive tests
-    "bsdfs",     // how surfaces and media scatter: BSDFs, Fresnel, microfacet distributions
     "shading",   // what both engines share: surfaces, lights, MIS, media, path vertices
     "queues",    // the wavefront's structure-of-arrays queues
     "kernels",   // the wavefront's kernels

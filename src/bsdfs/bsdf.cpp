@@ -7,6 +7,7 @@
 #include "bsdfs/diffuse-inl.h"
 #include "bsdfs/fresnel.h"
 #include "bsdfs/ggx-inl.h"
+#include "bsdfs/plastic.h"
 #include "bsdfs/rough_dielectric.h"
 #include "sampling/warp.h"
 #include "wavetrace/math/constants.h"
@@ -14,6 +15,16 @@
 namespace wavetrace {
 namespace lanes = HWY_NAMESPACE;
 using lanes::OneLane, lanes::to_lanes, lanes::to_vec3;
+namespace {
+
+// w mirrored into the upper hemisphere when `side` is below it (and back): the front-side lobes
+// of two-sided shading.
+Vec3 upper(Vec3 w, Vec3 side) {
+    return side.z < 0.0f ? Vec3{w.x, w.y, -w.z} : w;
+}
+
+}  // namespace
+
 bool BsdfParams::is_delta() const {
     return kind == MaterialKind::Mirror || (kind == MaterialKind::Dielectric && alpha == 0.0f) ||
            (kind == MaterialKind::Metal && alpha == 0.0f) ||
@@ -57,6 +68,11 @@ Color bsdf_eval(const BsdfParams& b, Vec3 wo, Vec3 wi) {
             float pdf;
             return rough_dielectric_eval(b, wo, wi, &pdf);
         }
+        case MaterialKind::Plastic: {
+            if (b.one_sided && wo.z < 0.0f) return {};
+            float pdf;
+            return plastic_eval(b, upper(wo, wo), upper(wi, wo), &pdf);
+        }
         default:
             return {};  // delta lobes, emitters and interfaces do not scatter smoothly
     }
@@ -87,6 +103,12 @@ float bsdf_pdf(const BsdfParams& b, Vec3 wo, Vec3 wi) {
             if (b.alpha == 0.0f) return 0.0f;
             float pdf;
             rough_dielectric_eval(b, wo, wi, &pdf);
+            return pdf;
+        }
+        case MaterialKind::Plastic: {
+            if (b.one_sided && wo.z < 0.0f) return 0.0f;
+            float pdf;
+            plastic_eval(b, upper(wo, wo), upper(wi, wo), &pdf);
             return pdf;
         }
         default:
@@ -155,6 +177,12 @@ BsdfSample bsdf_sample(const BsdfParams& b, Vec3 wo, float u_lobe, float u1, flo
         }
         case MaterialKind::Conductor:
             return conductor_sample(b, wo, u1, u2);
+        case MaterialKind::Plastic: {
+            if (b.one_sided && wo.z < 0.0f) return s;
+            s = plastic_sample(b, upper(wo, wo), u_lobe, u1, u2);
+            s.wi = upper(s.wi, wo);
+            return s;
+        }
         case MaterialKind::Isotropic:
             s.wi = sample_uniform_sphere(u1, u2);
             s.pdf = lanes::PhasePdf<OneLane>();

@@ -9,8 +9,9 @@
 // delta lobes the lobe's throughput). For the isotropic phase function "cos" is 1.
 #pragma once
 
+#include "wavetrace/bsdfs/coating.h"
+#include "wavetrace/bsdfs/material_kind.h"
 #include "wavetrace/math/vec3.h"
-#include "wavetrace/scene/material.h"
 
 namespace wavetrace {
 
@@ -27,6 +28,15 @@ struct BsdfParams {
     Color conductor_eta{1.0f}, conductor_k{0.0f};
     float alpha_v = 0.0f;
     Microfacet distribution = Microfacet::Ggx;
+    // Plastic (bsdfs/plastic.h): albedo is the base's reflectance, eta the coating's, alpha its
+    // roughness (isotropic; 0: smooth); the specular reflectance, the probability weight of the
+    // specular lobe, the nonlinear rule, and the rough coating's table; one_sided: black from
+    // behind (wo.z < 0) rather than mirrored to the front.
+    Color specular{1.0f};
+    float specular_weight = 0.5f;
+    bool nonlinear = false;
+    bool one_sided = false;
+    const CoatingTable* coating = nullptr;
 
     bool is_delta() const;  // every lobe is a Dirac delta: never light-sampled
 };

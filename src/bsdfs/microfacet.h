@@ -9,8 +9,8 @@
 #pragma once
 
 #include "bsdfs/bsdf.h"
+#include "wavetrace/bsdfs/material_kind.h"
 #include "wavetrace/math/vec3.h"
-#include "wavetrace/scene/material.h"
 
 namespace wavetrace {
 

@@ -21,6 +21,7 @@ Color albedo_of(const Scene& scene, const SurfaceHit& s) {
     const Material& m = scene.materials[s.material];
     switch (m.kind) {
         case MaterialKind::Lambertian:
+        case MaterialKind::Plastic:  // its base
         case MaterialKind::Metal:
         case MaterialKind::Mirror:
         case MaterialKind::Isotropic:

@@ -309,6 +309,23 @@ class Loader {
         m.albedo = x ? read_texture(*x, Range::Reflectance) : scene_.add_solid(Vec3(1.0f));
     }
 
+    // A plastic (Mitsuba 3's plastic and roughplastic): the base's albedo (default 0.5), the
+    // coating's ior over ext_ior (defaults polypropylene and 1), its roughness, the specular
+    // reflectance (default 1) and the nonlinear rule.
+    void read_plastic(Object& o, Material& m) {
+        m.kind = MaterialKind::Plastic;
+        auto albedo = o.optional("albedo");
+        m.albedo =
+            albedo ? read_texture(*albedo, Range::Reflectance) : scene_.add_solid(Vec3(0.5f));
+        m.ior = 1.49f;
+        if (auto x = o.optional("ior")) m.ior = read_ior(*x);
+        if (auto x = o.optional("ext_ior")) m.ior /= read_ior(*x);
+        read_roughness(o, m);
+        m.alpha_v = m.alpha_u;
+        if (auto x = o.optional("specular")) m.specular = x->color();
+        if (auto x = o.optional("nonlinear")) m.nonlinear = x->boolean();
+    }
+
     // Lights that are not shapes: point, spot and directional (docs/scene-format.md#lights).
     void read_lights(const Value& v) {
         for (size_t i = 0; i < v.size(); ++i) {
@@ -380,12 +397,15 @@ class Loader {
             } else if (type == "dielectric") {
                 m.kind = MaterialKind::Dielectric;
                 m.ior = read_ior(o.required("ior"));
+                if (auto x = o.optional("ext_ior")) m.ior /= read_ior(*x);
                 read_roughness(o, m);
                 // Index-matched, the interface is invisible however rough it is (Walter's model
                 // degenerates to a delta there): the smooth dielectric says so exactly.
                 if (m.ior == 1.0f) m.alpha_u = m.alpha_v = 0.0f;
             } else if (type == "conductor") {
                 read_conductor(o, m);
+            } else if (type == "plastic") {
+                read_plastic(o, m);
             } else if (type == "diffuse_light") {
                 m.kind = MaterialKind::DiffuseLight;
                 m.emission = read_texture(o.required("radiance"), Range::Radiance);
@@ -399,10 +419,11 @@ class Loader {
             }
             if (auto x = o.optional("one_sided")) {
                 if (m.kind != MaterialKind::Lambertian && m.kind != MaterialKind::Metal &&
-                    m.kind != MaterialKind::Mirror && m.kind != MaterialKind::Conductor)
+                    m.kind != MaterialKind::Mirror && m.kind != MaterialKind::Conductor &&
+                    m.kind != MaterialKind::Plastic)
                     x->fail(
-                        "only lambertian, metal, mirror and conductor materials are one-sided "
-                        "or not");
+                        "only lambertian, metal, mirror, conductor and plastic materials are "
+                        "one-sided or not");
                 m.one_sided = x->boolean();
             }
             o.finish();

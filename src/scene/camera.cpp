@@ -7,7 +7,8 @@
 
 namespace wavetrace {
 
-// The camera of Ray Tracing in One Weekend (§12-13): a film on the focus plane, rays from a disk lens.
+// The camera of Ray Tracing in One Weekend (§12-13): a film on the focus plane, rays from a disk
+// lens.
 CameraRays::CameraRays(const Camera& camera, int width, int height) {
     float focus = camera.focus_distance > 0 ? camera.focus_distance
                                             : length(camera.look_at - camera.look_from);

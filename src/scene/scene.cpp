@@ -1,8 +1,11 @@
 #include "wavetrace/scene/scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
+
+#include "bsdfs/plastic.h"
 
 namespace wavetrace {
 
@@ -24,6 +27,8 @@ const char* to_string(MaterialKind kind) {
             return "interface";
         case MaterialKind::Conductor:
             return "conductor";
+        case MaterialKind::Plastic:
+            return "plastic";
     }
     return "?";
 }
@@ -46,6 +51,21 @@ ImageId Scene::add_image(ImageData image) {
 }
 
 MaterialId Scene::add_material(Material material) {
+    if (material.kind == MaterialKind::Plastic) {
+        const float s = mean(material.specular), d = mean(texture_mean(*this, material.albedo));
+        material.specular_weight = s + d > 0.0f ? s / (s + d) : 0.5f;
+        if (material.alpha_u > 0.0f) {
+            // The table depends on the coating alone: computed once per coating.
+            auto same = std::find_if(materials.begin(), materials.end(), [&](const Material& m) {
+                return m.kind == MaterialKind::Plastic && m.alpha_u == material.alpha_u &&
+                       m.distribution == material.distribution && m.ior == material.ior;
+            });
+            material.coating =
+                same != materials.end()
+                    ? same->coating
+                    : rough_coating_table(material.distribution, material.alpha_u, material.ior);
+        }
+    }
     materials.push_back(std::move(material));
     return static_cast<MaterialId>(materials.size() - 1);
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 
 #include "wavetrace/scene/scene.h"
 
@@ -148,6 +149,32 @@ Color eval_texture(const Scene& scene, TextureId id, Vec2 uv, Point3 p) {
         }
         return {};
     }
+}
+
+Color texture_mean(const Scene& scene, TextureId id) {
+    // A checker's cells name textures added before it (the loader's rule), so this ends; the
+    // depth bound guards scenes built by hand.
+    std::function<Color(TextureId, int)> mean_of = [&](TextureId t_id, int depth) -> Color {
+        if (t_id == kNone || t_id >= scene.textures.size() || depth > 64) return {};
+        const Texture& t = scene.textures[t_id];
+        switch (t.kind) {
+            case TextureKind::Solid:
+                return t.color;
+            case TextureKind::Checker:
+            case TextureKind::UvChecker:
+                return 0.5f * (mean_of(t.even, depth + 1) + mean_of(t.odd, depth + 1));
+            case TextureKind::Noise:
+                return 0.5f * t.color;
+            case TextureKind::Image: {
+                const ImageData& image = scene.images[t.image];
+                Color sum{0.0f};
+                for (const Color& c : image.texels) sum += c;
+                return image.texels.empty() ? Color(0.0f) : sum / float(image.texels.size());
+            }
+        }
+        return {};
+    };
+    return mean_of(id, 0);
 }
 
 }  // namespace wavetrace

@@ -62,7 +62,7 @@ bool can_sample_lights(const Vertex& v, const LightSet& lights) {
     return !lights.empty() && !v.bsdf.is_delta() &&
            (v.bsdf.kind == MaterialKind::Lambertian || v.bsdf.kind == MaterialKind::Metal ||
             v.bsdf.kind == MaterialKind::Isotropic || v.bsdf.kind == MaterialKind::Conductor ||
-            v.bsdf.kind == MaterialKind::Dielectric);
+            v.bsdf.kind == MaterialKind::Dielectric || v.bsdf.kind == MaterialKind::Plastic);
 }
 
 Point3 offset_origin(const Vertex& v, Vec3 w) {

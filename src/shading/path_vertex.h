@@ -6,8 +6,8 @@
 
 #include <cstdint>
 
-#include "sampling/sampler.h"
 #include "bsdfs/bsdf.h"
+#include "sampling/sampler.h"
 #include "shading/lights.h"
 #include "shading/medium_stack.h"
 #include "shading/mis.h"
@@ -15,6 +15,7 @@
 #include "wavetrace/math/frame.h"
 #include "wavetrace/math/ray.h"
 #include "wavetrace/scene/camera.h"
+#include "wavetrace/scene/material.h"
 #include "wavetrace/shading/estimator.h"
 #include "wavetrace/shading/surface.h"
 
@@ -42,12 +43,20 @@ inline BsdfParams material_bsdf(const Material& m, Color albedo) {
     b.albedo = albedo;
     b.alpha = m.roughness * m.roughness;
     b.eta = m.ior;
-    if (m.kind == MaterialKind::Conductor || m.kind == MaterialKind::Dielectric) {
+    if (m.kind == MaterialKind::Conductor || m.kind == MaterialKind::Dielectric ||
+        m.kind == MaterialKind::Plastic) {
         b.alpha = m.alpha_u;
         b.alpha_v = m.alpha_v;
         b.conductor_eta = m.eta;
         b.conductor_k = m.k;
         b.distribution = m.distribution;
+    }
+    if (m.kind == MaterialKind::Plastic) {
+        b.specular = m.specular;
+        b.specular_weight = m.specular_weight;
+        b.nonlinear = m.nonlinear;
+        b.coating = &m.coating;
+        b.one_sided = m.one_sided;
     }
     return b;
 }

@@ -102,6 +102,9 @@ constexpr float min_component(Vec3 a) {
 constexpr float max_component(Vec3 a) {
     return a.x > a.y ? (a.x > a.z ? a.x : a.z) : (a.y > a.z ? a.y : a.z);
 }
+constexpr float mean(Vec3 a) {
+    return (a.x + a.y + a.z) / 3.0f;
+}
 constexpr int max_dimension(Vec3 a) {
     return a.x > a.y ? (a.x > a.z ? 0 : 2) : (a.y > a.z ? 1 : 2);
 }

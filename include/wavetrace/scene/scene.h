@@ -57,7 +57,7 @@ struct Scene {
     std::vector<Point3> positions;  // mesh vertices, all meshes back to back
     std::vector<Normal3> normals;   // per vertex; zero for meshes without normals
     std::vector<Vec2> uvs;          // per vertex; zero for meshes without uvs
-    std::vector<Light> lights;  // lights that are not shapes (emissive shapes are lights too)
+    std::vector<Light> lights;      // lights that are not shapes (emissive shapes are lights too)
 
     // ---- builders (all transforms are baked into the stored shapes) ----
     TextureId add_texture(const Texture& texture);

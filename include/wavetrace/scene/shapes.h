@@ -18,7 +18,8 @@ struct Sphere {
     MediumId interior = kNone;
 };
 
-// Parallelogram q + a u + b v, a, b in [0, 1]; normal along u x v (the quad of Ray Tracing: The Next Week).
+// Parallelogram q + a u + b v, a, b in [0, 1]; normal along u x v (the quad of Ray Tracing: The
+// Next Week).
 struct Quad {
     Point3 q;
     Vec3 u, v;

@@ -56,6 +56,9 @@ struct Scene;
 bool texture_reads_uv(const Scene& scene, TextureId id);
 
 Color eval_texture(const Scene& scene, TextureId id, Vec2 uv, Point3 p);
+// The texture's mean over its domain (an image's texels, a checker's two cells; noise: half its
+// colour), as Mitsuba's Texture::mean; 0 for kNone.
+Color texture_mean(const Scene& scene, TextureId id);
 // Perlin turbulence (RTNW §5.6): the sum of 7 octaves of |noise|, in [0, ~1.5).
 float perlin_turbulence(Point3 p, int octaves = 7);
 // Perlin gradient noise in [-1, 1].

@@ -1,0 +1,20 @@
+// What the rough dielectric coating of a plastic lets through, tabulated once per material
+// (bsdfs/plastic.h says how it is used and computed).
+#pragma once
+
+#include <array>
+
+namespace wavetrace {
+
+struct CoatingTable {
+    static constexpr int kSize = 64;
+    // 1 - the directional albedo of the coating's specular reflection, at cos theta = i / 63
+    // (the first node at 1e-6), looked up linearly in between.
+    std::array<float, kSize> transmittance{};
+    // The share of light diffused inside the coating that is reflected back in.
+    float internal_reflectance = 0.0f;
+
+    float transmittance_at(float cos_theta) const;
+};
+
+}  // namespace wavetrace

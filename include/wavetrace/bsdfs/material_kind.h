@@ -1,0 +1,30 @@
+// The kinds of scattering a material has: what bsdfs/ evaluates and samples, and what the scene's
+// materials name.
+#pragma once
+
+#include <cstdint>
+
+namespace wavetrace {
+
+enum class MaterialKind : uint8_t {
+    Lambertian,  // ideal diffuse: albedo / pi
+    Metal,   // conductor with albedo and roughness in [0, 1] (Ray Tracing in One Weekend's "fuzz");
+             // 0 is a mirror
+    Mirror,  // perfect specular reflection tinted by albedo
+    Dielectric,    // glass of index of refraction `ior`: smooth, or rough (alpha_u, alpha_v > 0)
+    DiffuseLight,  // emits `emission` radiance from its front side (or both sides if `two_sided`)
+    Isotropic,     // phase function of a participating medium; scattering albedo `albedo`
+    Interface,     // no surface at all: a medium's boundary that rays cross unchanged
+    Conductor,     // Fresnel of a complex index of refraction eta + i k, smooth or microfacet
+    Plastic,       // a diffuse base under a dielectric coating, smooth or rough (Mitsuba 3's
+                   // plastic and roughplastic)
+};
+inline constexpr int kMaterialKinds = int(MaterialKind::Plastic) + 1;
+
+// The microfacet normal distributions of rough materials (bsdfs/microfacet.h).
+enum class Microfacet : uint8_t {
+    Ggx,       // Trowbridge-Reitz (Walter et al. 2007)
+    Beckmann,  // Beckmann-Spizzichino
+};
+
+}  // namespace wavetrace
