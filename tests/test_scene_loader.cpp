@@ -364,8 +364,22 @@ TEST(SceneLoader, ConductorParametersAreValidated) {
     EXPECT_EQ(load_error(dir, with(R"({"type": "conductor", "metal": "none"})")), "");
     EXPECT_EQ(load_error(dir, with(R"({"type": "conductor", "one_sided": true})")), "");
     EXPECT_EQ(load_error(dir, with(R"({"type": "dielectric", "ior": "bk7", "one_sided": true})")),
-              ": /materials/gold/one_sided: only lambertian, metal, mirror and conductor "
-              "materials are one-sided or not");
+              ": /materials/gold/one_sided: only lambertian, metal, mirror, conductor and "
+              "plastic materials are one-sided or not");
+    // Plastic and alpha masks.
+    EXPECT_EQ(
+        load_error(dir, with(R"({"type": "plastic", "albedo": 0.3, "ior": 1.9, "ext_ior": "air",
+        "alpha": 0.1, "distribution": "beckmann", "nonlinear": true, "one_sided": true})")),
+        "");
+    EXPECT_EQ(load_error(dir, with(R"({"type": "plastic", "alpha": -0.1})")),
+              ": /materials/gold/alpha: expected a number in [0.0, 1.0], got -0.1");
+    EXPECT_EQ(load_error(dir, with(R"({"type": "plastic", "ior": 0})")),
+              ": /materials/gold/ior: expected a positive number, got 0");
+    EXPECT_EQ(load_error(dir, with(R"({"type": "plastic", "specular": [1, -1, 1]})")).substr(0, 31),
+              ": /materials/gold/specular/1: e");
+    EXPECT_EQ(load_error(dir, with(R"({"type": "lambertian", "albedo": 0.5, "opacity": 1.5})"))
+                  .substr(0, 27),
+              ": /materials/gold/opacity: ");
     EXPECT_EQ(load_error(dir, with(R"({"type": "dielectric", "ior": "glass"})")).substr(0, 72),
               ": /materials/gold/ior: unknown index of refraction \"glass\" (expected a n");
     EXPECT_EQ(load_error(dir, with(R"({"type": "conductor", "metal": "gold"})")).substr(0, 65),

@@ -298,6 +298,7 @@ Bvh Bvh::build(const Scene& scene, const BvhBuildConfig& config) {
         collapse_to_wide(scene, bvh.layout_->nodes, bvh.layout_->prims,
                          {config.traversal_cost, config.intersection_cost,
                           static_cast<uint32_t>(std::max(config.max_leaf_size, 1))});
+    if (has_alpha_masks(scene)) bvh.layout_->wide.masks = &scene;
 
     stats.nodes = bvh.layout_->nodes.size();
     stats.bytes =

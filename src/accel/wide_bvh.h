@@ -1,17 +1,20 @@
 // The traversal layout of the BVH: the binary SAH tree collapsed into nodes of kWideNodeWidth
 // children whose boxes are stored as SoA float lanes, and leaves whose primitives are gathered
 // into blocks of kLeafBlockWidth primitives of one kind, tested all at once. The binary tree
-// stays the source of truth (bvh_build.cpp); this is what rays walk (wide_bvh_traverse.cpp, wide_bvh_packets.cpp).
-// The layout follows Embree's BVH8 (Wald et al., "Embree: A Kernel Framework for Efficient CPU
-// Ray Tracing", SIGGRAPH 2014) and Wald, Benthin and Boulos, "Getting Rid of Packets" (2008).
+// stays the source of truth (bvh_build.cpp); this is what rays walk (wide_bvh_traverse.cpp,
+// wide_bvh_packets.cpp). The layout follows Embree's BVH8 (Wald et al., "Embree: A Kernel Framework
+// for Efficient CPU Ray Tracing", SIGGRAPH 2014) and Wald, Benthin and Boulos, "Getting Rid of
+// Packets" (2008).
 #pragma once
 
 #include <cstdint>
 #include <vector>
 
 #include "accel/binary_bvh.h"
+#include "scene/opacity.h"
 #include "wavetrace/accel/bvh.h"
 #include "wavetrace/math/ray.h"
+#include "wavetrace/scene/scene.h"
 
 namespace wavetrace {
 
@@ -76,6 +79,9 @@ struct LeafBlock {
 };
 
 struct WideBvh {
+    // The scene when any of its materials has an alpha mask: traversals then drop the hits that
+    // cut_away (scene/opacity.h) cuts away. Null otherwise, and the hits are taken unseen.
+    const Scene* masks = nullptr;
     std::vector<WideNode> nodes;         // nodes[0] is the root
     std::vector<LeafBlock> leaf_blocks;  // of the leaves of several kinds
     std::vector<TriangleBlock> triangles;
@@ -88,6 +94,38 @@ struct WideBvh {
                spheres.size() * sizeof(SphereBlock);
     }
 };
+
+// Whether the hit of `ray` on ref at *t (parameters u, v) survives the alpha masks. A sphere cut
+// away where the ray enters it is met again where the ray leaves it (*t moves there) when that
+// is within tmax and not cut away too, as Embree's filter functions see both.
+inline bool uncut_hit(
+    const WideBvh& bvh, PrimRef ref, float* t, float u, float v, const Ray& ray, float tmax) {
+    if (!cut_away(*bvh.masks, ref, *t, u, v, ray)) return true;
+    if (ref.kind() != PrimKind::Sphere) return false;
+    // The two roots of |o + t d - c| = r sum to 2 d.(c - o) / d.d.
+    const Sphere& s = bvh.masks->spheres[ref.index()];
+    const float t_far = 2.0f * dot(ray.d, s.center - ray.o) / dot(ray.d, ray.d) - *t;
+    if (!(t_far > *t && t_far <= tmax) || cut_away(*bvh.masks, ref, t_far, u, v, ray)) return false;
+    *t = t_far;
+    return true;
+}
+
+// Of the block's hits `bits` (lanes with their primitives refs[l] at t[l], u[l], v[l]) of
+// `ray`, those that no alpha mask cuts away (uncut_hit; t[l] may move to a sphere's far side).
+inline uint32_t uncut_hits(const WideBvh& bvh,
+                           uint32_t bits,
+                           const PrimRef* refs,
+                           float* t,
+                           const float* u,
+                           const float* v,
+                           const Ray& ray,
+                           float tmax) {
+    for (uint32_t b = bits; b != 0; b &= b - 1) {
+        const uint32_t l = static_cast<uint32_t>(__builtin_ctz(b));
+        if (!uncut_hit(bvh, refs[l], &t[l], u[l], v[l], ray, tmax)) bits &= ~(1u << l);
+    }
+    return bits;
+}
 
 // Block j of the leaf with child code `code`: its kind, the lanes in use and its index in the
 // kind's block array.

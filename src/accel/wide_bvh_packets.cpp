@@ -66,10 +66,30 @@ HWY_INLINE void TraversePacket(
 
     // Records lanes `ok` as hitting primitive `ref` at t (closest hit: a later primitive at
     // equal t wins, as in the single-ray traversal); any-hit: retires them.
-    auto record = [&](M ok, PrimRef ref, V t, V u, V v) {
+    // `masked`: the hits still go through the alpha masks (else the caller did that).
+    auto record = [&](M ok, PrimRef ref, V t, V u, V v, bool masked = true) {
         ok = hn::And(ok, active);
         if (hn::AllFalse(d, ok)) return;
-        const uint32_t bits = MaskBits(d, ok);
+        uint32_t bits = MaskBits(d, ok);
+        if (masked && bvh.masks != nullptr) {
+            HWY_ALIGN float lt[kLeafBlockWidth], lu[kLeafBlockWidth], lv[kLeafBlockWidth],
+                lmax[kLeafBlockWidth];
+            hn::Store(t, d, lt);
+            hn::Store(u, d, lu);
+            hn::Store(v, d, lv);
+            hn::Store(tmax, d, lmax);
+            HWY_ALIGN float keep[kLeafBlockWidth] = {};
+            for (uint32_t b = bits; b != 0; b &= b - 1) {
+                const uint32_t l = static_cast<uint32_t>(__builtin_ctz(b));
+                if (uncut_hit(bvh, ref, &lt[l], lu[l], lv[l], rays[l < n ? l : 0], lmax[l]))
+                    keep[l] = 1.0f;
+                else
+                    bits &= ~(1u << l);
+            }
+            if (bits == 0) return;
+            ok = hn::And(ok, hn::Gt(hn::Load(d, keep), hn::Zero(d)));
+            t = hn::Load(d, lt);
+        }
         found |= bits;
         if constexpr (AnyHit) {
             active = hn::AndNot(ok, active);
@@ -137,13 +157,16 @@ HWY_INLINE void TraversePacket(
                         if (!(act >> l & 1)) continue;
                         BlockHits bh;
                         TriangleTest(b, lb.count, single[l], lane_t[l], &bh);
+                        if (bvh.masks != nullptr && bh.bits != 0)
+                            bh.bits = uncut_hits(bvh, bh.bits, b.ref, bh.t, bh.u, bh.v, rays[l],
+                                                 lane_t[l]);
                         for (uint32_t bits = bh.bits; bits != 0; bits &= bits - 1) {
                             const uint32_t j = static_cast<uint32_t>(__builtin_ctz(bits));
                             if (bh.t[j] > lane_t[l]) continue;
                             lane_t[l] = bh.t[j];
                             const M lane = hn::And(hn::FirstN(d, l + 1), hn::Not(hn::FirstN(d, l)));
                             record(lane, b.ref[j], hn::Set(d, bh.t[j]), hn::Set(d, bh.u[j]),
-                                   hn::Set(d, bh.v[j]));
+                                   hn::Set(d, bh.v[j]), false);
                             if (AnyHit) break;
                         }
                     }

@@ -89,6 +89,8 @@ HWY_INLINE bool Traverse(const WideBvh& bvh, const Ray& ray, Hit* hit) {
                         refs = bvh.spheres[lb.index].ref;
                         break;
                 }
+                if (bvh.masks != nullptr && hits.bits != 0)
+                    hits.bits = uncut_hits(bvh, hits.bits, refs, hits.t, hits.u, hits.v, ray, tmax);
                 if (hits.bits == 0) continue;
                 if constexpr (AnyHit) {  // the first lane that hits: which one blocks the ray
                     const uint32_t l = static_cast<uint32_t>(__builtin_ctz(hits.bits));

@@ -2,12 +2,39 @@
 
 #include <chrono>
 
+#include "scene/opacity.h"
 #include "wavetrace/scene/scene.h"
 
 namespace wavetrace {
 namespace {
 
-void attach(RTCScene scene, RTCGeometry g, PrimKind kind) {
+// Embree's filter function for hits on masked geometry: each candidate hit (its distance in
+// the ray's tfar) goes through the alpha masks as in our traversals (scene/opacity.h), and a
+// cut-away one is rejected, so that Embree goes on to the next.
+void alpha_filter(const RTCFilterFunctionNArguments* args) {
+    const Scene& scene = *static_cast<const Scene*>(args->geometryUserPtr);
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (args->valid[i] != -1) continue;
+        RTCRayN* r = args->ray;
+        RTCHitN* h = args->hit;
+        const unsigned n = args->N;
+        Ray ray;
+        ray.o = {RTCRayN_org_x(r, n, i), RTCRayN_org_y(r, n, i), RTCRayN_org_z(r, n, i)};
+        ray.d = {RTCRayN_dir_x(r, n, i), RTCRayN_dir_y(r, n, i), RTCRayN_dir_z(r, n, i)};
+        const PrimRef prim =
+            PrimRef::make(static_cast<PrimKind>(RTCHitN_geomID(h, n, i)), RTCHitN_primID(h, n, i));
+        if (cut_away(scene, prim, RTCRayN_tfar(r, n, i), RTCHitN_u(h, n, i), RTCHitN_v(h, n, i),
+                     ray))
+            args->valid[i] = 0;
+    }
+}
+
+void attach(const Scene& s, RTCScene scene, RTCGeometry g, PrimKind kind) {
+    if (has_alpha_masks(s)) {
+        rtcSetGeometryUserData(g, const_cast<Scene*>(&s));
+        rtcSetGeometryIntersectFilterFunction(g, alpha_filter);
+        rtcSetGeometryOccludedFilterFunction(g, alpha_filter);
+    }
     rtcCommitGeometry(g);
     rtcAttachGeometryByID(scene, g, static_cast<unsigned>(kind));
     rtcReleaseGeometry(g);
@@ -37,7 +64,7 @@ EmbreeMirror::EmbreeMirror(const Scene& s, RTCBuildQuality quality, bool robust)
             buffer<uint32_t>(g, RTC_BUFFER_TYPE_INDEX, RTC_FORMAT_UINT3, 12, s.triangles.size());
         for (size_t i = 0; i < s.triangles.size(); ++i)
             for (int k = 0; k < 3; ++k) idx[3 * i + k] = s.triangles[i].v[k];
-        attach(scene_, g, PrimKind::Triangle);
+        attach(s, scene_, g, PrimKind::Triangle);
     }
     if (!s.quads.empty()) {
         RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_QUAD);
@@ -54,7 +81,7 @@ EmbreeMirror::EmbreeMirror(const Scene& s, RTCBuildQuality quality, bool robust)
                 idx[4 * i + c] = static_cast<uint32_t>(4 * i + c);
             }
         }
-        attach(scene_, g, PrimKind::Quad);
+        attach(s, scene_, g, PrimKind::Quad);
     }
     if (!s.spheres.empty()) {
         RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_SPHERE_POINT);
@@ -64,7 +91,7 @@ EmbreeMirror::EmbreeMirror(const Scene& s, RTCBuildQuality quality, bool robust)
             for (int k = 0; k < 3; ++k) v[4 * i + k] = s.spheres[i].center[k];
             v[4 * i + 3] = s.spheres[i].radius;
         }
-        attach(scene_, g, PrimKind::Sphere);
+        attach(s, scene_, g, PrimKind::Sphere);
     }
     rtcCommitScene(scene_);
     build_ms_ =

@@ -417,6 +417,8 @@ class Loader {
                                 "\" (expected lambertian, metal, mirror, dielectric, "
                                 "conductor or diffuse_light; media are declared under /media)");
             }
+            // An alpha mask, for any surface (scene/opacity.h).
+            if (auto x = o.optional("opacity")) m.opacity = read_texture(*x, Range::Reflectance);
             if (auto x = o.optional("one_sided")) {
                 if (m.kind != MaterialKind::Lambertian && m.kind != MaterialKind::Metal &&
                     m.kind != MaterialKind::Mirror && m.kind != MaterialKind::Conductor &&

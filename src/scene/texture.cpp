@@ -5,6 +5,7 @@
 #include <cmath>
 #include <functional>
 
+#include "wavetrace/math/constants.h"
 #include "wavetrace/scene/scene.h"
 
 namespace wavetrace {
@@ -149,6 +150,12 @@ Color eval_texture(const Scene& scene, TextureId id, Vec2 uv, Point3 p) {
         }
         return {};
     }
+}
+
+Vec2 sphere_uv(Normal3 ng) {
+    const float theta = std::acos(std::fmax(-1.0f, std::fmin(1.0f, -ng.y)));
+    const float phi = std::atan2(-ng.z, ng.x) + kPi;
+    return {phi * (0.5f * kInvPi), theta * kInvPi};
 }
 
 Color texture_mean(const Scene& scene, TextureId id) {

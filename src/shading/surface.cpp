@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "scene/opacity.h"
 #include "shading/surface_point-inl.h"
 #include "wavetrace/math/constants.h"
 #include "wavetrace/scene/scene.h"
@@ -10,14 +11,6 @@
 namespace wavetrace {
 namespace lanes = HWY_NAMESPACE;
 using lanes::OneLane, lanes::to_lanes, lanes::to_vec3;
-
-// The sphere mapping of Ray Tracing: The Next Week: u = phi / 2 pi around -x..+z.., v = theta / pi
-// from -y.
-Vec2 sphere_uv(Normal3 ng) {
-    const float theta = std::acos(std::fmax(-1.0f, std::fmin(1.0f, -ng.y)));
-    const float phi = std::atan2(-ng.z, ng.x) + kPi;
-    return {phi * (0.5f * kInvPi), theta * kInvPi};
-}
 
 SurfaceHit surface_at(const Scene& scene, const Ray& ray, const Hit& hit) {
     SurfaceHit s;
@@ -33,18 +26,12 @@ SurfaceHit surface_at(const Scene& scene, const Ray& ray, const Hit& hit) {
             lanes::V3<float> n[3] = {};
             if (mesh.has_normals)
                 for (int k = 0; k < 3; ++k) n[k] = to_lanes(scene.normals[tri.v[k]]);
-            const float b1 = hit.u, b2 = hit.v, b0 = 1.0f - b1 - b2;
             const lanes::SurfacePoint<OneLane> sp =
-                lanes::TrianglePoint<OneLane>(p, n, mesh.has_normals, b1, b2);
+                lanes::TrianglePoint<OneLane>(p, n, mesh.has_normals, hit.u, hit.v);
             s.p = to_vec3(sp.p);
             s.ng = to_vec3(sp.ng);
             s.ns = to_vec3(sp.ns);
-            if (mesh.has_uvs) {
-                Vec2 t0 = scene.uvs[tri.v[0]], t1 = scene.uvs[tri.v[1]], t2 = scene.uvs[tri.v[2]];
-                s.uv = {b0 * t0.x + b1 * t1.x + b2 * t2.x, b0 * t0.y + b1 * t1.y + b2 * t2.y};
-            } else {
-                s.uv = {b1, b2};
-            }
+            s.uv = hit_uv(scene, hit.prim, hit.u, hit.v, s.p);
             s.material = mesh.material;
             s.interior = mesh.interior;
             break;

@@ -41,6 +41,10 @@ struct Material {
     float specular_weight = 0.5f;
     CoatingTable coating;
 
+    // Any surface material: an alpha mask, the surface cut away where the texture's luminance
+    // is below 1 (kNone: opaque; src/scene/opacity.h).
+    TextureId opacity = kNone;
+
     bool is_emissive() const { return kind == MaterialKind::DiffuseLight; }
 };
 

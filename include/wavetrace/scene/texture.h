@@ -59,6 +59,9 @@ Color eval_texture(const Scene& scene, TextureId id, Vec2 uv, Point3 p);
 // The texture's mean over its domain (an image's texels, a checker's two cells; noise: half its
 // colour), as Mitsuba's Texture::mean; 0 for kNone.
 Color texture_mean(const Scene& scene, TextureId id);
+// A sphere's texture coordinates at the point of outward unit normal ng: u = phi / 2 pi around
+// -x..+z.., v = theta / pi from -y (Ray Tracing: The Next Week's mapping).
+Vec2 sphere_uv(Normal3 ng);
 // Perlin turbulence (RTNW §5.6): the sum of 7 octaves of |noise|, in [0, ~1.5).
 float perlin_turbulence(Point3 p, int octaves = 7);
 // Perlin gradient noise in [-1, 1].

@@ -21,7 +21,4 @@ struct SurfaceHit {
 
 SurfaceHit surface_at(const Scene& scene, const Ray& ray, const Hit& hit);
 
-// A sphere's texture coordinates at the point of outward unit normal ng (surface_at's).
-Vec2 sphere_uv(Normal3 ng);
-
 }  // namespace wavetrace
