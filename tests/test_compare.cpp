@@ -3,6 +3,7 @@
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <random>
 
@@ -85,6 +86,25 @@ TEST(CompareImages, WithoutVariancesUsesTheMeanAndMseBounds) {
     ImageComparison b = compare_images(brighter, n.ref, nullptr, nullptr);
     EXPECT_NEAR(b.mean_rel_diff, 0.05, 1e-5);
     EXPECT_FALSE(b.pass);
+}
+
+// Without variance (a background of constant radiance, seen directly) only float rounding may
+// separate two images: a reference summed in float, a few ulps off, still matches; one pixel
+// 1e-4 off does not.
+TEST(CompareImages, ZeroVarianceToleratesRoundingOnly) {
+    Image ref(16, 16), ours(16, 16), zero(16, 16);
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 16; ++x) {
+            ref.at(x, y) = Color(1.001084089f, 0.999707818f, 0.999703050f);
+            ours.at(x, y) = ref.at(x, y);
+        }
+    ours.at(3, 5).x = std::nextafter(std::nextafter(ref.at(3, 5).x, 2.0f), 2.0f);
+    ours.at(9, 1).y = std::nextafter(ref.at(9, 1).y, 0.0f);
+    EXPECT_TRUE(compare_images(ours, ref, &zero, nullptr).pass);
+    ours.at(3, 5).x = ref.at(3, 5).x * (1.0f + 1e-4f);
+    const ImageComparison c = compare_images(ours, ref, &zero, nullptr);
+    EXPECT_FALSE(c.pass);
+    EXPECT_GE(c.failed, 1);
 }
 
 TEST(CompareImages, RefusesMismatchedInputs) {

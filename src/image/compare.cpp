@@ -23,6 +23,18 @@ void check_variance(const Image& v, const char* what) {
                                             " holds a negative or non-finite value");
 }
 
+// Float rounding in what is compared: images hold 32-bit floats (24-bit mantissas), and a
+// renderer that sums its samples in float is a few ulps off. Each pixel's difference is given
+// a rounding error of standard deviation 2^-20 (16 ulps) of its size (|ours| + |reference|),
+// as a variance added to the pixel's own, so that a test without variance (a background seen
+// directly) tells rounding from a real difference (1e-4 of the value is 6 SD off in an 8 x 8
+// block).
+constexpr double kRounding = 0x1p-20;
+double rounding_variance(float ours, float ref) {
+    const double r = kRounding * (std::fabs(double(ours)) + std::fabs(double(ref)));
+    return r * r;
+}
+
 // A difference of sums over its standard deviation (the 1/n of means cancels); an exact
 // difference without variance is infinitely significant, a non-finite one too.
 double z_score(double diff, double sd) {
@@ -90,6 +102,7 @@ ImageComparison compare_images(const Image& ours,
                         sr += ref.at(x, y)[k];
                         if (ours_variance) vo += ours_variance->at(x, y)[k];
                         if (ref_variance) vr += ref_variance->at(x, y)[k];
+                        vr += rounding_variance(ours.at(x, y)[k], ref.at(x, y)[k]);
                     }
                 BlockTest t{x0, y0, k};
                 t.z = z_score(so - sr, std::sqrt(vo + vr));
@@ -109,6 +122,7 @@ ImageComparison compare_images(const Image& ours,
             sr += ref.pixels[i][k];
             if (ours_variance) vo += ours_variance->pixels[i][k];
             if (ref_variance) vr += ref_variance->pixels[i][k];
+            vr += rounding_variance(ours.pixels[i][k], ref.pixels[i][k]);
         }
         r.image_z[k] = z_score(so - sr, std::sqrt(vo + vr));
         const double p = std::erfc(std::fabs(r.image_z[k]) / std::sqrt(2.0));
