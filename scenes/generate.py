@@ -156,7 +156,7 @@ def materials():
                         "material": name})
     # Plastics and alpha masks in front: smooth and rough plastic (Mitsuba 3's models), a rough
     # nonlinear one with a texture, a sphere cut by a uv checkerboard, and a leaf cut from a
-    # quad and from a mesh rectangle by the same mask.
+    # quad and from a mesh rectangle by the same mask; a thin dielectric pane.
     leaf = {"type": "image", "file": "textures/leaf_mask.png"}
     materials.update({
         "plastic": {"type": "plastic", "albedo": [0.1, 0.27, 0.36], "ior": 1.9},
@@ -167,6 +167,7 @@ def materials():
         "cut-sphere": {"type": "lambertian", "albedo": [0.8, 0.5, 0.2],
                        "opacity": {"type": "uv_checker", "scale": 0.125, "even": 1, "odd": 0}},
         "leaf": {"type": "lambertian", "albedo": [0.1, 0.8, 0.1], "opacity": leaf},
+        "pane": {"type": "thin_dielectric", "ior": "bk7"},
     })
     for i, name in enumerate(["plastic", "plastic-beckmann-0.1", "plastic-ggx-0.3-earth",
                               "cut-sphere"]):
@@ -174,13 +175,16 @@ def materials():
                         "material": name})
     objects.append({"type": "quad", "q": [2.2, 0.05, 2.6], "u": [1.2, 0, 0], "v": [0, 1.2, 0],
                     "material": "leaf"})
+    # A thin glass pane in front of the first two plastics.
+    objects.append({"type": "quad", "q": [-5.6, 0, 4.1], "u": [3.2, 0, 0], "v": [0, 1.1, 0],
+                    "material": "pane"})
     objects.append({"type": "mesh", "file": "meshes/rectangle.obj", "material": "leaf",
                     "transform": [{"scale": 0.6}, {"translate": [4.4, 0.65, 3.2]}]})
     return {
         "description": "Material kinds side by side: six named metals (Au, Cu, Ag, Al, Cr) from "
                        "smooth to rough, GGX and Beckmann; smooth and rough glass, water, "
-                       "Lambertian, rough metal; smooth, rough and textured plastic; alpha "
-                       "masks on a sphere, a quad and a mesh; under an environment map, a quad "
+                       "Lambertian, rough metal; smooth, rough and textured plastic behind a "
+                       "thin glass pane; alpha masks on a sphere, a quad and a mesh; under an environment map, a quad "
                        "light, a point, a spot and a directional light",
         "render": {"width": 640, "height": 320, "spp": 64, "max_depth": 32},
         "camera": {"look_from": [0, 4, 13], "look_at": [0, 0.7, 0], "vfov": 28},

@@ -10,6 +10,7 @@
 #include "bsdfs/fresnel.h"
 #include "bsdfs/microfacet.h"
 #include "bsdfs/plastic.h"
+#include "bsdfs/thin_dielectric.h"
 #include "chi2.h"
 #include "sampling/sampler.h"
 #include "sampling/warp.h"
@@ -233,6 +234,35 @@ TEST(Bsdf, DielectricChoosesLobesByFresnel) {
         std::printf("dielectric wo.z %+.3f: F %.4f, reflected %.4f, p %.3f\n", wo.z, f,
                     double(reflected) / n, p);
         EXPECT_GT(p, kSignificance);
+    }
+}
+
+// A thin dielectric reflects with probability R' = R + T^2 R / (1 - R^2) (the inner bounces'
+// series; 2R / (1 + R) at normal incidence) and passes light straight on otherwise, with weight
+// 1 either way and alike from both sides; index-matched it is invisible.
+TEST(Bsdf, ThinDielectricSumsItsInnerReflections) {
+    BsdfParams sheet;
+    sheet.kind = MaterialKind::ThinDielectric;
+    sheet.eta = 1.5f;
+    EXPECT_TRUE(sheet.is_delta());
+    const float r0 = 0.04f;  // ((1.5 - 1) / (1.5 + 1))^2
+    EXPECT_NEAR(thin_dielectric_reflectance(1.0f, 1.5f), 2 * r0 / (1 + r0), 1e-6f);
+    EXPECT_NEAR(thin_dielectric_reflectance(0.3f, 1.0f), 0.0f, 1e-12f);
+    for (Vec3 wo : {normalize(Vec3{0.3f, 0.1f, 0.9f}), normalize(Vec3{0.8f, 0.0f, 0.2f}),
+                    normalize(Vec3{0.8f, 0.0f, -0.2f})}) {
+        const float r = fresnel_dielectric(std::fabs(wo.z), 1.5f);
+        const float expected = r + (1 - r) * (1 - r) * r / (1 - r * r);
+        const uint32_t n = 200'000;
+        uint32_t reflected = 0;
+        for (uint32_t i = 0; i < n; ++i) {
+            const BsdfSample s = bsdf_sample(sheet, wo, u(12, i, 0), u(12, i, 1), u(12, i, 2));
+            ASSERT_TRUE(s.valid && s.delta);
+            EXPECT_EQ(s.weight, Color(1.0f));
+            EXPECT_EQ(s.wi, s.transmitted ? -wo : Vec3(-wo.x, -wo.y, wo.z));
+            reflected += !s.transmitted;
+        }
+        const double p = double(reflected) / n, se = std::sqrt(expected * (1 - expected) / n);
+        EXPECT_NEAR(p, expected, 4 * se) << wo.z;
     }
 }
 

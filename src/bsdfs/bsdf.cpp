@@ -9,6 +9,7 @@
 #include "bsdfs/ggx-inl.h"
 #include "bsdfs/plastic.h"
 #include "bsdfs/rough_dielectric.h"
+#include "bsdfs/thin_dielectric.h"
 #include "sampling/warp.h"
 #include "wavetrace/math/constants.h"
 
@@ -26,7 +27,8 @@ Vec3 upper(Vec3 w, Vec3 side) {
 }  // namespace
 
 bool BsdfParams::is_delta() const {
-    return kind == MaterialKind::Mirror || (kind == MaterialKind::Dielectric && alpha == 0.0f) ||
+    return kind == MaterialKind::Mirror || kind == MaterialKind::ThinDielectric ||
+           (kind == MaterialKind::Dielectric && alpha == 0.0f) ||
            (kind == MaterialKind::Metal && alpha == 0.0f) ||
            (kind == MaterialKind::Conductor && alpha == 0.0f && alpha_v == 0.0f);
 }
@@ -177,6 +179,8 @@ BsdfSample bsdf_sample(const BsdfParams& b, Vec3 wo, float u_lobe, float u1, flo
         }
         case MaterialKind::Conductor:
             return conductor_sample(b, wo, u1, u2);
+        case MaterialKind::ThinDielectric:
+            return thin_dielectric_sample(b, wo, u_lobe);
         case MaterialKind::Plastic: {
             if (b.one_sided && wo.z < 0.0f) return s;
             s = plastic_sample(b, upper(wo, wo), u_lobe, u1, u2);

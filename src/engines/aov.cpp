@@ -27,6 +27,7 @@ Color albedo_of(const Scene& scene, const SurfaceHit& s) {
         case MaterialKind::Isotropic:
             return eval_texture(scene, m.albedo, s.uv, s.p);
         case MaterialKind::Dielectric:
+        case MaterialKind::ThinDielectric:
             return Color(1.0f);
         case MaterialKind::Conductor:  // its reflectance at normal incidence
             return eval_texture(scene, m.albedo, s.uv, s.p) * fresnel_conductor(1.0f, m.eta, m.k);

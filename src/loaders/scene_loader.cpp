@@ -404,6 +404,10 @@ class Loader {
                 if (m.ior == 1.0f) m.alpha_u = m.alpha_v = 0.0f;
             } else if (type == "conductor") {
                 read_conductor(o, m);
+            } else if (type == "thin_dielectric") {
+                m.kind = MaterialKind::ThinDielectric;
+                m.ior = read_ior(o.required("ior"));
+                if (auto x = o.optional("ext_ior")) m.ior /= read_ior(*x);
             } else if (type == "plastic") {
                 read_plastic(o, m);
             } else if (type == "diffuse_light") {
@@ -415,7 +419,8 @@ class Loader {
             } else {
                 type_value.fail("unknown material type \"" + type +
                                 "\" (expected lambertian, metal, mirror, dielectric, "
-                                "conductor or diffuse_light; media are declared under /media)");
+                                "thin_dielectric, conductor, plastic or diffuse_light; media "
+                                "are declared under /media)");
             }
             // An alpha mask, for any surface (scene/opacity.h).
             if (auto x = o.optional("opacity")) m.opacity = read_texture(*x, Range::Reflectance);

@@ -29,6 +29,8 @@ const char* to_string(MaterialKind kind) {
             return "conductor";
         case MaterialKind::Plastic:
             return "plastic";
+        case MaterialKind::ThinDielectric:
+            return "thin_dielectric";
     }
     return "?";
 }

@@ -18,8 +18,9 @@ enum class MaterialKind : uint8_t {
     Conductor,     // Fresnel of a complex index of refraction eta + i k, smooth or microfacet
     Plastic,       // a diffuse base under a dielectric coating, smooth or rough (Mitsuba 3's
                    // plastic and roughplastic)
+    ThinDielectric,  // a sheet of glass of index `ior`: reflects, or passes light straight on
 };
-inline constexpr int kMaterialKinds = int(MaterialKind::Plastic) + 1;
+inline constexpr int kMaterialKinds = int(MaterialKind::ThinDielectric) + 1;
 
 // The microfacet normal distributions of rough materials (bsdfs/microfacet.h).
 enum class Microfacet : uint8_t {
