@@ -6,8 +6,11 @@ of `everything`) and remakes them: `python3 scenes/generate.py`.
 The scenes follow Peter Shirley's "Ray Tracing in One Weekend" series (the seed):
 The Next Week (RTNW) §7-10 and The Rest of Your Life (ROYL) §6-12."""
 import json
+import math
 import os
 import random
+import struct
+import zlib
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
@@ -126,8 +129,8 @@ def everything():
 
 def materials():
     """A grid of the material kinds side by side: named metals from smooth to rough, GGX and
-    Beckmann, in the back row; glass smooth and rough, a Lambertian and a rough metal in the
-    front; on a grey floor under the environment map, a small quad light, a point, a spot and
+    Beckmann, in the back row; glass smooth and rough, a normal-mapped Lambertian and a rough
+    metal in the middle; plastics (one bump-mapped), alpha masks and a thin pane in front; on a grey floor under the environment map, a small quad light, a point, a spot and
     a directional light. Both engines, every kind and the delta lights."""
     back = [("Au", 0.0, "ggx"), ("Au", 0.1, "ggx"), ("Cu", 0.2, "beckmann"),
             ("Ag", 0.3, "ggx"), ("Al", 0.05, "beckmann"), ("Cr", 0.5, "ggx")]
@@ -138,7 +141,9 @@ def materials():
                  "glass-beckmann-0.3": {"type": "dielectric", "ior": 1.5, "alpha": 0.3,
                                         "distribution": "beckmann"},
                  "water-ggx-0.15": {"type": "dielectric", "ior": "water", "alpha": 0.15},
-                 "white": {"type": "lambertian", "albedo": 0.7},
+                 "white": {"type": "lambertian", "albedo": 0.7,
+                           "normal_map": {"type": "image", "file": "textures/dimples_normal.png",
+                                          "raw": True, "uv_transform": {"scale": [8, 4]}}},
                  "steel": {"type": "metal", "albedo": [0.8, 0.8, 0.85], "roughness": 0.3}}
     objects = [{"type": "quad", "q": [-10, 0, 10], "u": [20, 0, 0], "v": [0, 0, -20],
                 "material": "floor"},
@@ -163,7 +168,9 @@ def materials():
         "plastic-beckmann-0.1": {"type": "plastic", "albedo": 0.5, "alpha": 0.1,
                                  "distribution": "beckmann"},
         "plastic-ggx-0.3-earth": {"type": "plastic", "alpha": 0.3, "nonlinear": True,
-                                  "albedo": {"type": "image", "file": "textures/earthmap.jpg"}},
+                                  "albedo": {"type": "image", "file": "textures/earthmap.jpg"},
+                                  "bump_map": {"type": "image", "file": "textures/earthmap.jpg"},
+                                  "bump_scale": 0.002},
         "cut-sphere": {"type": "lambertian", "albedo": [0.8, 0.5, 0.2],
                        "opacity": {"type": "uv_checker", "scale": 0.125, "even": 1, "odd": 0}},
         "leaf": {"type": "lambertian", "albedo": [0.1, 0.8, 0.1], "opacity": leaf},
@@ -183,7 +190,8 @@ def materials():
     return {
         "description": "Material kinds side by side: six named metals (Au, Cu, Ag, Al, Cr) from "
                        "smooth to rough, GGX and Beckmann; smooth and rough glass, water, "
-                       "Lambertian, rough metal; smooth, rough and textured plastic behind a "
+                       "normal-mapped Lambertian, rough metal; smooth, rough and textured, "
+                       "bump-mapped plastic behind a "
                        "thin glass pane; alpha masks on a sphere, a quad and a mesh; under an environment map, a quad "
                        "light, a point, a spot and a directional light",
         "render": {"width": 640, "height": 320, "spp": 64, "max_depth": 32},
@@ -308,7 +316,36 @@ SCENES = {
 }
 
 
+def dimples_normal_map(path, size=64, cells=4):
+    """A tangent-space normal map (8-bit RGB PNG, to be read raw) of size x size texels: a grid
+    of cells x cells hemispherical dimples, n = (-dx, -dy, sqrt(1 - dx^2 - dy^2)) inside each
+    dimple (dx, dy its offset from the centre along +u and +v, over its radius), n = +z around
+    them; encoded (n + 1) / 2, OpenGL's convention (green along +v, row 0 at the top)."""
+    cell = size // cells
+    radius = 0.42 * cell
+    rows = []
+    for row in range(size):
+        line = bytearray([0])  # PNG filter: none
+        for col in range(size):
+            dx = ((col % cell) + 0.5 - cell / 2) / radius
+            dy = -((row % cell) + 0.5 - cell / 2) / radius  # v grows upwards
+            r2 = dx * dx + dy * dy
+            n = (-dx, -dy, math.sqrt(1 - r2)) if r2 < 1 else (0.0, 0.0, 1.0)
+            line += bytes(min(255, max(0, round((c + 1) / 2 * 255))) for c in n)
+        rows.append(bytes(line))
+
+    def chunk(kind, data):
+        body = kind + data
+        return struct.pack(">I", len(data)) + body + struct.pack(">I", zlib.crc32(body))
+
+    png = b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", size, size, 8, 2, 0, 0, 0))
+    png += chunk(b"IDAT", zlib.compress(b"".join(rows), 9)) + chunk(b"IEND", b"")
+    with open(path, "wb") as f:
+        f.write(png)
+
+
 def main():
+    dimples_normal_map(os.path.join(HERE, "textures", "dimples_normal.png"))
     for name, scene in SCENES.items():
         with open(os.path.join(HERE, name + ".json"), "w") as f:
             json.dump(scene, f, indent=1)

@@ -129,7 +129,7 @@ void write_image(const fs::path& path, const Image& image, const WriteOptions& o
     }
 }
 
-ImageData read_image(const fs::path& path) {
+ImageData read_image(const fs::path& path, bool raw) {
     try {
         check_input_file(path, kMaxImageFileBytes, "images");
     } catch (const std::runtime_error& e) {
@@ -155,7 +155,7 @@ ImageData read_image(const fs::path& path) {
     std::vector<float> data(static_cast<size_t>(spec.width) * spec.height * channels);
     if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, data.data()))
         throw ImageError(path.string() + ": cannot read image: " + in->geterror());
-    const bool decode = spec.format.basetype != OIIO::TypeDesc::FLOAT &&
+    const bool decode = !raw && spec.format.basetype != OIIO::TypeDesc::FLOAT &&
                         spec.format.basetype != OIIO::TypeDesc::HALF &&
                         spec.format.basetype != OIIO::TypeDesc::DOUBLE;
 

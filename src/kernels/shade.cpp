@@ -53,9 +53,10 @@ struct LaneSurface {
 bool lane_material(const Scene& scene, MaterialId m, LaneSurface* out) {
     if (m == kNone) return false;
     const Material& mat = scene.materials[m];
-    // One-sided materials go the scalar route, where the hit's side is known before the BSDF.
+    // One-sided materials go the scalar route, where the hit's side is known before the BSDF,
+    // and so do normal and bump maps, which need the hit's tangents.
     if (!(mat.kind == MaterialKind::Lambertian || mat.kind == MaterialKind::Metal) ||
-        mat.albedo == kNone || mat.one_sided)
+        mat.albedo == kNone || mat.one_sided || mat.has_normal_maps())
         return false;
     const Texture& albedo = scene.textures[mat.albedo];
     out->material = m;

@@ -151,12 +151,12 @@ class Loader {
         o.finish();
     }
 
-    ImageData read_image_at(const Value& file) const {
+    ImageData read_image_at(const Value& file, bool raw = false) const {
         fs::path p = resolve(file);
         std::error_code ec;
         if (!fs::exists(p, ec)) file.fail("cannot open image '" + p.string() + "': no such file");
         try {
-            return read_image(p);
+            return read_image(p, raw);
         } catch (const ImageError& e) {
             file.fail(e.what());
         }
@@ -195,7 +195,9 @@ class Loader {
             if (auto x = o.optional("uv_transform")) read_uv_transform(*x, t);
         } else if (type == "image") {
             t.kind = TextureKind::Image;
-            t.image = scene_.add_image(read_image_at(o.required("file")));
+            bool raw = false;
+            if (auto x = o.optional("raw")) raw = x->boolean();
+            t.image = scene_.add_image(read_image_at(o.required("file"), raw));
             if (auto x = o.optional("uv_transform")) read_uv_transform(*x, t);
         } else {
             type_value.fail("unknown texture type \"" + type +
@@ -424,6 +426,11 @@ class Loader {
             }
             // An alpha mask, for any surface (scene/opacity.h).
             if (auto x = o.optional("opacity")) m.opacity = read_texture(*x, Range::Reflectance);
+            // Normal and bump maps, for any surface (shading/normal_maps.h).
+            if (auto x = o.optional("normal_map"))
+                m.normal_map = read_texture(*x, Range::Reflectance);
+            if (auto x = o.optional("bump_map")) m.bump_map = read_texture(*x, Range::Radiance);
+            if (auto x = o.optional("bump_scale")) m.bump_scale = x->number();
             if (auto x = o.optional("one_sided")) {
                 if (m.kind != MaterialKind::Lambertian && m.kind != MaterialKind::Metal &&
                     m.kind != MaterialKind::Mirror && m.kind != MaterialKind::Conductor &&

@@ -4,6 +4,7 @@
 #include <bit>
 #include <cstdint>
 
+#include "scene/hit_geometry.h"
 #include "wavetrace/scene/scene.h"
 #include "wavetrace/scene/texture.h"
 
@@ -33,32 +34,13 @@ bool has_alpha_masks(const Scene& scene) {
                        [](const Material& m) { return m.opacity != kNone; });
 }
 
-Vec2 hit_uv(const Scene& scene, PrimRef prim, float u, float v, Point3 p) {
-    switch (prim.kind()) {
-        case PrimKind::Triangle: {
-            const Triangle& tri = scene.triangles[prim.index()];
-            if (!scene.meshes[tri.mesh].has_uvs) return {u, v};
-            const Vec2 t0 = scene.uvs[tri.v[0]], t1 = scene.uvs[tri.v[1]], t2 = scene.uvs[tri.v[2]];
-            const float w = 1.0f - u - v;
-            return {w * t0.x + u * t1.x + v * t2.x, w * t0.y + u * t1.y + v * t2.y};
-        }
-        case PrimKind::Quad:
-            return {u, v};
-        case PrimKind::Sphere: {
-            const Sphere& s = scene.spheres[prim.index()];
-            return sphere_uv((p - s.center) / s.radius);
-        }
-    }
-    return {};
-}
-
 bool cut_away(const Scene& scene, PrimRef prim, float t, float u, float v, const Ray& ray) {
     const MaterialId m = scene.prim_material(prim);
     if (m == kNone || scene.materials[m].opacity == kNone) return false;
     const Point3 p = ray.at(t);
     const Color c =
         eval_texture(scene, scene.materials[m].opacity, hit_uv(scene, prim, u, v, p), p);
-    const float a = std::clamp(0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z, 0.0f, 1.0f);
+    const float a = std::clamp(luminance(c), 0.0f, 1.0f);
     if (a >= 1.0f) return false;
     if (a <= 0.0f) return true;
     return hash_float(ray, prim) >= a;

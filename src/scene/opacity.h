@@ -20,10 +20,6 @@ struct Scene;
 // Whether any material of the scene has an opacity texture.
 bool has_alpha_masks(const Scene& scene);
 
-// The texture coordinates of a hit on prim with the intersector's parameters (u, v)
-// (barycentrics b1, b2 of a triangle, the quad's edge parameters) at point p.
-Vec2 hit_uv(const Scene& scene, PrimRef prim, float u, float v, Point3 p);
-
 // Whether the hit of `ray` on prim at distance t with parameters (u, v) is cut away.
 bool cut_away(const Scene& scene, PrimRef prim, float t, float u, float v, const Ray& ray);
 

@@ -12,6 +12,7 @@
 #include "shading/light_sample-inl.h"
 #include "shading/medium_flight-inl.h"
 #include "shading/mis-inl.h"
+#include "shading/normal_maps.h"
 #include "shading/sphere_light-inl.h"
 #include "shading/surface_step-inl.h"
 #include "wavetrace/scene/scene.h"
@@ -35,10 +36,10 @@ Vertex surface_vertex(const Scene& scene, const SurfaceHit& hit) {
     Vertex v;
     v.p = hit.p;
     v.ng = hit.ng;
-    v.frame = frame_from_normal(hit.ns);
+    const Material& m = scene.materials[hit.material];
+    v.frame = frame_from_normal(m.has_normal_maps() ? mapped_normal(scene, m, hit) : hit.ns);
     v.interior = hit.interior;
     v.material = hit.material;
-    const Material& m = scene.materials[hit.material];
     v.bsdf = material_bsdf(
         m, m.albedo != kNone ? eval_texture(scene, m.albedo, hit.uv, hit.p) : Color(0.0f));
     // A one-sided surface seen from behind reflects nothing: its albedo (a conductor's

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "scene/opacity.h"
+#include "scene/hit_geometry.h"
 #include "shading/surface_point-inl.h"
 #include "wavetrace/math/constants.h"
 #include "wavetrace/scene/scene.h"
@@ -62,6 +62,12 @@ SurfaceHit surface_at(const Scene& scene, const Ray& ray, const Hit& hit) {
             s.interior = sp.interior;
             break;
         }
+    }
+    if (s.material != kNone && scene.materials[s.material].has_normal_maps()) {
+        if (hit.prim.kind() == PrimKind::Sphere) s.uv = sphere_uv(s.ng);  // the maps read it
+        const Tangents t = hit_tangents(scene, hit.prim, hit.u, hit.v, s.p);
+        s.dpdu = t.dpdu;
+        s.dpdv = t.dpdv;
     }
     s.front_face = dot(ray.d, s.ng) < 0.0f;
     // Keep the shading normal on the geometric normal's side (interpolation can flip it).

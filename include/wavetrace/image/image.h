@@ -56,7 +56,9 @@ void write_image(const std::filesystem::path& path,
 inline constexpr uint64_t kMaxImageTexels = uint64_t(1) << 26;
 
 // Reads any image OpenImageIO can, as linear RGB: 8- and 16-bit integer files are taken as
-// sRGB-encoded and decoded; float files (EXR, HDR, PFM) as linear. Grey images are expanded.
-ImageData read_image(const std::filesystem::path& path);
+// sRGB-encoded and decoded (unless `raw`: then as values in [0, 1], for data such as normal
+// maps, as Mitsuba's `raw` bitmaps); float files (EXR, HDR, PFM) as linear. Grey images are
+// expanded.
+ImageData read_image(const std::filesystem::path& path, bool raw = false);
 
 }  // namespace wavetrace

@@ -44,6 +44,13 @@ struct Material {
     // Any surface material: an alpha mask, the surface cut away where the texture's luminance
     // is below 1 (kNone: opaque; src/scene/opacity.h).
     TextureId opacity = kNone;
+    // Any surface material: a normal map (a raw image: tangent-space normals as 2 rgb - 1) or a
+    // bump map (heights, scaled by bump_scale) perturbing the shading normal
+    // (src/shading/normal_maps.h); kNone: none.
+    TextureId normal_map = kNone;
+    TextureId bump_map = kNone;
+    float bump_scale = 1.0f;
+    bool has_normal_maps() const { return normal_map != kNone || bump_map != kNone; }
 
     bool is_emissive() const { return kind == MaterialKind::DiffuseLight; }
 };

@@ -14,6 +14,8 @@ struct SurfaceHit {
     Normal3 ng;              // geometric normal, unit, on the shape's outside (front)
     Normal3 ns;              // shading normal, unit, on the same side as ng
     Vec2 uv;                 // texture coordinates (spheres: only where a texture reads them)
+    // dp/du, dp/dv where the material has a normal or bump map (scene/hit_geometry.h); else 0.
+    Vec3 dpdu{0.0f}, dpdv{0.0f};
     bool front_face = true;  // the ray arrived from the side ng points to
     MaterialId material = kNone;
     MediumId interior = kNone;

@@ -1,0 +1,30 @@
+// Normal and bump maps: the shading normal a material's maps give a surface point, in both
+// engines (surface_vertex). The tangent frame is the hit's dp/du and dp/dv
+// (scene/hit_geometry.h) made orthonormal about the interpolated shading normal n:
+//   T = normalize(dp/du - (n . dp/du) n),  B = +-(n x T), the sign that of dp/dv . (n x T),
+// so that B follows increasing v also where a mesh's uvs are mirrored (glTF's tangent w).
+//
+// - Normal map (Mitsuba 3's `normalmap`, glTF's normalTexture, OpenGL's convention: +y green
+//   along +v): the texture's linear rgb in [0, 1] as a tangent-space normal 2 rgb - 1, so the
+//   new normal is normalize(x T + y B + z n). The image must be read raw (not sRGB-decoded).
+// - Bump map (Mitsuba 3's `bumpmap`, pbrt-v4's displacement): heights h(u, v) (the texture's
+//   luminance) times bump_scale displace the surface along n; with the derivatives of h by
+//   central differences 1/2048 apart in uv, dp'/du = T_u + (dh/du) n and dp'/dv = T_v +
+//   (dh/dv) n, T_u, T_v the parts of dp/du, dp/dv in the tangent plane, and the new normal is
+//   normalize(dp'/du x dp'/dv) (Mitsuba's BumpMap, without pbrt's h dn/du term).
+// Both: a bump map first, then a normal map in the bumped frame; the result turned to the side
+// of the geometric normal, and the unperturbed normal kept where the frame is degenerate
+// (no dp/du, a zero map normal).
+#pragma once
+
+#include "wavetrace/math/vec3.h"
+#include "wavetrace/scene/material.h"
+#include "wavetrace/shading/surface.h"
+
+namespace wavetrace {
+
+struct Scene;
+
+Normal3 mapped_normal(const Scene& scene, const Material& m, const SurfaceHit& hit);
+
+}  // namespace wavetrace

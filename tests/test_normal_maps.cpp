@@ -1,0 +1,123 @@
+// Tangent frames, normal maps and bump maps (scene/hit_geometry.h, shading/normal_maps.h): the
+// tangents follow the uv mapping, a flat normal map changes nothing, a tilted one and a height
+// ramp tilt the normal as their formulas say, and both engines agree on a mapped scene (the
+// engine-equality tests run scenes/materials.json, whose earth sphere is bump-mapped and whose
+// tiles are normal-mapped).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "scene/hit_geometry.h"
+#include "shading/normal_maps.h"
+#include "wavetrace/scene/scene.h"
+#include "wavetrace/scene/texture.h"
+#include "wavetrace/shading/surface.h"
+
+using namespace wavetrace;
+
+namespace {
+
+void expect_near(Vec3 a, Vec3 b, float tol, const char* what) {
+    EXPECT_NEAR(a.x, b.x, tol) << what;
+    EXPECT_NEAR(a.y, b.y, tol) << what;
+    EXPECT_NEAR(a.z, b.z, tol) << what;
+}
+
+// A quad [0, 1]^2 in z = 0 facing +z added to s, of a material with the given maps.
+Scene quad_scene(Scene s, Material m) {
+    m.albedo = s.add_solid(Color(0.5f));
+    const MaterialId id = s.add_material(m);
+    s.add_quad({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, id});
+    return s;
+}
+
+SurfaceHit hit_quad(const Scene& s, float u, float v) {
+    Hit h{1.0f, PrimRef::make(PrimKind::Quad, 0), u, v};
+    return surface_at(s, Ray{{u, v, 1}, {0, 0, -1}}, h);
+}
+
+}  // namespace
+
+// A triangle's dp/du, dp/dv from its uvs: moving the point by eps dp/du moves its uv by (eps, 0).
+TEST(Tangents, TriangleFollowsItsUvs) {
+    Scene s;
+    Mesh mesh;
+    mesh.material = s.add_material(Material{});
+    s.add_mesh(mesh, {{0, 0, 0}, {2, 0, 0}, {0, 3, 0}}, {},
+               {{0.1f, 0.2f}, {0.1f, 0.7f}, {0.6f, 0.2f}}, {0, 1, 2});
+    const PrimRef tri = PrimRef::make(PrimKind::Triangle, 0);
+    const Tangents t = hit_tangents(s, tri, 0.2f, 0.3f, {0.4f, 0.9f, 0});
+    // u grows along the third vertex's edge (0, 3, 0) by 0.5: dp/du = (0, 6, 0); v along x.
+    expect_near(t.dpdu, {0, 6, 0}, 1e-5f, "dpdu");
+    expect_near(t.dpdv, {4, 0, 0}, 1e-5f, "dpdv");
+    // Without uvs the edges are the tangents.
+    Scene plain;
+    Mesh m2;
+    m2.material = plain.add_material(Material{});
+    plain.add_mesh(m2, {{0, 0, 0}, {2, 0, 0}, {0, 3, 0}}, {}, {}, {0, 1, 2});
+    const Tangents e = hit_tangents(plain, tri, 0.2f, 0.3f, {0.4f, 0.9f, 0});
+    expect_near(e.dpdu, {2, 0, 0}, 0, "edge 1");
+    expect_near(e.dpdv, {0, 3, 0}, 0, "edge 2");
+}
+
+// A sphere's tangents are those of sphere_uv's mapping: a step along dp/du (dp/dv) changes u (v)
+// by the step over |dp/du|^2 and leaves the other coordinate as it is.
+TEST(Tangents, SphereFollowsItsMapping) {
+    Scene s;
+    s.add_sphere({{1, 2, 3}, 2.0f, s.add_material(Material{})});
+    const PrimRef sphere = PrimRef::make(PrimKind::Sphere, 0);
+    for (Vec3 n : {normalize(Vec3{0.3f, 0.4f, 0.8f}), normalize(Vec3{-0.7f, -0.2f, 0.3f})}) {
+        const Point3 p = Point3{1, 2, 3} + 2.0f * n;
+        const Tangents t = hit_tangents(s, sphere, 0, 0, p);
+        EXPECT_NEAR(dot(t.dpdu, n), 0.0f, 1e-5f);
+        EXPECT_NEAR(dot(t.dpdv, n), 0.0f, 1e-5f);
+        const Vec2 uv = sphere_uv(n);
+        const float eps = 1e-3f;
+        const Vec2 a = sphere_uv(normalize(p + eps * t.dpdu / length(t.dpdu) - Point3{1, 2, 3}));
+        const Vec2 b = sphere_uv(normalize(p + eps * t.dpdv / length(t.dpdv) - Point3{1, 2, 3}));
+        EXPECT_NEAR((a.x - uv.x) * length(t.dpdu), eps, 2e-5f);
+        EXPECT_NEAR(a.y - uv.y, 0.0f, 2e-5f);
+        EXPECT_NEAR((b.y - uv.y) * length(t.dpdv), eps, 2e-5f);
+        EXPECT_NEAR(b.x - uv.x, 0.0f, 2e-5f);
+    }
+}
+
+// (0.5, 0.5, 1) is the unperturbed normal; (0.75, 0.5, 1) tilts it towards +u by atan(0.5), and
+// (0.5, 0.25, 1) towards -v.
+TEST(NormalMaps, NormalMapTiltsInTheTangentFrame) {
+    for (const auto& [rgb, expected] :
+         {std::pair{Color(0.5f, 0.5f, 1.0f), Vec3{0, 0, 1}},
+          std::pair{Color(0.75f, 0.5f, 1.0f), normalize(Vec3{0.5f, 0, 1})},
+          std::pair{Color(0.5f, 0.25f, 1.0f), normalize(Vec3{0, -0.5f, 1})}}) {
+        Scene s;
+        Material m;
+        m.normal_map = s.add_solid(rgb);
+        s = quad_scene(s, m);
+        const SurfaceHit h = hit_quad(s, 0.3f, 0.6f);
+        expect_near(mapped_normal(s, s.materials[0], h), expected, 1e-6f, "normal map");
+    }
+}
+
+// Heights rising along u with slope k tilt the normal to normalize(-k, 0, 1).
+TEST(NormalMaps, BumpRampTiltsAgainstItsSlope) {
+    Scene s;
+    ImageData ramp;
+    ramp.width = 64;
+    ramp.height = 1;
+    for (int x = 0; x < 64; ++x) ramp.texels.push_back(Color(x / 64.0f));
+    Texture t;
+    t.kind = TextureKind::Image;
+    t.image = s.add_image(ramp);
+    Material m;
+    m.bump_map = s.add_texture(t);
+    m.bump_scale = 0.1f;
+    m.albedo = s.add_solid(Color(0.5f));
+    s.add_quad({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, s.add_material(m)});
+    // Between texel centres the bilinear ramp rises by 1/64 per 1/64 of u: slope 0.1.
+    const SurfaceHit h = hit_quad(s, 0.4f, 0.5f);
+    expect_near(mapped_normal(s, s.materials[0], h), normalize(Vec3{-0.1f, 0, 1}), 1e-4f, "bump");
+    // A quad without maps has no tangents computed, and its normal stays.
+    Scene plain = quad_scene(Scene{}, Material{});
+    const SurfaceHit p = hit_quad(plain, 0.4f, 0.5f);
+    EXPECT_EQ(length_squared(p.dpdu), 0.0f);
+}
