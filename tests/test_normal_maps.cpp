@@ -46,7 +46,7 @@ TEST(Tangents, TriangleFollowsItsUvs) {
     s.add_mesh(mesh, {{0, 0, 0}, {2, 0, 0}, {0, 3, 0}}, {},
                {{0.1f, 0.2f}, {0.1f, 0.7f}, {0.6f, 0.2f}}, {0, 1, 2});
     const PrimRef tri = PrimRef::make(PrimKind::Triangle, 0);
-    const Tangents t = hit_tangents(s, tri, 0.2f, 0.3f, {0.4f, 0.9f, 0});
+    const Tangents t = hit_tangents(s, tri, {0.4f, 0.9f, 0});
     // u grows along the third vertex's edge (0, 3, 0) by 0.5: dp/du = (0, 6, 0); v along x.
     expect_near(t.dpdu, {0, 6, 0}, 1e-5f, "dpdu");
     expect_near(t.dpdv, {4, 0, 0}, 1e-5f, "dpdv");
@@ -55,7 +55,7 @@ TEST(Tangents, TriangleFollowsItsUvs) {
     Mesh m2;
     m2.material = plain.add_material(Material{});
     plain.add_mesh(m2, {{0, 0, 0}, {2, 0, 0}, {0, 3, 0}}, {}, {}, {0, 1, 2});
-    const Tangents e = hit_tangents(plain, tri, 0.2f, 0.3f, {0.4f, 0.9f, 0});
+    const Tangents e = hit_tangents(plain, tri, {0.4f, 0.9f, 0});
     expect_near(e.dpdu, {2, 0, 0}, 0, "edge 1");
     expect_near(e.dpdv, {0, 3, 0}, 0, "edge 2");
 }
@@ -68,7 +68,7 @@ TEST(Tangents, SphereFollowsItsMapping) {
     const PrimRef sphere = PrimRef::make(PrimKind::Sphere, 0);
     for (Vec3 n : {normalize(Vec3{0.3f, 0.4f, 0.8f}), normalize(Vec3{-0.7f, -0.2f, 0.3f})}) {
         const Point3 p = Point3{1, 2, 3} + 2.0f * n;
-        const Tangents t = hit_tangents(s, sphere, 0, 0, p);
+        const Tangents t = hit_tangents(s, sphere, p);
         EXPECT_NEAR(dot(t.dpdu, n), 0.0f, 1e-5f);
         EXPECT_NEAR(dot(t.dpdv, n), 0.0f, 1e-5f);
         const Vec2 uv = sphere_uv(n);

@@ -73,7 +73,7 @@ Lobes eval_upper(const BsdfParams& b, Vec3 o, Vec3 i) {
     const CoatingTable& table = *b.coating;
     const float to = table.transmittance_at(o.z), ti = table.transmittance_at(i.z);
     const float p_spec = specular_probability(1.0f - to, b.specular_weight);
-    const MicrofacetDistribution md{b.distribution, b.alpha, b.alpha};
+    const MicrofacetDistribution md = microfacet_of(b);
     const Vec3 h = normalize(o + i);
     const float d = md.d(h), g1_o = md.g1(o);
     const float spec = fresnel_dielectric(dot(o, h), b.eta) * d * g1_o * md.g1(i) / (4.0f * o.z);
@@ -125,8 +125,7 @@ BsdfSample plastic_sample(const BsdfParams& b, Vec3 wo, float u_lobe, float u1, 
     Vec3 i;
     if (b.alpha > 0.0f && u_lobe < specular_probability(1.0f - b.coating->transmittance_at(wo.z),
                                                         b.specular_weight)) {
-        const Vec3 m =
-            MicrofacetDistribution{b.distribution, b.alpha, b.alpha}.sample_visible(wo, u1, u2);
+        const Vec3 m = microfacet_of(b).sample_visible(wo, u1, u2);
         i = 2.0f * dot(wo, m) * m - wo;
     } else {
         i = sample_cosine_hemisphere(u1, u2);

@@ -275,6 +275,12 @@ class Loader {
                known + ")");
     }
 
+    // An inside index of refraction `ior` over the optional "ext_ior" (default 1: vacuum).
+    float read_relative_ior(Object& o, float ior) {
+        if (auto x = o.optional("ext_ior")) ior /= read_ior(*x);
+        return ior;
+    }
+
     // A conductor: a named metal, or eta and k per channel (default 0 and 1: every direction
     // reflects fully, as Mitsuba's conductor "none"); a roughness alpha (0: smooth) and its
     // distribution; a reflectance texture scaling the Fresnel term.
@@ -319,9 +325,8 @@ class Loader {
         auto albedo = o.optional("albedo");
         m.albedo =
             albedo ? read_texture(*albedo, Range::Reflectance) : scene_.add_solid(Vec3(0.5f));
-        m.ior = 1.49f;
-        if (auto x = o.optional("ior")) m.ior = read_ior(*x);
-        if (auto x = o.optional("ext_ior")) m.ior /= read_ior(*x);
+        auto ior = o.optional("ior");
+        m.ior = read_relative_ior(o, ior ? read_ior(*ior) : 1.49f);
         read_roughness(o, m);
         m.alpha_v = m.alpha_u;
         if (auto x = o.optional("specular")) m.specular = x->color();
@@ -398,8 +403,7 @@ class Loader {
                 m.albedo = x ? read_texture(*x, Range::Reflectance) : scene_.add_solid(Vec3(1.0f));
             } else if (type == "dielectric") {
                 m.kind = MaterialKind::Dielectric;
-                m.ior = read_ior(o.required("ior"));
-                if (auto x = o.optional("ext_ior")) m.ior /= read_ior(*x);
+                m.ior = read_relative_ior(o, read_ior(o.required("ior")));
                 read_roughness(o, m);
                 // Index-matched, the interface is invisible however rough it is (Walter's model
                 // degenerates to a delta there): the smooth dielectric says so exactly.
@@ -408,8 +412,7 @@ class Loader {
                 read_conductor(o, m);
             } else if (type == "thin_dielectric") {
                 m.kind = MaterialKind::ThinDielectric;
-                m.ior = read_ior(o.required("ior"));
-                if (auto x = o.optional("ext_ior")) m.ior /= read_ior(*x);
+                m.ior = read_relative_ior(o, read_ior(o.required("ior")));
             } else if (type == "plastic") {
                 read_plastic(o, m);
             } else if (type == "diffuse_light") {

@@ -27,7 +27,7 @@ Vec2 hit_uv(const Scene& scene, PrimRef prim, float u, float v, Point3 p) {
     return {};
 }
 
-Tangents hit_tangents(const Scene& scene, PrimRef prim, float, float, Point3 p) {
+Tangents hit_tangents(const Scene& scene, PrimRef prim, Point3 p) {
     Tangents t;
     switch (prim.kind()) {
         case PrimKind::Triangle: {

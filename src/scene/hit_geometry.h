@@ -1,7 +1,7 @@
 // Where on a primitive a hit lies, from the intersector's parameters (u, v) (barycentrics b1,
 // b2 of a triangle, the quad's edge parameters; unused for spheres) and the hit point p: its
-// texture coordinates, and the surface's derivatives along them for tangent frames, normal and
-// bump maps.
+// texture coordinates, and the surface's derivatives along them (which depend on the point
+// alone) for normal and bump maps.
 #pragma once
 
 #include "wavetrace/math/vec3.h"
@@ -20,6 +20,6 @@ Vec2 hit_uv(const Scene& scene, PrimRef prim, float u, float v, Point3 p);
 struct Tangents {
     Vec3 dpdu{0.0f}, dpdv{0.0f};
 };
-Tangents hit_tangents(const Scene& scene, PrimRef prim, float u, float v, Point3 p);
+Tangents hit_tangents(const Scene& scene, PrimRef prim, Point3 p);
 
 }  // namespace wavetrace

@@ -4,26 +4,21 @@
 #include <bit>
 #include <cstdint>
 
+#include "sampling/sampler-inl.h"
 #include "scene/hit_geometry.h"
 #include "wavetrace/scene/scene.h"
 #include "wavetrace/scene/texture.h"
 
 namespace wavetrace {
+namespace lanes = HWY_NAMESPACE;
 namespace {
-
-// A 64-bit finaliser (Stafford's Mix13, as in splitmix64): every input bit reaches every
-// output bit.
-uint64_t mix(uint64_t x) {
-    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
-    x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
-    return x ^ (x >> 31);
-}
 
 // A uniform number in [0, 1) from the ray and the primitive.
 float hash_float(const Ray& ray, PrimRef prim) {
-    uint64_t h = mix(0x9e3779b97f4a7c15ull ^ prim.bits);
+    using lanes::Mix64, lanes::OneLane;
+    uint64_t h = Mix64<OneLane>(0x9e3779b97f4a7c15ull ^ prim.bits);
     for (float f : {ray.o.x, ray.o.y, ray.o.z, ray.d.x, ray.d.y, ray.d.z})
-        h = mix(h ^ std::bit_cast<uint32_t>(f));
+        h = Mix64<OneLane>(h ^ std::bit_cast<uint32_t>(f));
     return float(h >> 40) * 0x1p-24f;
 }
 

@@ -57,6 +57,7 @@ inline BsdfParams material_bsdf(const Material& m, Color albedo) {
         b.nonlinear = m.nonlinear;
         b.coating = &m.coating;
         b.one_sided = m.one_sided;
+        b.alpha_v = b.alpha;  // isotropic
     }
     return b;
 }

@@ -52,10 +52,11 @@ SurfaceHit surface_at(const Scene& scene, const Ray& ray, const Hit& hit) {
             s.ng = s.ns = to_vec3(
                 lanes::SpherePoint<OneLane>(to_lanes(s.p), to_lanes(sp.center), sp.radius).ng);
             // sphere_uv: an acos and an atan2 (7% of a render of spheres lit by spheres), so only
-            // where a texture of the sphere's material reads it.
+            // where a texture or a map of the sphere's material reads it.
             if (sp.material != kNone &&
                 (texture_reads_uv(scene, scene.materials[sp.material].albedo) ||
-                 texture_reads_uv(scene, scene.materials[sp.material].emission))) {
+                 texture_reads_uv(scene, scene.materials[sp.material].emission) ||
+                 scene.materials[sp.material].has_normal_maps())) {
                 s.uv = sphere_uv(s.ng);
             }
             s.material = sp.material;
@@ -64,8 +65,7 @@ SurfaceHit surface_at(const Scene& scene, const Ray& ray, const Hit& hit) {
         }
     }
     if (s.material != kNone && scene.materials[s.material].has_normal_maps()) {
-        if (hit.prim.kind() == PrimKind::Sphere) s.uv = sphere_uv(s.ng);  // the maps read it
-        const Tangents t = hit_tangents(scene, hit.prim, hit.u, hit.v, s.p);
+        const Tangents t = hit_tangents(scene, hit.prim, s.p);
         s.dpdu = t.dpdu;
         s.dpdv = t.dpdv;
     }
