@@ -74,6 +74,21 @@ BsdfParams plastic(Microfacet d, float alpha, float eta, bool nonlinear = false)
     return b;
 }
 
+// glTF's metallic-roughness material of base colour (0.8, 0.6, 0.4); alpha = roughness^2.
+BsdfParams metallic_roughness(float metallic, float alpha, float transmission = 0.0f,
+                              float clearcoat = 0.0f, float clearcoat_alpha = 0.0f) {
+    BsdfParams b;
+    b.kind = MaterialKind::MetallicRoughness;
+    b.albedo = Color(0.8f, 0.6f, 0.4f);
+    b.eta = 1.5f;
+    b.alpha = b.alpha_v = alpha;
+    b.metallic = metallic;
+    b.transmission = transmission;
+    b.clearcoat = clearcoat;
+    b.clearcoat_alpha = clearcoat_alpha;
+    return b;
+}
+
 std::vector<Case> smooth_cases() {
     auto params = [](MaterialKind k, float alpha) {
         BsdfParams b;
@@ -128,6 +143,18 @@ std::vector<Case> smooth_cases() {
         {"plastic-beckmann-0.3-grazing", plastic(Microfacet::Beckmann, 0.3f, 1.49f), grazing},
         {"plastic-ggx-0.2-nonlinear", plastic(Microfacet::Ggx, 0.2f, 1.5f, true), oblique},
         {"plastic-ggx-0.6-below", plastic(Microfacet::Ggx, 0.6f, 2.0f), below},
+        // glTF's material: its smooth lobes (alpha 0) are deltas, counted lost.
+        {"gltf-dielectric-0.25", metallic_roughness(0.0f, 0.25f), oblique},
+        {"gltf-metal-0.09-grazing", metallic_roughness(1.0f, 0.09f), grazing},
+        {"gltf-half-metal-0.5-below", metallic_roughness(0.5f, 0.5f), below},
+        {"gltf-transmission-0.16", metallic_roughness(0.0f, 0.16f, 0.8f), oblique},
+        {"gltf-transmission-0.36-below", metallic_roughness(0.2f, 0.36f, 1.0f), below},
+        {"gltf-clearcoat-0.04", metallic_roughness(0.0f, 0.49f, 0.0f, 1.0f, 0.04f), oblique},
+        {"gltf-clearcoat-grazing", metallic_roughness(0.3f, 0.2f, 0.5f, 0.7f, 0.1f), grazing},
+        {"gltf-smooth", metallic_roughness(0.0f, 0.0f), oblique},
+        {"gltf-smooth-transmission-coat", metallic_roughness(0.0f, 0.0f, 0.5f, 1.0f, 0.0f),
+         oblique},
+        {"gltf-smooth-base-rough-coat", metallic_roughness(0.4f, 0.0f, 0.0f, 0.8f, 0.09f), below},
     };
 }
 
@@ -188,7 +215,8 @@ TEST(Bsdf, DensityIntegratesToTheSamplingProbability) {
                     p);
         EXPECT_NEAR(mean, p, 4 * se + 4 * se_p + 1e-9) << c.name;
         if (c.b.kind != MaterialKind::Metal && c.b.kind != MaterialKind::Conductor &&
-            c.b.kind != MaterialKind::Dielectric && c.b.kind != MaterialKind::Plastic) {
+            c.b.kind != MaterialKind::Dielectric && c.b.kind != MaterialKind::Plastic &&
+            c.b.kind != MaterialKind::MetallicRoughness) {
             EXPECT_EQ(valid, n) << c.name;
         }
         if (c.b.kind == MaterialKind::Plastic && c.b.alpha == 0.0f) {

@@ -6,6 +6,7 @@
 #include "bsdfs/conductor.h"
 #include "bsdfs/diffuse-inl.h"
 #include "bsdfs/fresnel.h"
+#include "bsdfs/metallic_roughness.h"
 #include "bsdfs/ggx-inl.h"
 #include "bsdfs/plastic.h"
 #include "bsdfs/rough_dielectric.h"
@@ -30,7 +31,9 @@ bool BsdfParams::is_delta() const {
     return kind == MaterialKind::Mirror || kind == MaterialKind::ThinDielectric ||
            (kind == MaterialKind::Dielectric && alpha == 0.0f) ||
            (kind == MaterialKind::Metal && alpha == 0.0f) ||
-           (kind == MaterialKind::Conductor && alpha == 0.0f && alpha_v == 0.0f);
+           (kind == MaterialKind::Conductor && alpha == 0.0f && alpha_v == 0.0f) ||
+           (kind == MaterialKind::MetallicRoughness && metallic == 1.0f && alpha == 0.0f &&
+            (clearcoat == 0.0f || clearcoat_alpha == 0.0f));
 }
 
 float ggx_d(Vec3 h, float alpha) {
@@ -75,6 +78,10 @@ Color bsdf_eval(const BsdfParams& b, Vec3 wo, Vec3 wi) {
             float pdf;
             return plastic_eval(b, upper(wo, wo), upper(wi, wo), &pdf);
         }
+        case MaterialKind::MetallicRoughness: {
+            float pdf;
+            return metallic_roughness_eval(b, wo, wi, &pdf);
+        }
         default:
             return {};  // delta lobes, emitters and interfaces do not scatter smoothly
     }
@@ -111,6 +118,11 @@ float bsdf_pdf(const BsdfParams& b, Vec3 wo, Vec3 wi) {
             if (b.one_sided && wo.z < 0.0f) return 0.0f;
             float pdf;
             plastic_eval(b, upper(wo, wo), upper(wi, wo), &pdf);
+            return pdf;
+        }
+        case MaterialKind::MetallicRoughness: {
+            float pdf;
+            metallic_roughness_eval(b, wo, wi, &pdf);
             return pdf;
         }
         default:
@@ -187,6 +199,8 @@ BsdfSample bsdf_sample(const BsdfParams& b, Vec3 wo, float u_lobe, float u1, flo
             s.wi = upper(s.wi, wo);
             return s;
         }
+        case MaterialKind::MetallicRoughness:
+            return metallic_roughness_sample(b, wo, u_lobe, u1, u2);
         case MaterialKind::Isotropic:
             s.wi = sample_uniform_sphere(u1, u2);
             s.pdf = lanes::PhasePdf<OneLane>();

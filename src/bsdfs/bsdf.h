@@ -37,6 +37,10 @@ struct BsdfParams {
     bool nonlinear = false;
     bool one_sided = false;
     const CoatingTable* coating = nullptr;
+    // MetallicRoughness (bsdfs/metallic_roughness.h): albedo is the base colour, alpha the GGX
+    // roughness^2, eta the index of refraction giving F0; metallic, transmission and clearcoat
+    // in [0, 1], the clearcoat's GGX alpha; one_sided as for Plastic.
+    float metallic = 0.0f, transmission = 0.0f, clearcoat = 0.0f, clearcoat_alpha = 0.0f;
 
     bool is_delta() const;  // every lobe is a Dirac delta: never light-sampled
 };

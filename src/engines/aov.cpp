@@ -21,7 +21,8 @@ Color albedo_of(const Scene& scene, const SurfaceHit& s) {
     const Material& m = scene.materials[s.material];
     switch (m.kind) {
         case MaterialKind::Lambertian:
-        case MaterialKind::Plastic:  // its base
+        case MaterialKind::Plastic:            // its base
+        case MaterialKind::MetallicRoughness:  // its base colour
         case MaterialKind::Metal:
         case MaterialKind::Mirror:
         case MaterialKind::Isotropic:

@@ -199,6 +199,7 @@ class Loader {
             if (auto x = o.optional("raw")) raw = x->boolean();
             t.image = scene_.add_image(read_image_at(o.required("file"), raw));
             if (auto x = o.optional("uv_transform")) read_uv_transform(*x, t);
+            if (auto x = o.optional("factor")) t.factor = colour(*x);
         } else {
             type_value.fail("unknown texture type \"" + type +
                             "\" (expected solid, checker, uv_checker, noise or image)");
@@ -333,6 +334,26 @@ class Loader {
         if (auto x = o.optional("nonlinear")) m.nonlinear = x->boolean();
     }
 
+    // glTF 2.0's metallic-roughness material with its transmission and clearcoat extensions,
+    // under glTF's names and defaults (metallic and roughness 1, base colour white, ior 1.5).
+    void read_metallic_roughness(Object& o, Material& m) {
+        m.kind = MaterialKind::MetallicRoughness;
+        auto base = o.optional("base_color");
+        m.albedo = base ? read_texture(*base, Range::Reflectance) : scene_.add_solid(Vec3(1.0f));
+        m.metallic = m.roughness = 1.0f;
+        if (auto x = o.optional("metallic")) m.metallic = x->in_range(0.0f, 1.0f);
+        if (auto x = o.optional("roughness")) m.roughness = x->in_range(0.0f, 1.0f);
+        if (auto x = o.optional("metallic_roughness"))
+            m.metallic_roughness = read_texture(*x, Range::Reflectance);
+        if (auto x = o.optional("ior")) m.ior = read_ior(*x);
+        if (auto x = o.optional("transmission")) m.transmission = x->in_range(0.0f, 1.0f);
+        if (auto x = o.optional("clearcoat")) m.clearcoat = x->in_range(0.0f, 1.0f);
+        if (auto x = o.optional("clearcoat_roughness"))
+            m.clearcoat_roughness = x->in_range(0.0f, 1.0f);
+        if (auto x = o.optional("emission")) m.emission = read_texture(*x, Range::Radiance);
+        if (auto x = o.optional("two_sided")) m.two_sided = x->boolean();
+    }
+
     // Lights that are not shapes: point, spot and directional (docs/scene-format.md#lights).
     void read_lights(const Value& v) {
         for (size_t i = 0; i < v.size(); ++i) {
@@ -415,6 +436,8 @@ class Loader {
                 m.ior = read_relative_ior(o, read_ior(o.required("ior")));
             } else if (type == "plastic") {
                 read_plastic(o, m);
+            } else if (type == "metallic_roughness") {
+                read_metallic_roughness(o, m);
             } else if (type == "diffuse_light") {
                 m.kind = MaterialKind::DiffuseLight;
                 m.emission = read_texture(o.required("radiance"), Range::Radiance);
@@ -424,8 +447,8 @@ class Loader {
             } else {
                 type_value.fail("unknown material type \"" + type +
                                 "\" (expected lambertian, metal, mirror, dielectric, "
-                                "thin_dielectric, conductor, plastic or diffuse_light; media "
-                                "are declared under /media)");
+                                "thin_dielectric, conductor, plastic, metallic_roughness or "
+                                "diffuse_light; media are declared under /media)");
             }
             // An alpha mask, for any surface (scene/opacity.h).
             if (auto x = o.optional("opacity")) m.opacity = read_texture(*x, Range::Reflectance);
@@ -437,10 +460,10 @@ class Loader {
             if (auto x = o.optional("one_sided")) {
                 if (m.kind != MaterialKind::Lambertian && m.kind != MaterialKind::Metal &&
                     m.kind != MaterialKind::Mirror && m.kind != MaterialKind::Conductor &&
-                    m.kind != MaterialKind::Plastic)
+                    m.kind != MaterialKind::Plastic && m.kind != MaterialKind::MetallicRoughness)
                     x->fail(
-                        "only lambertian, metal, mirror, conductor and plastic materials are "
-                        "one-sided or not");
+                        "only lambertian, metal, mirror, conductor, plastic and "
+                        "metallic_roughness materials are one-sided or not");
                 m.one_sided = x->boolean();
             }
             o.finish();

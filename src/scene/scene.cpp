@@ -31,6 +31,8 @@ const char* to_string(MaterialKind kind) {
             return "plastic";
         case MaterialKind::ThinDielectric:
             return "thin_dielectric";
+        case MaterialKind::MetallicRoughness:
+            return "metallic_roughness";
     }
     return "?";
 }

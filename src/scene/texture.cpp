@@ -145,7 +145,7 @@ Color eval_texture(const Scene& scene, TextureId id, Vec2 uv, Point3 p) {
                        (0.5f * (1.0f + std::sin(t.scale * p.z + 10.0f * perlin_turbulence(p))));
             case TextureKind::Image: {
                 const Vec2 st = t.map_uv(uv);
-                return scene.images[t.image].bilinear(st.x, st.y);
+                return t.factor * scene.images[t.image].bilinear(st.x, st.y);
             }
         }
         return {};
@@ -176,7 +176,8 @@ Color texture_mean(const Scene& scene, TextureId id) {
                 const ImageData& image = scene.images[t.image];
                 Color sum{0.0f};
                 for (const Color& c : image.texels) sum += c;
-                return image.texels.empty() ? Color(0.0f) : sum / float(image.texels.size());
+                return image.texels.empty() ? Color(0.0f)
+                                            : t.factor * sum / float(image.texels.size());
             }
         }
         return {};

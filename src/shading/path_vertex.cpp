@@ -42,6 +42,13 @@ Vertex surface_vertex(const Scene& scene, const SurfaceHit& hit) {
     v.material = hit.material;
     v.bsdf = material_bsdf(
         m, m.albedo != kNone ? eval_texture(scene, m.albedo, hit.uv, hit.p) : Color(0.0f));
+    if (m.metallic_roughness != kNone) {
+        // glTF's channels: green scales the roughness, blue the metallic factor.
+        const Color t = eval_texture(scene, m.metallic_roughness, hit.uv, hit.p);
+        const float roughness = m.roughness * std::clamp(t.y, 0.0f, 1.0f);
+        v.bsdf.alpha = v.bsdf.alpha_v = roughness * roughness;
+        v.bsdf.metallic = m.metallic * std::clamp(t.z, 0.0f, 1.0f);
+    }
     // A one-sided surface seen from behind reflects nothing: its albedo (a conductor's
     // reflectance) is 0 there.
     if (m.one_sided && !hit.front_face) v.bsdf.albedo = Color(0.0f);
@@ -63,7 +70,8 @@ bool can_sample_lights(const Vertex& v, const LightSet& lights) {
     return !lights.empty() && !v.bsdf.is_delta() &&
            (v.bsdf.kind == MaterialKind::Lambertian || v.bsdf.kind == MaterialKind::Metal ||
             v.bsdf.kind == MaterialKind::Isotropic || v.bsdf.kind == MaterialKind::Conductor ||
-            v.bsdf.kind == MaterialKind::Dielectric || v.bsdf.kind == MaterialKind::Plastic);
+            v.bsdf.kind == MaterialKind::Dielectric || v.bsdf.kind == MaterialKind::Plastic ||
+            v.bsdf.kind == MaterialKind::MetallicRoughness);
 }
 
 Point3 offset_origin(const Vertex& v, Vec3 w) {
@@ -83,13 +91,15 @@ bool one_sample_continuation(Strategy strategy, const Vertex& v, const LightSet&
 
 // f |cos| at a vertex for world directions, zero where wi leaves through the geometric surface
 // (CrossesGeometricSurface) but the BSDF would reflect it, or stays on wo's side but the BSDF
-// would transmit it (a rough dielectric).
+// would transmit it (a rough dielectric, a metallic-roughness surface with transmission).
 Color eval_world(const Vertex& v, Vec3 wo, Vec3 wi, float* pdf) {
     using lanes::to_lanes;
     const bool crosses =
         lanes::CrossesGeometricSurface<OneLane>(to_lanes(wo), to_lanes(wi), to_lanes(v.ng));
     Vec3 lo = v.frame.to_local(wo), li = v.frame.to_local(wi);
-    const bool transmits = v.bsdf.kind == MaterialKind::Dielectric && lo.z * li.z < 0.0f;
+    const bool transmits = (v.bsdf.kind == MaterialKind::Dielectric ||
+                            v.bsdf.kind == MaterialKind::MetallicRoughness) &&
+                           lo.z * li.z < 0.0f;
     if (crosses != transmits) {
         *pdf = 0.0f;
         return {};
@@ -309,12 +319,12 @@ SegmentResult resolve_segment(const Scene& scene,
         r.next = cross_boundary(s, dir, media);
         return r;
     }
-    if (kind == MaterialKind::DiffuseLight) {
+    if (const Material& mat = scene.materials[s.material]; mat.is_emissive()) {
         Color le = emitted_radiance(scene, s);
         if (max_component(le) > 0.0f) found(le, hit.prim, length(s.p - prev.p));
-        // An emitter that also reflects (an albedo, e.g. an MTL light with Kd): its emission
-        // is counted here and the path scatters on, Lambertian.
-        if (scene.materials[s.material].albedo == kNone) return r;
+        // An emitter that also reflects (an albedo, e.g. an MTL light with Kd, or any emissive
+        // material but diffuse_light): its emission is counted here and the path scatters on.
+        if (kind == MaterialKind::DiffuseLight && mat.albedo == kNone) return r;
         r.event = SegmentEvent::Scatter;
         r.vertex = surface_vertex(scene, s);
         r.wo = -dir;

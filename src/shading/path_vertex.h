@@ -59,6 +59,14 @@ inline BsdfParams material_bsdf(const Material& m, Color albedo) {
         b.one_sided = m.one_sided;
         b.alpha_v = b.alpha;  // isotropic
     }
+    if (m.kind == MaterialKind::MetallicRoughness) {
+        b.alpha_v = b.alpha;  // isotropic, roughness^2
+        b.metallic = m.metallic;
+        b.transmission = m.transmission;
+        b.clearcoat = m.clearcoat;
+        b.clearcoat_alpha = m.clearcoat_roughness * m.clearcoat_roughness;
+        b.one_sided = m.one_sided;
+    }
     return b;
 }
 Vertex medium_vertex(const Scene& scene, MediumId medium, Point3 p);

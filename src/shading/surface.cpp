@@ -56,6 +56,7 @@ SurfaceHit surface_at(const Scene& scene, const Ray& ray, const Hit& hit) {
             if (sp.material != kNone &&
                 (texture_reads_uv(scene, scene.materials[sp.material].albedo) ||
                  texture_reads_uv(scene, scene.materials[sp.material].emission) ||
+                 texture_reads_uv(scene, scene.materials[sp.material].metallic_roughness) ||
                  scene.materials[sp.material].has_normal_maps())) {
                 s.uv = sphere_uv(s.ng);
             }

@@ -19,8 +19,10 @@ enum class MaterialKind : uint8_t {
     Plastic,       // a diffuse base under a dielectric coating, smooth or rough (Mitsuba 3's
                    // plastic and roughplastic)
     ThinDielectric,  // a sheet of glass of index `ior`: reflects, or passes light straight on
+    MetallicRoughness,  // glTF 2.0's metallic-roughness material, with its transmission and
+                        // clearcoat extensions
 };
-inline constexpr int kMaterialKinds = int(MaterialKind::ThinDielectric) + 1;
+inline constexpr int kMaterialKinds = int(MaterialKind::MetallicRoughness) + 1;
 
 // The microfacet normal distributions of rough materials (bsdfs/microfacet.h).
 enum class Microfacet : uint8_t {

@@ -17,11 +17,13 @@ struct Material {
     MaterialKind kind = MaterialKind::Lambertian;
     TextureId albedo = kNone;    // Lambertian, Metal, Mirror, Isotropic; Conductor: a factor on
                                  // the Fresnel reflectance (Mitsuba's specular_reflectance);
-                                 // Plastic: the diffuse base's reflectance
-    float roughness = 0.0f;      // Metal
+                                 // Plastic: the diffuse base's reflectance; MetallicRoughness:
+                                 // the base colour
+    float roughness = 0.0f;      // Metal, MetallicRoughness
     float ior = 1.5f;            // Dielectric; Plastic: the coating's
-    TextureId emission = kNone;  // DiffuseLight: radiance (W sr^-1 m^-2 per channel)
-    bool two_sided = false;      // DiffuseLight: emits from both sides
+    // DiffuseLight, MetallicRoughness: emitted radiance (W sr^-1 m^-2 per channel; kNone: none)
+    TextureId emission = kNone;
+    bool two_sided = false;  // emits from both sides
     // Lambertian, Metal, Mirror, Conductor, Plastic: reflects nothing from behind (Mitsuba's
     // diffuse, conductor, ...; its `twosided` wrapper is the default here).
     bool one_sided = false;
@@ -41,6 +43,13 @@ struct Material {
     float specular_weight = 0.5f;
     CoatingTable coating;
 
+    // MetallicRoughness (glTF 2.0's pbrMetallicRoughness, KHR_materials_transmission and
+    // _clearcoat): metallic, transmission and clearcoat factors, the clearcoat's roughness, and
+    // glTF's metallicRoughnessTexture (kNone: none), whose green channel multiplies `roughness`
+    // and blue channel `metallic`.
+    float metallic = 1.0f, transmission = 0.0f, clearcoat = 0.0f, clearcoat_roughness = 0.0f;
+    TextureId metallic_roughness = kNone;
+
     // Any surface material: an alpha mask, the surface cut away where the texture's luminance
     // is below 1 (kNone: opaque; src/scene/opacity.h).
     TextureId opacity = kNone;
@@ -52,7 +61,7 @@ struct Material {
     float bump_scale = 1.0f;
     bool has_normal_maps() const { return normal_map != kNone || bump_map != kNone; }
 
-    bool is_emissive() const { return kind == MaterialKind::DiffuseLight; }
+    bool is_emissive() const { return emission != kNone; }
 };
 
 }  // namespace wavetrace

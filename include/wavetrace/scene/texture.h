@@ -25,6 +25,7 @@ struct Texture {
     TextureId even = kNone;  // Checker: the texture of even cells
     TextureId odd = kNone;   // Checker: the texture of odd cells
     ImageId image = kNone;   // Image: index into Scene::images
+    Color factor{1.0f};      // Image: multiplied into the texels (glTF's colour factors)
     // Image, UvChecker: the affine map applied to the surface's (u, v) first,
     // (u', v') = (uv[0][0] u + uv[0][1] v + uv[0][2], uv[1][0] u + uv[1][1] v + uv[1][2]).
     float uv[2][3] = {{1.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}};
