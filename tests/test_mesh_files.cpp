@@ -8,6 +8,7 @@
 #include <cstring>
 
 #include "temp_dir.h"
+#include "wavetrace/image/image.h"
 #include "wavetrace/loaders/load_scene.h"
 #include "wavetrace/scene/scene.h"
 
@@ -120,6 +121,100 @@ TEST(MeshFiles, GltfLoads) {
     Aabb b = s.bounds();
     EXPECT_EQ(b.lo, Vec3(0, 0, 0));
     EXPECT_EQ(b.hi, Vec3(1, 1, 0));
+}
+
+// glTF materials become metallic_roughness with the file's factors (pbrMetallicRoughness,
+// KHR_materials_ior, _transmission, _clearcoat, emissive), the textures beside the file as image
+// textures times their factors, and what cannot be held (an embedded texture, alphaMode MASK) a
+// warning naming the material.
+TEST(MeshFiles, GltfMaterialsMapToMetallicRoughness) {
+    TempDir dir;
+    Image base(2, 2), mr(2, 2);
+    for (int y = 0; y < 2; ++y)
+        for (int x = 0; x < 2; ++x) {
+            base.at(x, y) = Color(1.0f);
+            mr.at(x, y) = Color(0.0f, 0.5f, 1.0f);  // roughness and metallic
+        }
+    write_image(dir.path() / "base.png", base);
+    write_image(dir.path() / "mr.png", mr);
+    dir.write("two.gltf", R"({
+      "asset": {"version": "2.0"},
+      "extensionsUsed": ["KHR_materials_transmission", "KHR_materials_clearcoat",
+                         "KHR_materials_ior"],
+      "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+      "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "material": 0},
+                                 {"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "material": 1}]}],
+      "materials": [
+        {"name": "coated", "doubleSided": true, "emissiveFactor": [1, 0.5, 0],
+         "pbrMetallicRoughness": {"baseColorFactor": [0.8, 0.6, 0.4, 1],
+                                  "metallicFactor": 0.3, "roughnessFactor": 0.6},
+         "extensions": {"KHR_materials_transmission": {"transmissionFactor": 0.4},
+                        "KHR_materials_clearcoat": {"clearcoatFactor": 0.7,
+                                                    "clearcoatRoughnessFactor": 0.2},
+                        "KHR_materials_ior": {"ior": 1.4}}},
+        {"name": "textured", "alphaMode": "MASK",
+         "pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1],
+                                  "baseColorTexture": {"index": 0},
+                                  "metallicRoughnessTexture": {"index": 1}},
+         "normalTexture": {"index": 2}}],
+      "textures": [{"source": 0}, {"source": 1}, {"source": 2}],
+      "images": [{"uri": "base.png"}, {"uri": "mr.png"},
+                 {"uri": "data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAIAAAACCAIAAAD91JpzAAAAEElEQVR4nGNoaPgPRAwQCgA19gf9SShDzAAAAABJRU5ErkJggg=="}],
+      "buffers": [{"byteLength": 60,
+        "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAAAAAAAAAAAAIA/AAAAAAAAAAAAAIA/"}],
+      "bufferViews": [{"buffer": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 24}],
+      "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                     "min": [0, 0, 0], "max": [1, 1, 0]},
+                    {"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC2"}]
+    })");
+    auto p = dir.write("s.json", R"({"camera": {"look_from": [0, 0, -5], "look_at": [0, 0, 0]},
+        "objects": [{"type": "mesh", "file": "two.gltf", "materials": "file"}]})");
+    static std::vector<std::string> warnings;
+    warnings.clear();
+    LoadOptions options;
+    options.warn = [](const std::string& w) { warnings.push_back(w); };
+    Scene s = load_scene(p, options);
+    auto material_of = [&](const char* name) -> const Material& {
+        for (const Mesh& m : s.meshes)
+            if (m.name == std::string("two.gltf:") + name) return s.materials[m.material];
+        ADD_FAILURE() << "no mesh for material " << name;
+        return s.materials[0];
+    };
+    const Material& coated = material_of("coated");
+    EXPECT_EQ(coated.kind, MaterialKind::MetallicRoughness);
+    EXPECT_EQ(s.textures[coated.albedo].color, Color(0.8f, 0.6f, 0.4f));
+    EXPECT_FLOAT_EQ(coated.metallic, 0.3f);
+    EXPECT_FLOAT_EQ(coated.roughness, 0.6f);
+    EXPECT_FLOAT_EQ(coated.ior, 1.4f);
+    EXPECT_FLOAT_EQ(coated.transmission, 0.4f);
+    EXPECT_FLOAT_EQ(coated.clearcoat, 0.7f);
+    EXPECT_FLOAT_EQ(coated.clearcoat_roughness, 0.2f);
+    ASSERT_TRUE(coated.is_emissive());
+    EXPECT_EQ(s.textures[coated.emission].color, Color(1.0f, 0.5f, 0.0f));
+    EXPECT_TRUE(coated.two_sided);
+
+    const Material& textured = material_of("textured");
+    EXPECT_EQ(textured.kind, MaterialKind::MetallicRoughness);
+    EXPECT_FLOAT_EQ(textured.ior, 1.5f);  // glTF's default
+    EXPECT_FALSE(textured.is_emissive());
+    const Texture& albedo = s.textures[textured.albedo];
+    ASSERT_EQ(albedo.kind, TextureKind::Image);
+    EXPECT_EQ(albedo.factor, Color(0.5f));
+    EXPECT_EQ(eval_texture(s, textured.albedo, {0.5f, 0.5f}, {}), Color(0.5f));
+    ASSERT_NE(textured.metallic_roughness, kNone);
+    const Color t = eval_texture(s, textured.metallic_roughness, {0.5f, 0.5f}, {});
+    // write_image stored 0.5 as the sRGB byte 188; read raw, that byte is not decoded back.
+    EXPECT_NEAR(t.y, 188.0f / 255.0f, 1e-6f);
+    EXPECT_EQ(t.z, 1.0f);
+    EXPECT_EQ(textured.normal_map, kNone);  // embedded: not read
+    auto warned = [&](const std::string& part) {
+        return std::any_of(warnings.begin(), warnings.end(),
+                           [&](const std::string& w) { return w.find(part) != std::string::npos; });
+    };
+    EXPECT_TRUE(warned(
+        "material \"textured\": ignored normalTexture (embedded in the file), alphaMode MASK"))
+        << (warnings.empty() ? "" : warnings[0]);
+    EXPECT_FALSE(warned("\"coated\""));
 }
 
 // Materials from an OBJ's MTL file: each key maps as docs/scene-format.md says, one scene mesh

@@ -364,8 +364,8 @@ TEST(SceneLoader, ConductorParametersAreValidated) {
     EXPECT_EQ(load_error(dir, with(R"({"type": "conductor", "metal": "none"})")), "");
     EXPECT_EQ(load_error(dir, with(R"({"type": "conductor", "one_sided": true})")), "");
     EXPECT_EQ(load_error(dir, with(R"({"type": "dielectric", "ior": "bk7", "one_sided": true})")),
-              ": /materials/gold/one_sided: only lambertian, metal, mirror, conductor and "
-              "plastic materials are one-sided or not");
+              ": /materials/gold/one_sided: only lambertian, metal, mirror, conductor, plastic "
+              "and metallic_roughness materials are one-sided or not");
     // Plastic and alpha masks.
     EXPECT_EQ(
         load_error(dir, with(R"({"type": "plastic", "albedo": 0.3, "ior": 1.9, "ext_ior": "air",
@@ -398,6 +398,41 @@ TEST(SceneLoader, ConductorParametersAreValidated) {
     EXPECT_EQ(load_error(dir, with(R"({"type": "conductor", "distribution": "phong"})")),
               ": /materials/gold/distribution: unknown distribution \"phong\" (expected ggx or "
               "beckmann)");
+}
+
+TEST(SceneLoader, MetallicRoughnessIsValidated) {
+    TempDir dir;
+    auto with = [](const std::string& m) {
+        return std::string("{") + kCamera + R"(, "materials": {"car": )" + m +
+               R"(}, "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "car"}]})";
+    };
+    EXPECT_EQ(load_error(dir, with(R"({"type": "metallic_roughness"})")), "");
+    EXPECT_EQ(load_error(dir, with(R"({"type": "metallic_roughness", "base_color": [0.8, 0.1, 0.1],
+        "metallic": 0, "roughness": 0.3, "ior": "bk7", "transmission": 0.5, "clearcoat": 1,
+        "clearcoat_roughness": 0.05, "emission": [2, 2, 2], "two_sided": true,
+        "one_sided": true})")),
+              "");
+    EXPECT_EQ(load_error(dir, with(R"({"type": "metallic_roughness", "roughness": -0.2})")),
+              ": /materials/car/roughness: expected a number in [0.0, 1.0], got -0.2");
+    EXPECT_EQ(load_error(dir, with(R"({"type": "metallic_roughness", "metallic": 1.5})")),
+              ": /materials/car/metallic: expected a number in [0.0, 1.0], got 1.5");
+    EXPECT_EQ(load_error(dir, with(R"({"type": "metallic_roughness", "ior": -1})")),
+              ": /materials/car/ior: expected a positive number, got -1");
+    EXPECT_EQ(
+        load_error(dir, with(R"({"type": "metallic_roughness", "base_color": [1.2, 0, 0]})"))
+            .substr(0, 33),
+        ": /materials/car/base_color: expe");
+    EXPECT_EQ(load_error(dir, with(R"({"type": "metallic_roughness", "albedo": 0.5})")).substr(0, 36),
+              ": /materials/car/albedo: unknown key");
+    // An image texture's factor is a colour like any other: a reflectance's within [0, 1].
+    dir.write("t.ppm", "P3\n1 1\n255\n10 20 30\n");
+    EXPECT_EQ(load_error(dir, with(R"({"type": "lambertian", "albedo": {"type": "image",
+        "file": "t.ppm", "factor": 0.5}})")),
+              "");
+    EXPECT_EQ(load_error(dir, with(R"({"type": "lambertian", "albedo": {"type": "image",
+        "file": "t.ppm", "factor": [1, 2, 1]}})"))
+                  .substr(0, 38),
+              ": /materials/car/albedo/factor: expect");
 }
 
 // Lights that are not shapes, checked where they are written.

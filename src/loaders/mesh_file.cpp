@@ -1,6 +1,7 @@
 #include "loaders/mesh_file.h"
 
 #include <assimp/BaseImporter.h>
+#include <assimp/GltfMaterial.h>
 #include <assimp/ObjMaterial.h>
 #include <assimp/importerdesc.h>
 #include <assimp/material.h>
@@ -45,7 +46,50 @@ Color color_of(const aiMaterial& m, const char* key, unsigned type, unsigned ind
     return {c.r, c.g, c.b};
 }
 
-FileMaterial read_material(const aiMaterial& m) {
+std::string texture_path(const aiMaterial& m, aiTextureType type, unsigned index = 0) {
+    aiString path;
+    if (m.GetTextureCount(type) > index && m.GetTexture(type, index, &path) == AI_SUCCESS)
+        return path.C_Str();
+    return {};
+}
+
+// glTF's metallic-roughness material as Assimp 5.2's glTF 2.0 reader stores it: the base colour
+// factor under $clr.base, the metallicRoughness texture as texture type UNKNOWN, the extensions'
+// factors under their keys, the ior (KHR_materials_ior) as the refractive index.
+void read_gltf_material(const aiMaterial& m, FileMaterial& out) {
+    out.pbr = true;
+    aiColor4D base(1, 1, 1, 1);
+    if (m.Get(AI_MATKEY_BASE_COLOR, base) == AI_SUCCESS) out.kd = {base.r, base.g, base.b};
+    out.ni = 1.5f;
+    m.Get(AI_MATKEY_REFRACTI, out.ni);
+    m.Get(AI_MATKEY_METALLIC_FACTOR, out.metallic);
+    m.Get(AI_MATKEY_ROUGHNESS_FACTOR, out.roughness);
+    m.Get(AI_MATKEY_TRANSMISSION_FACTOR, out.transmission);
+    m.Get(AI_MATKEY_CLEARCOAT_FACTOR, out.clearcoat);
+    m.Get(AI_MATKEY_CLEARCOAT_ROUGHNESS_FACTOR, out.clearcoat_roughness);
+    aiString mode;
+    if (m.Get(AI_MATKEY_GLTF_ALPHAMODE, mode) == AI_SUCCESS) out.alpha_mode = mode.C_Str();
+    int two_sided = 0;
+    if (m.Get(AI_MATKEY_TWOSIDED, two_sided) == AI_SUCCESS) out.double_sided = two_sided != 0;
+    out.map_kd = texture_path(m, aiTextureType_BASE_COLOR);
+    if (out.map_kd.empty()) out.map_kd = texture_path(m, aiTextureType_DIFFUSE);
+    out.map_metallic_roughness =
+        texture_path(m, AI_MATKEY_GLTF_PBRMETALLICROUGHNESS_METALLICROUGHNESS_TEXTURE);
+    out.map_normal = texture_path(m, aiTextureType_NORMALS);
+    out.map_emissive = texture_path(m, aiTextureType_EMISSIVE);
+    const std::pair<aiTextureType, const char*> others[] = {
+        {aiTextureType_AMBIENT_OCCLUSION, "occlusionTexture"},
+        {aiTextureType_LIGHTMAP, "occlusionTexture"},
+        {aiTextureType_TRANSMISSION, "transmissionTexture"},
+        {aiTextureType_CLEARCOAT, "clearcoat textures"},
+        {aiTextureType_SHEEN, "sheen"}};
+    for (const auto& [type, key] : others)
+        if (m.GetTextureCount(type) > 0 &&
+            std::find(out.other_maps.begin(), out.other_maps.end(), key) == out.other_maps.end())
+            out.other_maps.push_back(key);
+}
+
+FileMaterial read_material(const aiMaterial& m, bool gltf) {
     FileMaterial out;
     aiString name;
     if (m.Get(AI_MATKEY_NAME, name) == AI_SUCCESS) out.name = name.C_Str();
@@ -57,10 +101,11 @@ FileMaterial read_material(const aiMaterial& m) {
     m.Get(AI_MATKEY_OPACITY, out.dissolve);
     int illum = -1;
     if (m.Get(AI_MATKEY_OBJ_ILLUM, illum) == AI_SUCCESS) out.illum = illum;
-    aiString path;
-    if (m.GetTextureCount(aiTextureType_DIFFUSE) > 0 &&
-        m.GetTexture(aiTextureType_DIFFUSE, 0, &path) == AI_SUCCESS)
-        out.map_kd = path.C_Str();
+    if (gltf) {
+        read_gltf_material(m, out);
+        return out;
+    }
+    out.map_kd = texture_path(m, aiTextureType_DIFFUSE);
     const std::pair<aiTextureType, const char*> others[] = {
         {aiTextureType_SPECULAR, "map_Ks"}, {aiTextureType_AMBIENT, "map_Ka"},
         {aiTextureType_EMISSIVE, "map_Ke"}, {aiTextureType_HEIGHT, "map_Bump"},
@@ -117,7 +162,8 @@ MeshFile read_mesh_file(const std::filesystem::path& path) {
 
     MeshFile out;
     for (unsigned m = 0; m < scene->mNumMaterials; ++m)
-        out.materials.push_back(read_material(*scene->mMaterials[m]));
+        out.materials.push_back(
+            read_material(*scene->mMaterials[m], lower == "gltf" || lower == "glb"));
     if (out.materials.empty()) out.materials.push_back(FileMaterial{"(none)"});
     bool all_normals = true, all_uvs = true;
     for (unsigned m = 0; m < scene->mNumMeshes; ++m) {

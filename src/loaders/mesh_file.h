@@ -19,6 +19,17 @@ struct FileMaterial {
     float dissolve = 1.0f;  // d: 1 is opaque
     std::string map_kd;     // diffuse texture path as written, relative to the file's folder
     std::vector<std::string> other_maps;  // texture kinds that cannot be mapped (e.g. "map_Bump")
+
+    // glTF 2.0 files (pbr): the metallic-roughness material. kd is the base colour factor,
+    // map_kd its texture, ke the emissive factor, ni the ior (KHR_materials_ior; 1.5 if not
+    // given); the factors of pbrMetallicRoughness, KHR_materials_transmission and _clearcoat;
+    // the metallicRoughness, normal and emissive textures; alphaMode and doubleSided.
+    bool pbr = false;
+    float metallic = 1.0f, roughness = 1.0f, transmission = 0.0f, clearcoat = 0.0f,
+          clearcoat_roughness = 0.0f;
+    std::string map_metallic_roughness, map_normal, map_emissive;
+    std::string alpha_mode = "OPAQUE";
+    bool double_sided = false;
 };
 
 // The triangles [first_triangle, first_triangle + triangles) use material `material`.

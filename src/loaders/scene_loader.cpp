@@ -577,6 +577,7 @@ class Loader {
         check_color(fm.kd, "Kd");
         check_color(fm.ks, "Ks");
         check_color(fm.ke, "Ke");
+        if (fm.pbr) return map_gltf_material(fm, mesh_path, where, who);
         Material m;
         m.name = fm.name;
         const bool dielectric = fm.illum == 4 || fm.illum == 6 || fm.illum == 7;
@@ -607,18 +608,8 @@ class Loader {
         } else {
             m.kind = MaterialKind::Lambertian;
             if (!fm.map_kd.empty()) {
-                fs::path tex = mesh_path.parent_path() / fm.map_kd;
-                std::error_code ec;
-                if (!fs::exists(tex, ec))
-                    where.fail(who + ": map_Kd '" + tex.string() + "': no such file");
-                Texture t;
-                t.kind = TextureKind::Image;
-                try {
-                    t.image = scene_.add_image(read_image(tex));
-                } catch (const std::exception& e) {
-                    where.fail(who + ": map_Kd '" + tex.string() + "': " + e.what());
-                }
-                m.albedo = scene_.add_texture(t);
+                m.albedo = file_texture(mesh_path, fm.map_kd, "map_Kd", false, Color(1.0f),
+                                        where, who);
             } else {
                 if (!positive(fm.kd)) warn(who + ": no Kd, Ks or Ke; rendered black");
                 m.albedo = scene_.add_solid(min(fm.kd, Color(1.0f)));
@@ -626,6 +617,82 @@ class Loader {
             if (positive(fm.ks)) ignored.push_back("Ks (no diffuse + glossy material)");
         }
         if (fm.dissolve < 1.0f) ignored.push_back("d (transparency)");
+        if (!ignored.empty()) {
+            std::string list;
+            for (const std::string& k : ignored) list += (list.empty() ? "" : ", ") + k;
+            warn(who + ": ignored " + list);
+        }
+        return scene_.add_material(std::move(m));
+    }
+
+    // An image texture a mesh file names (path relative to the file), its texels times factor;
+    // raw: data, not sRGB-encoded colour.
+    TextureId file_texture(const fs::path& mesh_path,
+                           const std::string& relative,
+                           const char* key,
+                           bool raw,
+                           Color factor,
+                           const Value& where,
+                           const std::string& who) {
+        fs::path tex = mesh_path.parent_path() / relative;
+        std::error_code ec;
+        if (!fs::exists(tex, ec))
+            where.fail(who + ": " + key + " '" + tex.string() + "': no such file");
+        Texture t;
+        t.kind = TextureKind::Image;
+        t.factor = factor;
+        try {
+            t.image = scene_.add_image(read_image(tex, raw));
+        } catch (const std::exception& e) {
+            where.fail(who + ": " + key + " '" + tex.string() + "': " + e.what());
+        }
+        return scene_.add_texture(t);
+    }
+
+    // A glTF material (docs/scene-format.md, "Materials from mesh files"): metallic_roughness
+    // with the file's factors and textures. Textures embedded in the file (Assimp names them
+    // "*N") and what the material cannot hold are warnings.
+    MaterialId map_gltf_material(const FileMaterial& fm,
+                                 const fs::path& mesh_path,
+                                 const Value& where,
+                                 const std::string& who) {
+        auto unit = [&](float x, const char* key) {
+            if (!(x >= 0.0f && x <= 1.0f))
+                where.fail(who + ": " + key + " " + std::to_string(x) + " is not in [0, 1]");
+            return x;
+        };
+        if (!(fm.ni > 0.0f && fm.ni < 100.0f))
+            where.fail(who + ": ior " + std::to_string(fm.ni) + " is not in (0, 100)");
+        std::vector<std::string> ignored = fm.other_maps;
+        // A texture the file holds, or nothing (with a warning) when it is embedded.
+        auto texture = [&](const std::string& rel, const char* key, bool raw,
+                           Color factor) -> TextureId {
+            if (rel.empty()) return kNone;
+            if (rel[0] == '*') {
+                ignored.push_back(std::string(key) + " (embedded in the file)");
+                return kNone;
+            }
+            return file_texture(mesh_path, rel, key, raw, factor, where, who);
+        };
+        Material m;
+        m.name = fm.name;
+        m.kind = MaterialKind::MetallicRoughness;
+        const Color base = min(fm.kd, Color(1.0f));
+        m.albedo = texture(fm.map_kd, "baseColorTexture", false, base);
+        if (m.albedo == kNone) m.albedo = scene_.add_solid(base);
+        m.metallic = unit(fm.metallic, "metallicFactor");
+        m.roughness = unit(fm.roughness, "roughnessFactor");
+        m.metallic_roughness =
+            texture(fm.map_metallic_roughness, "metallicRoughnessTexture", true, Color(1.0f));
+        m.ior = fm.ni;
+        m.transmission = unit(fm.transmission, "transmissionFactor");
+        m.clearcoat = unit(fm.clearcoat, "clearcoatFactor");
+        m.clearcoat_roughness = unit(fm.clearcoat_roughness, "clearcoatRoughnessFactor");
+        m.normal_map = texture(fm.map_normal, "normalTexture", true, Color(1.0f));
+        m.emission = texture(fm.map_emissive, "emissiveTexture", false, fm.ke);
+        if (m.emission == kNone && max_component(fm.ke) > 0.0f) m.emission = scene_.add_solid(fm.ke);
+        m.two_sided = fm.double_sided;  // a double-sided surface emits from both sides
+        if (fm.alpha_mode != "OPAQUE") ignored.push_back("alphaMode " + fm.alpha_mode);
         if (!ignored.empty()) {
             std::string list;
             for (const std::string& k : ignored) list += (list.empty() ? "" : ", ") + k;
