@@ -130,7 +130,9 @@ def everything():
 def materials():
     """A grid of the material kinds side by side: named metals from smooth to rough, GGX and
     Beckmann, in the back row; glass smooth and rough, a normal-mapped Lambertian and a rough
-    metal in the middle; plastics (one bump-mapped), alpha masks and a thin pane in front; on a grey floor under the environment map, a small quad light, a point, a spot and
+    metal in the middle; plastics (one bump-mapped), alpha masks and a thin pane in front; glTF's
+    metallic-roughness material nearest the camera; on a grey floor under the environment map,
+    a small quad light, a point, a spot and
     a directional light. Both engines, every kind and the delta lights."""
     back = [("Au", 0.0, "ggx"), ("Au", 0.1, "ggx"), ("Cu", 0.2, "beckmann"),
             ("Ag", 0.3, "ggx"), ("Al", 0.05, "beckmann"), ("Cr", 0.5, "ggx")]
@@ -187,12 +189,38 @@ def materials():
                     "material": "pane"})
     objects.append({"type": "mesh", "file": "meshes/rectangle.obj", "material": "leaf",
                     "transform": [{"scale": 0.6}, {"translate": [4.4, 0.65, 3.2]}]})
+    # glTF's metallic-roughness material in a row nearest the camera: clearcoated car paint, a
+    # rough gold-coloured metal, frosted thin-walled transmission, a textured metallic-roughness
+    # map, an emissive surface and a smooth dielectric (a delta lobe over a diffuse base).
+    materials.update({
+        "gltf-car-paint": {"type": "metallic_roughness", "base_color": [0.6, 0.05, 0.05],
+                           "metallic": 0, "roughness": 0.4, "clearcoat": 1,
+                           "clearcoat_roughness": 0.05},
+        "gltf-gold": {"type": "metallic_roughness", "base_color": [1.0, 0.78, 0.34],
+                      "metallic": 1, "roughness": 0.25},
+        "gltf-frosted": {"type": "metallic_roughness", "base_color": [0.9, 0.95, 1.0],
+                         "metallic": 0, "roughness": 0.3, "transmission": 1},
+        "gltf-textured": {"type": "metallic_roughness",
+                          "base_color": {"type": "image", "file": "textures/earthmap.jpg"},
+                          "metallic_roughness": {"type": "uv_checker", "scale": 0.125,
+                                                 "even": [0, 0.2, 1], "odd": [0, 0.8, 0]}},
+        "gltf-emissive": {"type": "metallic_roughness", "base_color": 0.2, "metallic": 0,
+                          "roughness": 0.5, "emission": [3, 1.5, 0.5]},
+        "gltf-smooth": {"type": "metallic_roughness", "base_color": [0.2, 0.4, 0.8],
+                        "metallic": 0, "roughness": 0},
+    })
+    for i, name in enumerate(["gltf-car-paint", "gltf-gold", "gltf-frosted", "gltf-textured",
+                              "gltf-emissive", "gltf-smooth"]):
+        objects.append({"type": "sphere", "center": [-3.25 + 1.3 * i, 0.35, 5.0], "radius": 0.35,
+                        "material": name})
     return {
         "description": "Material kinds side by side: six named metals (Au, Cu, Ag, Al, Cr) from "
                        "smooth to rough, GGX and Beckmann; smooth and rough glass, water, "
                        "normal-mapped Lambertian, rough metal; smooth, rough and textured, "
                        "bump-mapped plastic behind a "
-                       "thin glass pane; alpha masks on a sphere, a quad and a mesh; under an environment map, a quad "
+                       "thin glass pane; alpha masks on a sphere, a quad and a mesh; glTF's "
+                       "metallic-roughness material (clearcoat, metal, transmission, textured, "
+                       "emissive, smooth); under an environment map, a quad "
                        "light, a point, a spot and a directional light",
         "render": {"width": 640, "height": 320, "spp": 64, "max_depth": 32},
         "camera": {"look_from": [0, 4, 13], "look_at": [0, 0.7, 0], "vfov": 28},

@@ -385,9 +385,9 @@ TEST(Kernels, PackedMediaRoundTrip) {
 }
 
 // The queues' bytes per path in flight, from the declarations (docs/architecture.md counts
-// them): 100 for the path, its ray and its hit, 93 for a light sample, 52 for a shadow ray, 25
+// them): 100 for the path, its ray and its hit, 101 for a light sample, 52 for a shadow ray, 25
 // for emission found, 6 of per-entry scratch. A budget, so that a field added is a decision.
-TEST(Kernels, QueuesTakeAtMost280BytesPerPath) {
-    EXPECT_LE(wavefront_bytes_per_path(), 280u);
+TEST(Kernels, QueuesTakeAtMost284BytesPerPath) {
+    EXPECT_LE(wavefront_bytes_per_path(), 284u);
     EXPECT_EQ(wavefront_bytes_per_path(), WaveQueues::bytes_per_path());
 }

@@ -210,7 +210,8 @@ void append_light_sample(size_t path,
     WT_DCHECK_LT(out.light_sample_end, out.light_samples.capacity);
     store_queued_vertex(out.light_samples, out.light_sample_end++,
                         {static_cast<uint32_t>(path), p, ng, ns, wo, bsdf.albedo, bsdf.alpha,
-                         bsdf.kind, material, beta, u.light_select, u.light_u, u.light_v});
+                         bsdf.metallic, bsdf.kind, material, beta, u.light_select, u.light_u,
+                         u.light_v});
 }
 
 // Route Cross: the ray goes on past the boundary, with the optical depth left after the segment.

@@ -13,7 +13,8 @@ namespace wavetrace {
 
 // A Lambertian or rough metal vertex, or a medium's isotropic phase function, is described by
 // its albedo and roughness (the light_sample kernel's lanes read them); any other BSDF by its
-// material besides (a conductor's index of refraction comes from there).
+// material besides (a conductor's index of refraction comes from there), and a metallic-
+// roughness one by its roughness and metallic at the vertex too (a texture may vary them).
 #define WAVETRACE_LIGHT_SAMPLE_FIELDS(F)                                                \
     F(uint32_t, path, "entry of the path queue it belongs to")                          \
     WAVETRACE_XYZ_FIELD(F, p, "vertex position")                                        \
@@ -21,7 +22,8 @@ namespace wavetrace {
     WAVETRACE_XYZ_FIELD(F, ns, "shading normal, the frame's z")                         \
     WAVETRACE_XYZ_FIELD(F, wo, "unit direction back along the ray that arrived")        \
     WAVETRACE_XYZ_FIELD(F, albedo, "the BSDF's albedo at the vertex")                   \
-    F(float, alpha, "rough metal: GGX alpha")                                           \
+    F(float, alpha, "rough metal, metallic-roughness: GGX alpha")                       \
+    F(float, metallic, "metallic-roughness: metallic (a texture may vary both)")         \
     F(MaterialKind, kind, "the BSDF's kind")                                            \
     F(MaterialId, material, "the material, or kNone where kind, albedo, alpha say all") \
     WAVETRACE_XYZ_FIELD(F, beta, "path throughput arriving at the vertex")              \
@@ -39,6 +41,7 @@ struct QueuedVertex {
     Vec3 wo;
     Color albedo;
     float alpha;
+    float metallic;
     MaterialKind kind;
     MaterialId material;
     Color beta;
@@ -48,8 +51,8 @@ struct QueuedVertex {
 inline void store_queued_vertex(LightSampleQueue& q, size_t i, const QueuedVertex& v) {
     q.store(i, {v.path,     v.p.x,      v.p.y,   v.p.z,  v.ng.x,     v.ng.y,   v.ng.z,
                 v.ns.x,     v.ns.y,     v.ns.z,  v.wo.x, v.wo.y,     v.wo.z,   v.albedo.x,
-                v.albedo.y, v.albedo.z, v.alpha, v.kind, v.material, v.beta.x, v.beta.y,
-                v.beta.z,   v.u_select, v.u1,    v.u2});
+                v.albedo.y, v.albedo.z, v.alpha, v.metallic, v.kind, v.material, v.beta.x,
+                v.beta.y,   v.beta.z,   v.u_select, v.u1, v.u2});
 }
 
 }  // namespace wavetrace
