@@ -140,7 +140,7 @@ TEST(MeshFiles, GltfMaterialsMapToMetallicRoughness) {
     dir.write("two.gltf", R"({
       "asset": {"version": "2.0"},
       "extensionsUsed": ["KHR_materials_transmission", "KHR_materials_clearcoat",
-                         "KHR_materials_ior"],
+                         "KHR_materials_ior", "KHR_materials_emissive_strength"],
       "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
       "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "material": 0},
                                  {"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "material": 1}]}],
@@ -151,7 +151,8 @@ TEST(MeshFiles, GltfMaterialsMapToMetallicRoughness) {
          "extensions": {"KHR_materials_transmission": {"transmissionFactor": 0.4},
                         "KHR_materials_clearcoat": {"clearcoatFactor": 0.7,
                                                     "clearcoatRoughnessFactor": 0.2},
-                        "KHR_materials_ior": {"ior": 1.4}}},
+                        "KHR_materials_ior": {"ior": 1.4},
+                        "KHR_materials_emissive_strength": {"emissiveStrength": 4}}},
         {"name": "textured", "alphaMode": "MASK",
          "pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1],
                                   "baseColorTexture": {"index": 0},
@@ -190,7 +191,7 @@ TEST(MeshFiles, GltfMaterialsMapToMetallicRoughness) {
     EXPECT_FLOAT_EQ(coated.clearcoat, 0.7f);
     EXPECT_FLOAT_EQ(coated.clearcoat_roughness, 0.2f);
     ASSERT_TRUE(coated.is_emissive());
-    EXPECT_EQ(s.textures[coated.emission].color, Color(1.0f, 0.5f, 0.0f));
+    EXPECT_EQ(s.textures[coated.emission].color, Color(4.0f, 2.0f, 0.0f));  // strength 4
     EXPECT_TRUE(coated.two_sided);
 
     const Material& textured = material_of("textured");
@@ -215,6 +216,70 @@ TEST(MeshFiles, GltfMaterialsMapToMetallicRoughness) {
         "material \"textured\": ignored normalTexture (embedded in the file), alphaMode MASK"))
         << (warnings.empty() ? "" : warnings[0]);
     EXPECT_FALSE(warned("\"coated\""));
+}
+
+// A .glb holds its JSON in its first chunk: the emissive strength is read from there, and a
+// container whose chunk overruns the file, or a negative strength, is refused with a reason.
+TEST(MeshFiles, GlbEmissiveStrengthAndBrokenContainers) {
+    TempDir dir;
+    // The positions of one triangle, as the BIN chunk of a .glb or base64 in a .gltf.
+    const float tri[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    const std::string bin(reinterpret_cast<const char*>(tri), sizeof tri);
+    auto glb = [&](std::string json) {
+        const std::string uri = R"(, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA")";
+        json.erase(json.find(uri), uri.size());  // the buffer is the BIN chunk
+        while (json.size() % 4) json += ' ';
+        std::string out = "glTF";
+        auto u32 = [&](uint32_t v) { out.append(reinterpret_cast<const char*>(&v), 4); };
+        u32(2);
+        u32(uint32_t(12 + 8 + json.size() + 8 + bin.size()));
+        u32(uint32_t(json.size()));
+        u32(0x4E4F534Au);  // "JSON"
+        out += json;
+        u32(uint32_t(bin.size()));
+        u32(0x004E4942u);  // "BIN"
+        return out + bin;
+    };
+    auto json = [](const std::string& strength) {
+        return R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+          "nodes": [{"mesh": 0}], "extensionsUsed": ["KHR_materials_emissive_strength"],
+          "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "material": 0}]}],
+          "materials": [{"name": "lamp", "emissiveFactor": [1, 1, 1], "extensions":
+            {"KHR_materials_emissive_strength": {"emissiveStrength": )" + strength + R"(}}}],
+          "buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}],
+          "bufferViews": [{"buffer": 0, "byteLength": 36}],
+          "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                         "min": [0, 0, 0], "max": [1, 1, 0]}]})";
+    };
+    auto scene = [&](const char* file) {
+        return dir.write("s.json", std::string(R"({"camera": {"look_from": [0, 0, -5], "look_at": [0, 0, 0]},
+            "objects": [{"type": "mesh", "file": ")") + file + R"(", "materials": "file"}]})");
+    };
+    dir.write("lamp.glb", glb(json("2.5")));
+    Scene s = load_scene(scene("lamp.glb"));
+    ASSERT_EQ(s.meshes.size(), 1u);
+    const Material& lamp = s.materials[s.meshes[0].material];
+    ASSERT_TRUE(lamp.is_emissive());
+    EXPECT_EQ(s.textures[lamp.emission].color, Color(2.5f));
+
+    auto error = [&](const char* file) -> std::string {
+        try {
+            load_scene(scene(file));
+        } catch (const SceneError& e) {
+            return e.what();
+        }
+        return "";
+    };
+    dir.write("negative.gltf", json("-1"));
+    EXPECT_NE(error("negative.gltf").find("negative.gltf"), std::string::npos);
+    EXPECT_NE(error("negative.gltf").find("emissiveStrength must be a number in [0, 1e6], got -1"),
+              std::string::npos)
+        << error("negative.gltf");
+    std::string overrun = glb(json("1"));
+    overrun[12] = char(0xF0);  // the JSON chunk claims more bytes than the file has
+    dir.write("overrun.glb", overrun);
+    EXPECT_NE(error("overrun.glb").find("overrun.glb"), std::string::npos) << error("overrun.glb");
+    EXPECT_NE(error("overrun.glb"), "");
 }
 
 // Materials from an OBJ's MTL file: each key maps as docs/scene-format.md says, one scene mesh

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "files/input_file.h"
+#include "loaders/gltf_json.h"
 #include "loaders/mesh_guards.h"
 
 namespace wavetrace {
@@ -161,9 +162,15 @@ MeshFile read_mesh_file(const std::filesystem::path& path) {
     if (!scene || !scene->mRootNode) throw std::runtime_error(importer.GetErrorString());
 
     MeshFile out;
+    const bool gltf = lower == "gltf" || lower == "glb";
     for (unsigned m = 0; m < scene->mNumMaterials; ++m)
-        out.materials.push_back(
-            read_material(*scene->mMaterials[m], lower == "gltf" || lower == "glb"));
+        out.materials.push_back(read_material(*scene->mMaterials[m], gltf));
+    if (gltf) {
+        // Assimp keeps the file's materials in order (appending a default one at most).
+        const std::vector<float> strengths = gltf_emissive_strengths(path, lower == "glb");
+        for (size_t m = 0; m < strengths.size() && m < out.materials.size(); ++m)
+            out.materials[m].ke *= strengths[m];
+    }
     if (out.materials.empty()) out.materials.push_back(FileMaterial{"(none)"});
     bool all_normals = true, all_uvs = true;
     for (unsigned m = 0; m < scene->mNumMeshes; ++m) {

@@ -21,7 +21,7 @@ struct FileMaterial {
     std::vector<std::string> other_maps;  // texture kinds that cannot be mapped (e.g. "map_Bump")
 
     // glTF 2.0 files (pbr): the metallic-roughness material. kd is the base colour factor,
-    // map_kd its texture, ke the emissive factor, ni the ior (KHR_materials_ior; 1.5 if not
+    // map_kd its texture, ke the emissive factor times KHR_materials_emissive_strength, ni the ior (KHR_materials_ior; 1.5 if not
     // given); the factors of pbrMetallicRoughness, KHR_materials_transmission and _clearcoat;
     // the metallicRoughness, normal and emissive textures; alphaMode and doubleSided.
     bool pbr = false;
