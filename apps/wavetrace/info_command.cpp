@@ -60,7 +60,8 @@ int run_info(const InfoOptions& o) {
     fmt::print("primitives   {} ({} triangles, {} quads, {} spheres)\n", scene.primitive_count(),
                scene.triangles.size(), scene.quads.size(), scene.spheres.size());
     fmt::print("meshes       {} ({} vertices)\n", scene.meshes.size(), scene.positions.size());
-    fmt::print("lights       {} emissive primitives; background {}\n", emitters.size(), background);
+    fmt::print("lights       {} emissive primitives, {} point, spot or directional; background {}\n",
+               emitters.size(), scene.lights.size(), background);
     fmt::print("materials    {}, textures {}, images {}, media {}\n", scene.materials.size(),
                scene.textures.size(), scene.images.size(), scene.media.size());
     fmt::print("bounds       [{:.4g} {:.4g} {:.4g}] .. [{:.4g} {:.4g} {:.4g}]\n", b.lo.x, b.lo.y,

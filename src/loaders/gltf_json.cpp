@@ -35,7 +35,226 @@ std::string json_text(const std::filesystem::path& path, bool binary) {
     return bytes.substr(20, length);
 }
 
+// A 4 x 4 affine matrix, m[row][column], in double.
+struct Mat4 {
+    double m[4][4] = {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}, {0, 0, 0, 1}};
+    Mat4 operator*(const Mat4& b) const {
+        Mat4 r;
+        for (int i = 0; i < 4; ++i)
+            for (int j = 0; j < 4; ++j) {
+                r.m[i][j] = 0;
+                for (int k = 0; k < 4; ++k) r.m[i][j] += m[i][k] * b.m[k][j];
+            }
+        return r;
+    }
+    Vec3 point(double x, double y, double z) const {
+        return {float(m[0][0] * x + m[0][1] * y + m[0][2] * z + m[0][3]),
+                float(m[1][0] * x + m[1][1] * y + m[1][2] * z + m[1][3]),
+                float(m[2][0] * x + m[2][1] * y + m[2][2] * z + m[2][3])};
+    }
+    Vec3 vector(double x, double y, double z) const {
+        return {float(m[0][0] * x + m[0][1] * y + m[0][2] * z),
+                float(m[1][0] * x + m[1][1] * y + m[1][2] * z),
+                float(m[2][0] * x + m[2][1] * y + m[2][2] * z)};
+    }
+};
+
+// `count` finite numbers at key `key` of object `o`, or `fallback` where the key is absent.
+std::vector<double> numbers(const json_reader::json& o, const char* key, size_t count,
+                            std::vector<double> fallback, const std::string& where) {
+    if (!o.contains(key)) return fallback;
+    const auto& a = o[key];
+    if (!a.is_array() || a.size() != count)
+        throw std::runtime_error(where + "/" + key + ": expected " + std::to_string(count) +
+                                 " numbers");
+    std::vector<double> out;
+    for (const auto& x : a) {
+        if (!x.is_number() || !std::isfinite(x.get<double>()))
+            throw std::runtime_error(where + "/" + key + ": expected finite numbers");
+        out.push_back(x.get<double>());
+    }
+    return out;
+}
+
+double number(const json_reader::json& o, const char* key, double fallback,
+              const std::string& where) {
+    if (!o.contains(key)) return fallback;
+    const auto& x = o[key];
+    if (!x.is_number() || !std::isfinite(x.get<double>()))
+        throw std::runtime_error(where + "/" + key + ": expected a finite number");
+    return x.get<double>();
+}
+
+// A node's local matrix: `matrix` (column-major), or T R S from translation, rotation and scale.
+Mat4 local_matrix(const json_reader::json& node, const std::string& where) {
+    Mat4 r;
+    if (node.contains("matrix")) {
+        const std::vector<double> a = numbers(node, "matrix", 16, {}, where);
+        for (int c = 0; c < 4; ++c)
+            for (int row = 0; row < 4; ++row) r.m[row][c] = a[size_t(c) * 4 + row];
+        return r;
+    }
+    const std::vector<double> t = numbers(node, "translation", 3, {0, 0, 0}, where);
+    std::vector<double> q = numbers(node, "rotation", 4, {0, 0, 0, 1}, where);
+    const std::vector<double> s = numbers(node, "scale", 3, {1, 1, 1}, where);
+    const double len = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+    if (!(len > 0)) throw std::runtime_error(where + "/rotation: a zero quaternion");
+    for (double& c : q) c /= len;
+    const double x = q[0], y = q[1], z = q[2], w = q[3];
+    const double rot[3][3] = {{1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)},
+                              {2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)},
+                              {2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)}};
+    for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < 3; ++j) r.m[i][j] = rot[i][j] * s[size_t(j)];
+        r.m[i][3] = t[size_t(i)];
+    }
+    return r;
+}
+
+Vec3 unit(Vec3 v, const std::string& what) {
+    const float l = length(v);
+    if (!(l > 1e-12f) || !std::isfinite(l))
+        throw std::runtime_error(what + ": its transform collapses or overflows a direction");
+    return v / l;
+}
+
 }  // namespace
+
+GltfPlacements gltf_placements(const std::filesystem::path& path, bool binary) {
+    const auto doc = json_reader::parse(json_text(path, binary), "glTF JSON");
+    GltfPlacements out;
+    const auto empty = json_reader::json::array();
+    auto array = [&](const json_reader::json& o, const char* key) -> const json_reader::json& {
+        return o.contains(key) && o[key].is_array() ? o[key] : empty;
+    };
+    const auto& nodes = array(doc, "nodes");
+    const auto& cameras = array(doc, "cameras");
+    const auto& scenes = array(doc, "scenes");
+    const json_reader::json* lights = &empty;
+    if (doc.contains("extensions") && doc["extensions"].is_object() &&
+        doc["extensions"].contains("KHR_lights_punctual"))
+        lights = &array(doc["extensions"]["KHR_lights_punctual"], "lights");
+    size_t scene = 0;
+    if (doc.contains("scene")) {
+        if (!doc["scene"].is_number_unsigned() || doc["scene"].get<size_t>() >= scenes.size())
+            throw std::runtime_error("/scene: no such scene");
+        scene = doc["scene"].get<size_t>();
+    }
+    if (scene >= scenes.size()) return out;
+    auto index = [](const json_reader::json& v, size_t size, const std::string& where) {
+        if (!v.is_number_unsigned() || v.get<size_t>() >= size)
+            throw std::runtime_error(where + ": expected an index below " + std::to_string(size));
+        return v.get<size_t>();
+    };
+    // Depth first, each node with the product of its ancestors' matrices; a node met twice is a
+    // cycle or a node shared by two parents, both invalid glTF.
+    std::vector<bool> seen(nodes.size(), false);
+    struct Entry {
+        size_t node;
+        Mat4 parent;
+        int depth;
+    };
+    std::vector<Entry> stack;
+    const std::string scene_where = "/scenes/" + std::to_string(scene) + "/nodes";
+    const auto& roots = array(scenes[scene], "nodes");
+    for (size_t i = roots.size(); i-- > 0;)
+        stack.push_back({index(roots[i], nodes.size(), scene_where + "/" + std::to_string(i)),
+                         Mat4{}, 0});
+    while (!stack.empty()) {
+        const Entry e = stack.back();
+        stack.pop_back();
+        const std::string where = "/nodes/" + std::to_string(e.node);
+        if (seen[e.node]) throw std::runtime_error(where + ": reached twice (a cycle?)");
+        if (e.depth > 1024) throw std::runtime_error(where + ": nested deeper than 1024 nodes");
+        seen[e.node] = true;
+        const auto& node = nodes[e.node];
+        if (!node.is_object()) throw std::runtime_error(where + ": expected an object");
+        const Mat4 world = e.parent * local_matrix(node, where);
+        if (node.contains("camera")) {
+            const size_t c = index(node["camera"], cameras.size(), where + "/camera");
+            const auto& cam = cameras[c];
+            const std::string cam_where = "/cameras/" + std::to_string(c);
+            if (!cam.is_object() || !cam.contains("perspective") ||
+                !cam["perspective"].is_object()) {
+                out.warnings.push_back(cam_where + ": not a perspective camera; left out");
+            } else {
+                GltfCamera g;
+                g.pointer = where;
+                g.name = cam.contains("name") && cam["name"].is_string()
+                             ? cam["name"].get<std::string>()
+                             : node.contains("name") && node["name"].is_string()
+                                   ? node["name"].get<std::string>()
+                                   : "camera " + std::to_string(c);
+                const double yfov = number(cam["perspective"], "yfov", -1, cam_where + "/perspective");
+                if (!(yfov > 0 && yfov < 3.12))
+                    throw std::runtime_error(cam_where + "/perspective/yfov: expected radians in "
+                                             "(0, 3.12)");
+                g.yfov_degrees = float(yfov * 180.0 / 3.14159265358979323846);
+                g.aspect = float(number(cam["perspective"], "aspectRatio", 0,
+                                        cam_where + "/perspective"));
+                if (!(g.aspect >= 0 && g.aspect < 100))
+                    throw std::runtime_error(cam_where +
+                                             "/perspective/aspectRatio: expected (0, 100)");
+                g.position = world.point(0, 0, 0);
+                g.forward = unit(world.vector(0, 0, -1), where);
+                g.up = unit(world.vector(0, 1, 0), where);
+                out.cameras.push_back(g);
+            }
+        }
+        if (node.contains("extensions") && node["extensions"].is_object() &&
+            node["extensions"].contains("KHR_lights_punctual")) {
+            const auto& ref = node["extensions"]["KHR_lights_punctual"];
+            const std::string ref_where = where + "/extensions/KHR_lights_punctual/light";
+            if (!ref.is_object() || !ref.contains("light"))
+                throw std::runtime_error(ref_where + ": missing");
+            const size_t l = index(ref["light"], lights->size(), ref_where);
+            const auto& light = (*lights)[l];
+            GltfLight g;
+            g.pointer = "/extensions/KHR_lights_punctual/lights/" + std::to_string(l);
+            if (!light.is_object() || !light.contains("type") || !light["type"].is_string())
+                throw std::runtime_error(g.pointer + "/type: missing");
+            const std::string type = light["type"].get<std::string>();
+            if (type == "point")
+                g.kind = GltfLight::Kind::Point;
+            else if (type == "spot")
+                g.kind = GltfLight::Kind::Spot;
+            else if (type == "directional")
+                g.kind = GltfLight::Kind::Directional;
+            else
+                throw std::runtime_error(g.pointer + "/type: unknown light type \"" + type + "\"");
+            const std::vector<double> c = numbers(light, "color", 3, {1, 1, 1}, g.pointer);
+            const double intensity = number(light, "intensity", 1, g.pointer);
+            for (double x : c)
+                if (!(x >= 0 && x * intensity <= 1e9 && intensity >= 0))
+                    throw std::runtime_error(g.pointer +
+                                             ": color and intensity must be non-negative");
+            g.color = Color(float(c[0] * intensity), float(c[1] * intensity),
+                            float(c[2] * intensity));
+            if (g.kind == GltfLight::Kind::Spot) {
+                const json_reader::json spot = light.contains("spot") ? light["spot"]
+                                                                      : json_reader::json::object();
+                const double inner = number(spot, "innerConeAngle", 0, g.pointer + "/spot");
+                const double outer =
+                    number(spot, "outerConeAngle", 3.14159265358979323846 / 4, g.pointer + "/spot");
+                if (!(inner >= 0 && inner < outer && outer <= 3.14159265358979323846 / 2))
+                    throw std::runtime_error(g.pointer + "/spot: expected 0 <= innerConeAngle < "
+                                             "outerConeAngle <= pi / 2");
+                g.inner_degrees = float(inner * 180.0 / 3.14159265358979323846);
+                g.outer_degrees = float(outer * 180.0 / 3.14159265358979323846);
+            }
+            g.has_range = light.contains("range");
+            g.position = world.point(0, 0, 0);
+            g.direction = unit(world.vector(0, 0, -1), where);
+            out.lights.push_back(g);
+        }
+        const auto& children = array(node, "children");
+        for (size_t i = children.size(); i-- > 0;)
+            stack.push_back({index(children[i], nodes.size(),
+                                   where + "/children/" + std::to_string(i)),
+                             world, e.depth + 1});
+    }
+    return out;
+}
 
 std::vector<float> gltf_emissive_strengths(const std::filesystem::path& path, bool binary) {
     const auto doc = json_reader::parse(json_text(path, binary), "glTF JSON");

@@ -1,8 +1,13 @@
-// What Assimp 5.2 does not read from a glTF 2.0 file, read from its JSON beside Assimp.
+// What Assimp 5.2 does not read from a glTF 2.0 file, or reads in ways of its own, read from the
+// file's JSON beside Assimp: emissive strengths, and the cameras and punctual lights the node
+// hierarchy places (glTF 2.0 specification, "Cameras", "Transformations"; KHR_lights_punctual).
 #pragma once
 
 #include <filesystem>
+#include <string>
 #include <vector>
+
+#include "wavetrace/math/vec3.h"
 
 namespace wavetrace {
 
@@ -11,5 +16,39 @@ namespace wavetrace {
 // its first chunk. Throws std::runtime_error (without the path) for a malformed container or
 // JSON, or a strength that is negative or not finite.
 std::vector<float> gltf_emissive_strengths(const std::filesystem::path& path, bool binary);
+
+// A perspective camera where a node puts it, in world space: glTF cameras look along their
+// node's -z with +y up.
+struct GltfCamera {
+    std::string name;        // the camera's, else its node's
+    std::string pointer;     // JSON pointer of the node, for messages
+    Point3 position;
+    Vec3 forward, up;        // unit
+    float yfov_degrees = 0;  // vertical field of view
+    float aspect = 0;        // width / height; 0: not given
+};
+
+// A KHR_lights_punctual light where a node puts it, in world space.
+struct GltfLight {
+    enum class Kind { Point, Spot, Directional } kind = Kind::Point;
+    std::string pointer;  // JSON pointer of the light, for messages
+    Point3 position;
+    Vec3 direction{0, 0, -1};  // where the light travels (spot, directional): the node's -z
+    Color color{1.0f};         // color times intensity (candela; lux for directional)
+    float inner_degrees = 0, outer_degrees = 45;  // spot cone
+    bool has_range = false;
+};
+
+struct GltfPlacements {
+    std::vector<GltfCamera> cameras;  // in the order the default scene's nodes meet them
+    std::vector<GltfLight> lights;
+    std::vector<std::string> warnings;  // what is not represented (orthographic cameras, ...)
+};
+
+// The cameras and lights of the file's default scene (`scene`, else scene 0, else none),
+// walking its nodes with their matrix or translation, rotation (unit quaternion x, y, z, w)
+// and scale. Throws std::runtime_error for a malformed hierarchy (an index out of range, a
+// cycle, nesting deeper than 1024) or values out of range.
+GltfPlacements gltf_placements(const std::filesystem::path& path, bool binary);
 
 }  // namespace wavetrace

@@ -59,8 +59,9 @@ std::string texture_path(const aiMaterial& m, aiTextureType type, unsigned index
 // factors under their keys, the ior (KHR_materials_ior) as the refractive index.
 void read_gltf_material(const aiMaterial& m, FileMaterial& out) {
     out.pbr = true;
-    aiColor4D base(1, 1, 1, 1);
-    if (m.Get(AI_MATKEY_BASE_COLOR, base) == AI_SUCCESS) out.kd = {base.r, base.g, base.b};
+    aiColor4D base(1, 1, 1, 1);  // the specification's default material is white
+    m.Get(AI_MATKEY_BASE_COLOR, base);
+    out.kd = {base.r, base.g, base.b};
     out.ni = 1.5f;
     m.Get(AI_MATKEY_REFRACTI, out.ni);
     m.Get(AI_MATKEY_METALLIC_FACTOR, out.metallic);

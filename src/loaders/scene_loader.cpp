@@ -1,6 +1,9 @@
 // JSON scene files -> Scene. The format is documented in docs/scene-format.md; every check
 // here has a matching sentence there.
+#include <algorithm>
+#include <cctype>
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <iostream>
@@ -8,6 +11,7 @@
 #include <sstream>
 
 #include "files/input_file.h"
+#include "loaders/gltf_json.h"
 #include "loaders/json_reader.h"
 #include "loaders/mesh_file.h"
 #include "scene/named_metals.h"
@@ -55,6 +59,83 @@ class Loader {
         Value objects = root.required("objects");
         for (size_t i = 0; i < objects.size(); ++i) read_object(objects[i], Transform{});
         root.finish();
+        if (skipped_triangles_ > 0)
+            warn(std::to_string(skipped_triangles_) + " degenerate triangles skipped");
+        return std::move(scene_);
+    }
+
+    // A glTF 2.0 file as a whole scene (docs/scene-format.md, "glTF files as scenes"): its
+    // meshes with their materials, the first camera of its default scene (or one framing the
+    // model), its punctual lights.
+    Scene load_gltf(bool binary) {
+        scene_.name = path_.stem().string();
+        MeshFile mesh;
+        GltfPlacements placed;
+        try {
+            mesh = read_mesh_file(path_);
+            placed = gltf_placements(path_, binary);
+        } catch (const std::exception& e) {
+            throw SceneError(file_ + ": " + e.what());
+        }
+        json_ = nlohmann::json::object();
+        add_mesh_parts(mesh, path_, kNone, Transform{}, Value(json_, file_, "/materials"));
+        for (const std::string& w : placed.warnings) warn(w);
+        const Aabb box = scene_.bounds();
+        if (box.empty()) throw SceneError(file_ + ": no triangles in the default scene");
+        if (!(max_component(abs(box.lo)) <= kMaxCoordinate &&
+              max_component(abs(box.hi)) <= kMaxCoordinate))
+            throw SceneError(file_ + ": the model reaches beyond +-1e7");
+        Camera& c = scene_.camera;
+        RenderSettings& r = scene_.render;
+        r.width = 800;
+        r.height = 600;
+        if (!placed.cameras.empty()) {
+            const GltfCamera& g = placed.cameras.front();
+            c.look_from = g.position;
+            c.look_at = g.position + g.forward;
+            c.up = g.up;
+            c.vfov = g.yfov_degrees;
+            if (g.aspect > 0.0f)
+                r.height = std::clamp(static_cast<int>(std::lround(800.0f / g.aspect)), 1, 8000);
+            if (max_component(abs(c.look_from)) > kMaxCoordinate)
+                throw SceneError(file_ + ": " + g.pointer + ": the camera is beyond +-1e7");
+            if (placed.cameras.size() > 1)
+                warn(std::to_string(placed.cameras.size()) + " cameras; rendering through the "
+                     "first, \"" + g.name + "\" (" + g.pointer + ")");
+        } else {
+            // The whole model in view from its front (+z, glTF's forward), a little above.
+            const Point3 centre = 0.5f * (box.lo + box.hi);
+            const float radius = std::max(0.5f * length(box.hi - box.lo), 1e-6f);
+            const float distance = 1.1f * radius / std::sin(radians(0.5f * c.vfov));
+            c.look_at = centre;
+            c.look_from = centre + distance * normalize(Vec3{0.0f, 0.25f, 1.0f});
+            warn("no perspective camera in the default scene; framing the model from +z");
+        }
+        for (const GltfLight& g : placed.lights) {
+            Light l;
+            l.position = g.position;
+            l.intensity = g.color;
+            if (g.kind == GltfLight::Kind::Spot) {
+                l.kind = Light::Kind::Spot;
+                l.direction = g.direction;
+                l.cutoff_degrees = g.outer_degrees;
+                l.falloff_start_degrees = g.inner_degrees;
+                l.falloff = Light::Falloff::Smoothstep;
+            } else if (g.kind == GltfLight::Kind::Directional) {
+                l.kind = Light::Kind::Directional;
+                l.direction = g.direction;
+            }
+            if (max_component(abs(l.position)) > kMaxCoordinate)
+                throw SceneError(file_ + ": " + g.pointer + ": the light is beyond +-1e7");
+            if (g.has_range)
+                warn(g.pointer + ": range ignored (lights fall off with the inverse square)");
+            scene_.lights.push_back(l);
+        }
+        const bool emits = std::any_of(scene_.materials.begin(), scene_.materials.end(),
+                                       [](const Material& m) { return m.is_emissive(); });
+        if (scene_.lights.empty() && !emits)
+            warn("no lights and no emissive materials: the image will be black (glTF viewers "
+                 "add an environment; a JSON scene can hold this file as a mesh under one)");
         if (skipped_triangles_ > 0)
             warn(std::to_string(skipped_triangles_) + " degenerate triangles skipped");
         return std::move(scene_);
@@ -865,6 +946,9 @@ class Loader {
 }  // namespace
 
 Scene load_scene(const fs::path& path, const LoadOptions& options) {
+    std::string ext = path.extension().string();
+    for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+    if (ext == ".gltf" || ext == ".glb") return Loader(path, options).load_gltf(ext == ".glb");
     return Loader(path, options).load();
 }
 

@@ -1,5 +1,6 @@
-// libFuzzer target: a mesh file through read_mesh_file (Assimp plus our own checks). The first
-// byte picks the format (the extension Assimp dispatches on), the rest is the file.
+// libFuzzer target: a mesh file through read_mesh_file (Assimp plus our own checks), and a glTF
+// file through our reader of its cameras and lights too. The first byte picks the format (the
+// extension Assimp dispatches on), the rest is the file.
 #include <unistd.h>
 
 #include <cstdint>
@@ -8,6 +9,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "loaders/gltf_json.h"
 #include "loaders/mesh_file.h"
 
 namespace fs = std::filesystem;
@@ -30,6 +32,14 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         wavetrace::MeshFile mesh = wavetrace::read_mesh_file(file);
         (void)wavetrace::smooth_normals(mesh.positions, mesh.indices);
     } catch (const std::runtime_error&) {
+    }
+    // glTF's own JSON reader (cameras, lights, strengths), also where Assimp refused the file.
+    const std::string ext = file.extension().string();
+    if (ext == ".gltf" || ext == ".glb") {
+        try {
+            (void)wavetrace::gltf_placements(file, ext == ".glb");
+        } catch (const std::runtime_error&) {
+        }
     }
     fs::remove(file);
     return 0;

@@ -1,0 +1,159 @@
+// glTF files as whole scenes: the camera and punctual lights that the default scene's node
+// hierarchy places, with their parameters; a model without them framed and warned about; a
+// malformed hierarchy or out-of-range value refused with the file and the JSON pointer.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "temp_dir.h"
+#include "wavetrace/loaders/load_scene.h"
+#include "wavetrace/scene/scene.h"
+
+using namespace wavetrace;
+
+namespace {
+
+// A unit quad at z = 0 (two triangles), its buffer inline, with `extra` nodes after the mesh's
+// node 0 (which the scene's node list names with `roots`) and `top` members at the top level.
+std::string gltf(const std::string& nodes, const std::string& roots, const std::string& top) {
+    return R"({"asset": {"version": "2.0"}, "scene": 0,
+      "scenes": [{"nodes": [)" + roots + R"(]}],
+      "nodes": [{"mesh": 0})" + nodes + R"(],
+      "materials": [{"name": "red", "pbrMetallicRoughness": {"baseColorFactor": [0.8, 0.1, 0.1, 1],
+                     "metallicFactor": 0}}],
+      "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "material": 0}]}],
+      "buffers": [{"byteLength": 60, "uri": "data:application/octet-stream;base64,AACAvwAAgL8AAAAAAACAPwAAgL8AAAAAAACAPwAAgD8AAAAAAACAvwAAgD8AAAAAAAABAAIAAAACAAMA"}],
+      "bufferViews": [{"buffer": 0, "byteLength": 48}, {"buffer": 0, "byteOffset": 48, "byteLength": 12}],
+      "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3",
+                     "min": [-1, -1, 0], "max": [1, 1, 0]},
+                    {"bufferView": 1, "componentType": 5123, "count": 6, "type": "SCALAR"}])" +
+           top + "}";
+}
+
+std::vector<std::string> warnings;
+LoadOptions collecting() {
+    warnings.clear();
+    LoadOptions o;
+    o.warn = [](const std::string& w) { warnings.push_back(w); };
+    return o;
+}
+bool warned(const std::string& part) {
+    for (const std::string& w : warnings)
+        if (w.find(part) != std::string::npos) return true;
+    return false;
+}
+
+void expect_near(Vec3 a, Vec3 b, float tol = 1e-5f) {
+    EXPECT_NEAR(a.x, b.x, tol);
+    EXPECT_NEAR(a.y, b.y, tol);
+    EXPECT_NEAR(a.z, b.z, tol);
+}
+
+}  // namespace
+
+TEST(GltfScenes, CameraAndLightsComeFromTheNodeHierarchy) {
+    TempDir dir;
+    // Node 1 moves everything under it by (0, 0, 3); node 2, its child, turns the camera 90
+    // degrees about +y (so it looks along -x) and moves it by (1, 0, 0). Node 3: a point light;
+    // node 4: a spot by a column-major matrix (translation (0, 2, 0), axes unchanged: it shines
+    // along -z); node 5: a directional light turned 90 degrees about +x (shining along +y).
+    const float h = std::sqrt(0.5f);
+    const std::string nodes = R"(,
+      {"translation": [0, 0, 3], "children": [2]},
+      {"camera": 0, "translation": [1, 0, 0], "rotation": [0, )" + std::to_string(h) +
+                              ", 0, " + std::to_string(h) + R"(]},
+      {"translation": [0, 0.5, 1.5], "extensions": {"KHR_lights_punctual": {"light": 0}}},
+      {"matrix": [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 2, 0, 1],
+       "extensions": {"KHR_lights_punctual": {"light": 1}}},
+      {"rotation": [)" + std::to_string(h) + ", 0, 0, " + std::to_string(h) +
+                              R"(], "extensions": {"KHR_lights_punctual": {"light": 2}}})";
+    const std::string top = R"(,
+      "cameras": [{"name": "main", "type": "perspective",
+                   "perspective": {"yfov": 0.8, "aspectRatio": 1.5, "znear": 0.1}}],
+      "extensionsUsed": ["KHR_lights_punctual"],
+      "extensions": {"KHR_lights_punctual": {"lights": [
+        {"type": "point", "color": [1, 0.5, 0.25], "intensity": 4, "range": 10},
+        {"type": "spot", "intensity": 2, "spot": {"innerConeAngle": 0.2, "outerConeAngle": 0.5}},
+        {"type": "directional", "color": [0.5, 0.5, 0.5], "intensity": 3}]}})";
+    const auto path = dir.write("s.gltf", gltf(nodes, "0, 1, 3, 4, 5", top));
+    const Scene s = load_scene(path, collecting());
+    EXPECT_EQ(s.name, "s");
+    ASSERT_EQ(s.triangles.size(), 2u);
+    EXPECT_EQ(s.materials[s.meshes[0].material].kind, MaterialKind::MetallicRoughness);
+
+    expect_near(s.camera.look_from, {1, 0, 3});
+    expect_near(s.camera.look_at - s.camera.look_from, {-1, 0, 0});
+    expect_near(s.camera.up, {0, 1, 0});
+    EXPECT_NEAR(s.camera.vfov, 0.8f * 180.0f / 3.14159265f, 1e-4f);
+    EXPECT_EQ(s.render.width, 800);
+    EXPECT_EQ(s.render.height, 533);  // 800 / 1.5
+
+    ASSERT_EQ(s.lights.size(), 3u);
+    EXPECT_EQ(s.lights[0].kind, Light::Kind::Point);
+    expect_near(s.lights[0].position, {0, 0.5f, 1.5f});
+    EXPECT_EQ(s.lights[0].intensity, Color(4, 2, 1));
+    EXPECT_TRUE(warned("/extensions/KHR_lights_punctual/lights/0: range ignored"));
+    EXPECT_EQ(s.lights[1].kind, Light::Kind::Spot);
+    expect_near(s.lights[1].position, {0, 2, 0});
+    expect_near(s.lights[1].direction, {0, 0, -1});
+    EXPECT_NEAR(s.lights[1].cutoff_degrees, 0.5f * 180.0f / 3.14159265f, 1e-4f);
+    EXPECT_NEAR(s.lights[1].falloff_start_degrees, 0.2f * 180.0f / 3.14159265f, 1e-4f);
+    EXPECT_EQ(s.lights[2].kind, Light::Kind::Directional);
+    expect_near(s.lights[2].direction, {0, 1, 0});
+    EXPECT_EQ(s.lights[2].intensity, Color(1.5f));
+    EXPECT_FALSE(warned("no lights"));
+    EXPECT_FALSE(warned("camera"));
+}
+
+TEST(GltfScenes, AModelWithoutCameraOrLightsIsFramedAndWarnedAbout) {
+    TempDir dir;
+    const auto path = dir.write("bare.gltf", gltf("", "0", ""));
+    const Scene s = load_scene(path, collecting());
+    // The quad's centre in view from +z (a little above), its whole extent inside the field.
+    const Vec3 view = normalize(s.camera.look_at - s.camera.look_from);
+    expect_near(s.camera.look_at, {0, 0, 0});
+    EXPECT_LT(view.z, -0.9f);
+    const float half = 0.5f * s.camera.vfov * 3.14159265f / 180.0f;
+    EXPECT_GT(length(s.camera.look_from) * std::sin(half), std::sqrt(2.0f));
+    EXPECT_TRUE(warned("no perspective camera in the default scene; framing the model from +z"));
+    EXPECT_TRUE(warned("no lights and no emissive materials: the image will be black"));
+}
+
+TEST(GltfScenes, MalformedHierarchiesAreRefusedWithThePlace) {
+    TempDir dir;
+    auto error = [&](const std::string& nodes, const std::string& roots, const std::string& top) {
+        const auto path = dir.write("bad.gltf", gltf(nodes, roots, top));
+        try {
+            load_scene(path, collecting());
+        } catch (const SceneError& e) {
+            const std::string msg = e.what();
+            EXPECT_EQ(msg.rfind(path.string() + ": ", 0), 0u) << msg;
+            return msg.substr(path.string().size() + 2);
+        }
+        return std::string();
+    };
+    EXPECT_EQ(error(R"(, {"extensions": {"KHR_lights_punctual": {"light": 3}}})", "0, 1", ""),
+              "/nodes/1/extensions/KHR_lights_punctual/light: expected an index below 0");
+    // Cycles and indices out of range Assimp's reader refuses first, with its own words.
+    EXPECT_NE(error(R"(, {"children": [2]}, {"children": [1]})", "0, 1", "")
+                  .find("recursive reference"),
+              std::string::npos);
+    EXPECT_EQ(error(R"(, {"camera": 0})", "0, 1",
+                    R"(, "cameras": [{"type": "perspective", "perspective": {"yfov": -1}}])"),
+              "/cameras/0/perspective/yfov: expected radians in (0, 3.12)");
+    EXPECT_EQ(error(R"(, {"translation": [0, 0, "x"]})", "0, 1", ""),
+              "/nodes/1/translation: expected finite numbers");
+    EXPECT_NE(error("", "0, 7", "").find("index 7 is out of bounds"), std::string::npos);
+    EXPECT_EQ(
+        error(R"(, {"extensions": {"KHR_lights_punctual": {"light": 0}}})", "0, 1",
+              R"(, "extensions": {"KHR_lights_punctual": {"lights": [{"type": "area"}]}})"),
+        "/extensions/KHR_lights_punctual/lights/0/type: unknown light type \"area\"");
+    // An orthographic camera is left out, with a warning, and the model framed instead.
+    EXPECT_EQ(error(R"(, {"camera": 0})", "0, 1",
+                    R"(, "cameras": [{"type": "orthographic", "orthographic":
+                        {"xmag": 1, "ymag": 1, "znear": 0.1, "zfar": 10}}])"),
+              "");
+    EXPECT_TRUE(warned("/cameras/0: not a perspective camera; left out"));
+}
