@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_run.h"
 #include "temp_dir.h"
 #include "wavetrace/loaders/load_scene.h"
 #include "wavetrace/scene/scene.h"
@@ -156,4 +157,51 @@ TEST(GltfScenes, MalformedHierarchiesAreRefusedWithThePlace) {
                         {"xmag": 1, "ymag": 1, "znear": 0.1, "zfar": 10}}])"),
               "");
     EXPECT_TRUE(warned("/cameras/0: not a perspective camera; left out"));
+}
+
+// --camera picks a camera by its name (or its node's); a name the file lacks is an error that
+// lists the names there are; a JSON scene refuses the option. Through the CLI: exit 2, no image,
+// and with a right name an image.
+TEST(GltfScenes, CameraIsChosenByName) {
+    TempDir dir;
+    const std::string nodes = R"(,
+      {"camera": 0, "translation": [0, 0, 3]},
+      {"name": "side", "camera": 1, "translation": [0, 0, 5],
+       "extensions": {"KHR_lights_punctual": {"light": 0}}})";
+    const std::string top = R"(,
+      "cameras": [{"name": "front", "type": "perspective", "perspective": {"yfov": 0.5}},
+                  {"type": "perspective", "perspective": {"yfov": 0.6}}],
+      "extensions": {"KHR_lights_punctual": {"lights": [{"type": "point"}]}})";
+    const auto path = dir.write("two.gltf", gltf(nodes, "0, 1, 2", top));
+    LoadOptions options = collecting();
+    EXPECT_EQ(load_scene(path, options).camera.look_from, Vec3(0, 0, 3));
+    EXPECT_TRUE(warned("2 cameras; rendering through the first, \"front\" (/nodes/1)"));
+    options.camera = "side";  // the node's name: the camera has none
+    EXPECT_EQ(load_scene(path, options).camera.look_from, Vec3(0, 0, 5));
+    options.camera = "top";
+    try {
+        load_scene(path, options);
+        ADD_FAILURE() << "expected an error";
+    } catch (const SceneError& e) {
+        EXPECT_EQ(std::string(e.what()),
+                  path.string() + ": no perspective camera named \"top\" (the file has "
+                                  "\"front\", \"side\")");
+    }
+
+    const auto json = dir.write("s.json", R"({"camera": {"look_from": [0, 0, 5], "look_at": [0, 0, 0]},
+        "objects": [{"type": "mesh", "file": "two.gltf", "materials": "file"}]})");
+    CliResult r = run_cli(dir, "render '" + json.string() + "' --camera side -o '" +
+                                   (dir.path() / "a.png").string() + "'");
+    EXPECT_EQ(r.code, 2);
+    EXPECT_NE(r.err.find("--camera chooses among a glTF file's cameras"), std::string::npos)
+        << r.err;
+    r = run_cli(dir, "render '" + path.string() + "' --camera top --spp 1 -o '" +
+                         (dir.path() / "b.png").string() + "'");
+    EXPECT_EQ(r.code, 2);
+    EXPECT_FALSE(std::filesystem::exists(dir.path() / "b.png"));
+    r = run_cli(dir, "render '" + path.string() +
+                         "' --camera side --spp 1 --width 32 --height 24 -o '" +
+                         (dir.path() / "c.png").string() + "'");
+    EXPECT_EQ(r.code, 0) << r.err;
+    EXPECT_TRUE(std::filesystem::exists(dir.path() / "c.png"));
 }

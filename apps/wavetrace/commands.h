@@ -15,6 +15,7 @@ inline constexpr int kExitBadInput = 2;  // bad scene, bad option: nothing was w
 
 struct RenderOptions {
     std::string scene;
+    std::string camera;  // a glTF scene's camera, by name
     std::string output;
     // Not given: the scene file's value (or the engine's default, for the wave size).
     std::optional<int> width, height, spp, max_depth;

@@ -11,7 +11,7 @@ namespace wavetrace::cli {
 
 void add_info_command(CLI::App& app, InfoOptions& o) {
     CLI::App* cmd = app.add_subcommand("info", "describe a scene: counts, bounds, BVH, memory");
-    cmd->add_option("scene", o.scene, "scene file (JSON)")->required();
+    cmd->add_option("scene", o.scene, "scene file (JSON, or glTF: .gltf, .glb)")->required();
     cmd->add_option("--threads", o.threads, "worker threads for the BVH build (default: all)");
 }
 

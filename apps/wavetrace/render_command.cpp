@@ -22,7 +22,7 @@ namespace fs = std::filesystem;
 
 void add_render_command(CLI::App& app, RenderOptions& o) {
     CLI::App* cmd = app.add_subcommand("render", "render a scene file to an image");
-    cmd->add_option("scene", o.scene, "scene file (JSON)")->required();
+    cmd->add_option("scene", o.scene, "scene file (JSON, or glTF: .gltf, .glb)")->required();
     cmd->add_option("-o,--output", o.output,
                     "output image: .png/.jpg (8-bit sRGB) or .exr/.hdr/.pfm (linear float); "
                     "default: <scene>.png");
@@ -39,6 +39,8 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
     cmd->add_option("--engine", o.engine, "light-transport engine")
         ->check(CLI::IsMember({"wavefront", "megakernel"}))
         ->capture_default_str();
+    cmd->add_option("--camera", o.camera,
+                    "glTF scenes: the camera to render through, by name (default: the first)");
     cmd->add_option("--strategy", o.strategy, "estimator of the rendering equation")
         ->check(CLI::IsMember({"bsdf", "light", "mixture", "nee", "mis"}))
         ->capture_default_str();
@@ -361,7 +363,9 @@ int run_render(const RenderOptions& o) {
                                  ": a variance needs a linear float format (.exr, .hdr, .pfm)");
             check_output_writable(o.variance);
         }
-        scene = load_scene(o.scene);
+        LoadOptions load;
+        load.camera = o.camera;
+        scene = load_scene(o.scene, load);
         if (auto problem = check_options(o, scene.render)) throw SceneError(*problem);
     } catch (const std::exception& e) {
         std::cerr << "wavetrace: error: " << e.what() << "\n";

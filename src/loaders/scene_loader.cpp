@@ -34,6 +34,9 @@ class Loader {
         : path_(path), file_(path.string()), options_(options) {}
 
     Scene load() {
+        if (!options_.camera.empty())
+            throw SceneError(file_ + ": --camera chooses among a glTF file's cameras; a JSON "
+                             "scene has one");
         try {
             check_input_file(path_, kMaxSceneFileBytes, "scene files");
         } catch (const std::runtime_error& e) {
@@ -89,8 +92,20 @@ class Loader {
         RenderSettings& r = scene_.render;
         r.width = 800;
         r.height = 600;
+        auto chosen = placed.cameras.begin();
+        if (!options_.camera.empty()) {
+            chosen = std::find_if(placed.cameras.begin(), placed.cameras.end(),
+                                  [&](const GltfCamera& g) { return g.name == options_.camera; });
+            if (chosen == placed.cameras.end()) {
+                std::string names;
+                for (const GltfCamera& g : placed.cameras)
+                    names += (names.empty() ? "" : ", ") + ("\"" + g.name + "\"");
+                throw SceneError(file_ + ": no perspective camera named \"" + options_.camera +
+                                 "\" (the file has " + (names.empty() ? "none" : names) + ")");
+            }
+        }
         if (!placed.cameras.empty()) {
-            const GltfCamera& g = placed.cameras.front();
+            const GltfCamera& g = *chosen;
             c.look_from = g.position;
             c.look_at = g.position + g.forward;
             c.up = g.up;
@@ -99,9 +114,9 @@ class Loader {
                 r.height = std::clamp(static_cast<int>(std::lround(800.0f / g.aspect)), 1, 8000);
             if (max_component(abs(c.look_from)) > kMaxCoordinate)
                 throw SceneError(file_ + ": " + g.pointer + ": the camera is beyond +-1e7");
-            if (placed.cameras.size() > 1)
+            if (placed.cameras.size() > 1 && options_.camera.empty())
                 warn(std::to_string(placed.cameras.size()) + " cameras; rendering through the "
-                     "first, \"" + g.name + "\" (" + g.pointer + ")");
+                     "first, \"" + g.name + "\" (" + g.pointer + "); --camera chooses");
         } else {
             // The whole model in view from its front (+z, glTF's forward), a little above.
             const Point3 centre = 0.5f * (box.lo + box.hi);
