@@ -125,8 +125,9 @@ TEST(MeshFiles, GltfLoads) {
 
 // glTF materials become metallic_roughness with the file's factors (pbrMetallicRoughness,
 // KHR_materials_ior, _transmission, _clearcoat, emissive), the textures beside the file as image
-// textures times their factors, and what cannot be held (an embedded texture, alphaMode MASK) a
-// warning naming the material.
+// textures times their factors, and what cannot be held (alphaMode MASK) a
+// warning naming the material; a texture embedded in the file (here a data URI) is decoded
+// from memory.
 TEST(MeshFiles, GltfMaterialsMapToMetallicRoughness) {
     TempDir dir;
     Image base(2, 2), mr(2, 2);
@@ -207,13 +208,16 @@ TEST(MeshFiles, GltfMaterialsMapToMetallicRoughness) {
     // write_image stored 0.5 as the sRGB byte 188; read raw, that byte is not decoded back.
     EXPECT_NEAR(t.y, 188.0f / 255.0f, 1e-6f);
     EXPECT_EQ(t.z, 1.0f);
-    EXPECT_EQ(textured.normal_map, kNone);  // embedded: not read
+    // The normal texture is a data URI: decoded from memory, raw (128, 128, 255).
+    ASSERT_NE(textured.normal_map, kNone);
+    const Color n = eval_texture(s, textured.normal_map, {0.5f, 0.5f}, {});
+    EXPECT_NEAR(n.x, 128.0f / 255.0f, 1e-6f);
+    EXPECT_NEAR(n.z, 1.0f, 1e-6f);
     auto warned = [&](const std::string& part) {
         return std::any_of(warnings.begin(), warnings.end(),
                            [&](const std::string& w) { return w.find(part) != std::string::npos; });
     };
-    EXPECT_TRUE(warned(
-        "material \"textured\": ignored normalTexture (embedded in the file), alphaMode MASK"))
+    EXPECT_TRUE(warned("material \"textured\": ignored alphaMode MASK"))
         << (warnings.empty() ? "" : warnings[0]);
     EXPECT_FALSE(warned("\"coated\""));
 }

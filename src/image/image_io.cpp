@@ -129,6 +129,45 @@ void write_image(const fs::path& path, const Image& image, const WriteOptions& o
     }
 }
 
+namespace {
+
+// An opened image read whole as linear RGB (see read_image); `name` for messages.
+ImageData read_opened(OIIO::ImageInput& in, const std::string& name, bool raw) {
+    const OIIO::ImageSpec& spec = in.spec();
+    if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
+        throw ImageError(name + ": empty image");
+    // The header's claims, checked before anything is allocated for them.
+    const uint64_t texels = uint64_t(spec.width) * uint64_t(spec.height);
+    if (texels > kMaxImageTexels || spec.nchannels > 64)
+        throw ImageError(name + ": image of " + std::to_string(spec.width) + " x " +
+                         std::to_string(spec.height) + " x " + std::to_string(spec.nchannels) +
+                         " channels exceeds the limit of " + std::to_string(kMaxImageTexels) +
+                         " texels (and 64 channels)");
+    const int channels = spec.nchannels;
+    std::vector<float> data(static_cast<size_t>(spec.width) * spec.height * channels);
+    if (!in.read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, data.data()))
+        throw ImageError(name + ": cannot read image: " + in.geterror());
+    const bool decode = !raw && spec.format.basetype != OIIO::TypeDesc::FLOAT &&
+                        spec.format.basetype != OIIO::TypeDesc::HALF &&
+                        spec.format.basetype != OIIO::TypeDesc::DOUBLE;
+
+    ImageData image;
+    image.path = name;
+    image.width = spec.width;
+    image.height = spec.height;
+    image.texels.resize(static_cast<size_t>(spec.width) * spec.height);
+    for (size_t i = 0; i < image.texels.size(); ++i) {
+        const float* px = &data[i * channels];
+        Color c = channels >= 3 ? Color{px[0], px[1], px[2]} : Color{px[0]};
+        if (decode) c = {srgb_decode(c.x), srgb_decode(c.y), srgb_decode(c.z)};
+        if (!is_finite(c)) throw ImageError(name + ": contains NaN or infinite texels");
+        image.texels[i] = c;
+    }
+    return image;
+}
+
+}  // namespace
+
 ImageData read_image(const fs::path& path, bool raw) {
     try {
         check_input_file(path, kMaxImageFileBytes, "images");
@@ -141,37 +180,24 @@ ImageData read_image(const fs::path& path, bool raw) {
         throw ImageError(path.string() +
                          ": cannot read image: " + (err.empty() ? "unknown error" : err));
     }
-    const OIIO::ImageSpec& spec = in->spec();
-    if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
-        throw ImageError(path.string() + ": empty image");
-    // The header's claims, checked before anything is allocated for them.
-    const uint64_t texels = uint64_t(spec.width) * uint64_t(spec.height);
-    if (texels > kMaxImageTexels || spec.nchannels > 64)
-        throw ImageError(path.string() + ": image of " + std::to_string(spec.width) + " x " +
-                         std::to_string(spec.height) + " x " + std::to_string(spec.nchannels) +
-                         " channels exceeds the limit of " + std::to_string(kMaxImageTexels) +
-                         " texels (and 64 channels)");
-    const int channels = spec.nchannels;
-    std::vector<float> data(static_cast<size_t>(spec.width) * spec.height * channels);
-    if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, data.data()))
-        throw ImageError(path.string() + ": cannot read image: " + in->geterror());
-    const bool decode = !raw && spec.format.basetype != OIIO::TypeDesc::FLOAT &&
-                        spec.format.basetype != OIIO::TypeDesc::HALF &&
-                        spec.format.basetype != OIIO::TypeDesc::DOUBLE;
+    return read_opened(*in, path.string(), raw);
+}
 
-    ImageData image;
-    image.path = path.string();
-    image.width = spec.width;
-    image.height = spec.height;
-    image.texels.resize(static_cast<size_t>(spec.width) * spec.height);
-    for (size_t i = 0; i < image.texels.size(); ++i) {
-        const float* px = &data[i * channels];
-        Color c = channels >= 3 ? Color{px[0], px[1], px[2]} : Color{px[0]};
-        if (decode) c = {srgb_decode(c.x), srgb_decode(c.y), srgb_decode(c.z)};
-        if (!is_finite(c)) throw ImageError(path.string() + ": contains NaN or infinite texels");
-        image.texels[i] = c;
+ImageData read_image_bytes(std::span<const unsigned char> bytes,
+                           const std::string& format,
+                           const std::string& name,
+                           bool raw) {
+    if (format != "png" && format != "jpg" && format != "jpeg")
+        throw ImageError(name + ": cannot read image: format \"" + format +
+                         "\" (embedded images are read as png or jpeg)");
+    // The reader is chosen by the name's extension and reads from memory through the proxy.
+    OIIO::Filesystem::IOMemReader proxy(bytes.data(), bytes.size());
+    auto in = OIIO::ImageInput::open("embedded." + format, nullptr, &proxy);
+    if (!in) {
+        std::string err = OIIO::geterror();
+        throw ImageError(name + ": cannot read image: " + (err.empty() ? "unknown error" : err));
     }
-    return image;
+    return read_opened(*in, name, raw);
 }
 
 }  // namespace wavetrace

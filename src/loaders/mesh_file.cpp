@@ -173,6 +173,16 @@ MeshFile read_mesh_file(const std::filesystem::path& path) {
             out.materials[m].ke *= strengths[m];
     }
     if (out.materials.empty()) out.materials.push_back(FileMaterial{"(none)"});
+    for (unsigned t = 0; t < scene->mNumTextures; ++t) {
+        const aiTexture& tex = *scene->mTextures[t];
+        EmbeddedImage image;
+        if (tex.mHeight == 0 && tex.pcData) {  // compressed: mWidth bytes of a png, jpg, ...
+            const auto* bytes = reinterpret_cast<const unsigned char*>(tex.pcData);
+            image.bytes.assign(bytes, bytes + tex.mWidth);
+            image.format = tex.achFormatHint;
+        }
+        out.embedded.push_back(std::move(image));
+    }
     bool all_normals = true, all_uvs = true;
     for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
         const aiMesh* mesh = scene->mMeshes[m];

@@ -38,6 +38,13 @@ struct MeshPart {
     uint32_t material = 0;  // index into MeshFile::materials
 };
 
+// An image held inside the mesh file (a .glb's buffer, a data URI), encoded as `format` says
+// ("png", "jpg"); materials name it "*N", N its index.
+struct EmbeddedImage {
+    std::vector<unsigned char> bytes;
+    std::string format;
+};
+
 // A triangle mesh as read from a file: every mesh in the file merged, node transforms applied.
 struct MeshFile {
     std::vector<Point3> positions;
@@ -46,6 +53,7 @@ struct MeshFile {
     std::vector<uint32_t> indices;  // three per triangle
     std::vector<FileMaterial> materials;
     std::vector<MeshPart> parts;  // in triangle order, covering every triangle
+    std::vector<EmbeddedImage> embedded;
 };
 
 // Reads OBJ (+MTL), PLY (ASCII or binary) or glTF 2.0 through Assimp. Polygons are

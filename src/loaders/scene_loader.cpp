@@ -629,7 +629,7 @@ class Loader {
         for (const MeshPart& part : mesh.parts) {
             if (mapped[part.material] == kNone)
                 mapped[part.material] =
-                    map_file_material(mesh.materials[part.material], path, where);
+                    map_file_material(mesh.materials[part.material], mesh.embedded, path, where);
             // The part's own vertices, re-indexed from 0.
             std::vector<uint32_t> indices, remap(mesh.positions.size(), UINT32_MAX);
             std::vector<Point3> positions;
@@ -662,6 +662,7 @@ class Loader {
     // Kd -> metal (roughness from Ns), else Kd (or map_Kd) -> Lambertian. What does not map is
     // a warning naming the material.
     MaterialId map_file_material(const FileMaterial& fm,
+                                 const std::vector<EmbeddedImage>& embedded,
                                  const fs::path& mesh_path,
                                  const Value& where) {
         const std::string who = mesh_path.filename().string() + ": material \"" + fm.name + "\"";
@@ -673,7 +674,7 @@ class Loader {
         check_color(fm.kd, "Kd");
         check_color(fm.ks, "Ks");
         check_color(fm.ke, "Ke");
-        if (fm.pbr) return map_gltf_material(fm, mesh_path, where, who);
+        if (fm.pbr) return map_gltf_material(fm, embedded, mesh_path, where, who);
         Material m;
         m.name = fm.name;
         const bool dielectric = fm.illum == 4 || fm.illum == 6 || fm.illum == 7;
@@ -746,9 +747,10 @@ class Loader {
     }
 
     // A glTF material (docs/scene-format.md, "Materials from mesh files"): metallic_roughness
-    // with the file's factors and textures. Textures embedded in the file (Assimp names them
-    // "*N") and what the material cannot hold are warnings.
+    // with the file's factors and textures, beside the file or embedded in it (Assimp names
+    // those "*N"); what the material cannot hold is a warning.
     MaterialId map_gltf_material(const FileMaterial& fm,
+                                 const std::vector<EmbeddedImage>& embedded,
                                  const fs::path& mesh_path,
                                  const Value& where,
                                  const std::string& who) {
@@ -760,15 +762,26 @@ class Loader {
         if (!(fm.ni > 0.0f && fm.ni < 100.0f))
             where.fail(who + ": ior " + std::to_string(fm.ni) + " is not in (0, 100)");
         std::vector<std::string> ignored = fm.other_maps;
-        // A texture the file holds, or nothing (with a warning) when it is embedded.
+        // A texture beside the file, or embedded in it.
         auto texture = [&](const std::string& rel, const char* key, bool raw,
                            Color factor) -> TextureId {
             if (rel.empty()) return kNone;
-            if (rel[0] == '*') {
-                ignored.push_back(std::string(key) + " (embedded in the file)");
-                return kNone;
+            if (rel[0] != '*') return file_texture(mesh_path, rel, key, raw, factor, where, who);
+            const std::string name = mesh_path.filename().string() + ": image " + rel;
+            char* end = nullptr;
+            const unsigned long n = std::strtoul(rel.c_str() + 1, &end, 10);
+            if (rel.size() < 2 || *end != '\0' || n >= embedded.size())
+                where.fail(who + ": " + key + " '" + rel + "': no such embedded image");
+            Texture t;
+            t.kind = TextureKind::Image;
+            t.factor = factor;
+            try {
+                t.image = scene_.add_image(
+                    read_image_bytes(embedded[n].bytes, embedded[n].format, name, raw));
+            } catch (const std::exception& e) {
+                where.fail(who + ": " + key + ": " + e.what());
             }
-            return file_texture(mesh_path, rel, key, raw, factor, where, who);
+            return scene_.add_texture(t);
         };
         Material m;
         m.name = fm.name;

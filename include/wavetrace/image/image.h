@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -60,5 +61,11 @@ inline constexpr uint64_t kMaxImageTexels = uint64_t(1) << 26;
 // maps, as Mitsuba's `raw` bitmaps); float files (EXR, HDR, PFM) as linear. Grey images are
 // expanded.
 ImageData read_image(const std::filesystem::path& path, bool raw = false);
+// The same for an encoded image held in memory (`format`: "png", "jpg" or "jpeg"), e.g. one
+// embedded in a glTF file; `name` stands for it in messages.
+ImageData read_image_bytes(std::span<const unsigned char> bytes,
+                           const std::string& format,
+                           const std::string& name,
+                           bool raw = false);
 
 }  // namespace wavetrace
