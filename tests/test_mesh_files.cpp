@@ -125,9 +125,8 @@ TEST(MeshFiles, GltfLoads) {
 
 // glTF materials become metallic_roughness with the file's factors (pbrMetallicRoughness,
 // KHR_materials_ior, _transmission, _clearcoat, emissive), the textures beside the file as image
-// textures times their factors, and what cannot be held (alphaMode MASK) a
-// warning naming the material; a texture embedded in the file (here a data URI) is decoded
-// from memory.
+// textures times their factors, alpha modes as opacity; a texture embedded in the file (here a
+// data URI) is decoded from memory.
 TEST(MeshFiles, GltfMaterialsMapToMetallicRoughness) {
     TempDir dir;
     Image base(2, 2), mr(2, 2);
@@ -144,7 +143,9 @@ TEST(MeshFiles, GltfMaterialsMapToMetallicRoughness) {
                          "KHR_materials_ior", "KHR_materials_emissive_strength"],
       "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
       "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "material": 0},
-                                 {"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "material": 1}]}],
+                                 {"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "material": 1},
+                                 {"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "material": 2},
+                                 {"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "material": 3}]}],
       "materials": [
         {"name": "coated", "doubleSided": true, "emissiveFactor": [1, 0.5, 0],
          "pbrMetallicRoughness": {"baseColorFactor": [0.8, 0.6, 0.4, 1],
@@ -158,10 +159,16 @@ TEST(MeshFiles, GltfMaterialsMapToMetallicRoughness) {
          "pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1],
                                   "baseColorTexture": {"index": 0},
                                   "metallicRoughnessTexture": {"index": 1}},
-         "normalTexture": {"index": 2}}],
-      "textures": [{"source": 0}, {"source": 1}, {"source": 2}],
+         "normalTexture": {"index": 2}},
+        {"name": "leaf", "alphaMode": "MASK", "alphaCutoff": 0.6,
+         "pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 0.7],
+                                  "baseColorTexture": {"index": 3}}},
+        {"name": "veil", "alphaMode": "BLEND",
+         "pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 0.25]}}],
+      "textures": [{"source": 0}, {"source": 1}, {"source": 2}, {"source": 3}],
       "images": [{"uri": "base.png"}, {"uri": "mr.png"},
-                 {"uri": "data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAIAAAACCAIAAAD91JpzAAAAEElEQVR4nGNoaPgPRAwQCgA19gf9SShDzAAAAABJRU5ErkJggg=="}],
+                 {"uri": "data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAIAAAACCAIAAAD91JpzAAAAEElEQVR4nGNoaPgPRAwQCgA19gf9SShDzAAAAABJRU5ErkJggg=="},
+                 {"uri": "data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAIAAAABCAYAAAD0In+KAAAAD0lEQVR4nGM4YWT0H4gZABHoA1ggLQeIAAAAAElFTkSuQmCC"}],
       "buffers": [{"byteLength": 60,
         "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAAAAAAAAAAAAIA/AAAAAAAAAAAAAIA/"}],
       "bufferViews": [{"buffer": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 24}],
@@ -217,8 +224,21 @@ TEST(MeshFiles, GltfMaterialsMapToMetallicRoughness) {
         return std::any_of(warnings.begin(), warnings.end(),
                            [&](const std::string& w) { return w.find(part) != std::string::npos; });
     };
-    EXPECT_TRUE(warned("material \"textured\": ignored alphaMode MASK"))
-        << (warnings.empty() ? "" : warnings[0]);
+    // MASK over a base colour texture without alpha: solid wherever alpha 1 >= 0.5.
+    ASSERT_NE(textured.opacity, kNone);
+    EXPECT_EQ(eval_texture(s, textured.opacity, {0.3f, 0.6f}, {}), Color(1.0f));
+    // MASK at 0.6 over texels of alpha 1 and 0 (left, right) times 0.7: solid left, a hole right.
+    const Material& leaf = material_of("leaf");
+    ASSERT_NE(leaf.opacity, kNone);
+    EXPECT_EQ(eval_texture(s, leaf.opacity, {0.25f, 0.5f}, {}), Color(1.0f));
+    EXPECT_EQ(eval_texture(s, leaf.opacity, {0.75f, 0.5f}, {}), Color(0.0f));
+    // The alpha is coverage, not colour: the base colour keeps its texels' RGB.
+    EXPECT_NEAR(eval_texture(s, leaf.albedo, {0.75f, 0.5f}, {}).x, 0.578f, 1e-3f);
+    // BLEND: a quarter of the rays stop.
+    const Material& veil = material_of("veil");
+    ASSERT_NE(veil.opacity, kNone);
+    EXPECT_EQ(s.textures[veil.opacity].color, Color(0.25f));
+    EXPECT_TRUE(warnings.empty()) << warnings[0];
     EXPECT_FALSE(warned("\"coated\""));
 }
 

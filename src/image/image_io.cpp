@@ -131,8 +131,19 @@ void write_image(const fs::path& path, const Image& image, const WriteOptions& o
 
 namespace {
 
+// Colours as the file stores them beside an alpha channel: PNG's are not premultiplied (nor
+// glTF's, nor Mitsuba's reading of them), and OpenImageIO would premultiply them on reading.
+const OIIO::ImageSpec& unassociated_alpha() {
+    static const OIIO::ImageSpec config = [] {
+        OIIO::ImageSpec c;
+        c.attribute("oiio:UnassociatedAlpha", 1);
+        return c;
+    }();
+    return config;
+}
+
 // An opened image read whole as linear RGB (see read_image); `name` for messages.
-ImageData read_opened(OIIO::ImageInput& in, const std::string& name, bool raw) {
+ImageData read_opened(OIIO::ImageInput& in, const std::string& name, ImageChannels wanted) {
     const OIIO::ImageSpec& spec = in.spec();
     if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
         throw ImageError(name + ": empty image");
@@ -147,7 +158,8 @@ ImageData read_opened(OIIO::ImageInput& in, const std::string& name, bool raw) {
     std::vector<float> data(static_cast<size_t>(spec.width) * spec.height * channels);
     if (!in.read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, data.data()))
         throw ImageError(name + ": cannot read image: " + in.geterror());
-    const bool decode = !raw && spec.format.basetype != OIIO::TypeDesc::FLOAT &&
+    const bool decode = wanted == ImageChannels::Color &&
+                        spec.format.basetype != OIIO::TypeDesc::FLOAT &&
                         spec.format.basetype != OIIO::TypeDesc::HALF &&
                         spec.format.basetype != OIIO::TypeDesc::DOUBLE;
 
@@ -159,6 +171,8 @@ ImageData read_opened(OIIO::ImageInput& in, const std::string& name, bool raw) {
     for (size_t i = 0; i < image.texels.size(); ++i) {
         const float* px = &data[i * channels];
         Color c = channels >= 3 ? Color{px[0], px[1], px[2]} : Color{px[0]};
+        if (wanted == ImageChannels::Alpha)
+            c = Color(channels == 2 || channels >= 4 ? px[channels == 2 ? 1 : 3] : 1.0f);
         if (decode) c = {srgb_decode(c.x), srgb_decode(c.y), srgb_decode(c.z)};
         if (!is_finite(c)) throw ImageError(name + ": contains NaN or infinite texels");
         image.texels[i] = c;
@@ -168,36 +182,39 @@ ImageData read_opened(OIIO::ImageInput& in, const std::string& name, bool raw) {
 
 }  // namespace
 
-ImageData read_image(const fs::path& path, bool raw) {
+ImageData read_image(const fs::path& path, ImageChannels channels) {
     try {
         check_input_file(path, kMaxImageFileBytes, "images");
     } catch (const std::runtime_error& e) {
         throw ImageError(path.string() + ": cannot read image: " + e.what());
     }
-    auto in = OIIO::ImageInput::open(path.string());
+    auto in = OIIO::ImageInput::open(path.string(), &unassociated_alpha());
     if (!in) {
         std::string err = OIIO::geterror();
         throw ImageError(path.string() +
                          ": cannot read image: " + (err.empty() ? "unknown error" : err));
     }
-    return read_opened(*in, path.string(), raw);
+    return read_opened(*in, path.string(), channels);
 }
 
 ImageData read_image_bytes(std::span<const unsigned char> bytes,
                            const std::string& format,
                            const std::string& name,
-                           bool raw) {
+                           ImageChannels channels) {
     if (format != "png" && format != "jpg" && format != "jpeg")
         throw ImageError(name + ": cannot read image: format \"" + format +
                          "\" (embedded images are read as png or jpeg)");
     // The reader is chosen by the name's extension and reads from memory through the proxy.
     OIIO::Filesystem::IOMemReader proxy(bytes.data(), bytes.size());
-    auto in = OIIO::ImageInput::open("embedded." + format, nullptr, &proxy);
+    OIIO::ImageSpec config = unassociated_alpha();
+    void* proxy_pointer = &proxy;  // with a config, the proxy travels in it
+    config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy_pointer);
+    auto in = OIIO::ImageInput::open("embedded." + format, &config, &proxy);
     if (!in) {
         std::string err = OIIO::geterror();
         throw ImageError(name + ": cannot read image: " + (err.empty() ? "unknown error" : err));
     }
-    return read_opened(*in, name, raw);
+    return read_opened(*in, name, channels);
 }
 
 }  // namespace wavetrace

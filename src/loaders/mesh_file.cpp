@@ -62,6 +62,8 @@ void read_gltf_material(const aiMaterial& m, FileMaterial& out) {
     aiColor4D base(1, 1, 1, 1);  // the specification's default material is white
     m.Get(AI_MATKEY_BASE_COLOR, base);
     out.kd = {base.r, base.g, base.b};
+    out.base_alpha = base.a;
+    m.Get(AI_MATKEY_GLTF_ALPHACUTOFF, out.alpha_cutoff);
     out.ni = 1.5f;
     m.Get(AI_MATKEY_REFRACTI, out.ni);
     m.Get(AI_MATKEY_METALLIC_FACTOR, out.metallic);

@@ -23,12 +23,13 @@ struct FileMaterial {
     // glTF 2.0 files (pbr): the metallic-roughness material. kd is the base colour factor,
     // map_kd its texture, ke the emissive factor times KHR_materials_emissive_strength, ni the ior (KHR_materials_ior; 1.5 if not
     // given); the factors of pbrMetallicRoughness, KHR_materials_transmission and _clearcoat;
-    // the metallicRoughness, normal and emissive textures; alphaMode and doubleSided.
+    // the metallicRoughness, normal and emissive textures; alphaMode, its cutoff, doubleSided.
     bool pbr = false;
     float metallic = 1.0f, roughness = 1.0f, transmission = 0.0f, clearcoat = 0.0f,
           clearcoat_roughness = 0.0f;
     std::string map_metallic_roughness, map_normal, map_emissive;
     std::string alpha_mode = "OPAQUE";
+    float base_alpha = 1.0f, alpha_cutoff = 0.5f;  // baseColorFactor's alpha; MASK's cutoff
     bool double_sided = false;
 };
 

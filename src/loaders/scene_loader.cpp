@@ -252,7 +252,7 @@ class Loader {
         std::error_code ec;
         if (!fs::exists(p, ec)) file.fail("cannot open image '" + p.string() + "': no such file");
         try {
-            return read_image(p, raw);
+            return read_image(p, raw ? ImageChannels::Raw : ImageChannels::Color);
         } catch (const ImageError& e) {
             file.fail(e.what());
         }
@@ -705,8 +705,8 @@ class Loader {
         } else {
             m.kind = MaterialKind::Lambertian;
             if (!fm.map_kd.empty()) {
-                m.albedo = file_texture(mesh_path, fm.map_kd, "map_Kd", false, Color(1.0f),
-                                        where, who);
+                m.albedo = file_texture(mesh_path, fm.map_kd, "map_Kd", ImageChannels::Color,
+                                        Color(1.0f), where, who);
             } else {
                 if (!positive(fm.kd)) warn(who + ": no Kd, Ks or Ke; rendered black");
                 m.albedo = scene_.add_solid(min(fm.kd, Color(1.0f)));
@@ -722,12 +722,12 @@ class Loader {
         return scene_.add_material(std::move(m));
     }
 
-    // An image texture a mesh file names (path relative to the file), its texels times factor;
-    // raw: data, not sRGB-encoded colour.
+    // An image texture a mesh file names (path relative to the file): the channels asked for,
+    // times factor.
     TextureId file_texture(const fs::path& mesh_path,
                            const std::string& relative,
                            const char* key,
-                           bool raw,
+                           ImageChannels channels,
                            Color factor,
                            const Value& where,
                            const std::string& who) {
@@ -739,7 +739,7 @@ class Loader {
         t.kind = TextureKind::Image;
         t.factor = factor;
         try {
-            t.image = scene_.add_image(read_image(tex, raw));
+            t.image = scene_.add_image(read_image(tex, channels));
         } catch (const std::exception& e) {
             where.fail(who + ": " + key + " '" + tex.string() + "': " + e.what());
         }
@@ -763,10 +763,11 @@ class Loader {
             where.fail(who + ": ior " + std::to_string(fm.ni) + " is not in (0, 100)");
         std::vector<std::string> ignored = fm.other_maps;
         // A texture beside the file, or embedded in it.
-        auto texture = [&](const std::string& rel, const char* key, bool raw,
+        auto texture = [&](const std::string& rel, const char* key, ImageChannels channels,
                            Color factor) -> TextureId {
             if (rel.empty()) return kNone;
-            if (rel[0] != '*') return file_texture(mesh_path, rel, key, raw, factor, where, who);
+            if (rel[0] != '*')
+                return file_texture(mesh_path, rel, key, channels, factor, where, who);
             const std::string name = mesh_path.filename().string() + ": image " + rel;
             char* end = nullptr;
             const unsigned long n = std::strtoul(rel.c_str() + 1, &end, 10);
@@ -777,7 +778,7 @@ class Loader {
             t.factor = factor;
             try {
                 t.image = scene_.add_image(
-                    read_image_bytes(embedded[n].bytes, embedded[n].format, name, raw));
+                    read_image_bytes(embedded[n].bytes, embedded[n].format, name, channels));
             } catch (const std::exception& e) {
                 where.fail(who + ": " + key + ": " + e.what());
             }
@@ -787,21 +788,38 @@ class Loader {
         m.name = fm.name;
         m.kind = MaterialKind::MetallicRoughness;
         const Color base = min(fm.kd, Color(1.0f));
-        m.albedo = texture(fm.map_kd, "baseColorTexture", false, base);
+        m.albedo = texture(fm.map_kd, "baseColorTexture", ImageChannels::Color, base);
         if (m.albedo == kNone) m.albedo = scene_.add_solid(base);
         m.metallic = unit(fm.metallic, "metallicFactor");
         m.roughness = unit(fm.roughness, "roughnessFactor");
-        m.metallic_roughness =
-            texture(fm.map_metallic_roughness, "metallicRoughnessTexture", true, Color(1.0f));
+        m.metallic_roughness = texture(fm.map_metallic_roughness, "metallicRoughnessTexture",
+                                       ImageChannels::Raw, Color(1.0f));
         m.ior = fm.ni;
         m.transmission = unit(fm.transmission, "transmissionFactor");
         m.clearcoat = unit(fm.clearcoat, "clearcoatFactor");
         m.clearcoat_roughness = unit(fm.clearcoat_roughness, "clearcoatRoughnessFactor");
-        m.normal_map = texture(fm.map_normal, "normalTexture", true, Color(1.0f));
-        m.emission = texture(fm.map_emissive, "emissiveTexture", false, fm.ke);
+        m.normal_map = texture(fm.map_normal, "normalTexture", ImageChannels::Raw, Color(1.0f));
+        m.emission = texture(fm.map_emissive, "emissiveTexture", ImageChannels::Color, fm.ke);
         if (m.emission == kNone && max_component(fm.ke) > 0.0f) m.emission = scene_.add_solid(fm.ke);
         m.two_sided = fm.double_sided;  // a double-sided surface emits from both sides
-        if (fm.alpha_mode != "OPAQUE") ignored.push_back("alphaMode " + fm.alpha_mode);
+        // Alpha: the base colour's alpha (its factor's times its texture's), as coverage. MASK
+        // cuts at alphaCutoff; BLEND lets that share of rays through (the stochastic opacity of
+        // a surface seen through many samples, as a blended one looks).
+        if (fm.alpha_mode == "MASK" || fm.alpha_mode == "BLEND") {
+            const float alpha = unit(fm.base_alpha, "baseColorFactor's alpha");
+            const float cutoff = fm.alpha_mode == "MASK" ? fm.alpha_cutoff : -1.0f;
+            if (fm.alpha_mode == "MASK" && !(cutoff >= 0.0f && cutoff <= 1e6f))
+                where.fail(who + ": alphaCutoff must be a non-negative number");
+            m.opacity = texture(fm.map_kd, "baseColorTexture", ImageChannels::Alpha, Color(alpha));
+            if (m.opacity != kNone)
+                scene_.textures[m.opacity].cutoff = cutoff;
+            else if (cutoff >= 0.0f)
+                m.opacity = scene_.add_solid(Color(alpha >= cutoff ? 1.0f : 0.0f));
+            else if (alpha < 1.0f)
+                m.opacity = scene_.add_solid(Color(alpha));
+        } else if (fm.alpha_mode != "OPAQUE") {
+            where.fail(who + ": unknown alphaMode \"" + fm.alpha_mode + "\"");
+        }
         if (!ignored.empty()) {
             std::string list;
             for (const std::string& k : ignored) list += (list.empty() ? "" : ", ") + k;

@@ -145,7 +145,9 @@ Color eval_texture(const Scene& scene, TextureId id, Vec2 uv, Point3 p) {
                        (0.5f * (1.0f + std::sin(t.scale * p.z + 10.0f * perlin_turbulence(p))));
             case TextureKind::Image: {
                 const Vec2 st = t.map_uv(uv);
-                return t.factor * scene.images[t.image].bilinear(st.x, st.y);
+                const Color c = t.factor * scene.images[t.image].bilinear(st.x, st.y);
+                if (t.cutoff >= 0.0f) return Color(c.x >= t.cutoff ? 1.0f : 0.0f);
+                return c;
             }
         }
         return {};

@@ -56,16 +56,23 @@ void write_image(const std::filesystem::path& path,
 // 2^26, e.g. 8192 x 8192, which take 768 MiB as linear RGB floats.
 inline constexpr uint64_t kMaxImageTexels = uint64_t(1) << 26;
 
-// Reads any image OpenImageIO can, as linear RGB: 8- and 16-bit integer files are taken as
-// sRGB-encoded and decoded (unless `raw`: then as values in [0, 1], for data such as normal
-// maps, as Mitsuba's `raw` bitmaps); float files (EXR, HDR, PFM) as linear. Grey images are
-// expanded.
-ImageData read_image(const std::filesystem::path& path, bool raw = false);
+// What read_image takes from a file's channels.
+enum class ImageChannels {
+    Color,  // linear RGB: 8- and 16-bit integer files are taken as sRGB-encoded and decoded
+    Raw,    // RGB values as stored, in [0, 1] for integer files (data such as normal maps, as
+            // Mitsuba's `raw` bitmaps)
+    Alpha,  // the alpha channel (the last of 2 or 4) as stored, as grey; 1 where there is none
+};
+
+// Reads any image OpenImageIO can, as the channels ask; float files (EXR, HDR, PFM) are linear
+// as they are. Grey images are expanded.
+ImageData read_image(const std::filesystem::path& path,
+                     ImageChannels channels = ImageChannels::Color);
 // The same for an encoded image held in memory (`format`: "png", "jpg" or "jpeg"), e.g. one
 // embedded in a glTF file; `name` stands for it in messages.
 ImageData read_image_bytes(std::span<const unsigned char> bytes,
                            const std::string& format,
                            const std::string& name,
-                           bool raw = false);
+                           ImageChannels channels = ImageChannels::Color);
 
 }  // namespace wavetrace

@@ -26,6 +26,8 @@ struct Texture {
     TextureId odd = kNone;   // Checker: the texture of odd cells
     ImageId image = kNone;   // Image: index into Scene::images
     Color factor{1.0f};      // Image: multiplied into the texels (glTF's colour factors)
+    float cutoff = -1.0f;    // Image: if >= 0, the value becomes 1 where its first channel
+                             // reaches the cutoff and 0 elsewhere (glTF's alphaMode MASK)
     // Image, UvChecker: the affine map applied to the surface's (u, v) first,
     // (u', v') = (uv[0][0] u + uv[0][1] v + uv[0][2], uv[1][0] u + uv[1][1] v + uv[1][2]).
     float uv[2][3] = {{1.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}};
