@@ -3,18 +3,19 @@
 #include <algorithm>
 #include <cmath>
 
+#include "bsdfs/ggx-inl.h"
 #include "bsdfs/microfacet.h"
 #include "sampling/warp.h"
 #include "wavetrace/math/constants.h"
 
 namespace wavetrace {
+namespace lanes = HWY_NAMESPACE;
+using lanes::OneLane;
 namespace {
 
-// Schlick's (1 - |cos|)^5.
+// Schlick's (1 - cos)^5: the lane formula's (ggx-inl.h) with F0 = 0; every cosine here is >= 0.
 float schlick_weight(float cos_theta) {
-    const float x = std::clamp(1.0f - std::fabs(cos_theta), 0.0f, 1.0f);
-    const float x2 = x * x;
-    return x2 * x2 * x;
+    return lanes::Schlick<OneLane>(lanes::to_lanes(Color(0.0f)), cos_theta).x;
 }
 
 // The clearcoat's Fresnel at the view direction (0 without a clearcoat).
