@@ -13,6 +13,7 @@ packages=(
   libassimp-dev         # meshes: OBJ+MTL, PLY (ASCII and binary), glTF 2.0
   zlib1g-dev            # assimp's CMake config links libz.so (libassimp-dev does not depend on it); tests
   nlohmann-json3-dev    # scene files
+  libpugixml-dev        # Mitsuba 3 XML scene files
   libcli11-dev          # command line
   libfmt-dev            # formatting
   libgtest-dev libgmock-dev

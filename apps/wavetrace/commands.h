@@ -3,11 +3,26 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <map>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 namespace wavetrace::cli {
+
+// -D NAME=VALUE options as a map (a later NAME wins); throws std::invalid_argument for an
+// option without '=' or with an empty name.
+inline std::map<std::string, std::string> parse_defines(const std::vector<std::string>& defines) {
+    std::map<std::string, std::string> out;
+    for (const std::string& d : defines) {
+        const size_t eq = d.find('=');
+        if (eq == std::string::npos || eq == 0)
+            throw std::invalid_argument("-D " + d + ": expected NAME=VALUE");
+        out[d.substr(0, eq)] = d.substr(eq + 1);
+    }
+    return out;
+}
 
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitFailure = 1;   // the render or the write failed; compare: differs
@@ -16,6 +31,7 @@ inline constexpr int kExitBadInput = 2;  // bad scene, bad option: nothing was w
 struct RenderOptions {
     std::string scene;
     std::string camera;  // a glTF scene's camera, by name
+    std::vector<std::string> defines;  // a Mitsuba scene's parameters, NAME=VALUE
     std::string output;
     // Not given: the scene file's value (or the engine's default, for the wave size).
     std::optional<int> width, height, spp, max_depth;
@@ -51,12 +67,21 @@ struct MergeOptions {
     std::string film;
 };
 
+struct ConvertOptions {
+    std::string scene;
+    std::string output;
+    std::vector<std::string> defines;
+};
+
 struct InfoOptions {
     std::string scene;
+    std::vector<std::string> defines;
     int threads = 0;
 };
 
 void add_render_command(CLI::App& app, RenderOptions& options);
+void add_convert_command(CLI::App& app, ConvertOptions& options);
+int run_convert(const ConvertOptions& options);
 void add_info_command(CLI::App& app, InfoOptions& options);
 void add_compare_command(CLI::App& app, CompareOptions& options);
 void add_merge_command(CLI::App& app, MergeOptions& options);

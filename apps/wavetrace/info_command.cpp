@@ -11,7 +11,10 @@ namespace wavetrace::cli {
 
 void add_info_command(CLI::App& app, InfoOptions& o) {
     CLI::App* cmd = app.add_subcommand("info", "describe a scene: counts, bounds, BVH, memory");
-    cmd->add_option("scene", o.scene, "scene file (JSON, or glTF: .gltf, .glb)")->required();
+    cmd->add_option("scene", o.scene, "scene file (JSON, Mitsuba 3 XML, or glTF: .gltf, .glb)")
+        ->required();
+    cmd->add_option("-D,--define", o.defines,
+                    "Mitsuba scenes: NAME=VALUE for a $NAME parameter (overrides <default>)");
     cmd->add_option("--threads", o.threads, "worker threads for the BVH build (default: all)");
 }
 
@@ -37,7 +40,9 @@ int run_info(const InfoOptions& o) {
     if (o.threads > 0) threads.emplace(tbb::global_control::max_allowed_parallelism, o.threads);
     Scene scene;
     try {
-        scene = load_scene(o.scene);
+        LoadOptions load;
+        load.params = parse_defines(o.defines);
+        scene = load_scene(o.scene, load);
     } catch (const std::exception& e) {
         std::cerr << "wavetrace: error: " << e.what() << "\n";
         return kExitBadInput;

@@ -1,5 +1,5 @@
-// wavetrace: render a scene, describe it, merge renders of sample ranges, or compare a render
-// with a reference.
+// wavetrace: render a scene, describe it, merge renders of sample ranges, compare a render with
+// a reference, or convert a scene file into our JSON.
 #include <iostream>
 #include <new>
 
@@ -23,10 +23,12 @@ int main(int argc, char** argv) {
     InfoOptions info;
     CompareOptions compare;
     MergeOptions merge;
+    ConvertOptions convert;
     add_render_command(app, render);
     add_info_command(app, info);
     add_compare_command(app, compare);
     add_merge_command(app, merge);
+    add_convert_command(app, convert);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -37,6 +39,7 @@ int main(int argc, char** argv) {
         if (app.got_subcommand("render")) return run_render(render);
         if (app.got_subcommand("compare")) return run_compare(compare);
         if (app.got_subcommand("merge")) return run_merge(merge);
+        if (app.got_subcommand("convert")) return run_convert(convert);
         return run_info(info);
     } catch (const std::bad_alloc&) {
         // The render reports what it was allocating; this catches the rest (e.g. a scene's

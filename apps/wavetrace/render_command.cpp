@@ -22,7 +22,10 @@ namespace fs = std::filesystem;
 
 void add_render_command(CLI::App& app, RenderOptions& o) {
     CLI::App* cmd = app.add_subcommand("render", "render a scene file to an image");
-    cmd->add_option("scene", o.scene, "scene file (JSON, or glTF: .gltf, .glb)")->required();
+    cmd->add_option("scene", o.scene, "scene file (JSON, Mitsuba 3 XML, or glTF: .gltf, .glb)")
+        ->required();
+    cmd->add_option("-D,--define", o.defines,
+                    "Mitsuba scenes: NAME=VALUE for a $NAME parameter (overrides <default>)");
     cmd->add_option("-o,--output", o.output,
                     "output image: .png/.jpg (8-bit sRGB) or .exr/.hdr/.pfm (linear float); "
                     "default: <scene>.png");
@@ -365,6 +368,7 @@ int run_render(const RenderOptions& o) {
         }
         LoadOptions load;
         load.camera = o.camera;
+        load.params = parse_defines(o.defines);
         scene = load_scene(o.scene, load);
         if (auto problem = check_options(o, scene.render)) throw SceneError(*problem);
     } catch (const std::exception& e) {

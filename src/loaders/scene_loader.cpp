@@ -14,6 +14,7 @@
 #include "loaders/gltf_json.h"
 #include "loaders/json_reader.h"
 #include "loaders/mesh_file.h"
+#include "loaders/mitsuba_xml.h"
 #include "scene/named_metals.h"
 #include "wavetrace/image/image.h"
 #include "wavetrace/loaders/load_scene.h"
@@ -46,8 +47,13 @@ class Loader {
         if (!in) throw SceneError(file_ + ": cannot open scene file: " + std::strerror(errno));
         std::stringstream text;
         text << in.rdbuf();
-        json_ = json_reader::parse(text.str(), file_);
+        return build(json_reader::parse(text.str(), file_));
+    }
 
+    // A scene document already in memory (a Mitsuba XML file translated into our JSON); its
+    // file names are relative to path_'s folder.
+    Scene build(nlohmann::json document) {
+        json_ = std::move(document);
         Object root(Value(json_, file_, ""));
         root.only({"description", "render", "camera", "background", "lights", "materials", "media",
                    "objects"});
@@ -609,9 +615,27 @@ class Loader {
                 s = Transform::scale(k);
                 ++ops;
             }
+            if (auto x = o.optional("matrix")) {
+                // Row-major, 12 numbers (3 rows) or 16 (the last row 0 0 0 1).
+                if (!x->is_array() || (x->size() != 12 && x->size() != 16))
+                    x->fail("expected an array of 12 or 16 numbers (rows of a 3x4 or 4x4 matrix)");
+                double rows[3][4];
+                for (size_t k = 0; k < x->size(); ++k) {
+                    const Value e = (*x)[k];
+                    const double number = e.number();
+                    if (k < 12 && !(std::abs(number) <= kMaxCoordinate))
+                        e.fail("expected a number within +-1e7, got " + e.describe());
+                    if (k >= 12 && number != (k == 15 ? 1.0 : 0.0))
+                        e.fail("the last row of an affine matrix is 0 0 0 1, got " + e.describe());
+                    if (k < 12) rows[k / 4][k % 4] = number;
+                }
+                if (!Transform::affine(rows, &s)) x->fail("the matrix is singular");
+                ++ops;
+            }
             o.finish();
             if (ops != 1)
-                step.fail("expected exactly one of \"translate\", \"rotate\" or \"scale\"");
+                step.fail("expected exactly one of \"translate\", \"rotate\", \"scale\" or "
+                          "\"matrix\"");
             t = s * t;  // steps apply in the order listed
             if (!t.is_well_conditioned(kMaxCoordinate))
                 step.fail("the transform up to this step scales beyond [1e-7, 1e7] or overflows");
@@ -991,10 +1015,85 @@ class Loader {
 
 }  // namespace
 
+// A Mitsuba XML file: translated into our JSON, then built as any JSON scene. An error the
+// JSON loader finds in an object names the XML element it came from.
+Scene load_mitsuba(const fs::path& path, const LoadOptions& options) {
+    const std::string file = path.string();
+    if (!options.camera.empty())
+        throw SceneError(file + ": --camera chooses among a glTF file's cameras; a Mitsuba "
+                                "scene has one sensor");
+    auto warn = [&](const std::string& message) {
+        if (options.warn)
+            options.warn(message);
+        else
+            std::cerr << message << "\n";
+    };
+    MitsubaDocument doc = translate_mitsuba_xml(path, options.params, warn);
+    try {
+        return Loader(path, options).build(std::move(doc.scene));
+    } catch (const SceneError& e) {
+        std::string message = e.what();
+        const std::string prefix = file + ": /objects/";
+        if (message.rfind(prefix, 0) == 0) {
+            const size_t index = std::strtoul(message.c_str() + prefix.size(), nullptr, 10);
+            if (index < doc.object_places.size())
+                message = doc.object_places[index] + ": " + message.substr(file.size() + 2);
+        }
+        throw SceneError(message);
+    }
+}
+
+namespace {
+
+// Every "file" string of a scene document, from relative to `from` to relative to `to`.
+void rebase_files(nlohmann::json& j, const fs::path& from, const fs::path& to) {
+    if (j.is_object()) {
+        for (auto& [key, value] : j.items()) {
+            if (key == "file" && value.is_string()) {
+                fs::path p = value.get<std::string>();
+                if (p.is_relative()) {
+                    const fs::path target = fs::absolute(from / p).lexically_normal();
+                    const fs::path rel = target.lexically_relative(fs::absolute(to).lexically_normal());
+                    value = (rel.empty() ? target : rel).generic_string();
+                }
+            } else {
+                rebase_files(value, from, to);
+            }
+        }
+    } else if (j.is_array()) {
+        for (auto& value : j) rebase_files(value, from, to);
+    }
+}
+
+}  // namespace
+
+std::string convert_to_json(const fs::path& path, const fs::path& output_folder,
+                            const LoadOptions& options) {
+    std::string ext = path.extension().string();
+    for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+    if (ext == ".gltf" || ext == ".glb")
+        throw SceneError(path.string() + ": convert reads Mitsuba XML and JSON scenes; a glTF "
+                                         "file renders as it is");
+    load_scene(path, options);  // the same checks and errors as a render
+    nlohmann::json doc;
+    if (ext == ".xml") {
+        doc = translate_mitsuba_xml(path, options.params, [](const std::string&) {}).scene;
+        doc["description"] = "converted from " + path.filename().string() + " by wavetrace convert";
+    } else {
+        std::ifstream in(path, std::ios::binary);
+        std::stringstream text;
+        text << in.rdbuf();
+        doc = nlohmann::json::parse(text.str());
+    }
+    rebase_files(doc, path.parent_path(), output_folder);
+    return doc.dump(1) + "\n";
+}
+
 Scene load_scene(const fs::path& path, const LoadOptions& options) {
     std::string ext = path.extension().string();
     for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
     if (ext == ".gltf" || ext == ".glb") return Loader(path, options).load_gltf(ext == ".glb");
+    if (ext == ".xml") return load_mitsuba(path, options);
     return Loader(path, options).load();
 }
 

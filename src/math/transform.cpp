@@ -27,6 +27,40 @@ Transform Transform::scale(Vec3 s) {
     return Transform(m, inv);
 }
 
+bool Transform::affine(const double rows[3][4], Transform* out) {
+    const double (*a)[4] = rows;
+    // The inverse of L by its adjugate over its determinant; the translation's by -L^-1 t.
+    const double c00 = a[1][1] * a[2][2] - a[1][2] * a[2][1];
+    const double c01 = a[1][2] * a[2][0] - a[1][0] * a[2][2];
+    const double c02 = a[1][0] * a[2][1] - a[1][1] * a[2][0];
+    const double det = a[0][0] * c00 + a[0][1] * c01 + a[0][2] * c02;
+    double scale = 0.0;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) scale = std::max(scale, std::abs(a[i][j]));
+    if (!std::isfinite(det) || !(std::abs(det) > 1e-21 * scale * scale * scale)) return false;
+    double inv[3][3] = {
+        {c00, a[0][2] * a[2][1] - a[0][1] * a[2][2], a[0][1] * a[1][2] - a[0][2] * a[1][1]},
+        {c01, a[0][0] * a[2][2] - a[0][2] * a[2][0], a[0][2] * a[1][0] - a[0][0] * a[1][2]},
+        {c02, a[0][1] * a[2][0] - a[0][0] * a[2][1], a[0][0] * a[1][1] - a[0][1] * a[1][0]}};
+    Mat4 m = {{0, 0, 0, 0}, {0, 0, 0, 0}, {0, 0, 0, 0}, {0, 0, 0, 1}};
+    Mat4 mi = {{0, 0, 0, 0}, {0, 0, 0, 0}, {0, 0, 0, 0}, {0, 0, 0, 1}};
+    for (int i = 0; i < 3; ++i) {
+        double t = 0.0;
+        for (int j = 0; j < 3; ++j) {
+            inv[i][j] /= det;
+            t -= inv[i][j] * a[j][3];
+        }
+        for (int j = 0; j < 4; ++j) m[i][j] = static_cast<float>(a[i][j]);
+        for (int j = 0; j < 3; ++j) mi[i][j] = static_cast<float>(inv[i][j]);
+        mi[i][3] = static_cast<float>(t);
+    }
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 4; ++j)
+            if (!std::isfinite(m[i][j]) || !std::isfinite(mi[i][j])) return false;
+    *out = Transform(m, mi);
+    return true;
+}
+
 // Rodrigues' rotation formula; the inverse of a rotation is its transpose.
 Transform Transform::rotate(Vec3 axis, float degrees) {
     Vec3 a = normalize(axis);

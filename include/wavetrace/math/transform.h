@@ -14,6 +14,10 @@ class Transform {
     static Transform scale(Vec3 s);  // every component must be non-zero
     // Rotation by `degrees` about `axis` (any non-zero vector), right-handed.
     static Transform rotate(Vec3 axis, float degrees);
+    // The affine map p -> L p + t of a row-major 3x4 matrix [L | t], its inverse computed in
+    // double precision; false when L is singular (|det L| below 1e-21 of its scale cubed) or
+    // the result is not finite.
+    static bool affine(const double rows[3][4], Transform* out);
 
     // this applied after `first`: (a * b)(p) = a(b(p)).
     Transform operator*(const Transform& first) const;
