@@ -126,12 +126,13 @@ class Reader {
   private:
     struct Source {
         std::string name;
-        std::vector<size_t> line_starts;
+        std::vector<size_t> line_starts;  // the offsets of the newlines
+        // 1 + the newlines before `offset`.
         int line(ptrdiff_t offset) const {
-            return static_cast<int>(std::upper_bound(line_starts.begin(), line_starts.end(),
-                                                     static_cast<size_t>(std::max<ptrdiff_t>(
-                                                         offset, 0))) -
-                                    line_starts.begin());
+            const size_t at = static_cast<size_t>(std::max<ptrdiff_t>(offset, 0));
+            return 1 + static_cast<int>(std::lower_bound(line_starts.begin(), line_starts.end(),
+                                                         at) -
+                                        line_starts.begin());
         }
     };
 
@@ -291,31 +292,28 @@ class Reader {
     // 0.5/0.6 textures scaled and offset their uvs with floats; Mitsuba 3 has a to_uv
     // transform: translate by the offset, then scale.
     static void upgrade_uv_offsets(Element& e) {
-        double offset[2] = {0, 0}, scale[2] = {1, 1};
-        bool any = false;
+        auto is_offset = [](const Element& c) {
+            const std::string name = c.attr_or("name", "");
+            return c.tag == "float" &&
+                   (name == "uoffset" || name == "voffset" || name == "uscale" || name == "vscale");
+        };
+        if (std::none_of(e.children.begin(), e.children.end(), is_offset)) return;
+        double uv[4] = {0, 0, 1, 1};  // uoffset, voffset, uscale, vscale
         std::vector<Element> kept;
         for (Element& c : e.children) {
-            const std::string name = c.attr_or("name", "");
-            const int which = name == "uoffset" ? 0 : name == "voffset" ? 1
-                            : name == "uscale"  ? 2 : name == "vscale"  ? 3 : -1;
-            if (c.tag != "float" || which < 0) {
+            if (!is_offset(c)) {
                 kept.push_back(std::move(c));
                 continue;
             }
-            const double v = parse_number(c, c.attr_or("value", ""));
-            (which < 2 ? offset : scale)[which % 2] = v;
-            any = true;
+            const std::string name = c.attr_or("name", "");
+            const int which = name == "uoffset" ? 0 : name == "voffset" ? 1 : name == "uscale" ? 2 : 3;
+            uv[which] = parse_number(c, c.attr_or("value", ""));
         }
-        if (!any) return;
-        Element t;
-        t.tag = "transform";
-        t.place = e.place;
-        t.attrs = {{"name", "to_uv"}};
-        Element translate{"translate", {{"x", std::to_string(offset[0])},
-                                        {"y", std::to_string(offset[1])}}, {}, e.place};
-        Element sc{"scale", {{"x", std::to_string(scale[0])}, {"y", std::to_string(scale[1])}},
-                   {}, e.place};
-        t.children = {translate, sc};
+        Element t{"transform", {{"name", "to_uv"}}, {}, e.place};
+        t.children.push_back(Element{"translate", {{"x", std::to_string(uv[0])},
+                                                   {"y", std::to_string(uv[1])}}, {}, e.place});
+        t.children.push_back(Element{"scale", {{"x", std::to_string(uv[2])},
+                                               {"y", std::to_string(uv[3])}}, {}, e.place});
         kept.push_back(std::move(t));
         e.children = std::move(kept);
     }

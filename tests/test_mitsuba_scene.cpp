@@ -1,0 +1,300 @@
+// Mitsuba 3 XML scenes: each element lands in the Scene where Mitsuba's manual says it acts
+// (sensor, film, sampler, integrator, shapes, transforms, BSDFs, emitters, spectra), the
+// parameter, include and 0.6-upgrade machinery works, bad input names the file and line, what
+// cannot be represented is a warning with its place, and `convert` writes a JSON scene that
+// renders bit-identically.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cli_run.h"
+#include "loaders/spectrum_rgb.h"
+#include "temp_dir.h"
+#include "wavetrace/loaders/load_scene.h"
+#include "wavetrace/scene/scene.h"
+
+using namespace wavetrace;
+
+namespace {
+
+std::vector<std::string> warnings;
+LoadOptions collecting() {
+    warnings.clear();
+    LoadOptions o;
+    o.warn = [](const std::string& w) { warnings.push_back(w); };
+    return o;
+}
+bool warned(const std::string& part) {
+    for (const std::string& w : warnings)
+        if (w.find(part) != std::string::npos) return true;
+    return false;
+}
+
+double degrees(double radians) { return radians * 180.0 / 3.14159265358979323846; }
+
+// A scene around `body` with a camera, as Mitsuba 3 writes one.
+std::string scene(const std::string& body, const std::string& version = "3.0.0") {
+    return "<scene version=\"" + version + "\">\n" + body + "\n</scene>\n";
+}
+
+std::string error_of(const std::filesystem::path& path, const LoadOptions& options = {}) {
+    try {
+        load_scene(path, options);
+    } catch (const SceneError& e) {
+        return e.what();
+    }
+    return "(no error)";
+}
+
+std::string read(const std::filesystem::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+}  // namespace
+
+TEST(MitsubaScenes, SensorFilmSamplerAndIntegratorSetTheRender) {
+    TempDir dir;
+    auto path = dir.write("a.xml", scene(R"(
+  <integrator type="moment"><integrator type="path">
+    <integer name="max_depth" value="5"/></integrator></integrator>
+  <sensor type="perspective">
+    <float name="fov" value="60"/>
+    <transform name="to_world"><lookat origin="1, 2, 3" target="1, 2, 0" up="0, 1, 0"/></transform>
+    <film type="hdrfilm"><integer name="width" value="64"/><integer name="height" value="32"/>
+      <rfilter type="box"/></film>
+    <sampler type="independent"><integer name="sample_count" value="7"/></sampler>
+  </sensor>
+  <shape type="sphere"/>)"));
+    Scene s = load_scene(path, collecting());
+    EXPECT_EQ(s.render.width, 64);
+    EXPECT_EQ(s.render.height, 32);
+    EXPECT_EQ(s.render.spp, 7);
+    EXPECT_EQ(s.render.max_depth, 5);
+    EXPECT_NEAR(s.camera.look_from.x, 1.0f, 1e-6f);
+    EXPECT_NEAR(s.camera.look_from.z, 3.0f, 1e-6f);
+    EXPECT_LT(s.camera.look_at.z, 3.0f);  // looking down -z
+    // fov_axis x (the default) on a 2:1 film: the vertical field is narrower.
+    EXPECT_NEAR(s.camera.vfov, degrees(2 * std::atan(std::tan(30.0 * 3.14159265358979 / 180) / 2)),
+                1e-3);
+    EXPECT_TRUE(warnings.empty()) << warnings.front();
+}
+
+TEST(MitsubaScenes, DefaultFocalLengthKeepsTheDiagonalOf35mmFilm) {
+    TempDir dir;
+    auto path = dir.write("a.xml", scene(R"(<sensor type="perspective">
+    <film type="hdrfilm"><integer name="width" value="48"/><integer name="height" value="48"/>
+    <rfilter type="box"/></film></sensor><shape type="sphere"/>)"));
+    Scene s = load_scene(path, collecting());
+    // 50 mm on a 36 x 24 mm frame: 46.79 degrees on the diagonal, 34.02 vertically on a square.
+    EXPECT_NEAR(s.camera.vfov, 34.0221, 1e-3);
+    EXPECT_EQ(s.render.max_depth, kMaxDepth);  // no integrator: Mitsuba's path, unbounded
+}
+
+TEST(MitsubaScenes, ShapesTransformsAndMaterialsTranslate) {
+    TempDir dir;
+    auto path = dir.write("a.xml", scene(R"(
+  <bsdf type="diffuse" id="red"><rgb name="reflectance" value="0.8, 0.1, 0.1"/></bsdf>
+  <shape type="sphere">
+    <point name="center" x="1" y="0" z="0"/><float name="radius" value="0.5"/>
+    <ref id="red"/>
+  </shape>
+  <shape type="sphere">
+    <transform name="to_world"><matrix value="2 0 0 3  0 2 0 0  0 0 2 0  0 0 0 1"/></transform>
+    <bsdf type="twosided"><bsdf type="roughconductor"><string name="material" value="Au"/>
+      <float name="alpha" value="0.2"/></bsdf></bsdf>
+  </shape>
+  <shape type="rectangle">
+    <transform name="to_world"><scale value="2"/><translate z="-1"/></transform>
+    <bsdf type="roughplastic"><rgb name="diffuse_reflectance" value="0.3"/></bsdf>
+  </shape>)"));
+    Scene s = load_scene(path, collecting());
+    ASSERT_EQ(s.spheres.size(), 2u);
+    EXPECT_NEAR(s.spheres[0].center.x, 1.0f, 1e-6f);
+    EXPECT_NEAR(s.spheres[0].radius, 0.5f, 1e-6f);
+    EXPECT_NEAR(s.spheres[1].center.x, 3.0f, 1e-6f);  // the matrix's translation
+    EXPECT_NEAR(s.spheres[1].radius, 2.0f, 1e-6f);
+    const Material& red = s.materials[s.spheres[0].material];
+    EXPECT_EQ(red.kind, MaterialKind::Lambertian);
+    EXPECT_TRUE(red.one_sided);  // Mitsuba's diffuse is black from behind
+    EXPECT_NEAR(s.textures[red.albedo].color.x, 0.8f, 1e-6f);
+    const Material& gold = s.materials[s.spheres[1].material];
+    EXPECT_EQ(gold.kind, MaterialKind::Conductor);
+    EXPECT_FALSE(gold.one_sided);  // twosided
+    EXPECT_EQ(gold.distribution, Microfacet::Beckmann);  // roughconductor's default
+    EXPECT_NEAR(gold.alpha_u, 0.2f, 1e-6f);
+    ASSERT_EQ(s.quads.size(), 1u);
+    EXPECT_NEAR(s.quads[0].q.x, -2.0f, 1e-6f);
+    EXPECT_NEAR(s.quads[0].q.z, -1.0f, 1e-6f);
+    const Material& plastic = s.materials[s.quads[0].material];
+    EXPECT_EQ(plastic.kind, MaterialKind::Plastic);
+    EXPECT_NEAR(plastic.alpha_u, 0.1f, 1e-6f);  // roughplastic's defaults: Beckmann, 0.1
+    EXPECT_EQ(plastic.distribution, Microfacet::Beckmann);
+    EXPECT_NEAR(plastic.ior, 1.49f / 1.000277f, 1e-5f);  // polypropylene in air
+}
+
+TEST(MitsubaScenes, EmittersBecomeLightsAndBackgrounds) {
+    TempDir dir;
+    auto path = dir.write("a.xml", scene(R"(
+  <emitter type="point"><point name="position" x="0" y="4" z="0"/>
+    <rgb name="intensity" value="10"/></emitter>
+  <emitter type="spot"><transform name="to_world"><lookat origin="0,5,0" target="0,0,0"/></transform>
+    <float name="cutoff_angle" value="30"/><rgb name="intensity" value="2"/></emitter>
+  <emitter type="constant"><spectrum name="radiance" value="400:1, 700:1"/></emitter>
+  <shape type="sphere"><emitter type="area"><rgb name="radiance" value="5, 4, 3"/></emitter></shape>)"));
+    Scene s = load_scene(path, collecting());
+    ASSERT_EQ(s.lights.size(), 2u);
+    EXPECT_EQ(s.lights[0].kind, Light::Kind::Point);
+    EXPECT_NEAR(s.lights[0].intensity.y, 10.0f, 1e-6f);
+    EXPECT_EQ(s.lights[1].kind, Light::Kind::Spot);
+    EXPECT_NEAR(s.lights[1].direction.y, -1.0f, 1e-6f);
+    EXPECT_NEAR(s.lights[1].cutoff_degrees, 30.0f, 1e-5f);
+    EXPECT_NEAR(s.lights[1].falloff_start_degrees, 22.5f, 1e-5f);  // beam_width: 3/4 cutoff
+    // A flat spectrum of 1 seen by sRGB: not quite white (sRGB's white is D65).
+    const Color flat = spectrum_to_rgb({{400, 1}, {700, 1}}, false);
+    EXPECT_EQ(s.background.kind, Background::Kind::Constant);
+    EXPECT_NEAR(s.background.radiance.x, flat.x, 1e-6f);
+    EXPECT_NEAR(s.background.radiance.z, flat.z, 1e-6f);
+    const Material& lamp = s.materials[s.spheres[0].material];
+    EXPECT_EQ(lamp.kind, MaterialKind::DiffuseLight);
+}
+
+TEST(MitsubaScenes, SpectraBecomeRgbAsMitsubasRgbVariantsSeeThem) {
+    // tools/spectrum-to-rgb.py "400:0, 500:8, 600:15.6, 700:18.4" (the same computation in
+    // Python) prints 20.690169 10.843802 2.768386.
+    const Color rgb = spectrum_to_rgb({{400, 0}, {500, 8}, {600, 15.6}, {700, 18.4}}, false);
+    EXPECT_NEAR(rgb.x, 20.690169f, 2e-5f);
+    EXPECT_NEAR(rgb.y, 10.843802f, 2e-5f);
+    EXPECT_NEAR(rgb.z, 2.768386f, 2e-5f);
+    // A reflectance is clamped to [0, 1] per channel.
+    const Color bounded = spectrum_to_rgb({{400, 0}, {500, 8}, {600, 15.6}, {700, 18.4}}, true);
+    EXPECT_EQ(bounded.x, 1.0f);
+    EXPECT_EQ(bounded.y, 1.0f);
+    // A hotter black body is bluer.
+    std::vector<std::pair<double, double>> cool, hot;
+    for (int nm = 360; nm <= 830; nm += 5) {
+        cool.emplace_back(nm, planck(nm, 3000));
+        hot.emplace_back(nm, planck(nm, 9000));
+    }
+    const Color c = spectrum_to_rgb(cool, false), h = spectrum_to_rgb(hot, false);
+    EXPECT_GT(c.x / c.z, h.x / h.z);
+}
+
+TEST(MitsubaScenes, ParametersComeFromDefaultsAndDefines) {
+    TempDir dir;
+    auto path = dir.write("a.xml", scene(R"(<default name="r" value="0.25"/>
+  <shape type="sphere"><float name="radius" value="$r"/></shape>)"));
+    EXPECT_NEAR(load_scene(path, collecting()).spheres[0].radius, 0.25f, 1e-7f);
+    LoadOptions o = collecting();
+    o.params["r"] = "3";
+    EXPECT_NEAR(load_scene(path, o).spheres[0].radius, 3.0f, 1e-7f);
+
+    auto undefined = dir.write("b.xml", scene(R"(<shape type="sphere">
+  <float name="radius" value="$size"/></shape>)"));
+    const std::string e = error_of(undefined);
+    EXPECT_NE(e.find("b.xml:3"), std::string::npos) << e;
+    EXPECT_NE(e.find("undefined parameter"), std::string::npos) << e;
+}
+
+TEST(MitsubaScenes, IncludesFindFilesThroughPathsAndCyclesAreRefused) {
+    TempDir dir;
+    dir.write("common/parts/ball.xml", scene(R"(<shape type="sphere"/>)"));
+    auto main = dir.write("scenes/a/main.xml", scene(R"(<path value="../../common"/>
+  <include filename="parts/ball.xml"/>)"));
+    EXPECT_EQ(load_scene(main, collecting()).spheres.size(), 1u);
+
+    dir.write("x.xml", scene(R"(<include filename="y.xml"/>)"));
+    dir.write("y.xml", scene(R"(<include filename="x.xml"/>)"));
+    const std::string e = error_of(dir.path() / "x.xml");
+    EXPECT_NE(e.find("include cycle"), std::string::npos) << e;
+    EXPECT_NE(e.find("y.xml:2"), std::string::npos) << e;
+}
+
+TEST(MitsubaScenes, VersionZeroSixFilesAreUpgradedAsMitsuba3Does) {
+    TempDir dir;
+    auto old_file = dir.write("old.xml", scene(R"(
+  <integrator type="path"><integer name="maxDepth" value="3"/></integrator>
+  <sensor type="perspective"><float name="fov" value="40"/><string name="fovAxis" value="y"/>
+    <transform name="toWorld"><lookAt origin="0,0,5" target="0,0,0" up="0,1,0"/></transform>
+    <sampler type="independent"><integer name="sampleCount" value="9"/></sampler></sensor>
+  <shape type="sphere"><bsdf type="dielectric"><float name="intIOR" value="1.7"/>
+    <float name="extIOR" value="1.0"/></bsdf></shape>
+  <shape type="sphere"><point name="center" x="3" y="0" z="0"/>
+    <bsdf type="diffuse"><rgb name="diffuseReflectance" value="0.4"/></bsdf></shape>)",
+                                               "0.6.0"));
+    Scene s = load_scene(old_file, collecting());
+    EXPECT_TRUE(warnings.empty()) << warnings.front();
+    EXPECT_EQ(s.render.max_depth, 3);
+    EXPECT_EQ(s.render.spp, 9);
+    EXPECT_NEAR(s.camera.vfov, 40.0f, 1e-4f);
+    EXPECT_NEAR(s.materials[s.spheres[0].material].ior, 1.7f, 1e-6f);
+    EXPECT_NEAR(s.textures[s.materials[s.spheres[1].material].albedo].color.y, 0.4f, 1e-6f);
+}
+
+TEST(MitsubaScenes, BadInputNamesTheFileAndLine) {
+    TempDir dir;
+    struct Case {
+        std::string body, expect;
+    };
+    const std::vector<Case> cases = {
+        {"<shape type=\"sphere\">\n<float name=\"radius\" value=\"1.2.3\"/></shape>", "a.xml:3"},
+        {"<shape type=\"sphere\">\n<ref id=\"nothing\"/></shape>", "no element with id"},
+        {"<bsdf type=\"diffuse\" id=\"x\"/>\n<bsdf type=\"diffuse\" id=\"x\"/>", "duplicate id"},
+        {"<shape type=\"sphere\"><bsdf type=\"diffuse\">\n<rgb name=\"reflectance\" value=\"1 2\"/>"
+         "</bsdf></shape>", "a.xml:3"},
+        {"<shape type=\"sphere\">\n<transform name=\"to_world\"><shear/></transform></shape>",
+         "a.xml:3"},
+        {"<shape type=\"sphere\"><float name=\"radius\" value=\"1\">", "a.xml"},
+        // A reflectance above 1, found by the JSON loader: the material names its element.
+        {"<shape type=\"sphere\"><bsdf type=\"diffuse\">\n<rgb name=\"reflectance\" value=\"2\"/>"
+         "</bsdf></shape>", "diffuse at a.xml:2"},
+    };
+    for (const Case& c : cases) {
+        auto path = dir.write("a.xml", scene(c.body));
+        const std::string e = error_of(path, collecting());
+        EXPECT_NE(e.find(c.expect), std::string::npos) << c.body << "\n -> " << e;
+    }
+    auto doctype = dir.write("d.xml", "<!DOCTYPE scene [<!ENTITY a \"aaaa\">]>\n" +
+                                          scene("<shape type=\"sphere\"/>"));
+    EXPECT_NE(error_of(doctype).find("DOCTYPE"), std::string::npos);
+    auto versionless = dir.write("v.xml", "<scene><shape type=\"sphere\"/></scene>");
+    EXPECT_NE(error_of(versionless).find("version"), std::string::npos);
+}
+
+TEST(MitsubaScenes, WhatCannotBeRepresentedIsAWarningWithItsPlace) {
+    TempDir dir;
+    auto path = dir.write("a.xml", scene(R"(<shape type="sphere"/>
+  <shape type="disk"/>
+  <shape type="sphere"><bsdf type="hair"/></shape>
+  <shape type="sphere"><float name="wobble" value="1"/></shape>)"));
+    Scene s = load_scene(path, collecting());
+    EXPECT_EQ(s.spheres.size(), 3u);
+    EXPECT_TRUE(warned("a.xml:3: warning: shape \"disk\" is not supported")) << warnings.size();
+    EXPECT_TRUE(warned("a.xml:4: warning: bsdf \"hair\""));
+    EXPECT_TRUE(warned("a.xml:5: warning: shape \"sphere\": property \"wobble\""));
+}
+
+TEST(MitsubaScenes, ConvertWritesJsonThatRendersBitIdentically) {
+    TempDir dir;
+    const std::filesystem::path xml = std::filesystem::path(WAVETRACE_REFERENCE_DIR) /
+                                      "mitsuba3/tests/scenes/instancing/test_instancing_path.xml";
+    const std::string json = (dir.path() / "out" / "instancing.json").string();
+    std::filesystem::create_directories(dir.path() / "out");
+    CliResult c = run_cli(dir, "convert '" + xml.string() + "' -o '" + json + "'");
+    ASSERT_EQ(c.code, 0) << c.err;
+    // PFM: the pixels alone (an EXR's header names the scene file and the time).
+    const std::string from_xml = (dir.path() / "xml.pfm").string();
+    const std::string from_json = (dir.path() / "json.pfm").string();
+    for (const auto& [scene_file, out] : {std::pair{xml.string(), from_xml}, {json, from_json}}) {
+        CliResult r = run_cli(dir, "render '" + scene_file + "' --spp 4 --seed 3 -o '" + out + "'");
+        ASSERT_EQ(r.code, 0) << r.err;
+    }
+    EXPECT_EQ(read(from_xml), read(from_json));
+    EXPECT_NE(read(json).find("\"group\""), std::string::npos);  // the instances
+}
