@@ -19,7 +19,11 @@ export LSAN_OPTIONS="suppressions=$root/tests/fuzz/lsan.supp"
 mkdir -p "$build/fuzz-artifacts"
 common=(-seed=1 -timeout=10 -rss_limit_mb=4096 -print_final_stats=1
         "-artifact_prefix=$build/fuzz-artifacts/")
-for target in scene mesh film; do
+# One target per process, all side by side (each is single-threaded); each reports to its own
+# file, printed in order once all are done.
+fuzz_one() {
+  # `work` is global: the EXIT trap of this function's subshell still needs it.
+  local target=$1 log start runs cov before
   work=$(mktemp -d)
   trap 'rm -rf "$work"' EXIT
   log="$build/fuzz-$target.log"
@@ -31,9 +35,9 @@ for target in scene mesh film; do
   fi
   start=$(date +%s)
   if ! "$build/bin/fuzz_$target" "${common[@]}" "${args[@]}" >"$log" 2>&1; then
-    echo "fuzz_$target: FAILED (log: $log); the input is in $build/fuzz-artifacts/:" >&2
-    grep -E "ERROR|SUMMARY|runtime error|assert|Test unit written" "$log" | head -20 >&2
-    exit 1
+    echo "fuzz_$target: FAILED (log: $log); the input is in $build/fuzz-artifacts/:"
+    grep -E "ERROR|SUMMARY|runtime error|assert|Test unit written" "$log" | head -20
+    return 1
   fi
   runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log")
   cov=$(grep -oE 'cov: [0-9]+' "$log" | tail -1)
@@ -45,6 +49,16 @@ for target in scene mesh film; do
       >>"$log" 2>&1
     echo "fuzz_$target: corpus $before -> $(ls "$root/tests/fuzz/corpus/$target" | wc -l) inputs"
   fi
-  rm -rf "$work"
-  trap - EXIT
+}
+targets=(scene xml mesh film)
+pids=()
+for target in "${targets[@]}"; do
+  ( fuzz_one "$target" ) >"$build/fuzz-$target.summary" 2>&1 &
+  pids+=($!)
 done
+failed=0
+for i in "${!targets[@]}"; do
+  wait "${pids[$i]}" || failed=1
+  cat "$build/fuzz-${targets[$i]}.summary"
+done
+exit $failed
