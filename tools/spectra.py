@@ -5,10 +5,11 @@ interpolated) at 1000 evenly spaced wavelengths from 360 to 830 nm, divided by t
 y-bar (106.856895), and taken from XYZ to linear sRGB (IEC 61966-2-1 matrix); negative channels
 are set to 0, and reflectances (bounded) clamped to 1. Emission spectra are not weighted by an
 illuminant (Mitsuba's are not either). Mitsuba 3 as of 2026 weights reflectance spectra by D65
-first; this does not (the reflectance spectrum of tests/reference-images/mitsuba-sphere-grid,
+first; this does not (the reflectance spectrum of tests/reference-images/mitsuba3's bsdf_spheres,
 on its area light, never shows in those images, so they cannot tell the two apart).
 
-Used by tools/named-metals.py and tools/spectrum-to-rgb.py."""
+Used by tools/named-metals.py and tools/spectrum-to-rgb.py; src/loaders/spectrum_rgb.cpp is
+the same computation in C++, for Mitsuba scene files."""
 
 # CIE 1931 2-degree standard observer, 360 .. 830 nm in 5 nm steps (CIE 015:2004, table T.4).
 CIE_X = [

@@ -532,6 +532,16 @@ class Translator {
                 fail(*c, type_() + ": " + name + " should be a <float>");
             return parse_number(*c, c->attr_or("value", ""));
         }
+        // An integer property within [lo, hi] (the film's size, a sample count, a depth).
+        int integer(const std::string& name, int fallback, int lo, int hi) {
+            const Element* c = get(name);
+            if (!c) return fallback;
+            const double v = number(name, fallback);
+            if (!(v >= lo && v <= hi) || v != std::floor(v))
+                fail(*c, type_() + ": " + name + " must be an integer in [" + std::to_string(lo) +
+                             ", " + std::to_string(hi) + "], got " + c->attr_or("value", ""));
+            return static_cast<int>(v);
+        }
         bool boolean(const std::string& name, bool fallback) {
             const Element* c = get(name);
             if (!c) return fallback;
@@ -1099,8 +1109,8 @@ class Translator {
         int width = 768, height = 576;
         for (const Element* film : p.nested("film")) {
             Props f(*film, *this);
-            width = static_cast<int>(f.number("width", 768));
-            height = static_cast<int>(f.number("height", 576));
+            width = f.integer("width", 768, 1, kMaxImageSide);
+            height = f.integer("height", 576, 1, kMaxImageSide);
             for (const char* crop : {"crop_width", "crop_height", "crop_offset_x", "crop_offset_y"})
                 if (f.get(crop)) warn(*film, std::string("film: ") + crop + " is not supported; the whole film is rendered");
             for (const Element* filter : f.nested("rfilter"))
@@ -1118,7 +1128,7 @@ class Translator {
             const std::string st = sampler->attr_or("type", "");
             if (st != "independent")
                 warn(*sampler, "sampler \"" + st + "\": wavetrace draws independent samples");
-            out_["render"]["spp"] = static_cast<int>(s.number("sample_count", 4));
+            out_["render"]["spp"] = s.integer("sample_count", 4, 1, kMaxSpp);
             s.finish({"seed", "jitter", "scramble_seed"});
         }
         out_["render"]["width"] = width;
@@ -1189,13 +1199,14 @@ class Translator {
             type = inner->attr_or("type", "");
         }
         Props p(*inner, *this);
-        int depth = static_cast<int>(p.number("max_depth", -1));
+        int depth = p.integer("max_depth", -1, -1, 1 << 30);
         if (type == "direct") {
             warn(*inner, "integrator \"direct\" is rendered as path tracing of max_depth 2");
             depth = 2;
         } else if (type != "path" && type != "volpath" && type != "volpathmis") {
             warn(*inner, "integrator \"" + type + "\": wavetrace path traces instead");
         }
+        if (depth == 0) warn(*inner, "integrator: max_depth 0 (a black image) is rendered as 1");
         out_["render"]["max_depth"] = depth < 0 ? kMaxDepth : std::max(1, std::min(depth, kMaxDepth));
         if (p.number("rr_depth", 5) != 5)
             warn(*inner, "integrator: rr_depth is not supported; wavetrace's roulette starts at "
