@@ -165,6 +165,26 @@ TEST(MitsubaScenes, EmittersBecomeLightsAndBackgrounds) {
     EXPECT_EQ(lamp.kind, MaterialKind::DiffuseLight);
 }
 
+TEST(MitsubaScenes, MediaFillShapesThatNameThemInterior) {
+    TempDir dir;
+    // Mitsuba's participating_media tests declare a medium once and refer to it by name.
+    auto path = dir.write("a.xml", scene(R"(
+  <medium id="fog" type="homogeneous"><float name="scale" value="0.5"/>
+    <rgb name="sigma_t" value="2, 2, 2"/><rgb name="albedo" value="0.9, 0.7, 0.9"/></medium>
+  <shape type="sphere"><bsdf type="dielectric"/><ref id="fog" name="interior"/></shape>
+  <shape type="sphere"><point name="center" x="3" y="0" z="0"/>
+    <bsdf type="null"/><ref id="fog" name="interior"/></shape>)"));
+    Scene s = load_scene(path, collecting());
+    ASSERT_EQ(s.media.size(), 1u);  // one medium, named twice
+    EXPECT_NEAR(s.media[0].density, 1.0f, 1e-6f);  // sigma_t x scale
+    ASSERT_EQ(s.spheres.size(), 2u);
+    EXPECT_EQ(s.prim_interior(PrimRef::make(PrimKind::Sphere, 0)), 0u);
+    EXPECT_EQ(s.prim_interior(PrimRef::make(PrimKind::Sphere, 1)), 0u);
+    EXPECT_EQ(s.materials[s.spheres[0].material].kind, MaterialKind::Dielectric);
+    EXPECT_TRUE(s.is_boundary(s.spheres[1].material));  // null BSDF: a boundary, no surface
+    EXPECT_FALSE(warned("medium"));
+}
+
 TEST(MitsubaScenes, SpectraBecomeRgbAsMitsubasRgbVariantsSeeThem) {
     // tools/spectrum-to-rgb.py "400:0, 500:8, 600:15.6, 700:18.4" (the same computation in
     // Python) prints 20.690169 10.843802 2.768386.

@@ -930,7 +930,10 @@ class Translator {
 
         const std::vector<const Element*> bsdfs = p.nested("bsdf");
         const std::vector<const Element*> emitters = p.nested("emitter");
-        for (const Element* m : p.nested("medium")) medium(*m, o);
+        // A medium's role is the name on the element in the shape (a <ref> or the medium).
+        for (const Element& c : e.children)
+            if (deref(c)->tag == "medium") medium(*deref(c), c.attr_or("name", ""), o);
+        p.nested("medium");  // read
         const Element* b = bsdfs.empty() ? nullptr : bsdfs.front();
         if (bsdfs.size() > 1) warn(*bsdfs[1], "a second <bsdf> in a shape is ignored");
         if (!emitters.empty()) {
@@ -986,8 +989,7 @@ class Translator {
     static json to_json_color(Color c) { return json::array({c.x, c.y, c.z}); }
 
     // A homogeneous medium inside a shape: our media are grey in extinction and isotropic.
-    void medium(const Element& e, json& o) {
-        const std::string role = e.attr_or("name", "");
+    void medium(const Element& e, const std::string& role, json& o) {
         if (role != "interior") {
             warn(e, "medium \"" + role + "\": only interior media are supported; ignored");
             return;
