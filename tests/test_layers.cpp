@@ -25,6 +25,7 @@ const std::vector<std::string> kLayers = {
     "scene",     // the scene model and its builders
     "image",     // images: OpenImageIO in and out, comparisons
     "film",      // per-pixel sums and film files
+    "formats",   // file formats read strictly: JSON, Mitsuba XML (into our JSON), glTF's JSON
     "loaders",   // scene files and mesh files into a Scene
     "accel",     // the BVH: build, wide layout, traversal, primitive tests
     "shading",   // what both engines share: surfaces, lights, MIS, media, path vertices

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "cli_run.h"
-#include "loaders/spectrum_rgb.h"
+#include "formats/spectrum_rgb.h"
 #include "temp_dir.h"
 #include "wavetrace/loaders/load_scene.h"
 #include "wavetrace/scene/scene.h"

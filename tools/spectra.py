@@ -8,7 +8,7 @@ illuminant (Mitsuba's are not either). Mitsuba 3 as of 2026 weights reflectance 
 first; this does not (the reflectance spectrum of tests/reference-images/mitsuba3's bsdf_spheres,
 on its area light, never shows in those images, so they cannot tell the two apart).
 
-Used by tools/named-metals.py and tools/spectrum-to-rgb.py; src/loaders/spectrum_rgb.cpp is
+Used by tools/named-metals.py and tools/spectrum-to-rgb.py; src/formats/spectrum_rgb.cpp is
 the same computation in C++, for Mitsuba scene files."""
 
 # CIE 1931 2-degree standard observer, 360 .. 830 nm in 5 nm steps (CIE 015:2004, table T.4).

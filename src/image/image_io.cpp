@@ -158,7 +158,7 @@ ImageData read_opened(OIIO::ImageInput& in, const std::string& name, ImageChanne
     std::vector<float> data(static_cast<size_t>(spec.width) * spec.height * channels);
     if (!in.read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, data.data()))
         throw ImageError(name + ": cannot read image: " + in.geterror());
-    const bool decode = wanted == ImageChannels::Color &&
+    const bool decode = wanted == ImageChannels::Linear &&
                         spec.format.basetype != OIIO::TypeDesc::FLOAT &&
                         spec.format.basetype != OIIO::TypeDesc::HALF &&
                         spec.format.basetype != OIIO::TypeDesc::DOUBLE;

@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "files/input_file.h"
-#include "loaders/gltf_json.h"
+#include "formats/gltf_json.h"
 #include "loaders/mesh_guards.h"
 
 namespace wavetrace {

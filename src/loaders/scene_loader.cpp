@@ -11,10 +11,10 @@
 #include <sstream>
 
 #include "files/input_file.h"
-#include "loaders/gltf_json.h"
-#include "loaders/json_reader.h"
+#include "formats/gltf_json.h"
+#include "formats/json_reader.h"
 #include "loaders/mesh_file.h"
-#include "loaders/mitsuba_xml.h"
+#include "formats/mitsuba_xml.h"
 #include "scene/named_metals.h"
 #include "wavetrace/image/image.h"
 #include "wavetrace/loaders/load_scene.h"
@@ -258,7 +258,7 @@ class Loader {
         std::error_code ec;
         if (!fs::exists(p, ec)) file.fail("cannot open image '" + p.string() + "': no such file");
         try {
-            return read_image(p, raw ? ImageChannels::Raw : ImageChannels::Color);
+            return read_image(p, raw ? ImageChannels::Raw : ImageChannels::Linear);
         } catch (const ImageError& e) {
             file.fail(e.what());
         }
@@ -729,7 +729,7 @@ class Loader {
         } else {
             m.kind = MaterialKind::Lambertian;
             if (!fm.map_kd.empty()) {
-                m.albedo = file_texture(mesh_path, fm.map_kd, "map_Kd", ImageChannels::Color,
+                m.albedo = file_texture(mesh_path, fm.map_kd, "map_Kd", ImageChannels::Linear,
                                         Color(1.0f), where, who);
             } else {
                 if (!positive(fm.kd)) warn(who + ": no Kd, Ks or Ke; rendered black");
@@ -812,7 +812,7 @@ class Loader {
         m.name = fm.name;
         m.kind = MaterialKind::MetallicRoughness;
         const Color base = min(fm.kd, Color(1.0f));
-        m.albedo = texture(fm.map_kd, "baseColorTexture", ImageChannels::Color, base);
+        m.albedo = texture(fm.map_kd, "baseColorTexture", ImageChannels::Linear, base);
         if (m.albedo == kNone) m.albedo = scene_.add_solid(base);
         m.metallic = unit(fm.metallic, "metallicFactor");
         m.roughness = unit(fm.roughness, "roughnessFactor");
@@ -823,7 +823,7 @@ class Loader {
         m.clearcoat = unit(fm.clearcoat, "clearcoatFactor");
         m.clearcoat_roughness = unit(fm.clearcoat_roughness, "clearcoatRoughnessFactor");
         m.normal_map = texture(fm.map_normal, "normalTexture", ImageChannels::Raw, Color(1.0f));
-        m.emission = texture(fm.map_emissive, "emissiveTexture", ImageChannels::Color, fm.ke);
+        m.emission = texture(fm.map_emissive, "emissiveTexture", ImageChannels::Linear, fm.ke);
         if (m.emission == kNone && max_component(fm.ke) > 0.0f) m.emission = scene_.add_solid(fm.ke);
         m.two_sided = fm.double_sided;  // a double-sided surface emits from both sides
         // Alpha: the base colour's alpha (its factor's times its texture's), as coverage. MASK

@@ -9,7 +9,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "loaders/gltf_json.h"
+#include "formats/gltf_json.h"
 #include "loaders/mesh_file.h"
 
 namespace fs = std::filesystem;

@@ -58,21 +58,21 @@ inline constexpr uint64_t kMaxImageTexels = uint64_t(1) << 26;
 
 // What read_image takes from a file's channels.
 enum class ImageChannels {
-    Color,  // linear RGB: 8- and 16-bit integer files are taken as sRGB-encoded and decoded
-    Raw,    // RGB values as stored, in [0, 1] for integer files (data such as normal maps, as
-            // Mitsuba's `raw` bitmaps)
-    Alpha,  // the alpha channel (the last of 2 or 4) as stored, as grey; 1 where there is none
+    Linear,  // linear RGB: 8- and 16-bit integer files are taken as sRGB-encoded and decoded
+    Raw,     // RGB values as stored, in [0, 1] for integer files (data such as normal maps, as
+             // Mitsuba's `raw` bitmaps)
+    Alpha,   // the alpha channel (the last of 2 or 4) as stored, as grey; 1 where there is none
 };
 
 // Reads any image OpenImageIO can, as the channels ask; float files (EXR, HDR, PFM) are linear
 // as they are. Grey images are expanded.
 ImageData read_image(const std::filesystem::path& path,
-                     ImageChannels channels = ImageChannels::Color);
+                     ImageChannels channels = ImageChannels::Linear);
 // The same for an encoded image held in memory (`format`: "png", "jpg" or "jpeg"), e.g. one
 // embedded in a glTF file; `name` stands for it in messages.
 ImageData read_image_bytes(std::span<const unsigned char> bytes,
                            const std::string& format,
                            const std::string& name,
-                           ImageChannels channels = ImageChannels::Color);
+                           ImageChannels channels = ImageChannels::Linear);
 
 }  // namespace wavetrace

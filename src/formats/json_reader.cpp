@@ -1,4 +1,4 @@
-#include "loaders/json_reader.h"
+#include "formats/json_reader.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "loaders/spectrum_rgb.h"
+#include "formats/spectrum_rgb.h"
 
 #include <algorithm>
 #include <cmath>

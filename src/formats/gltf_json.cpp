@@ -1,4 +1,4 @@
-#include "loaders/gltf_json.h"
+#include "formats/gltf_json.h"
 
 #include <cmath>
 #include <cstdint>
@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "loaders/json_reader.h"
+#include "formats/json_reader.h"
 
 namespace wavetrace {
 namespace {

@@ -3,7 +3,7 @@
 // own parser upgrades them), then the tree is translated plugin by plugin. Mitsuba's scene
 // format and plugin parameters are documented in its manual ("Scene file format", "Plugin
 // reference"); every default below is the manual's.
-#include "loaders/mitsuba_xml.h"
+#include "formats/mitsuba_xml.h"
 
 #include <algorithm>
 #include <array>
@@ -15,7 +15,7 @@
 #include <sstream>
 
 #include "files/input_file.h"
-#include "loaders/spectrum_rgb.h"
+#include "formats/spectrum_rgb.h"
 #include "wavetrace/scene/scene.h"
 
 namespace wavetrace {
