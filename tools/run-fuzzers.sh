@@ -3,7 +3,8 @@
 #
 #   tools/run-fuzzers.sh BUILD_DIR --runs N      what CI runs: N executions per target from a
 #                                                fixed seed, on a copy of the committed corpus
-#                                                (the same inputs every time)
+#                                                (the same inputs every time); FUZZ_XML_RUNS in
+#                                                the environment sets fuzz_xml's own count
 #   tools/run-fuzzers.sh BUILD_DIR --seconds S   explore for S seconds per target and merge the
 #                                                inputs that grow coverage into tests/fuzz/corpus
 #
@@ -29,7 +30,9 @@ fuzz_one() {
   log="$build/fuzz-$target.log"
   if [[ "$mode" == "--runs" ]]; then
     cp "$root/tests/fuzz/corpus/$target/"* "$work/"
-    args=("$work" -runs="$amount")
+    local runs_here=$amount
+    [[ "$target" == xml && -n "${FUZZ_XML_RUNS:-}" ]] && runs_here=$FUZZ_XML_RUNS
+    args=("$work" -runs="$runs_here")
   else
     args=("$work" "$root/tests/fuzz/corpus/$target" -max_total_time="$amount")
   fi
