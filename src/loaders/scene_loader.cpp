@@ -15,6 +15,9 @@
 #include "formats/json_reader.h"
 #include "loaders/mesh_file.h"
 #include "formats/mitsuba_xml.h"
+#include "formats/pbrt_scene.h"
+#include "formats/ply_write.h"
+#include "files/output_file.h"
 #include "scene/named_metals.h"
 #include "wavetrace/image/image.h"
 #include "wavetrace/loaders/load_scene.h"
@@ -50,10 +53,12 @@ class Loader {
         return build(json_reader::parse(text.str(), file_));
     }
 
-    // A scene document already in memory (a Mitsuba XML file translated into our JSON); its
-    // file names are relative to path_'s folder.
-    Scene build(nlohmann::json document) {
+    // A scene document already in memory (a Mitsuba XML or pbrt file translated into our
+    // JSON); its file names are relative to path_'s folder, but those of `meshes`, which are
+    // taken from there.
+    Scene build(nlohmann::json document, const std::map<std::string, PbrtMesh>* meshes = nullptr) {
         json_ = std::move(document);
+        memory_meshes_ = meshes;
         Object root(Value(json_, file_, ""));
         root.only({"description", "render", "camera", "background", "lights", "materials", "media",
                    "objects"});
@@ -223,6 +228,7 @@ class Loader {
         }
         if (auto x = o.optional("aperture")) c.aperture = x->non_negative();
         if (auto x = o.optional("focus_distance")) c.focus_distance = x->positive();
+        if (auto x = o.optional("mirror")) c.mirror = x->boolean();
         o.finish();
     }
 
@@ -949,12 +955,24 @@ class Loader {
                     x->fail("expected \"file\", \"flat\" or \"smooth\", got " + x->describe());
             }
             o.finish();
-            fs::path p = resolve(file);
             MeshFile mesh;
-            try {
-                mesh = read_mesh_file(p);
-            } catch (const std::exception& e) {
-                file.fail("cannot read mesh '" + p.string() + "': " + e.what());
+            fs::path p;
+            auto held = memory_meshes_ && file.is_string()
+                            ? memory_meshes_->find(file.string())
+                            : std::map<std::string, PbrtMesh>::const_iterator{};
+            if (memory_meshes_ && file.is_string() && held != memory_meshes_->end()) {
+                p = file.string();
+                mesh.positions = held->second.positions;
+                mesh.normals = held->second.normals;
+                mesh.uvs = held->second.uvs;
+                mesh.indices = held->second.indices;
+            } else {
+                p = resolve(file);
+                try {
+                    mesh = read_mesh_file(p);
+                } catch (const std::exception& e) {
+                    file.fail("cannot read mesh '" + p.string() + "': " + e.what());
+                }
             }
             if (normals == "flat") mesh.normals.clear();
             if (normals == "smooth") mesh.normals = smooth_normals(mesh.positions, mesh.indices);
@@ -1007,6 +1025,7 @@ class Loader {
     std::string file_;
     const LoadOptions& options_;
     nlohmann::json json_;
+    const std::map<std::string, PbrtMesh>* memory_meshes_ = nullptr;
     Scene scene_;
     std::map<std::string, MaterialId> materials_;
     std::map<std::string, MediumId> media_;
@@ -1015,41 +1034,69 @@ class Loader {
 
 }  // namespace
 
-// A Mitsuba XML file: translated into our JSON, then built as any JSON scene. An error the
-// JSON loader finds in an object names the XML element it came from.
-Scene load_mitsuba(const fs::path& path, const LoadOptions& options) {
+// An error the JSON loader finds in a translated document's object names the place in the
+// source file (an XML element, a pbrt directive) it came from.
+Scene build_translated(const fs::path& path, const LoadOptions& options, nlohmann::json scene,
+                       const std::vector<std::string>& places,
+                       const std::map<std::string, PbrtMesh>* meshes) {
     const std::string file = path.string();
-    if (!options.camera.empty())
-        throw SceneError(file + ": --camera chooses among a glTF file's cameras; a Mitsuba "
-                                "scene has one sensor");
-    auto warn = [&](const std::string& message) {
-        if (options.warn)
-            options.warn(message);
-        else
-            std::cerr << message << "\n";
-    };
-    MitsubaDocument doc = translate_mitsuba_xml(path, options.params, warn);
     try {
-        return Loader(path, options).build(std::move(doc.scene));
+        return Loader(path, options).build(std::move(scene), meshes);
     } catch (const SceneError& e) {
         std::string message = e.what();
         const std::string prefix = file + ": /objects/";
         if (message.rfind(prefix, 0) == 0) {
             const size_t index = std::strtoul(message.c_str() + prefix.size(), nullptr, 10);
-            if (index < doc.object_places.size())
-                message = doc.object_places[index] + ": " + message.substr(file.size() + 2);
+            if (index < places.size())
+                message = places[index] + ": " + message.substr(file.size() + 2);
         }
         throw SceneError(message);
     }
 }
 
+std::function<void(const std::string&)> warner(const LoadOptions& options) {
+    return [&options](const std::string& message) {
+        if (options.warn)
+            options.warn(message);
+        else
+            std::cerr << message << "\n";
+    };
+}
+
+// A Mitsuba XML file: translated into our JSON, then built as any JSON scene.
+Scene load_mitsuba(const fs::path& path, const LoadOptions& options) {
+    if (!options.camera.empty())
+        throw SceneError(path.string() + ": --camera chooses among a glTF file's cameras; a "
+                                         "Mitsuba scene has one sensor");
+    MitsubaDocument doc = translate_mitsuba_xml(path, options.params, warner(options));
+    return build_translated(path, options, std::move(doc.scene), doc.object_places, nullptr);
+}
+
+// A pbrt-v4 file: the same, its written-out meshes held in memory.
+Scene load_pbrt(const fs::path& path, const LoadOptions& options) {
+    if (!options.camera.empty())
+        throw SceneError(path.string() + ": --camera chooses among a glTF file's cameras; a "
+                                         "pbrt scene has one camera");
+    if (!options.params.empty())
+        throw SceneError(path.string() + ": -D sets a Mitsuba scene's parameters; a pbrt "
+                                         "scene has none");
+    PbrtDocument doc = translate_pbrt(path, warner(options));
+    return build_translated(path, options, std::move(doc.scene), doc.object_places, &doc.meshes);
+}
+
 namespace {
 
-// Every "file" string of a scene document, from relative to `from` to relative to `to`.
-void rebase_files(nlohmann::json& j, const fs::path& from, const fs::path& to) {
+// Every "file" string of a scene document, from relative to `from` to relative to `to`; those
+// in `renamed` replaced by what it maps them to.
+void rebase_files(nlohmann::json& j, const fs::path& from, const fs::path& to,
+                  const std::map<std::string, std::string>& renamed) {
     if (j.is_object()) {
         for (auto& [key, value] : j.items()) {
             if (key == "file" && value.is_string()) {
+                if (auto it = renamed.find(value.get<std::string>()); it != renamed.end()) {
+                    value = it->second;
+                    continue;
+                }
                 fs::path p = value.get<std::string>();
                 if (p.is_relative()) {
                     const fs::path target = fs::absolute(from / p).lexically_normal();
@@ -1057,27 +1104,43 @@ void rebase_files(nlohmann::json& j, const fs::path& from, const fs::path& to) {
                     value = (rel.empty() ? target : rel).generic_string();
                 }
             } else {
-                rebase_files(value, from, to);
+                rebase_files(value, from, to, renamed);
             }
         }
     } else if (j.is_array()) {
-        for (auto& value : j) rebase_files(value, from, to);
+        for (auto& value : j) rebase_files(value, from, to, renamed);
+    }
+}
+
+void write_text(const fs::path& path, const std::string& text) {
+    try {
+        write_file_atomically(path, std::vector<unsigned char>(text.begin(), text.end()));
+    } catch (const std::runtime_error& e) {
+        throw std::runtime_error(path.string() + ": " + e.what());
     }
 }
 
 }  // namespace
 
-std::string convert_to_json(const fs::path& path, const fs::path& output_folder,
-                            const LoadOptions& options) {
+std::vector<fs::path> convert_scene(const fs::path& path, const fs::path& output,
+                                    const LoadOptions& options) {
     std::string ext = path.extension().string();
     for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
     if (ext == ".gltf" || ext == ".glb")
-        throw SceneError(path.string() + ": convert reads Mitsuba XML and JSON scenes; a glTF "
-                                         "file renders as it is");
+        throw SceneError(path.string() + ": convert reads Mitsuba XML, pbrt and JSON scenes; a "
+                                         "glTF file renders as it is");
     load_scene(path, options);  // the same checks and errors as a render
+    const fs::path folder = output.parent_path().empty() ? fs::path(".") : output.parent_path();
     nlohmann::json doc;
-    if (ext == ".xml") {
-        doc = translate_mitsuba_xml(path, options.params, [](const std::string&) {}).scene;
+    std::map<std::string, PbrtMesh> meshes;
+    if (ext == ".xml" || ext == ".pbrt") {
+        if (ext == ".xml") {
+            doc = translate_mitsuba_xml(path, options.params, [](const std::string&) {}).scene;
+        } else {
+            PbrtDocument pbrt = translate_pbrt(path, [](const std::string&) {});
+            doc = std::move(pbrt.scene);
+            meshes = std::move(pbrt.meshes);
+        }
         doc["description"] = "converted from " + path.filename().string() + " by wavetrace convert";
     } else {
         std::ifstream in(path, std::ios::binary);
@@ -1085,8 +1148,31 @@ std::string convert_to_json(const fs::path& path, const fs::path& output_folder,
         text << in.rdbuf();
         doc = nlohmann::json::parse(text.str());
     }
-    rebase_files(doc, path.parent_path(), output_folder);
-    return doc.dump(1) + "\n";
+    // Meshes written out in the scene file become PLY files in a folder of their own.
+    std::map<std::string, std::string> renamed;
+    std::vector<fs::path> written;
+    const std::string mesh_folder = output.stem().string() + "-meshes";
+    if (!meshes.empty()) {
+        std::error_code ec;
+        fs::create_directories(folder / mesh_folder, ec);
+        if (ec) throw std::runtime_error((folder / mesh_folder).string() + ": cannot create: " + ec.message());
+    }
+    for (const auto& [name, mesh] : meshes) {
+        const std::string file = mesh_folder + "/mesh-" + name.substr(name.rfind('/') + 1) + ".ply";
+        renamed[name] = file;
+        const std::vector<unsigned char> bytes =
+            encode_ply(mesh.positions, mesh.normals, mesh.uvs, mesh.indices);
+        try {
+            write_file_atomically(folder / file, bytes);
+        } catch (const std::runtime_error& e) {
+            throw std::runtime_error((folder / file).string() + ": " + e.what());
+        }
+        written.push_back(folder / file);
+    }
+    rebase_files(doc, path.parent_path(), folder, renamed);
+    write_text(output, doc.dump(1) + "\n");
+    written.push_back(output);
+    return written;
 }
 
 Scene load_scene(const fs::path& path, const LoadOptions& options) {
@@ -1094,6 +1180,7 @@ Scene load_scene(const fs::path& path, const LoadOptions& options) {
     for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
     if (ext == ".gltf" || ext == ".glb") return Loader(path, options).load_gltf(ext == ".glb");
     if (ext == ".xml") return load_mitsuba(path, options);
+    if (ext == ".pbrt") return load_pbrt(path, options);
     return Loader(path, options).load();
 }
 

@@ -19,6 +19,7 @@ CameraRays::CameraRays(const Camera& camera, int width, int height) {
     Vec3 w = normalize(camera.look_from - camera.look_at);  // backwards
     Vec3 u = normalize(cross(camera.up, w));                // right
     Vec3 v = cross(w, u);                                   // up
+    if (camera.mirror) u = -u;
 
     frame_.origin = camera.look_from;
     frame_.du = u * (view_w / static_cast<float>(width));

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <map>
 #include <string>
+#include <vector>
 
 #include "wavetrace/scene/scene.h"
 
@@ -20,17 +21,21 @@ struct LoadOptions {
 };
 
 // Loads a scene file and the meshes, textures and environment maps it names: our JSON
-// (docs/scene-format.md), a Mitsuba 3 XML file (.xml), or a glTF 2.0 file (.gltf, .glb) as a
-// whole scene with its camera and lights. Throws SceneError on bad input, naming the file and the place in it.
+// (docs/scene-format.md), a Mitsuba 3 XML file (.xml), a pbrt-v4 file (.pbrt), or a glTF 2.0
+// file (.gltf, .glb) as a whole scene with its camera and lights. Throws SceneError on bad input, naming the file and the place in it.
 Scene load_scene(const std::filesystem::path& path, const LoadOptions& options = {});
 
-// A scene file as our JSON scene (docs/scene-format.md): a Mitsuba XML file translated as
-// load_scene() reads it, a JSON file as it is; file names are rewritten relative to
-// `output_folder`, where the text is to be written. The scene is loaded first, so bad input
-// throws as load_scene() does; loading the text gives the same Scene. glTF files are refused
+// Writes `output`: a scene file as our JSON scene (docs/scene-format.md) — a Mitsuba XML or
+// pbrt file translated as load_scene() reads it, a JSON file as it is — its file names
+// rewritten relative to `output`'s folder. A pbrt file's meshes written out in it
+// (trianglemesh, bilinearmesh, disk, loopsubdiv) go into binary PLY files in the folder
+// `STEM-meshes` beside `output` (created; files of the same names there are replaced). Loading
+// `output` gives the same Scene. Every file is written whole or not at all; returns those
+// written. Throws SceneError on bad input, as load_scene() does, before writing anything;
+// std::runtime_error ("PATH: cannot write: REASON") if a write fails. glTF files are refused
 // (their meshes are read directly, not through our JSON).
-std::string convert_to_json(const std::filesystem::path& path,
-                            const std::filesystem::path& output_folder,
-                            const LoadOptions& options = {});
+std::vector<std::filesystem::path> convert_scene(const std::filesystem::path& path,
+                                                 const std::filesystem::path& output,
+                                                 const LoadOptions& options = {});
 
 }  // namespace wavetrace

@@ -13,6 +13,9 @@ struct Camera {
     float vfov = 40.0f;           // vertical field of view, degrees
     float aperture = 0.0f;        // lens diameter, world units
     float focus_distance = 0.0f;  // 0: the distance from look_from to look_at
+    // The image's x axis reversed (a left-handed camera frame, as pbrt's): the image's right
+    // is cross(w, up) instead of cross(up, w), w pointing backwards.
+    bool mirror = false;
 };
 
 // What maps film positions to rays, for one film size.

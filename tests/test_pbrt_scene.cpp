@@ -1,0 +1,399 @@
+// pbrt-v4 scene files: each directive lands in the Scene where pbrt-v4's file format says it
+// acts (camera, film, sampler, integrator, transforms, attributes, shapes, materials,
+// textures, lights, media, instancing, includes), bad input names the file and line, what
+// cannot be represented is a warning with its place, `convert` writes a JSON scene (and PLY
+// meshes) that renders bit-identically, and Bitterli's Cornell box in pbrt's format renders
+// the image Tungsten renders of it.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cli_run.h"
+#include "temp_dir.h"
+#include "wavetrace/wavetrace.h"
+
+using namespace wavetrace;
+
+namespace {
+
+std::vector<std::string> warnings;
+LoadOptions collecting() {
+    warnings.clear();
+    LoadOptions o;
+    o.warn = [](const std::string& w) { warnings.push_back(w); };
+    return o;
+}
+bool warned(const std::string& part) {
+    for (const std::string& w : warnings)
+        if (w.find(part) != std::string::npos) return true;
+    return false;
+}
+
+std::string error_of(const std::filesystem::path& path) {
+    try {
+        load_scene(path, collecting());
+    } catch (const SceneError& e) {
+        return e.what();
+    }
+    return "(no error)";
+}
+
+std::string read(const std::filesystem::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+const Material& material_of_triangle(const Scene& s, size_t t) {
+    return s.materials[s.meshes[s.triangles[t].mesh].material];
+}
+
+}  // namespace
+
+TEST(PbrtScenes, CameraFilmSamplerAndIntegratorSetTheRender) {
+    TempDir dir;
+    auto path = dir.write("a.pbrt", R"(# a comment
+LookAt 1 2 3  1 2 10  0 1 0
+Camera "perspective" "float fov" [ 30 ]
+Film "rgb" "integer xresolution" [ 40 ] "integer yresolution" 80
+  "string filename" "a.exr"
+Sampler "halton" "integer pixelsamples" 7
+Integrator "volpath" "integer maxdepth" [ 4 ]
+WorldBegin
+Shape "sphere"
+)");
+    Scene s = load_scene(path, collecting());
+    EXPECT_EQ(s.render.width, 40);
+    EXPECT_EQ(s.render.height, 80);
+    EXPECT_EQ(s.render.spp, 7);
+    // pbrt counts bounces, wavetrace path segments.
+    EXPECT_EQ(s.render.max_depth, 5);
+    EXPECT_NEAR(s.camera.look_from.x, 1.0f, 1e-6f);
+    EXPECT_NEAR(s.camera.look_from.y, 2.0f, 1e-6f);
+    EXPECT_NEAR(s.camera.look_from.z, 3.0f, 1e-6f);
+    EXPECT_NEAR(s.camera.look_at.z, 4.0f, 1e-5f);
+    // fov is the shorter side's: here the width's, so the height sees more.
+    const double tan_v = std::tan(15.0 * 3.14159265358979 / 180) * 2;
+    EXPECT_NEAR(s.camera.vfov, 2 * std::atan(tan_v) * 180 / 3.14159265358979, 1e-4);
+    // pbrt's image right is camera +x = up x forward: our camera mirrored.
+    EXPECT_TRUE(s.camera.mirror);
+    EXPECT_TRUE(warned("a.pbrt:6: warning: Sampler \"halton\""));
+}
+
+// pbrt's camera puts camera-space +x on the image's right: a red sphere at +x, seen from the
+// origin looking down +z, is in the right half of the image, as pbrt renders it.
+TEST(PbrtScenes, TheImageIsNotMirrored) {
+    TempDir dir;
+    auto path = dir.write("a.pbrt", R"(
+Camera "perspective" "float fov" 60
+Film "rgb" "integer xresolution" 32 "integer yresolution" 16
+WorldBegin
+LightSource "infinite" "rgb L" [1 1 1]
+AttributeBegin
+  Material "diffuse" "rgb reflectance" [0.8 0 0]
+  Translate 2 0 8
+  Shape "sphere" "float radius" 1
+AttributeEnd
+)");
+    Scene s = load_scene(path, collecting());
+    Bvh bvh = Bvh::build(s);
+    RenderRequest r;
+    r.width = 32;
+    r.height = 16;
+    r.spp = 4;
+    Film film(r.width, r.height);
+    render(s, bvh, r, film);
+    const Image img = film.mean();
+    double left = 0, right = 0;
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 32; ++x) {
+            const Color c = img.at(x, y);
+            // The sphere is red; the sky white.
+            const double red = c.x - c.y;
+            (x < 16 ? left : right) += red;
+        }
+    EXPECT_GT(right, 10 * std::max(left, 1e-3));
+}
+
+TEST(PbrtScenes, ShapesTransformsMaterialsAndInstancesTranslate) {
+    TempDir dir;
+    dir.write("inc/part.pbrt", R"(Shape "sphere" "float radius" 0.5)");
+    auto path = dir.write("a.pbrt", R"(
+LookAt 0 0 -10  0 0 0  0 1 0
+Camera "perspective"
+WorldBegin
+MakeNamedMaterial "gold" "string type" "conductor"
+  "spectrum eta" "metal-Au-eta" "spectrum k" "metal-Au-k" "float roughness" 0.04
+MakeNamedMaterial "glass" "string type" "dielectric" "spectrum eta" "glass-BK7"
+Texture "checks" "spectrum" "checkerboard" "float uscale" 4 "float vscale" 4
+  "rgb tex1" [1 0 0] "rgb tex2" [0 0 1]
+AttributeBegin
+  NamedMaterial "gold"
+  Translate 3 0 0
+  Scale 2 2 2
+  Shape "sphere" "float radius" 1
+AttributeEnd
+AttributeBegin
+  Material "coateddiffuse" "rgb reflectance" [0.4 0.2 0.2] "float roughness" 0.01
+  Shape "bilinearmesh" "point3 P" [0 0 0  1 0 0  0 1 0  1 1 0]
+AttributeEnd
+AttributeBegin
+  Material "diffuse" "texture reflectance" "checks"
+  Shape "trianglemesh" "point3 P" [0 0 0 1 0 0 1 1 0] "point2 uv" [0 0 1 0 1 1]
+    "normal N" [0 0 -1 0 0 -1 0 0 -1]
+AttributeEnd
+AttributeBegin
+  NamedMaterial "glass"
+  Translate 0 5 0
+  AreaLightSource "diffuse" "rgb L" [4 4 4] "bool twosided" true
+  Shape "disk" "float radius" 2
+AttributeEnd
+ObjectBegin "pair"
+  Include "inc/part.pbrt"
+  Translate 0 0 2
+  Include "inc/part.pbrt"
+ObjectEnd
+AttributeBegin
+  Translate -4 0 0
+  ObjectInstance "pair"
+  Translate 0 -3 0
+  ObjectInstance "pair"
+AttributeEnd
+)");
+    Scene s = load_scene(path, collecting());
+    // The gold sphere (radius 1 scaled by 2 at x = 3) and four instanced ones.
+    ASSERT_EQ(s.spheres.size(), 5u);
+    EXPECT_NEAR(s.spheres[0].center.x, 3.0f, 1e-5f);
+    EXPECT_NEAR(s.spheres[0].radius, 2.0f, 1e-5f);
+    const Material& gold = s.materials[s.spheres[0].material];
+    EXPECT_EQ(gold.kind, MaterialKind::Conductor);
+    EXPECT_NEAR(gold.alpha_u, 0.2f, 1e-6f);  // remapped: sqrt(0.04)
+    std::multiset<std::pair<float, float>> instanced;
+    for (size_t i = 1; i < 5; ++i) {
+        EXPECT_NEAR(s.spheres[i].radius, 0.5f, 1e-6f);
+        instanced.insert({s.spheres[i].center.y, s.spheres[i].center.z});
+        EXPECT_NEAR(s.spheres[i].center.x, -4.0f, 1e-5f);
+    }
+    EXPECT_EQ(instanced, (std::multiset<std::pair<float, float>>{{0, 0}, {0, 2}, {-3, 0}, {-3, 2}}));
+    // Bilinear patch: 2 triangles; triangle: 1; disk: 128.
+    EXPECT_EQ(s.triangles.size(), 2u + 1u + 128u);
+    EXPECT_EQ(material_of_triangle(s, 0).kind, MaterialKind::Plastic);
+    const Material& checks = material_of_triangle(s, 2);
+    EXPECT_EQ(checks.kind, MaterialKind::Lambertian);
+    // N points down -z: pbrt orients the surface by it, so the triangle was turned over.
+    const Triangle& t = s.triangles[2];
+    const Vec3 n = cross(s.positions[t.v[1]] - s.positions[t.v[0]],
+                         s.positions[t.v[2]] - s.positions[t.v[0]]);
+    EXPECT_LT(n.z, 0.0f);
+    // The disk emits, reflecting nothing (its glass is not a diffuse surface: a warning).
+    const Material& lamp = material_of_triangle(s, 3);
+    EXPECT_EQ(lamp.kind, MaterialKind::DiffuseLight);
+    EXPECT_TRUE(lamp.two_sided);
+    EXPECT_TRUE(warned("an area light's surface reflects only as a diffuse surface"));
+}
+
+TEST(PbrtScenes, LightsBecomeLightsAndBackgrounds) {
+    TempDir dir;
+    auto path = dir.write("a.pbrt", R"(
+LookAt 0 0 0  0 0 1  0 1 0
+Camera "perspective"
+WorldBegin
+LightSource "point" "rgb I" [1 2 3] "point3 from" [0 1 0] "float scale" 2
+AttributeBegin
+  Translate 0 0 5
+  LightSource "spot" "blackbody I" 3000 "float coneangle" 40 "float conedelta" 10
+AttributeEnd
+AttributeBegin
+  CoordSysTransform "camera"
+  LightSource "distant" "rgb L" [0.5 0.5 0.5]
+AttributeEnd
+LightSource "infinite" "rgb L" [0.1 0.2 0.3]
+Shape "sphere"
+)");
+    Scene s = load_scene(path, collecting());
+    ASSERT_EQ(s.lights.size(), 3u);
+    EXPECT_EQ(s.lights[0].kind, Light::Kind::Point);
+    EXPECT_NEAR(s.lights[0].position.y, 1.0f, 1e-6f);
+    EXPECT_NEAR(s.lights[0].intensity.z, 6.0f, 1e-5f);
+    EXPECT_EQ(s.lights[1].kind, Light::Kind::Spot);
+    EXPECT_NEAR(s.lights[1].position.z, 5.0f, 1e-5f);
+    EXPECT_NEAR(s.lights[1].cutoff_degrees, 40.0f, 1e-5f);
+    EXPECT_NEAR(s.lights[1].falloff_start_degrees, 30.0f, 1e-5f);
+    // A black body is of unit luminance in pbrt; 3000 K is reddish.
+    const Color bb = s.lights[1].intensity;
+    EXPECT_NEAR(luminance(bb), 1.0f, 1e-3f);
+    EXPECT_GT(bb.x, bb.z);
+    // The camera's frame: the light travels along the view (+z).
+    EXPECT_EQ(s.lights[2].kind, Light::Kind::Directional);
+    EXPECT_NEAR(s.lights[2].direction.z, 1.0f, 1e-5f);
+    EXPECT_EQ(s.background.kind, Background::Kind::Constant);
+    EXPECT_NEAR(s.background.radiance.y, 0.2f, 1e-6f);
+}
+
+TEST(PbrtScenes, MediaFillShapesWithTheInterfaceMaterial) {
+    TempDir dir;
+    auto path = dir.write("a.pbrt", R"(
+Camera "perspective"
+WorldBegin
+MakeNamedMedium "fog" "string type" "homogeneous"
+  "rgb sigma_a" [0.1 0.1 0.1] "rgb sigma_s" [0.9 0.9 0.9] "float scale" 2
+AttributeBegin
+  MediumInterface "fog" ""
+  Material "interface"
+  Translate 0 0 5
+  Shape "sphere"
+AttributeEnd
+)");
+    Scene s = load_scene(path, collecting());
+    ASSERT_EQ(s.media.size(), 1u);
+    EXPECT_NEAR(s.media[0].density, 2.0f, 1e-6f);
+    ASSERT_EQ(s.spheres.size(), 1u);
+    EXPECT_EQ(s.spheres[0].interior, MediumId{0});
+    EXPECT_TRUE(s.is_boundary(s.spheres[0].material));
+}
+
+// Loop subdivision of an octahedron: every level quadruples the faces, the mesh stays closed
+// (each edge shared by two triangles), and the limit surface lies within the control hull
+// and, by the octahedron's symmetry, keeps its six tips on the axes.
+TEST(PbrtScenes, LoopSubdivisionRefinesAClosedMeshTowardsItsLimit) {
+    TempDir dir;
+    auto path = dir.write("a.pbrt", R"(
+Camera "perspective"
+WorldBegin
+Translate 0 0 5
+Shape "loopsubdiv" "integer levels" 2
+  "point3 P" [1 0 0  -1 0 0  0 1 0  0 -1 0  0 0 1  0 0 -1]
+  "integer indices" [0 2 4  2 1 4  1 3 4  3 0 4  2 0 5  1 2 5  3 1 5  0 3 5]
+)");
+    Scene s = load_scene(path, collecting());
+    ASSERT_EQ(s.triangles.size(), 8u * 16u);
+    std::map<std::pair<uint32_t, uint32_t>, int> edges;
+    for (const Triangle& t : s.triangles)
+        for (int e = 0; e < 3; ++e) {
+            uint32_t a = t.v[e], b = t.v[(e + 1) % 3];
+            ++edges[{std::min(a, b), std::max(a, b)}];
+        }
+    for (const auto& [edge, count] : edges) EXPECT_EQ(count, 2);
+    float tip = 0;
+    for (const Point3& p : s.positions) {
+        const Vec3 q = p - Point3(0, 0, 5);
+        EXPECT_LE(std::abs(q.x) + std::abs(q.y) + std::abs(q.z), 1.0f + 1e-5f);  // in the hull
+        if (std::abs(q.y) < 1e-6f && std::abs(q.z) < 1e-6f) tip = std::max(tip, q.x);
+    }
+    EXPECT_GT(tip, 0.3f);
+    EXPECT_LT(tip, 1.0f);
+}
+
+TEST(PbrtScenes, BadInputNamesTheFileAndLine) {
+    TempDir dir;
+    const std::string head = "Camera \"perspective\"\nWorldBegin\n";
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {"Shape \"sphere\" \"float radius\" [ 1", "a.pbrt:3: Shape \"sphere\": unclosed ["},
+        {"Shape \"sphere\n", "a.pbrt:3: unterminated string"},
+        {"Frobnicate 1 2", "a.pbrt:3: unknown directive Frobnicate"},
+        {"Translate 1 2", "a.pbrt:3: Translate needs 3 numbers"},
+        {"Translate 1 x 2", "a.pbrt:3: Translate: expected a number, got x"},
+        {"Scale 1e99 1 1", "a.pbrt:3: number 1e99 is not finite in float"},
+        {"AttributeEnd", "a.pbrt:3: AttributeEnd without a matching begin"},
+        {"NamedMaterial \"nope\"", "a.pbrt:3: no material named \"nope\""},
+        {"ObjectInstance \"nope\"", "a.pbrt:3: no object named \"nope\""},
+        {"Shape \"sphere\" \"flaot radius\" 1", "a.pbrt:3: Shape \"sphere\": unknown parameter type \"flaot\""},
+        {"Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0] \"integer indices\" [0 1 3]",
+         "a.pbrt:3: Shape \"trianglemesh\": index 3.000000 is not a point of \"P\" (0 .. 2)"},
+        {"Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0]", "\"P\" with 3 or more points"},
+        {"Include \"a.pbrt\"", "a.pbrt:3: Include \"a.pbrt\" includes itself"},
+        {"Include \"missing.pbrt\"", "a.pbrt:3: cannot open"},
+        {"Shape \"sphere\" \"float radius\" -1", "a.pbrt:3: Shape sphere: radius must be > 0"},
+        {"Texture \"t\" \"color\" \"imagemap\"", "the kind is \"float\" or \"spectrum\""},
+        {"Material \"diffuse\" \"texture reflectance\" \"nope\"", "a.pbrt:3: no texture named \"nope\""},
+    };
+    for (const auto& [line, expected] : cases) {
+        auto path = dir.write("a.pbrt", head + line + "\n");
+        const std::string e = error_of(path);
+        EXPECT_NE(e.find(expected), std::string::npos) << line << "\n -> " << e;
+    }
+    // A NUL byte: the file is not text.
+    auto nul = dir.write("b.pbrt", head + std::string("Shape \"sphere\"\0", 15) + "\n");
+    EXPECT_NE(error_of(nul).find("b.pbrt:3: a NUL byte"), std::string::npos) << error_of(nul);
+    // The JSON loader's own checks name the directive's line.
+    auto far = dir.write("c.pbrt", head + "Translate 1e8 0 0\nShape \"sphere\"\n");
+    EXPECT_NE(error_of(far).find("c.pbrt:4: "), std::string::npos) << error_of(far);
+}
+
+TEST(PbrtScenes, WhatCannotBeRepresentedIsAWarningWithItsPlace) {
+    TempDir dir;
+    auto path = dir.write("a.pbrt", R"(Camera "perspective" "float lensradius" 0.1
+PixelFilter "gaussian"
+WorldBegin
+Shape "curve" "point3 P" [0 0 0 1 1 1 2 2 2 3 3 3]
+Material "hair"
+Shape "sphere" "float radius" 1 "float wobble" 3 "float zmax" 0.5
+)");
+    Scene s = load_scene(path, collecting());
+    EXPECT_EQ(s.spheres.size(), 1u);
+    EXPECT_NEAR(s.camera.aperture, 0.2f, 1e-6f);
+    EXPECT_TRUE(warned("a.pbrt:2: warning: PixelFilter \"gaussian\""));
+    EXPECT_TRUE(warned("a.pbrt:4: warning: Shape \"curve\" is not supported; skipped"));
+    EXPECT_TRUE(warned("a.pbrt:5: warning: Material \"hair\": material \"hair\" is not supported"));
+    EXPECT_TRUE(warned("a.pbrt:6: warning: Shape \"sphere\": parameter \"wobble\" is not supported"));
+    EXPECT_TRUE(warned("a.pbrt:6: warning: Shape sphere: partial spheres"));
+}
+
+// The pbrt file's own meshes become PLY files beside the JSON; the JSON renders the image the
+// pbrt file renders, bit for bit.
+TEST(PbrtScenes, ConvertWritesJsonAndMeshesThatRenderBitIdentically) {
+    TempDir dir;
+    const std::filesystem::path pbrt = std::filesystem::path(WAVETRACE_SCENES_DIR) / "cornell-box.pbrt";
+    const std::string json = (dir.path() / "out" / "cbox.json").string();
+    std::filesystem::create_directories(dir.path() / "out");
+    CliResult c = run_cli(dir, "convert '" + pbrt.string() + "' -o '" + json + "'");
+    ASSERT_EQ(c.code, 0) << c.err;
+    EXPECT_TRUE(std::filesystem::exists(dir.path() / "out" / "cbox-meshes" / "mesh-0.ply"));
+    EXPECT_NE(read(json).find("\"cbox-meshes/mesh-7.ply\""), std::string::npos);
+    const std::string from_pbrt = (dir.path() / "pbrt.pfm").string();
+    const std::string from_json = (dir.path() / "json.pfm").string();
+    for (const auto& [scene_file, out] : {std::pair{pbrt.string(), from_pbrt}, {json, from_json}}) {
+        CliResult r = run_cli(dir, "render '" + scene_file + "' --spp 2 --seed 3 --width 48 "
+                                   "--height 48 -o '" + out + "'");
+        ASSERT_EQ(r.code, 0) << r.err;
+    }
+    EXPECT_EQ(read(from_pbrt), read(from_json));
+}
+
+// Bitterli's "Cornell Box" as pbrt-v4 reads it, against Tungsten's render of the same scene
+// (his TungstenRender.exr, 1024 x 1024; its image mean (0.196251, 0.127531, 0.036100) read
+// with `oiiotool --stats`). The bound: four standard errors of our image mean, from the
+// film's own variance, plus 0.3% for the reference's noise and its tent filter at the border.
+TEST(PbrtScenes, BitterlisCornellBoxRendersTungstensImageMean) {
+    const Scene s = load_scene(std::filesystem::path(WAVETRACE_SCENES_DIR) / "cornell-box.pbrt",
+                               collecting());
+    EXPECT_EQ(s.triangles.size(), 36u);
+    EXPECT_EQ(s.render.max_depth, 66);
+    const Bvh bvh = Bvh::build(s);
+    RenderRequest r;
+    r.width = r.height = 64;
+    r.spp = 256;
+    r.seed = 5;
+    Film film(r.width, r.height);
+    render(s, bvh, r, film);
+    const Image mean = film.mean(), var = film.variance_of_mean();
+    const double reference[3] = {0.196251, 0.127531, 0.036100};
+    for (int c = 0; c < 3; ++c) {
+        double sum = 0, sum_var = 0;
+        for (int y = 0; y < r.height; ++y)
+            for (int x = 0; x < r.width; ++x) {
+                sum += mean.at(x, y)[c];
+                sum_var += var.at(x, y)[c];
+            }
+        const double n = double(r.width) * r.height;
+        const double ours = sum / n, sigma = std::sqrt(sum_var) / n;
+        EXPECT_NEAR(ours, reference[c], 4 * sigma + 0.003 * reference[c]) << "channel " << c;
+    }
+}
