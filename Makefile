@@ -41,7 +41,7 @@ CLANG_CMAKE = -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
   -DWAVETRACE_FUZZ=ON --log-level=WARNING
 # Peak-memory bounds mean nothing under ASan (its shadow memory and quarantine), so that test
 # runs only in `make test`.
-SAN_TESTS ?= Check*:SceneLoader.*:MitsubaScenes.*:Cli.*:Hostile*:Bvh.*:Triangle.*:Sphere.*:Quad.*:MeshFiles.*:Wavefront.*:Megakernel.*:Kernels.*:Lanes.*:Films.*:CompareImages.*:-Cli.WavefrontMemoryDoesNotGrowWithSamples
+SAN_TESTS ?= Check*:SceneLoader.*:MitsubaScenes.*:PbrtScenes.*:Cli.*:Hostile*:Bvh.*:Triangle.*:Sphere.*:Quad.*:MeshFiles.*:Wavefront.*:Megakernel.*:Kernels.*:Lanes.*:Films.*:CompareImages.*:-Cli.WavefrontMemoryDoesNotGrowWithSamples:PbrtScenes.BitterlisCornellBoxRendersTungstensImageMean
 FUZZ_RUNS ?= 20000
 # An XML execution loads a dozen shapes, meshes and images: fewer runs keep it level in time
 # with the other targets.
@@ -50,7 +50,7 @@ FUZZ_SECONDS ?= 600
 
 sanitize-build: deps
 	@cmake -S . -B $(SAN_DIR) $(CLANG_CMAKE) -DWAVETRACE_SANITIZE=ON
-	@cmake --build $(SAN_DIR) -j $(JOBS) --target wavetrace_cli wavetrace_tests fuzz_scene fuzz_xml fuzz_mesh fuzz_film
+	@cmake --build $(SAN_DIR) -j $(JOBS) --target wavetrace_cli wavetrace_tests fuzz_scene fuzz_xml fuzz_pbrt fuzz_mesh fuzz_film
 
 sanitize: sanitize-build
 	@tools/check-deps.sh $(SAN_DIR)

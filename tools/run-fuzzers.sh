@@ -53,7 +53,7 @@ fuzz_one() {
     echo "fuzz_$target: corpus $before -> $(ls "$root/tests/fuzz/corpus/$target" | wc -l) inputs"
   fi
 }
-targets=(scene xml mesh film)
+targets=(scene xml pbrt mesh film)
 pids=()
 for target in "${targets[@]}"; do
   ( fuzz_one "$target" ) >"$build/fuzz-$target.summary" 2>&1 &

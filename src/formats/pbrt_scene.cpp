@@ -31,6 +31,10 @@ constexpr int kMaxIncludeDepth = 32;
 constexpr size_t kMaxAttributeDepth = 4096;
 // pbrt files hold meshes written out as text, so they may be larger than our JSON files.
 constexpr uintmax_t kMaxPbrtFileBytes = uintmax_t(1) << 30;
+// Instancing copies shapes: a file may place at most this many, and this many triangles of the
+// meshes written out in it (each instance counts them again).
+constexpr size_t kMaxPlacedShapes = size_t(1) << 20;
+constexpr size_t kMaxPlacedTriangles = size_t(1) << 28;
 // The material of shapes that are no surface, only the boundary of media; never a name in
 // /materials.
 const std::string kInterface = "@interface";
@@ -133,11 +137,9 @@ class Reader {
         fs::path p(name);
         return p.is_absolute() ? p : folder_ / p;
     }
-    // `name` relative to the main file's folder, as our JSON names files.
-    std::string relative(const std::string& name) const {
-        fs::path p(name);
-        return p.generic_string();
-    }
+    // A file name as our JSON takes it: pbrt's and ours are both relative to the scene
+    // file's folder.
+    static std::string relative(const std::string& name) { return fs::path(name).generic_string(); }
 
     void include(const std::string& name, const std::string& place) {
         if (stack_.size() > static_cast<size_t>(kMaxIncludeDepth))
@@ -556,7 +558,10 @@ class Translator {
             if (it == instances_.end()) fail(place, "no object named \"" + name + "\"");
             json group = {{"type", "group"}, {"transform", matrix_step(state().ctm)},
                           {"objects", json::array()}};
-            for (const json& o : it->second.objects) group["objects"].push_back(o);
+            for (const json& o : it->second.objects) {
+                count_placement(o, place);
+                group["objects"].push_back(o);
+            }
             if (!group["objects"].empty()) push(std::move(group), place);
         } else if (d == "Include" || d == "Import") {
             reader_.include(string_arg(d), place);
@@ -634,12 +639,10 @@ class Translator {
         out_["render"]["height"] = h;
         for (const char* n : {"cropwindow", "pixelbounds"})
             if (p.get(n)) warn(place, std::string("Film: ") + n + " is not supported; the whole image is rendered");
-        if (p.get("filename")) {
-            // The CLI's -o names the image.
-        }
         if (p.number("iso", 100) != 100 || p.number("exposuretime", 1) != 1)
             warn(place, "Film: iso and exposuretime are not supported; the exposure is 1");
-        p.finish(pwarn(), {"savefp16", "diagonal", "sensor", "whitebalance"});
+        // The command line's -o names the image, not `filename`.
+        p.finish(pwarn(), {"filename", "savefp16", "diagonal", "sensor", "whitebalance"});
     }
 
     void integrator(const std::string& place) {
@@ -1226,7 +1229,21 @@ class Translator {
 
     // ---- shapes ----
 
+    // Counts a shape placed in the scene against the limits of instancing.
+    void count_placement(const json& o, const std::string& place) {
+        if (++placed_shapes_ > kMaxPlacedShapes)
+            fail(place, "more than " + std::to_string(kMaxPlacedShapes) +
+                            " shapes placed (instances count their shapes again)");
+        if (o.contains("file")) {
+            auto mesh = doc_.meshes.find(o["file"].get<std::string>());
+            if (mesh != doc_.meshes.end()) placed_triangles_ += mesh->second.indices.size() / 3;
+            if (placed_triangles_ > kMaxPlacedTriangles)
+                fail(place, "more than 2^28 triangles placed (instances count theirs again)");
+        }
+    }
+
     void push(json o, const std::string& place) {
+        if (!defining_) count_placement(o, place);
         if (defining_) {
             instances_[defining_name_].objects.push_back(std::move(o));
             return;
@@ -1359,6 +1376,7 @@ class Translator {
     std::set<std::string> media_names_, skipped_media_;
     std::map<std::string, std::string> emitters_;
     std::map<std::string, Instance> instances_;
+    size_t placed_shapes_ = 0, placed_triangles_ = 0;
     bool defining_ = false;
     std::string defining_name_, defining_place_;
     Active active_ = Active::Start;

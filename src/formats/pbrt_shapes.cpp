@@ -13,8 +13,9 @@ namespace {
 constexpr double kPiD = 3.14159265358979323846;
 // Segments of a full disk: its area is n sin(2 pi / n) / (2 pi) of the true one, 0.9996.
 constexpr int kDiskSegments = 128;
-// The most triangles a subdivided mesh may reach.
-constexpr size_t kMaxSubdividedTriangles = size_t(1) << 26;
+// The most triangles a subdivided mesh may reach: pbrt's default 3 levels of any mesh, or a
+// quarter million, so that the work stays proportional to the file.
+size_t max_subdivided_triangles(size_t control) { return 64 * control + (size_t(1) << 18); }
 
 [[noreturn]] void fail(const std::string& place, const std::string& message) {
     throw SceneError(place + ": " + message);
@@ -206,8 +207,11 @@ PbrtMesh loop_subdivision(PbrtParams& p, const std::string& place) {
     std::vector<char> boundary;
     std::map<uint64_t, std::vector<uint32_t>> edges;
     for (int level = 0; level < levels; ++level) {
-        if (tri.size() / 3 * 4 > kMaxSubdividedTriangles)
-            fail(place, p.what + ": " + std::to_string(levels) + " levels give more than 2^26 triangles");
+        const size_t limit = max_subdivided_triangles(v.indices.size() / 3);
+        if (tri.size() / 3 * 4 > limit)
+            fail(place, p.what + ": " + std::to_string(levels) + " levels give more than " +
+                            std::to_string(limit) + " triangles (the limit: 64 times the control "
+                            "mesh's, plus 262144)");
         rings(&nb, &boundary, &edges);
         std::vector<Vec3> next(pos.size());
         for (uint32_t a = 0; a < pos.size(); ++a) {
