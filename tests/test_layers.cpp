@@ -26,6 +26,7 @@ const std::vector<std::string> kLayers = {
     "image",     // images: OpenImageIO in and out, comparisons
     "film",      // per-pixel sums and film files
     "formats",   // file formats read strictly: JSON, Mitsuba XML (into our JSON), glTF's JSON
+    "pbrt",      // pbrt-v4 scene files into our JSON document
     "loaders",   // scene files and mesh files into a Scene
     "accel",     // the BVH: build, wide layout, traversal, primitive tests
     "shading",   // what both engines share: surfaces, lights, MIS, media, path vertices

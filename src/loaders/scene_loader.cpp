@@ -15,7 +15,7 @@
 #include "formats/json_reader.h"
 #include "loaders/mesh_file.h"
 #include "formats/mitsuba_xml.h"
-#include "formats/pbrt_scene.h"
+#include "pbrt/translate.h"
 #include "formats/ply_write.h"
 #include "files/output_file.h"
 #include "scene/named_metals.h"

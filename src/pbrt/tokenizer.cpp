@@ -1,4 +1,4 @@
-#include "formats/pbrt_tokenizer.h"
+#include "pbrt/tokenizer.h"
 
 #include <utility>
 

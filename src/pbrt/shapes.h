@@ -4,8 +4,8 @@
 
 #include <string>
 
-#include "formats/pbrt_params.h"
-#include "formats/pbrt_scene.h"
+#include "pbrt/params.h"
+#include "pbrt/translate.h"
 
 namespace wavetrace {
 

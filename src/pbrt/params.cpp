@@ -1,4 +1,4 @@
-#include "formats/pbrt_params.h"
+#include "pbrt/params.h"
 
 #include <algorithm>
 #include <cmath>

@@ -3,7 +3,7 @@
 // book (Physically Based Rendering, 4th ed.) define them; every default below is theirs.
 // pbrt is spectral and wavetrace is RGB: spectra become linear sRGB as Mitsuba's RGB
 // variants convert them (src/formats/spectrum_rgb.h).
-#include "formats/pbrt_scene.h"
+#include "pbrt/translate.h"
 
 #include <algorithm>
 #include <array>
@@ -14,9 +14,9 @@
 #include <sstream>
 
 #include "files/input_file.h"
-#include "formats/pbrt_params.h"
-#include "formats/pbrt_shapes.h"
-#include "formats/pbrt_tokenizer.h"
+#include "pbrt/params.h"
+#include "pbrt/shapes.h"
+#include "pbrt/tokenizer.h"
 #include "formats/spectrum_rgb.h"
 #include "wavetrace/scene/scene.h"
 

@@ -1,4 +1,4 @@
-#include "formats/pbrt_shapes.h"
+#include "pbrt/shapes.h"
 
 #include <algorithm>
 #include <cmath>
