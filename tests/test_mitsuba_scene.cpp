@@ -86,6 +86,21 @@ TEST(MitsubaScenes, SensorFilmSamplerAndIntegratorSetTheRender) {
     EXPECT_TRUE(warnings.empty()) << warnings.front();
 }
 
+// A sensor whose to_world mirrors (x scaled by -1) sees the world as Mitsuba renders it: our
+// camera then reverses the image's x axis.
+TEST(MitsubaScenes, AMirroringSensorGivesAMirroredCamera) {
+    TempDir dir;
+    for (const char* scale : {"1", "-1"}) {
+        auto path = dir.write("a.xml", scene(std::string(R"(
+  <sensor type="perspective"><transform name="to_world">
+    <scale x=")") + scale + R"("/><lookat origin="0, 0, 5" target="0, 0, 0" up="0, 1, 0"/>
+  </transform></sensor>
+  <shape type="sphere"/>)"));
+        Scene s = load_scene(path, collecting());
+        EXPECT_EQ(s.camera.mirror, std::string(scale) == "-1") << scale;
+    }
+}
+
 TEST(MitsubaScenes, DefaultFocalLengthKeepsTheDiagonalOf35mmFilm) {
     TempDir dir;
     auto path = dir.write("a.xml", scene(R"(<sensor type="perspective">

@@ -1165,14 +1165,13 @@ class Translator {
         const V3 forward = normalized(to_world.vector(0, 0, 1));
         const V3 up = to_world.vector(0, 1, 0);
         const V3 left = to_world.vector(1, 0, 0);
-        // Mitsuba's camera looks along +z with +x to the left of the image: our right is
-        // forward x up, so a left-handed to_world would mirror the image.
-        if (dot(cross(forward, up), left) > 0)
-            warn(e, "sensor: to_world mirrors the view; the image is rendered unmirrored");
         json camera = {{"look_from", to_json(from)},
                        {"look_at", to_json(add(from, forward))},
                        {"up", to_json(up)},
                        {"vfov", vfov}};
+        // Mitsuba's camera looks along +z with +x to the left of the image: our right is
+        // forward x up, so a to_world that mirrors (a scale by -1) needs our mirrored camera.
+        if (dot(cross(forward, up), left) > 0) camera["mirror"] = true;
         if (type == "thinlens") {
             camera["aperture"] = 2 * p.number("aperture_radius", 0.0);
             camera["focus_distance"] = p.number("focus_distance", 0.0);
