@@ -395,7 +395,11 @@ class Translator {
             states_.push_back(state());
             transform_only_.push_back(d == "TransformBegin");
         } else if (d == "AttributeEnd" || d == "TransformEnd") {
-            if (states_.size() <= 1) fail(place, d + " without a matching begin");
+            if (states_.size() <= 1 || (defining_ && states_.size() <= defining_depth_))
+                fail(place, d + " without a matching begin");
+            if (transform_only_.back() != (d == "TransformEnd"))
+                fail(place, d + " closes " + (transform_only_.back() ? "a TransformBegin"
+                                                                     : "an AttributeBegin"));
             State top = states_.back();
             states_.pop_back();
             if (transform_only_.back()) {  // TransformEnd keeps the other attributes
@@ -543,11 +547,14 @@ class Translator {
             states_.push_back(state());  // ObjectBegin opens an attribute block
             transform_only_.push_back(false);
             defining_ = true;
+            defining_depth_ = states_.size();
             defining_name_ = name;
             defining_place_ = place;
             instances_[name];
         } else if (d == "ObjectEnd") {
             if (!defining_) fail(place, "ObjectEnd without ObjectBegin");
+            if (states_.size() != defining_depth_)
+                fail(place, "ObjectEnd inside an AttributeBegin or TransformBegin of its object");
             defining_ = false;
             states_.pop_back();
             transform_only_.pop_back();
@@ -1378,6 +1385,7 @@ class Translator {
     std::map<std::string, Instance> instances_;
     size_t placed_shapes_ = 0, placed_triangles_ = 0;
     bool defining_ = false;
+    size_t defining_depth_ = 0;  // the attribute depth inside the object being defined
     std::string defining_name_, defining_place_;
     Active active_ = Active::Start;
     bool motion_warned_ = false;
