@@ -9,6 +9,7 @@
 
 #include "accel/wide_bvh.h"
 #include "kernels/lane_kernels.h"
+#include "sampling/pixel_filter-inl.h"
 #include "sampling/sampler.h"
 #include "sampling/warp.h"
 #include "shading/lane_routes.h"
@@ -393,6 +394,40 @@ TEST(Lanes, Log1pIsTheLibraryOne) {
     const float last = std::nextafter(1.0f, 0.0f);  // the largest u < 1
     EXPECT_NEAR(sample_free_flight(1.0f, last), 24.0f * std::log(2.0f), 1e-4f);
     EXPECT_EQ(sample_free_flight(2.0f, 0.0f), 0.0f);
+}
+
+// Filter importance sampling: the offsets of evenly spaced u are the filters' quantiles, F(x(u))
+// = u, for the tent's closed form and the truncated Gaussian's inverse error function.
+TEST(Lanes, PixelFilterOffsetsInvertTheFiltersDistributions) {
+    const int n = 20000;
+    for (float r : {1.0f, 2.0f}) {
+        float worst = 0, last = -r;
+        for (int i = 0; i < n; ++i) {
+            const double u = (i + 0.5) / n;
+            const float x = lanes::TentOffset<OneLane>(static_cast<float>(u), r);
+            const double cdf = x < 0 ? (x + r) * (x + r) / (2.0 * r * r)
+                                     : 1 - (r - x) * (r - x) / (2.0 * r * r);
+            worst = std::max(worst, float(std::fabs(cdf - u)));
+            EXPECT_GE(x, last);
+            last = x;
+        }
+        EXPECT_LT(worst, 2e-6f) << "tent " << r;
+        EXPECT_LE(last, r);
+    }
+    for (auto [sigma, r] : {std::pair{0.5f, 2.0f}, {0.5f, 1.5f}, {1.0f, 1.0f}}) {
+        const double e = std::erf(r / (sigma * std::sqrt(2.0)));
+        float worst = 0, last = -r;
+        for (int i = 0; i < n; ++i) {
+            const double u = (i + 0.5) / n;
+            const float x = lanes::GaussianOffset<OneLane>(static_cast<float>(u), sigma, float(e));
+            const double cdf = (std::erf(x / (sigma * std::sqrt(2.0))) + e) / (2 * e);
+            worst = std::max(worst, float(std::fabs(cdf - u)));
+            EXPECT_GE(x, last);
+            last = x;
+        }
+        EXPECT_LT(worst, 1e-5f) << "gaussian " << sigma << " " << r;
+        EXPECT_LE(last, r * 1.0001f);
+    }
 }
 
 TEST(Lanes, MisWeightKeepsItsGuards) {

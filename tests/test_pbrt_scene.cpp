@@ -334,7 +334,7 @@ TEST(PbrtScenes, BadInputNamesTheFileAndLine) {
 TEST(PbrtScenes, WhatCannotBeRepresentedIsAWarningWithItsPlace) {
     TempDir dir;
     auto path = dir.write("a.pbrt", R"(Camera "perspective" "float lensradius" 0.1
-PixelFilter "gaussian"
+PixelFilter "mitchell"
 WorldBegin
 Shape "curve" "point3 P" [0 0 0 1 1 1 2 2 2 3 3 3]
 Material "hair"
@@ -343,11 +343,40 @@ Shape "sphere" "float radius" 1 "float wobble" 3 "float zmax" 0.5
     Scene s = load_scene(path, collecting());
     EXPECT_EQ(s.spheres.size(), 1u);
     EXPECT_NEAR(s.camera.aperture, 0.2f, 1e-6f);
-    EXPECT_TRUE(warned("a.pbrt:2: warning: PixelFilter \"gaussian\""));
+    EXPECT_TRUE(warned("a.pbrt:2: warning: PixelFilter \"mitchell\" is not supported"));
     EXPECT_TRUE(warned("a.pbrt:4: warning: Shape \"curve\" is not supported; skipped"));
     EXPECT_TRUE(warned("a.pbrt:5: warning: Material \"hair\": material \"hair\" is not supported"));
     EXPECT_TRUE(warned("a.pbrt:6: warning: Shape \"sphere\": parameter \"wobble\" is not supported"));
     EXPECT_TRUE(warned("a.pbrt:6: warning: Shape sphere: partial spheres"));
+}
+
+// pbrt's filters are ours (its default the Gaussian of radius 1.5), and a film of filtered
+// samples is the same image from both engines.
+TEST(PbrtScenes, PixelFiltersMapAndBothEnginesRenderThemAlike) {
+    TempDir dir;
+    auto path = dir.write("a.pbrt", "Camera \"perspective\"\nWorldBegin\nShape \"sphere\"\n");
+    EXPECT_EQ(load_scene(path, collecting()).camera.filter.kind, PixelFilter::Kind::Gaussian);
+    EXPECT_EQ(load_scene(path, collecting()).camera.filter.radius, 1.5f);
+    Scene s = load_scene(std::filesystem::path(WAVETRACE_SCENES_DIR) / "cornell-box.pbrt",
+                         collecting());
+    EXPECT_EQ(s.camera.filter.kind, PixelFilter::Kind::Tent);
+    EXPECT_EQ(s.camera.filter.radius, 1.0f);
+    const Bvh bvh = Bvh::build(s);
+    RenderRequest r;
+    r.width = r.height = 24;
+    r.spp = 4;
+    r.seed = 9;
+    Film a(r.width, r.height), b(r.width, r.height), box(r.width, r.height);
+    render(s, bvh, r, a);
+    r.engine = Engine::Megakernel;
+    render(s, bvh, r, b);
+    const Image ia = a.mean(), ib = b.mean();
+    for (size_t i = 0; i < ia.pixels.size(); ++i)
+        for (int c = 0; c < 3; ++c)
+            EXPECT_NEAR(ia.pixels[i][c], ib.pixels[i][c], 1e-5f * (1 + ib.pixels[i][c])) << i;
+    s.camera.filter = PixelFilter{};  // the box: other rays, another image
+    render(s, bvh, r, box);
+    EXPECT_NE(box.mean().pixels[100].x, ib.pixels[100].x);
 }
 
 // The pbrt file's own meshes become PLY files beside the JSON; the JSON renders the image the

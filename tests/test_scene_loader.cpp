@@ -226,6 +226,20 @@ TEST(SceneLoader, NegativeAndZeroSizesAreRejected) {
               ": /materials/m/albedo/1: expected a non-negative number, got -1");
 }
 
+TEST(SceneLoader, PixelFiltersAreReadStrictly) {
+    TempDir dir;
+    auto scene = [](const std::string& filter) {
+        return R"({"camera": {"look_from": [0, 0, 1], "look_at": [0, 0, 0], "filter": )" + filter +
+               R"(}, "objects": []})";
+    };
+    EXPECT_EQ(load_error(dir, scene(R"({"type": "lanczos"})")),
+              ": /camera/filter/type: unknown filter type \"lanczos\" (expected box, tent or gaussian)");
+    EXPECT_EQ(load_error(dir, scene(R"({"type": "tent", "radius": 0})")),
+              ": /camera/filter/radius: expected a number in (0, 8], got 0");
+    EXPECT_EQ(load_error(dir, scene(R"({"type": "tent", "sigma": 1})")).substr(0, 31),
+              ": /camera/filter/sigma: unknown");
+}
+
 TEST(SceneLoader, CameraMustBeWellPosed) {
     TempDir dir;
     EXPECT_EQ(

@@ -1109,19 +1109,32 @@ class Translator {
         Props p(e, *this);
         const Xform to_world = p.transform("to_world");
         int width = 768, height = 576;
+        // Mitsuba's default filter: its Gaussian of deviation 0.5 and radius 4 sigma.
+        json filter = {{"type", "gaussian"}, {"sigma", 0.5}, {"radius", 2.0}};
         for (const Element* film : p.nested("film")) {
             Props f(*film, *this);
             width = f.integer("width", 768, 1, kMaxImageSide);
             height = f.integer("height", 576, 1, kMaxImageSide);
             for (const char* crop : {"crop_width", "crop_height", "crop_offset_x", "crop_offset_y"})
                 if (f.get(crop)) warn(*film, std::string("film: ") + crop + " is not supported; the whole film is rendered");
-            for (const Element* filter : f.nested("rfilter"))
-                if (filter->attr_or("type", "") != "box")
-                    warn(*filter, "rfilter \"" + filter->attr_or("type", "") +
-                                      "\": wavetrace's pixels are boxes");
-            if (!f.nested("rfilter").size())
-                warn(*film, "film: Mitsuba's default reconstruction filter is gaussian; "
-                            "wavetrace's pixels are boxes");
+            for (const Element* r : f.nested("rfilter")) {
+                Props rp(*r, *this);
+                const std::string rt = r->attr_or("type", "");
+                if (rt == "box") {
+                    filter = nullptr;
+                } else if (rt == "tent") {
+                    filter = {{"type", "tent"}, {"radius", rp.number("radius", 1.0)}};
+                } else if (rt == "gaussian") {
+                    const double sigma = rp.number("stddev", 0.5);
+                    filter = {{"type", "gaussian"}, {"sigma", sigma}, {"radius", 4 * sigma}};
+                } else {
+                    warn(*r, "rfilter \"" + rt + "\" is not supported; a box filter is used");
+                    filter = nullptr;
+                }
+                rp.finish(rt == "box" || rt == "tent" || rt == "gaussian"
+                              ? std::initializer_list<const char*>{}
+                              : std::initializer_list<const char*>{"radius", "stddev", "B", "C", "lobes"});
+            }
             f.finish({"pixel_format", "component_format", "file_format", "banner",
                       "high_quality_edges", "sample_border", "compensate"});
         }
@@ -1172,6 +1185,7 @@ class Translator {
         // Mitsuba's camera looks along +z with +x to the left of the image: our right is
         // forward x up, so a to_world that mirrors (a scale by -1) needs our mirrored camera.
         if (dot(cross(forward, up), left) > 0) camera["mirror"] = true;
+        if (!filter.is_null()) camera["filter"] = filter;
         if (type == "thinlens") {
             camera["aperture"] = 2 * p.number("aperture_radius", 0.0);
             camera["focus_distance"] = p.number("focus_distance", 0.0);

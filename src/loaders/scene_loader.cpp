@@ -229,7 +229,39 @@ class Loader {
         if (auto x = o.optional("aperture")) c.aperture = x->non_negative();
         if (auto x = o.optional("focus_distance")) c.focus_distance = x->positive();
         if (auto x = o.optional("mirror")) c.mirror = x->boolean();
+        if (auto x = o.optional("filter")) c.filter = read_filter(*x);
         o.finish();
+    }
+
+    // The pixel filter (docs/scene-format.md, "camera"): its type, radius and deviation.
+    static PixelFilter read_filter(const Value& v) {
+        Object o(v);
+        PixelFilter f;
+        const Value type = o.required("type");
+        const std::string kind = type.string();
+        if (kind == "box") {
+            f.kind = PixelFilter::Kind::Box;
+        } else if (kind == "tent") {
+            f.kind = PixelFilter::Kind::Tent;
+            f.radius = 1.0f;
+        } else if (kind == "gaussian") {
+            f.kind = PixelFilter::Kind::Gaussian;
+            f.radius = 2.0f;
+        } else {
+            type.fail("unknown filter type \"" + kind + "\" (expected box, tent or gaussian)");
+        }
+        auto bounded = [](const Value& x, float hi) {
+            if (!x.is_number() || !(x.number() > 0.0f && x.number() <= hi))
+                x.fail("expected a number in (0, " + std::to_string(static_cast<int>(hi)) +
+                       "], got " + x.describe());
+            return x.number();
+        };
+        if (auto x = o.optional("radius")) f.radius = bounded(*x, 8.0f);
+        if (kind == "gaussian") {
+            if (auto x = o.optional("sigma")) f.sigma = bounded(*x, 8.0f);
+        }
+        o.finish();
+        return f;
     }
 
     void read_background(const Value& v) {

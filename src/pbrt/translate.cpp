@@ -490,10 +490,7 @@ class Translator {
         } else if (d == "Integrator") {
             integrator(place);
         } else if (d == "PixelFilter") {
-            const std::string type = string_arg(d);
-            PbrtParams p = params("PixelFilter \"" + type + "\"");
-            if (type != "box") warn(place, "PixelFilter \"" + type + "\": wavetrace's pixels are boxes");
-            p.finish(pwarn(), {"xradius", "yradius", "sigma", "B", "C", "tau"});
+            pixel_filter(place);
         } else if (d == "Accelerator") {
             string_arg(d);
             params(d);  // wavetrace builds its own BVH
@@ -629,6 +626,7 @@ class Translator {
                   {"vfov", 2 * std::atan(tan_v) * 180 / kPiD}};
         // Our image's right is forward x up; pbrt's is camera +x.
         if (dot(cross(forward, up), right) < 0) c["mirror"] = true;
+        c["filter"] = filter_;
         if (lens_radius_ > 0) {
             c["aperture"] = 2 * lens_radius_;
             c["focus_distance"] = focal_distance_;
@@ -652,6 +650,29 @@ class Translator {
         p.finish(pwarn(), {"filename", "savefp16", "diagonal", "sensor", "whitebalance"});
     }
 
+    // pbrt's box (radius 0.5), triangle (2) and gaussian (1.5, sigma 0.5) filters are ours;
+    // pbrt samples them by a table, we by their exact inverse distributions.
+    void pixel_filter(const std::string& place) {
+        const std::string type = string_arg("PixelFilter");
+        PbrtParams p = params("PixelFilter \"" + type + "\"");
+        const double fallback = type == "box" ? 0.5 : type == "triangle" ? 2.0 : 1.5;
+        const double rx = p.number("xradius", fallback), ry = p.number("yradius", fallback);
+        if (rx != ry) warn(place, "PixelFilter: xradius and yradius differ; their mean is used");
+        const double r = 0.5 * (rx + ry);
+        if (type == "box") {
+            filter_ = {{"type", "box"}, {"radius", r}};
+        } else if (type == "triangle") {
+            filter_ = {{"type", "tent"}, {"radius", r}};
+        } else if (type == "gaussian") {
+            filter_ = {{"type", "gaussian"}, {"radius", r}, {"sigma", p.number("sigma", 0.5)}};
+        } else {
+            warn(place, "PixelFilter \"" + type + "\" is not supported; a box filter is used");
+            filter_ = {{"type", "box"}, {"radius", 0.5}};
+            for (PbrtParam& q : p.list) q.used = true;
+        }
+        p.finish(pwarn());
+    }
+
     void integrator(const std::string& place) {
         const std::string type = string_arg("Integrator");
         PbrtParams p = params("Integrator \"" + type + "\"");
@@ -669,7 +690,9 @@ class Translator {
 
     // ---- colours, spectra, textures ----
 
-    // pbrt's named spectra that are illuminants: their colour, of unit luminance.
+    // pbrt's named illuminants: their colour, of unit luminance. D65 is sRGB's white, A the
+    // black body of 2856 K by definition; D50 is approximated by the black body of its
+    // correlated colour temperature.
     static std::optional<Color> named_illuminant(const std::string& name) {
         if (name == "stdillum-D65") return Color{1.0f, 1.0f, 1.0f};
         if (name == "stdillum-A") return blackbody(2856);
@@ -1389,6 +1412,8 @@ class Translator {
     std::string defining_name_, defining_place_;
     Active active_ = Active::Start;
     bool motion_warned_ = false;
+    // pbrt's default filter: its Gaussian of radius 1.5 and deviation 0.5.
+    json filter_ = {{"type", "gaussian"}, {"radius", 1.5}, {"sigma", 0.5}};
     bool camera_seen_ = false;
     M4 camera_ctm_ = identity();
     std::string camera_place_;

@@ -1,5 +1,6 @@
 #include "wavetrace/scene/camera.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "scene/camera_ray-inl.h"
@@ -28,6 +29,11 @@ CameraRays::CameraRays(const Camera& camera, int width, int height) {
     float lens_radius = 0.5f * camera.aperture;
     frame_.lens_u = u * lens_radius;
     frame_.lens_v = v * lens_radius;
+    frame_.filter = camera.filter;
+    // Kept below 1 so that the inverse error function stays finite at its ends.
+    frame_.filter_erf = std::min(
+        static_cast<float>(std::erf(camera.filter.radius / (camera.filter.sigma * std::sqrt(2.0)))),
+        0.99999988f);
 }
 
 Ray CameraRays::generate(float x, float y, float lens_u, float lens_v) const {

@@ -9,6 +9,7 @@
 #endif
 
 #include "math/lanes-inl.h"
+#include "sampling/pixel_filter-inl.h"
 #include "sampling/sampler-inl.h"
 #include "wavetrace/scene/camera.h"
 
@@ -45,9 +46,10 @@ HWY_INLINE void CameraRay(const CameraFrame& c,
     *dir = target - o;
 }
 
-// The camera ray of one sample of pixel (x, y), its path's sampler state `state`: jittered over
-// the pixel and the lens by the camera dimensions (sampling/sampler.h). What generate_camera_ray
-// (one lane) and the generate kernel (a vector of pixels) both run.
+// The camera ray of one sample of pixel (x, y), its path's sampler state `state`: placed about
+// the pixel's centre by the reconstruction filter and on the lens by the camera dimensions
+// (sampling/sampler.h). What generate_camera_ray (one lane) and the generate kernel (a vector
+// of pixels) both run.
 template <class L>
 HWY_INLINE void SampledCameraRay(const CameraFrame& c,
                                  typename L::U64 state,
@@ -55,8 +57,31 @@ HWY_INLINE void SampledCameraRay(const CameraFrame& c,
                                  typename L::F y,
                                  V3<typename L::F>* origin,
                                  V3<typename L::F>* dir) {
+    using F = typename L::F;
     auto u = [&](uint32_t dim) { return SampleDim<L>(state, L::Set64(dim)); };
-    CameraRay<L>(c, x + u(kDimPixelX), y + u(kDimPixelY), u(kDimLensU), u(kDimLensV), origin, dir);
+    const PixelFilter& f = c.filter;
+    F fx, fy;
+    if (f.kind == PixelFilter::Kind::Box && f.radius == 0.5f) {
+        // Uniform over the pixel itself, written as it always was (bit for bit).
+        fx = x + u(kDimPixelX);
+        fy = y + u(kDimPixelY);
+    } else {
+        const F ux = u(kDimPixelX), uy = u(kDimPixelY);
+        F ox, oy;
+        if (f.kind == PixelFilter::Kind::Tent) {
+            ox = TentOffset<L>(ux, f.radius);
+            oy = TentOffset<L>(uy, f.radius);
+        } else if (f.kind == PixelFilter::Kind::Gaussian) {
+            ox = GaussianOffset<L>(ux, f.sigma, c.filter_erf);
+            oy = GaussianOffset<L>(uy, f.sigma, c.filter_erf);
+        } else {
+            ox = (L::Set(2.0f) * ux - L::Set(1.0f)) * L::Set(f.radius);
+            oy = (L::Set(2.0f) * uy - L::Set(1.0f)) * L::Set(f.radius);
+        }
+        fx = x + L::Set(0.5f) + ox;
+        fy = y + L::Set(0.5f) + oy;
+    }
+    CameraRay<L>(c, fx, fy, u(kDimLensU), u(kDimLensV), origin, dir);
 }
 
 }  // namespace HWY_NAMESPACE

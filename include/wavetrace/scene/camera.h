@@ -5,6 +5,21 @@
 
 namespace wavetrace {
 
+// The reconstruction filter of the film's pixels, sampled by importance (filter importance
+// sampling, Ernst et al. 2006, as pbrt-v4 does): a sample's ray leaves from an offset about its
+// pixel's centre distributed as the filter, and it counts in its own pixel with weight 1, so a
+// film stays a sum of unit-weight samples (resume, split and merge stay exact).
+struct PixelFilter {
+    enum class Kind : uint8_t {
+        Box,       // uniform over [-radius, radius]^2 (radius 0.5: the pixel itself)
+        Tent,      // (radius - |x|)(radius - |y|), pbrt's "triangle", Mitsuba's "tent"
+        Gaussian,  // exp(-(x^2 + y^2) / (2 sigma^2)) truncated to [-radius, radius]^2
+    };
+    Kind kind = Kind::Box;
+    float radius = 0.5f;  // in pixels
+    float sigma = 0.5f;   // Gaussian: the standard deviation, in pixels
+};
+
 // A thin-lens camera as in the seed (RTIOW §12-13). With aperture 0 it is a pinhole.
 struct Camera {
     Point3 look_from{0.0f, 0.0f, 0.0f};
@@ -16,6 +31,7 @@ struct Camera {
     // The image's x axis reversed (a left-handed camera frame, as pbrt's): the image's right
     // is cross(w, up) instead of cross(up, w), w pointing backwards.
     bool mirror = false;
+    PixelFilter filter;
 };
 
 // What maps film positions to rays, for one film size.
@@ -24,6 +40,8 @@ struct CameraFrame {
     Point3 pixel00;       // the top-left corner of the film on the focus plane
     Vec3 du, dv;          // one pixel to the right / down, on the focus plane
     Vec3 lens_u, lens_v;  // lens radius times the camera's right / up axes
+    PixelFilter filter;
+    float filter_erf = 0.0f;  // Gaussian: erf(radius / (sigma sqrt 2)), the mass it keeps
     bool has_lens() const { return lens_u.x != 0 || lens_u.y != 0 || lens_u.z != 0; }
 };
 
