@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "cli_run.h"
+#include "load_warnings.h"
 #include "temp_dir.h"
 #include "wavetrace/loaders/load_scene.h"
 #include "wavetrace/scene/scene.h"
@@ -33,18 +34,6 @@ std::string gltf(const std::string& nodes, const std::string& roots, const std::
            top + "}";
 }
 
-std::vector<std::string> warnings;
-LoadOptions collecting() {
-    warnings.clear();
-    LoadOptions o;
-    o.warn = [](const std::string& w) { warnings.push_back(w); };
-    return o;
-}
-bool warned(const std::string& part) {
-    for (const std::string& w : warnings)
-        if (w.find(part) != std::string::npos) return true;
-    return false;
-}
 
 void expect_near(Vec3 a, Vec3 b, float tol = 1e-5f) {
     EXPECT_NEAR(a.x, b.x, tol);

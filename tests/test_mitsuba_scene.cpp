@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "cli_run.h"
+#include "load_warnings.h"
 #include "formats/spectrum_rgb.h"
 #include "temp_dir.h"
 #include "wavetrace/loaders/load_scene.h"
@@ -21,18 +22,6 @@ using namespace wavetrace;
 
 namespace {
 
-std::vector<std::string> warnings;
-LoadOptions collecting() {
-    warnings.clear();
-    LoadOptions o;
-    o.warn = [](const std::string& w) { warnings.push_back(w); };
-    return o;
-}
-bool warned(const std::string& part) {
-    for (const std::string& w : warnings)
-        if (w.find(part) != std::string::npos) return true;
-    return false;
-}
 
 double degrees(double radians) { return radians * 180.0 / 3.14159265358979323846; }
 

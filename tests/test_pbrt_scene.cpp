@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "cli_run.h"
+#include "load_warnings.h"
 #include "temp_dir.h"
 #include "wavetrace/wavetrace.h"
 
@@ -22,18 +23,6 @@ using namespace wavetrace;
 
 namespace {
 
-std::vector<std::string> warnings;
-LoadOptions collecting() {
-    warnings.clear();
-    LoadOptions o;
-    o.warn = [](const std::string& w) { warnings.push_back(w); };
-    return o;
-}
-bool warned(const std::string& part) {
-    for (const std::string& w : warnings)
-        if (w.find(part) != std::string::npos) return true;
-    return false;
-}
 
 std::string error_of(const std::filesystem::path& path) {
     try {
@@ -355,8 +344,9 @@ Shape "sphere" "float radius" 1 "float wobble" 3 "float zmax" 0.5
 TEST(PbrtScenes, PixelFiltersMapAndBothEnginesRenderThemAlike) {
     TempDir dir;
     auto path = dir.write("a.pbrt", "Camera \"perspective\"\nWorldBegin\nShape \"sphere\"\n");
-    EXPECT_EQ(load_scene(path, collecting()).camera.filter.kind, PixelFilter::Kind::Gaussian);
-    EXPECT_EQ(load_scene(path, collecting()).camera.filter.radius, 1.5f);
+    const PixelFilter default_filter = load_scene(path, collecting()).camera.filter;
+    EXPECT_EQ(default_filter.kind, PixelFilter::Kind::Gaussian);
+    EXPECT_EQ(default_filter.radius, 1.5f);
     Scene s = load_scene(std::filesystem::path(WAVETRACE_SCENES_DIR) / "cornell-box.pbrt",
                          collecting());
     EXPECT_EQ(s.camera.filter.kind, PixelFilter::Kind::Tent);

@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "files/input_file.h"
+#include "formats/affine.h"
 #include "formats/spectrum_rgb.h"
 #include "wavetrace/scene/scene.h"
 
@@ -328,43 +329,24 @@ class Reader {
 // Transforms: the JSON steps (the JSON loader composes them exactly as a hand-written scene's)
 // and, for cameras and lights, the same composition as a matrix.
 
+using affine::add;
+using affine::cross;
+using affine::dot;
+using affine::M4;
+using affine::norm;
+using affine::normalized;
+using affine::sub;
+using affine::to_json;
+using affine::V3;
+
 struct Xform {
     json steps = json::array();
-    double m[4][4] = {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}, {0, 0, 0, 1}};
+    M4 m = affine::identity();
 
-    void then(const double op[4][4]) {
-        double r[4][4];
-        for (int i = 0; i < 4; ++i)
-            for (int j = 0; j < 4; ++j) {
-                r[i][j] = 0;
-                for (int k = 0; k < 4; ++k) r[i][j] += op[i][k] * m[k][j];
-            }
-        std::copy(&r[0][0], &r[0][0] + 16, &m[0][0]);
-    }
-    std::array<double, 3> point(double x, double y, double z) const {
-        return {m[0][0] * x + m[0][1] * y + m[0][2] * z + m[0][3],
-                m[1][0] * x + m[1][1] * y + m[1][2] * z + m[1][3],
-                m[2][0] * x + m[2][1] * y + m[2][2] * z + m[2][3]};
-    }
-    std::array<double, 3> vector(double x, double y, double z) const {
-        return {m[0][0] * x + m[0][1] * y + m[0][2] * z, m[1][0] * x + m[1][1] * y + m[1][2] * z,
-                m[2][0] * x + m[2][1] * y + m[2][2] * z};
-    }
+    void then(const M4& op) { m = affine::mul(op, m); }
+    V3 point(double x, double y, double z) const { return affine::apply_point(m, {x, y, z}); }
+    V3 vector(double x, double y, double z) const { return affine::apply_vector(m, {x, y, z}); }
 };
-
-using V3 = std::array<double, 3>;
-V3 sub(V3 a, V3 b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-V3 add(V3 a, V3 b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
-double dot(V3 a, V3 b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-V3 cross(V3 a, V3 b) {
-    return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double norm(V3 a) { return std::sqrt(dot(a, a)); }
-V3 normalized(V3 a) {
-    const double n = norm(a);
-    return {a[0] / n, a[1] / n, a[2] / n};
-}
-json to_json(V3 v) { return json::array({v[0], v[1], v[2]}); }
 
 V3 xyz(const Element& e, double fallback) {
     V3 v = {fallback, fallback, fallback};
@@ -395,14 +377,14 @@ V3 named_vector(const Element& e, const char* name) {
 Xform read_transform(const Element& t) {
     Xform x;
     for (const Element& op : t.children) {
-        double m[4][4] = {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}, {0, 0, 0, 1}};
+        M4 m = affine::identity();
         if (op.tag == "translate") {
             const V3 v = xyz(op, 0.0);
-            for (int i = 0; i < 3; ++i) m[i][3] = v[i];
+            for (int i = 0; i < 3; ++i) m[i * 4 + 3] = v[i];
             x.steps.push_back({{"translate", to_json(v)}});
         } else if (op.tag == "scale") {
             const V3 v = xyz(op, 1.0);
-            for (int i = 0; i < 3; ++i) m[i][i] = v[i];
+            for (int i = 0; i < 3; ++i) m[i * 5] = v[i];
             x.steps.push_back({{"scale", to_json(v)}});
         } else if (op.tag == "rotate") {
             const V3 axis = xyz(op, 0.0);
@@ -410,27 +392,17 @@ Xform read_transform(const Element& t) {
             if (!angle_text) fail(op, "<rotate> needs an angle");
             const double angle = parse_number(op, *angle_text);
             if (!(norm(axis) > 0)) fail(op, "<rotate>: the axis is zero");
-            const V3 a = normalized(axis);
-            const double s = std::sin(angle * kPiD / 180), c = std::cos(angle * kPiD / 180);
-            const double r[3][3] = {
-                {a[0] * a[0] + (1 - a[0] * a[0]) * c, a[0] * a[1] * (1 - c) - a[2] * s,
-                 a[0] * a[2] * (1 - c) + a[1] * s},
-                {a[0] * a[1] * (1 - c) + a[2] * s, a[1] * a[1] + (1 - a[1] * a[1]) * c,
-                 a[1] * a[2] * (1 - c) - a[0] * s},
-                {a[0] * a[2] * (1 - c) - a[1] * s, a[1] * a[2] * (1 - c) + a[0] * s,
-                 a[2] * a[2] + (1 - a[2] * a[2]) * c}};
-            for (int i = 0; i < 3; ++i)
-                for (int j = 0; j < 3; ++j) m[i][j] = r[i][j];
+            m = affine::rotation(angle, axis);
             x.steps.push_back({{"rotate", {{"axis", to_json(axis)}, {"degrees", angle}}}});
         } else if (op.tag == "matrix" || op.tag == "lookat") {
             if (op.tag == "matrix") {
                 const std::vector<std::string> values = tokens(op.attr_or("value", ""));
                 if (values.size() == 16) {
-                    for (int k = 0; k < 16; ++k) m[k / 4][k % 4] = parse_number(op, values[k]);
-                    if (m[3][0] != 0 || m[3][1] != 0 || m[3][2] != 0 || m[3][3] != 1)
+                    for (int k = 0; k < 16; ++k) m[k] = parse_number(op, values[k]);
+                    if (m[12] != 0 || m[13] != 0 || m[14] != 0 || m[15] != 1)
                         fail(op, "<matrix>: the last row must be 0 0 0 1 (no projective maps)");
                 } else if (values.size() == 9) {
-                    for (int k = 0; k < 9; ++k) m[k / 3][k % 3] = parse_number(op, values[k]);
+                    for (int k = 0; k < 9; ++k) m[k / 3 * 4 + k % 3] = parse_number(op, values[k]);
                 } else {
                     fail(op, "<matrix>: expected 16 or 9 numbers, got " +
                                  std::to_string(values.size()));
@@ -445,15 +417,15 @@ Xform read_transform(const Element& t) {
                 if (!std::isfinite(left[0])) fail(op, "<lookat>: up is parallel to the view");
                 const V3 new_up = cross(dir, left);
                 for (int i = 0; i < 3; ++i) {
-                    m[i][0] = left[i];
-                    m[i][1] = new_up[i];
-                    m[i][2] = dir[i];
-                    m[i][3] = origin[i];
+                    m[i * 4] = left[i];
+                    m[i * 4 + 1] = new_up[i];
+                    m[i * 4 + 2] = dir[i];
+                    m[i * 4 + 3] = origin[i];
                 }
             }
             json rows = json::array();
             for (int i = 0; i < 3; ++i)
-                for (int j = 0; j < 4; ++j) rows.push_back(m[i][j]);
+                for (int j = 0; j < 4; ++j) rows.push_back(m[i * 4 + j]);
             x.steps.push_back({{"matrix", rows}});
         } else {
             fail(op, "<" + op.tag + "> in a <transform> (expected translate, rotate, scale, "
@@ -711,7 +683,7 @@ class Translator {
 
     json uv_transform(const Element& where, const Xform& x) {
         // uv' = A uv + t, written as our scale, then rotation, then offset: A = R(theta) S.
-        const double a = x.m[0][0], b = x.m[0][1], c = x.m[1][0], d = x.m[1][1];
+        const double a = x.m[0], b = x.m[1], c = x.m[4], d = x.m[5];
         const double su = std::hypot(a, c), theta = std::atan2(c, a);
         const double sv = -std::sin(theta) * b + std::cos(theta) * d;
         const double shear = std::cos(theta) * b + std::sin(theta) * d;
@@ -721,7 +693,7 @@ class Translator {
         if (!(su > 0) || sv == 0) fail(where, "to_uv is singular");
         return {{"scale", json::array({su, sv})},
                 {"rotate", theta * 180 / kPiD},
-                {"offset", json::array({x.m[0][3], x.m[1][3]})}};
+                {"offset", json::array({x.m[3], x.m[7]})}};
     }
 
     json texture(const Element& e) {

@@ -206,6 +206,28 @@ PbrtMesh loop_subdivision(PbrtParams& p, const std::string& place) {
     std::vector<std::vector<uint32_t>> nb;
     std::vector<char> boundary;
     std::map<uint64_t, std::vector<uint32_t>> edges;
+    // Every vertex moved by its one ring: an interior one of valence n to (1 - n w(n)) v +
+    // w(n) (its neighbours' sum), a boundary one to c v + (1 - c) / 2 (b0 + b1), b0 and b1
+    // its neighbours along the boundary (a vertex on no face, or where the boundary branches,
+    // stays).
+    auto smoothed = [&](const auto& w, float c) {
+        std::vector<Vec3> out(pos.size());
+        for (uint32_t a = 0; a < pos.size(); ++a) {
+            const std::vector<uint32_t>& ring = nb[a];
+            out[a] = pos[a];
+            if (ring.empty()) continue;
+            if (!boundary[a]) {
+                const double k = w(ring.size());
+                Vec3 sum(0.0f);
+                for (uint32_t n : ring) sum = sum + pos[n];
+                out[a] = static_cast<float>(1 - ring.size() * k) * pos[a] + static_cast<float>(k) * sum;
+            } else if (const std::vector<uint32_t> bn = boundary_neighbours(a, ring, edges);
+                       bn.size() == 2) {
+                out[a] = c * pos[a] + 0.5f * (1 - c) * (pos[bn[0]] + pos[bn[1]]);
+            }
+        }
+        return out;
+    };
     for (int level = 0; level < levels; ++level) {
         const size_t limit = max_subdivided_triangles(v.indices.size() / 3);
         if (tri.size() / 3 * 4 > limit)
@@ -213,21 +235,7 @@ PbrtMesh loop_subdivision(PbrtParams& p, const std::string& place) {
                             std::to_string(limit) + " triangles (the limit: 64 times the control "
                             "mesh's, plus 262144)");
         rings(&nb, &boundary, &edges);
-        std::vector<Vec3> next(pos.size());
-        for (uint32_t a = 0; a < pos.size(); ++a) {
-            const std::vector<uint32_t>& ring = nb[a];
-            if (ring.empty()) {
-                next[a] = pos[a];
-            } else if (!boundary[a]) {
-                const double b = beta(ring.size());
-                Vec3 sum(0.0f);
-                for (uint32_t n : ring) sum = sum + pos[n];
-                next[a] = static_cast<float>(1 - ring.size() * b) * pos[a] + static_cast<float>(b) * sum;
-            } else {
-                const std::vector<uint32_t> bn = boundary_neighbours(a, ring, edges);
-                next[a] = bn.size() == 2 ? 0.75f * pos[a] + 0.125f * (pos[bn[0]] + pos[bn[1]]) : pos[a];
-            }
-        }
+        std::vector<Vec3> next = smoothed(beta, 0.75f);
         std::map<uint64_t, uint32_t> edge_vertex;
         for (const auto& [k, opposite] : edges) {
             const uint32_t a = static_cast<uint32_t>(k >> 32), b = static_cast<uint32_t>(k);
@@ -251,21 +259,8 @@ PbrtMesh loop_subdivision(PbrtParams& p, const std::string& place) {
     // The limit surface: interior vertices by Loop's gamma = 1 / (n + 3 / (8 beta)), boundary
     // ones as 3/5 v + 1/5 (b0 + b1).
     rings(&nb, &boundary, &edges);
-    std::vector<Vec3> limit(pos.size());
-    for (uint32_t a = 0; a < pos.size(); ++a) {
-        const std::vector<uint32_t>& ring = nb[a];
-        if (ring.empty()) {
-            limit[a] = pos[a];
-        } else if (!boundary[a]) {
-            const double g = 1 / (static_cast<double>(ring.size()) + 3 / (8 * beta(ring.size())));
-            Vec3 sum(0.0f);
-            for (uint32_t n : ring) sum = sum + pos[n];
-            limit[a] = static_cast<float>(1 - ring.size() * g) * pos[a] + static_cast<float>(g) * sum;
-        } else {
-            const std::vector<uint32_t> bn = boundary_neighbours(a, ring, edges);
-            limit[a] = bn.size() == 2 ? 0.6f * pos[a] + 0.2f * (pos[bn[0]] + pos[bn[1]]) : pos[a];
-        }
-    }
+    std::vector<Vec3> limit = smoothed(
+        [&](size_t n) { return 1 / (static_cast<double>(n) + 3 / (8 * beta(n))); }, 0.6f);
     PbrtMesh m;
     m.positions = std::move(limit);
     m.indices = std::move(tri);

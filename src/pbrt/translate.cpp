@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "files/input_file.h"
+#include "formats/affine.h"
 #include "pbrt/params.h"
 #include "pbrt/shapes.h"
 #include "pbrt/tokenizer.h"
@@ -43,67 +44,22 @@ const std::string kInterface = "@interface";
     throw SceneError(place + ": " + message);
 }
 
-// ---------------------------------------------------------------------------------------------
-// 4x4 matrices, row-major; points are columns (pbrt's convention: CTM' = CTM * T).
-
-using M4 = std::array<double, 16>;
-using V3 = std::array<double, 3>;
-
-M4 identity() { return {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}; }
-
-M4 mul(const M4& a, const M4& b) {
-    M4 r{};
-    for (int i = 0; i < 4; ++i)
-        for (int j = 0; j < 4; ++j)
-            for (int k = 0; k < 4; ++k) r[i * 4 + j] += a[i * 4 + k] * b[k * 4 + j];
-    return r;
-}
-
-// Gauss-Jordan with partial pivoting; false if singular.
-bool invert(const M4& m, M4* out) {
-    double a[4][8];
-    for (int i = 0; i < 4; ++i)
-        for (int j = 0; j < 8; ++j) a[i][j] = j < 4 ? m[i * 4 + j] : (j - 4 == i ? 1 : 0);
-    for (int c = 0; c < 4; ++c) {
-        int p = c;
-        for (int r = c + 1; r < 4; ++r)
-            if (std::abs(a[r][c]) > std::abs(a[p][c])) p = r;
-        if (!(std::abs(a[p][c]) > 1e-300)) return false;
-        std::swap(a[c], a[p]);
-        const double d = a[c][c];
-        for (double& x : a[c]) x /= d;
-        for (int r = 0; r < 4; ++r) {
-            if (r == c) continue;
-            const double f = a[r][c];
-            for (int j = 0; j < 8; ++j) a[r][j] -= f * a[c][j];
-        }
-    }
-    for (int i = 0; i < 4; ++i)
-        for (int j = 0; j < 4; ++j) (*out)[i * 4 + j] = a[i][j + 4];
-    return true;
-}
-
-V3 apply_point(const M4& m, V3 p) {
-    return {m[0] * p[0] + m[1] * p[1] + m[2] * p[2] + m[3],
-            m[4] * p[0] + m[5] * p[1] + m[6] * p[2] + m[7],
-            m[8] * p[0] + m[9] * p[1] + m[10] * p[2] + m[11]};
-}
-V3 apply_vector(const M4& m, V3 v) {
-    return {m[0] * v[0] + m[1] * v[1] + m[2] * v[2], m[4] * v[0] + m[5] * v[1] + m[6] * v[2],
-            m[8] * v[0] + m[9] * v[1] + m[10] * v[2]};
-}
-double dot(V3 a, V3 b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-V3 cross(V3 a, V3 b) {
-    return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-V3 sub(V3 a, V3 b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-V3 add(V3 a, V3 b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
-double norm(V3 a) { return std::sqrt(dot(a, a)); }
-V3 normalized(V3 a) {
-    const double n = norm(a);
-    return {a[0] / n, a[1] / n, a[2] / n};
-}
-json to_json(V3 v) { return json::array({v[0], v[1], v[2]}); }
+// Points are columns (pbrt's convention too: CTM' = CTM * T).
+using affine::M4;
+using affine::V3;
+using affine::add;
+using affine::apply_point;
+using affine::apply_vector;
+using affine::cross;
+using affine::dot;
+using affine::identity;
+using affine::invert;
+using affine::mul;
+using affine::norm;
+using affine::normalized;
+using affine::rotation;
+using affine::sub;
+using affine::to_json;
 
 // The affine part as our JSON's "matrix" step (rows of a 3x4 matrix).
 json matrix_step(const M4& m) {
@@ -112,17 +68,6 @@ json matrix_step(const M4& m) {
     return json::array({json{{"matrix", rows}}});
 }
 
-M4 rotation(double degrees, V3 axis) {
-    const V3 a = normalized(axis);
-    const double s = std::sin(degrees * kPiD / 180), c = std::cos(degrees * kPiD / 180);
-    return {a[0] * a[0] + (1 - a[0] * a[0]) * c, a[0] * a[1] * (1 - c) - a[2] * s,
-            a[0] * a[2] * (1 - c) + a[1] * s, 0,
-            a[0] * a[1] * (1 - c) + a[2] * s, a[1] * a[1] + (1 - a[1] * a[1]) * c,
-            a[1] * a[2] * (1 - c) - a[0] * s, 0,
-            a[0] * a[2] * (1 - c) - a[1] * s, a[1] * a[2] * (1 - c) + a[0] * s,
-            a[2] * a[2] + (1 - a[2] * a[2]) * c, 0,
-            0, 0, 0, 1};
-}
 
 
 // ---------------------------------------------------------------------------------------------

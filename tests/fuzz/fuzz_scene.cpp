@@ -10,6 +10,7 @@
 #include <fstream>
 #include <string>
 
+#include "load_input.h"
 #include "wavetrace/wavetrace.h"
 
 namespace fs = std::filesystem;
@@ -36,20 +37,6 @@ fs::path setup() {
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     static const fs::path dir = setup();
-    const fs::path scene_file = dir / "x.json";
-    {
-        std::ofstream out(scene_file, std::ios::binary | std::ios::trunc);
-        out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
-    }
-    wavetrace::LoadOptions options;
-    options.warn = [](const std::string&) {};
-    try {
-        wavetrace::Scene scene = wavetrace::load_scene(scene_file, options);
-        // Keep the build small: the loader's limits allow far bigger scenes than a fuzzer
-        // should spend its time on.
-        if (scene.primitive_count() <= 100000) (void)wavetrace::Bvh::build(scene);
-    } catch (const wavetrace::SceneError&) {
-    } catch (const wavetrace::ImageError&) {
-    }
+    load_input(dir / "x.json", data, size);
     return 0;
 }

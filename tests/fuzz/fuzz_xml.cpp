@@ -11,6 +11,7 @@
 #include <fstream>
 #include <string>
 
+#include "load_input.h"
 #include "wavetrace/wavetrace.h"
 
 namespace fs = std::filesystem;
@@ -46,18 +47,6 @@ fs::path setup() {
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     static const fs::path dir = setup();
-    const fs::path scene_file = dir / "x.xml";
-    {
-        std::ofstream out(scene_file, std::ios::binary | std::ios::trunc);
-        out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
-    }
-    wavetrace::LoadOptions options;
-    options.warn = [](const std::string&) {};
-    try {
-        wavetrace::Scene scene = wavetrace::load_scene(scene_file, options);
-        if (scene.primitive_count() <= 100000) (void)wavetrace::Bvh::build(scene);
-    } catch (const wavetrace::SceneError&) {
-    } catch (const wavetrace::ImageError&) {
-    }
+    load_input(dir / "x.xml", data, size);
     return 0;
 }
