@@ -38,7 +38,7 @@ FUZZ_HEAP_DIR ?= build-fuzz-heap
 CLANG_CMAKE = -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
   '-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O2 -gline-tables-only -DNDEBUG' \
   -DCMAKE_AR=/usr/bin/ar -DCMAKE_RANLIB=/usr/bin/ranlib -DCMAKE_LINKER=/usr/bin/ld \
-  -DWAVETRACE_FUZZ=ON --log-level=WARNING
+  -DWAVETRACE_FUZZ=ON -DWAVETRACE_BUILD_PYTHON=OFF --log-level=WARNING
 # Peak-memory bounds mean nothing under ASan (its shadow memory and quarantine), so that test
 # runs only in `make test`.
 SAN_TESTS ?= Check*:SceneLoader.*:MitsubaScenes.*:PbrtScenes.*:Cli.*:Hostile*:Bvh.*:Triangle.*:Sphere.*:Quad.*:MeshFiles.*:Wavefront.*:Megakernel.*:Kernels.*:Lanes.*:Films.*:CompareImages.*:-Cli.WavefrontMemoryDoesNotGrowWithSamples:PbrtScenes.BitterlisCornellBoxRendersTungstensImageMean

@@ -2,7 +2,9 @@
 // and the place in it.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <string>
+#include <vector>
 
 #include "temp_dir.h"
 #include "test_paths.h"
@@ -53,6 +55,61 @@ TEST(SceneLoader, ShippedScenesLoad) {
     Scene everything = load_scene(scene_path("everything"));
     EXPECT_EQ(everything.spheres.size(), 1007u);  // 1000 in the cluster + 7
     EXPECT_EQ(everything.media.size(), 2u);
+}
+
+// check_scene() accepts what the loaders build, in every format, and names what a scene built
+// in code gets wrong.
+TEST(SceneLoader, LoadedScenesPassCheckScene) {
+    const std::filesystem::path mitsuba =
+        std::filesystem::path(WAVETRACE_REFERENCE_DIR) / "mitsuba3/tests/scenes";
+    std::vector<std::filesystem::path> files;
+    for (const auto& e : std::filesystem::directory_iterator(WAVETRACE_SCENES_DIR))
+        if (e.path().extension() == ".json" || e.path().extension() == ".pbrt")
+            files.push_back(e.path());
+    for (const auto& e : std::filesystem::recursive_directory_iterator(mitsuba))
+        if (e.path().extension() == ".xml" && e.path().filename().string().starts_with("test_"))
+            files.push_back(e.path());
+    ASSERT_GT(files.size(), 15u);
+    for (const auto& f : files) {
+        SCOPED_TRACE(f.string());
+        LoadOptions quiet;
+        quiet.warn = [](const std::string&) {};
+        EXPECT_NO_THROW(check_scene(load_scene(f, quiet)));
+    }
+}
+
+TEST(SceneLoader, CheckSceneNamesWhatIsWrong) {
+    auto message = [](const Scene& s) -> std::string {
+        try {
+            check_scene(s);
+        } catch (const SceneError& e) {
+            return e.what();
+        }
+        return "";
+    };
+    Scene s;
+    Material lambert;
+    lambert.albedo = s.add_solid({0.5f, 0.5f, 0.5f});
+    const MaterialId m = s.add_material(lambert);
+    s.add_sphere({{0, 0, -3}, 1.0f, m, kNone});
+    EXPECT_EQ(message(s), "");
+    s.spheres[0].interior = 3;
+    EXPECT_EQ(message(s), "scene: sphere 0: names no medium of the scene");
+    s.spheres[0].interior = kNone;
+    s.materials[0].albedo = kNone;
+    EXPECT_EQ(message(s), "scene: material 0: albedo is needed");
+    s.materials[0].albedo = 7;
+    EXPECT_EQ(message(s), "scene: material 0: albedo names no texture");
+    s.materials[0].albedo = 0;
+    Texture checker;
+    checker.kind = TextureKind::Checker;
+    checker.even = 0;
+    checker.odd = 1;  // itself: evaluating it would never end
+    s.add_texture(checker);
+    EXPECT_EQ(message(s), "scene: texture 1: a checker's cells must be textures added before it");
+    s.textures[1].odd = 0;
+    s.camera.look_at = s.camera.look_from;
+    EXPECT_NE(message(s).find("the camera needs distinct look_from and look_at"), std::string::npos);
 }
 
 TEST(SceneLoader, ObjectsAndTransformsBuildTheRightGeometry) {

@@ -121,6 +121,20 @@ for tool in script munged mungekey munge unmunge slurmctld slurmd sbatch squeue 
   printf 'tool %s\t%s\n' "$tool" "$path" >>"$refs"
 done
 
+# The Python modules the tests and the Python example import, as the interpreter that runs
+# them finds them.
+python=$(sed -n 's/^Python3_EXECUTABLE:[A-Z]*=//p' "$build/CMakeCache.txt")
+if [[ -n "$python" ]]; then
+  for module in numpy pytest matplotlib; do
+    path=$("$python" -c "import $module; print($module.__file__)" 2>/dev/null || true)
+    if [[ -z "$path" ]]; then
+      echo "check-deps: FAILED: the Python tests import $module, which $python cannot" >&2
+      exit 1
+    fi
+    printf 'python module %s\t%s\n' "$module" "$path" >>"$refs"
+  done
+fi
+
 # Our own files are not packages.
 grep -v -P "\t(\Q$root\E|\Q$build\E)/" "$refs" | sort -u >"$tmp/refs.ext" || true
 

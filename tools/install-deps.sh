@@ -20,6 +20,9 @@ packages=(
   libbenchmark-dev
   clang libclang-rt-14-dev  # make sanitize / make fuzz: ASan, UBSan and libFuzzer runtimes
   slurm-wlm munge       # the `slurm` test: a one-node cluster runs an array render and its merge
+  python3-dev pybind11-dev          # the Python module (python/)
+  python3-numpy python3-pytest      # its arrays and its tests
+  python3-matplotlib    # the Python example's plot (examples/python/)
 )
 
 # `install-deps.sh --bench` adds what `make bench` needs beyond the build: gnuplot for plots.

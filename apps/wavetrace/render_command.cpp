@@ -123,7 +123,7 @@ void map_aov_to_display(Aov aov, Image& image) {
 // Watches a colour render: a progress line on stderr, only when stderr is a terminal (samples
 // per pixel done of the total, resumed ones included, percent, elapsed, ETA or, with a time
 // limit, the time left counting down, Mpaths/s); a checkpoint of the film between passes
-// every --checkpoint-every seconds; and the stop at a signal or at the time limit.
+// every --checkpoint-every seconds; and the stop at a signal (the time limit is the request's).
 class RenderWatch : public RenderObserver {
   public:
     // `checkpoint(film, samples_done)` writes the film file; `time_limit` and `every` are in
@@ -152,8 +152,7 @@ class RenderWatch : public RenderObserver {
             checkpoint_(film, done);
             last_checkpoint_ = now;
         }
-        if (g_stop_signal.load() != 0) return false;
-        return !time_limit_ || std::chrono::duration<double>(now - start_).count() < *time_limit_;
+        return g_stop_signal.load() == 0;  // the time limit is the request's
     }
 
     void on_progress(double fraction) override {
@@ -233,17 +232,31 @@ struct Rendered {
     int spp_done = -1;
 };
 
-// What must match for two films to be parts of one render (FilmInfo::settings): the scene
-// file's content and every option that changes the samples.
+// The request of a colour render: every option that changes the samples (not yet their range).
+RenderRequest color_request(const RenderOptions& o, const Scene& scene, int width, int height) {
+    RenderRequest request;
+    request.width = width;
+    request.height = height;
+    request.seed = o.seed;
+    request.engine = *parse_engine(o.engine);
+    request.estimator.strategy = *parse_strategy(o.strategy);
+    request.estimator.heuristic =
+        o.heuristic == "balance" ? MisHeuristic::Balance : MisHeuristic::Power;
+    request.estimator.max_depth = o.max_depth.value_or(scene.render.max_depth);
+    if (o.wave_size) request.wavefront.wave_size = static_cast<size_t>(*o.wave_size);
+    request.wavefront.sort_by_material = o.sort_by_material;
+    request.wavefront.schedule = *parse_schedule(o.schedule);
+    if (o.time_limit) request.time_limit = *o.time_limit;
+    return request;
+}
+
+// What must match for two films to be parts of one render: the scene file's content and the
+// request's settings.
 std::string film_settings(const RenderOptions& o, const Scene& scene, int width, int height) {
     std::ifstream in(o.scene, std::ios::binary);
     std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    const uint64_t h = fnv1a_64(text.data(), text.size());
-    return fmt::format(
-        "scene_fnv1a={:016x}\nwidth={}\nheight={}\nseed={}\nengine={}\nstrategy={}\n"
-        "mis_heuristic={}\nmax_depth={}\n",
-        h, width, height, o.seed, o.engine, o.strategy, o.heuristic,
-        o.max_depth.value_or(scene.render.max_depth));
+    return wavetrace::film_settings(fnv1a_64(text.data(), text.size()),
+                                    color_request(o, scene, width, height));
 }
 
 // The render itself: BVH, engine or AOV, the image and its metadata. `film_settings_text`: the film
@@ -263,18 +276,7 @@ Rendered render_to_image(const RenderOptions& o,
     write.exposure = o.exposure;
     write.metadata = {{"wavetrace:scene", o.scene}, {"wavetrace:seed", std::to_string(o.seed)}};
     if (o.aov == "color") {
-        RenderRequest request;
-        request.width = width;
-        request.height = height;
-        request.seed = o.seed;
-        request.engine = *parse_engine(o.engine);
-        request.estimator.strategy = *parse_strategy(o.strategy);
-        request.estimator.heuristic =
-            o.heuristic == "balance" ? MisHeuristic::Balance : MisHeuristic::Power;
-        request.estimator.max_depth = o.max_depth.value_or(scene.render.max_depth);
-        if (o.wave_size) request.wavefront.wave_size = static_cast<size_t>(*o.wave_size);
-        request.wavefront.sort_by_material = o.sort_by_material;
-        request.wavefront.schedule = *parse_schedule(o.schedule);
+        RenderRequest request = color_request(o, scene, width, height);
         // Samples [offset, offset + requested) in all; a resumed film holds the first ones.
         const int requested = o.spp.value_or(scene.render.spp);
         const uint32_t offset = static_cast<uint32_t>(o.sample_offset.value_or(0));

@@ -15,12 +15,14 @@ int main(int argc, char** argv) {
     CLI::App app{"wavetrace benchmark suite"};
     Options o;
     std::string out = "results", scenes = WAVETRACE_SCENES_DIR;
-    std::vector<std::string> sections = {"engines", "waves", "bvh", "scaling", "convergence"};
+    std::vector<std::string> sections = {"engines", "waves",       "bvh",
+                                         "scaling", "convergence", "python_rays"};
     app.add_flag("--quick", o.quick, "tiny settings: check the harness only");
     app.add_option("--out", out, "results folder")->capture_default_str();
     app.add_option("--scenes", scenes, "scenes folder")->capture_default_str();
     app.add_option("--sections", sections, "sections to run")
-        ->check(CLI::IsMember({"engines", "waves", "bvh", "scaling", "convergence"}));
+        ->check(CLI::IsMember(
+            {"engines", "waves", "bvh", "scaling", "convergence", "python_rays"}));
     app.add_option("--max-threads", o.max_threads,
                    "scaling: up to this many threads (default: all)");
     app.add_option("--repetitions", o.reps,
@@ -54,6 +56,7 @@ int main(int argc, char** argv) {
         if (s == "bvh") bench_bvh(o, r);
         if (s == "scaling") bench_scaling(o, r);
         if (s == "convergence") bench_convergence(o, r);
+        if (s == "python_rays") bench_python_rays(o, r);
     }
     r.note("seconds",
            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());

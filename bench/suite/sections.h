@@ -51,5 +51,6 @@ void bench_waves(const Options& o, Results& r);        // wavefront speed vs wav
 void bench_bvh(const Options& o, Results& r);          // our BVH vs Embree on captured rays
 void bench_scaling(const Options& o, Results& r);      // threads 1..N, both engines
 void bench_convergence(const Options& o, Results& r);  // rMSE vs time per strategy
+void bench_python_rays(const Options& o, Results& r);  // Bvh.intersect from NumPy vs C++
 
 }  // namespace wavetrace::bench

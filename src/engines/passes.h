@@ -13,23 +13,29 @@
 namespace wavetrace {
 
 // Calls render_pass(first_sample, count) until the request's samples are done or the observer
-// stops the render; returns the samples per pixel done. Without an observer the render is one
-// pass (the threads meet once, at the end); with one, the first pass is one sample and the
-// later ones last about request.pass_seconds.
+// stops the render or the time limit is reached; returns the samples per pixel done. Without an
+// observer or a time limit the render is one pass (the threads meet once, at the end); with
+// one, the first pass is one sample and the later ones last about request.pass_seconds.
 template <class RenderPass>
 int run_passes(const RenderRequest& request,
                const Film& film,
                RenderObserver* observer,
                RenderPass&& render_pass) {
+    using Clock = std::chrono::steady_clock;
+    const Clock::time_point begin = Clock::now();
+    const bool in_passes = observer || request.time_limit > 0;
     int done = 0, chunk = 1;
     while (done < request.spp) {
         if (observer && !observer->on_pass(done, request.spp, film)) break;
-        const int count = observer ? std::min(chunk, request.spp - done) : request.spp - done;
-        const auto start = std::chrono::steady_clock::now();
+        if (request.time_limit > 0 && done > 0 &&
+            std::chrono::duration<double>(Clock::now() - begin).count() >= request.time_limit)
+            break;
+        const int count = in_passes ? std::min(chunk, request.spp - done) : request.spp - done;
+        const auto start = Clock::now();
         render_pass(static_cast<uint32_t>(request.first_sample + done), count);
         done += count;
         const double seconds =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            std::chrono::duration<double>(Clock::now() - start).count();
         chunk = static_cast<int>(
             std::clamp(count * request.pass_seconds / std::max(seconds, 1e-3), 1.0, 65536.0));
     }

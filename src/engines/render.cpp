@@ -1,5 +1,8 @@
 #include "wavetrace/engines/render.h"
 
+#include <cinttypes>
+#include <cstdio>
+
 #include "engines/dispatch.h"
 #include "wavetrace/accel/bvh.h"
 
@@ -23,6 +26,17 @@ std::optional<Schedule> parse_schedule(const std::string& name) {
     for (Schedule s : {Schedule::Resident, Schedule::Stage})
         if (name == to_string(s)) return s;
     return std::nullopt;
+}
+
+std::string film_settings(uint64_t scene_fingerprint, const RenderRequest& request) {
+    const Estimator& e = request.estimator;
+    char fingerprint[17];
+    std::snprintf(fingerprint, sizeof fingerprint, "%016" PRIx64, scene_fingerprint);
+    return "scene_fnv1a=" + std::string(fingerprint) + "\nwidth=" + std::to_string(request.width) +
+           "\nheight=" + std::to_string(request.height) + "\nseed=" + std::to_string(request.seed) +
+           "\nengine=" + to_string(request.engine) + "\nstrategy=" + to_string(e.strategy) +
+           "\nmis_heuristic=" + (e.heuristic == MisHeuristic::Balance ? "balance" : "power") +
+           "\nmax_depth=" + std::to_string(e.max_depth) + "\n";
 }
 
 bool RenderObserver::on_pass(int, int, const Film&) {

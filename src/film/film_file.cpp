@@ -222,41 +222,40 @@ void merge_film(Film& into, FilmInfo& into_info, const Film& part, const FilmInf
     into.merge(part);
 }
 
-std::pair<Film, FilmInfo> merge_films(const std::vector<fs::path>& paths) {
-    if (paths.empty()) throw FilmError("no films to merge");
-    struct Part {
-        fs::path path;
-        Film film;
-        FilmInfo info;
-    };
-    std::vector<Part> parts;
-    for (const fs::path& p : paths) {
-        auto [film, info] = load_film(p);
-        if (!parts.empty()) {
-            const std::string diff =
-                settings_difference(parts.front().info.settings, info.settings);
-            if (!diff.empty())
-                throw FilmError(p.string() + ": not a part of the same render as " +
-                                parts.front().path.string() + " (" + diff + ")");
-        }
-        parts.push_back({p, std::move(film), std::move(info)});
+std::pair<Film, FilmInfo> merge_films(std::vector<FilmPart> parts) {
+    if (parts.empty()) throw FilmError("no films to merge");
+    for (const FilmPart& p : parts) {
+        const std::string diff = settings_difference(parts.front().info.settings, p.info.settings);
+        if (!diff.empty())
+            throw FilmError(p.name + ": not a part of the same render as " + parts.front().name +
+                            " (" + diff + ")");
     }
-    std::stable_sort(parts.begin(), parts.end(), [](const Part& a, const Part& b) {
-        auto first = [](const Part& p) {
+    std::stable_sort(parts.begin(), parts.end(), [](const FilmPart& a, const FilmPart& b) {
+        auto first = [](const FilmPart& p) {
             return p.info.ranges.empty() ? 0u : p.info.ranges[0].first;
         };
         return first(a) < first(b);
     });
     Film film(parts.front().film.width(), parts.front().film.height());
     FilmInfo info{parts.front().info.settings, {}};
-    for (const Part& p : parts) {
+    for (const FilmPart& p : parts) {
         try {
             merge_film(film, info, p.film, p.info);
         } catch (const FilmError& e) {
-            throw FilmError(p.path.string() + ": " + e.what());
+            throw FilmError(p.name + ": " + e.what());
         }
     }
     return {std::move(film), std::move(info)};
+}
+
+std::pair<Film, FilmInfo> merge_films(const std::vector<fs::path>& paths) {
+    if (paths.empty()) throw FilmError("no films to merge");
+    std::vector<FilmPart> parts;
+    for (const fs::path& p : paths) {
+        auto [film, info] = load_film(p);
+        parts.push_back({p.string(), std::move(film), std::move(info)});
+    }
+    return merge_films(std::move(parts));
 }
 
 }  // namespace wavetrace

@@ -65,6 +65,10 @@ struct RenderRequest {
     // wait on each other, short enough to stop or checkpoint promptly. Without an observer the
     // render is one pass.
     double pass_seconds = 0.5;
+    // Seconds after which no pass starts (0: none): the render stops at the first pass
+    // boundary after them, every pixel holding the same samples; the first pass (one sample)
+    // is always rendered. A time limit cuts the render into passes as an observer does.
+    double time_limit = 0;
 };
 
 struct RenderStats {
@@ -88,6 +92,11 @@ class RenderObserver {
     // thread-safe): the fraction of the requested samples done.
     virtual void on_progress(double fraction);
 };
+
+// What must match for two films to be parts of one render (FilmInfo::settings): the scene's
+// fingerprint (e.g. fnv1a_64 of its file; 0 for a scene built in code), the image size and
+// every request setting that changes the samples, as "key=value" lines.
+std::string film_settings(uint64_t scene_fingerprint, const RenderRequest& request);
 
 // Renders the request's samples into `film` (of the request's size), after those it holds.
 // The image does not depend on the thread count, the wave size or how the passes fell.

@@ -53,9 +53,20 @@ std::string settings_difference(const std::string& a, const std::string& b);
 // the order given; merge_films() below fixes that order.
 void merge_film(Film& into, FilmInfo& into_info, const Film& part, const FilmInfo& part_info);
 
+// A film held in memory with what it is of; `name` stands for it in messages (e.g. its file).
+struct FilmPart {
+    std::string name;
+    Film film;
+    FilmInfo info;
+};
+
 // Merges films of one render (same settings, disjoint ranges) in order of their first sample,
-// so that any order of the arguments gives the same bits. Throws FilmError naming the file
-// that does not fit.
+// so that any order of the parts gives the same bits. Throws FilmError naming the part that
+// does not fit.
+std::pair<Film, FilmInfo> merge_films(std::vector<FilmPart> parts);
+
+// The same for film files, each named by its path (FilmError naming the file that cannot be
+// read or does not fit).
 std::pair<Film, FilmInfo> merge_films(const std::vector<std::filesystem::path>& paths);
 
 }  // namespace wavetrace

@@ -122,6 +122,12 @@ struct Scene {
         Point3 lo, Point3 hi, MaterialId material, MediumId interior, const Transform& to_world);
 };
 
+// Throws SceneError if the scene refers to something it does not hold (a material, texture,
+// image or medium id out of range; a checker whose cells are not added before it), a material
+// lacks a texture its kind reads, or a shape, light or camera is not finite. What load_scene()
+// returns passes; a scene built in code should be checked before a BVH is built over it.
+void check_scene(const Scene& scene);
+
 // Every primitive whose material emits: the scene's area lights.
 std::vector<PrimRef> collect_emitters(const Scene& scene);
 

@@ -1,0 +1,127 @@
+#include <cmath>
+#include <string>
+
+#include "wavetrace/scene/scene.h"
+
+namespace wavetrace {
+namespace {
+
+[[noreturn]] void fail(const std::string& what, size_t index, const std::string& problem) {
+    throw SceneError("scene: " + what + " " + std::to_string(index) + ": " + problem);
+}
+
+bool finite(Vec3 v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+// Whether a material of this kind reads its albedo texture.
+bool reads_albedo(MaterialKind kind) {
+    switch (kind) {
+        case MaterialKind::Lambertian:
+        case MaterialKind::Metal:
+        case MaterialKind::Mirror:
+        case MaterialKind::Isotropic:
+        case MaterialKind::Conductor:
+        case MaterialKind::Plastic:
+        case MaterialKind::MetallicRoughness:
+            return true;
+        default:
+            return false;
+    }
+}
+
+}  // namespace
+
+void check_scene(const Scene& scene) {
+    const size_t textures = scene.textures.size(), materials = scene.materials.size(),
+                 media = scene.media.size();
+    for (size_t i = 0; i < textures; ++i) {
+        const Texture& t = scene.textures[i];
+        // Sub-textures come first: a checker refers only to textures before it, so that
+        // evaluating one ends.
+        if (t.kind == TextureKind::Checker || t.kind == TextureKind::UvChecker) {
+            if (t.even >= i || t.odd >= i)
+                fail("texture", i, "a checker's cells must be textures added before it");
+            if (!(t.scale > 0) || !std::isfinite(t.scale))
+                fail("texture", i, "a checker's scale must be a positive number");
+        }
+        if (t.kind == TextureKind::Image &&
+            (t.image >= scene.images.size() || scene.images[t.image].texels.empty()))
+            fail("texture", i, "names no image of the scene");
+        if (!finite(t.color) || !finite(t.factor)) fail("texture", i, "a colour is not finite");
+    }
+    auto check_texture = [&](size_t m, TextureId id, const char* field, bool required) {
+        if (id == kNone && !required) return;
+        if (id >= textures)
+            fail("material", m,
+                 std::string(field) + (id == kNone ? " is needed" : " names no texture"));
+    };
+    for (size_t i = 0; i < materials; ++i) {
+        const Material& m = scene.materials[i];
+        check_texture(i, m.albedo, "albedo", reads_albedo(m.kind));
+        check_texture(i, m.emission, "emission", m.kind == MaterialKind::DiffuseLight);
+        check_texture(i, m.metallic_roughness, "metallic_roughness", false);
+        check_texture(i, m.opacity, "opacity", false);
+        check_texture(i, m.normal_map, "normal_map", false);
+        check_texture(i, m.bump_map, "bump_map", false);
+        if (!(m.ior > 0) || !std::isfinite(m.ior)) fail("material", i, "ior must be positive");
+        if (!(m.alpha_u >= 0 && m.alpha_v >= 0 && m.alpha_u <= 64 && m.alpha_v <= 64))
+            fail("material", i, "alpha_u and alpha_v must be in [0, 64]");
+    }
+    for (size_t i = 0; i < media; ++i) {
+        const Medium& m = scene.media[i];
+        if (m.phase >= materials || scene.materials[m.phase].kind != MaterialKind::Isotropic)
+            fail("medium", i, "its phase must be an isotropic material of the scene");
+        if (!(m.density >= 0) || !std::isfinite(m.density))
+            fail("medium", i, "density must be a non-negative number");
+    }
+    auto check_refs = [&](const char* what, size_t i, MaterialId material, MediumId interior) {
+        if (material >= materials) fail(what, i, "names no material of the scene");
+        if (interior != kNone && interior >= media) fail(what, i, "names no medium of the scene");
+    };
+    for (size_t i = 0; i < scene.spheres.size(); ++i) {
+        const Sphere& s = scene.spheres[i];
+        check_refs("sphere", i, s.material, s.interior);
+        if (!finite(s.center) || !(s.radius > 0) || !std::isfinite(s.radius))
+            fail("sphere", i, "needs a finite centre and a positive radius");
+    }
+    for (size_t i = 0; i < scene.quads.size(); ++i) {
+        const Quad& q = scene.quads[i];
+        check_refs("quad", i, q.material, q.interior);
+        if (!finite(q.q) || !finite(q.u) || !finite(q.v) || length(cross(q.u, q.v)) == 0)
+            fail("quad", i, "needs finite, non-parallel edges");
+    }
+    for (size_t i = 0; i < scene.meshes.size(); ++i) {
+        const Mesh& m = scene.meshes[i];
+        check_refs("mesh", i, m.material, m.interior);
+        if (size_t(m.first_vertex) + m.vertex_count > scene.positions.size())
+            fail("mesh", i, "its vertices lie beyond the scene's positions");
+    }
+    for (size_t i = 0; i < scene.triangles.size(); ++i) {
+        const Triangle& t = scene.triangles[i];
+        if (t.mesh >= scene.meshes.size()) fail("triangle", i, "names no mesh of the scene");
+        const Mesh& m = scene.meshes[t.mesh];
+        for (uint32_t v : t.v)
+            if (v < m.first_vertex || v - m.first_vertex >= m.vertex_count)
+                fail("triangle", i, "a vertex lies outside its mesh");
+    }
+    for (size_t i = 0; i < scene.lights.size(); ++i) {
+        const Light& l = scene.lights[i];
+        if (!finite(l.position) || !finite(l.intensity) || !finite(l.direction) ||
+            length(l.direction) == 0)
+            fail("light", i, "needs a finite position, intensity and non-zero direction");
+    }
+    const Background& bg = scene.background;
+    if (!finite(bg.radiance)) throw SceneError("scene: the background radiance is not finite");
+    if (bg.kind == Background::Kind::Environment &&
+        (bg.image >= scene.images.size() || scene.images[bg.image].texels.empty()))
+        throw SceneError("scene: the environment map names no image of the scene");
+    const Camera& c = scene.camera;
+    if (!finite(c.look_from) || !finite(c.look_at) || !finite(c.up) ||
+        length(c.look_at - c.look_from) == 0 || length(cross(c.up, c.look_at - c.look_from)) == 0)
+        throw SceneError(
+            "scene: the camera needs distinct look_from and look_at and an up not along them");
+    if (!(c.vfov > 0 && c.vfov < 180)) throw SceneError("scene: the camera's vfov must be in (0, 180)");
+}
+
+}  // namespace wavetrace

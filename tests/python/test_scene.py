@@ -1,0 +1,112 @@
+"""Scenes: loaded in every format with errors that name the file and place, or built with the
+builders into the same scene as a file."""
+import json
+
+import numpy as np
+import pytest
+
+import wavetrace as wt
+from conftest import SCENES
+
+
+def cornell_in_python():
+    """scenes/cornell.json, built with the builders in the file's order."""
+    s = wt.Scene()
+    s.render = wt.RenderSettings(width=600, height=600, spp=64, max_depth=50)
+    s.camera = wt.Camera(look_from=(278, 278, -800), look_at=(278, 278, 0), up=(0, 1, 0),
+                         vfov=40)
+    s.background = wt.Background(radiance=(0, 0, 0))
+
+    def lambertian(rgb):
+        return s.add_material(wt.Material(kind=wt.MaterialKind.Lambertian,
+                                          albedo=s.add_solid(rgb)))
+    red = lambertian((0.65, 0.05, 0.05))
+    white = lambertian((0.73, 0.73, 0.73))
+    green = lambertian((0.12, 0.45, 0.15))
+    light = s.add_material(wt.Material(kind=wt.MaterialKind.DiffuseLight,
+                                       emission=s.add_solid((15, 15, 15))))
+    for q, u, v, m in [((555, 0, 0), (0, 0, 555), (0, 555, 0), green),
+                       ((0, 0, 555), (0, 0, -555), (0, 555, 0), red),
+                       ((213, 554, 227), (130, 0, 0), (0, 0, 105), light),
+                       ((0, 555, 0), (555, 0, 0), (0, 0, 555), white),
+                       ((0, 0, 555), (555, 0, 0), (0, 0, -555), white),
+                       ((555, 0, 555), (-555, 0, 0), (0, 555, 0), white)]:
+        s.add_quad(wt.Quad(q=q, u=u, v=v, material=m))
+    for size, degrees, offset in [((165, 330, 165), 15, (265, 0, 295)),
+                                  ((165, 165, 165), -18, (130, 0, 65))]:
+        to_world = wt.Transform.translate(offset) * wt.Transform.rotate((0, 1, 0), degrees)
+        s.add_box((0, 0, 0), size, white, to_world=to_world)
+    return s
+
+
+def test_a_scene_built_in_python_renders_as_the_same_scene_from_json(cornell):
+    built = cornell_in_python()
+    assert built.info()["primitives"] == cornell.info()["primitives"] == 18
+    for engine in ("wavefront", "megakernel"):
+        a = wt.render(built, width=40, height=40, spp=4, engine=engine)
+        b = wt.render(cornell, width=40, height=40, spp=4, engine=engine)
+        assert np.array_equal(a, b)
+
+
+def test_info_counts_what_the_scene_holds(cornell):
+    info = cornell.info()
+    assert info["quads"] == 18 and info["emitters"] == 1 and info["materials"] == 4
+    assert info["path"].endswith("cornell.json")
+    lo, hi = info["bounds"]
+    assert lo[0] == pytest.approx(0, abs=1e-3) and hi[1] == pytest.approx(555, abs=1e-3)
+
+
+@pytest.mark.parametrize("name", ["cornell.json", "cornell-box.pbrt", "dragon.json",
+                                  "materials.json", "everything.json"])
+def test_every_format_loads(name):
+    scene = wt.load_scene(SCENES / name)
+    assert scene.info()["primitives"] > 0
+    scene.check()
+
+
+def test_a_bad_scene_raises_naming_the_file_and_place(tmp_path):
+    bad = tmp_path / "bad.json"
+    doc = json.loads((SCENES / "cornell.json").read_text())
+    doc["objects"].append({"type": "sphere", "center": [0, 0, 0], "radius": -1,
+                           "material": "white"})
+    bad.write_text(json.dumps(doc))
+    with pytest.raises(wt.SceneError, match=r"bad\.json: /objects/8/radius"):
+        wt.load_scene(bad)
+    pbrt = tmp_path / "bad.pbrt"
+    pbrt.write_text('WorldBegin\nShape "sphere" "float radius" [ "x" ]\n')
+    with pytest.raises(wt.SceneError, match=r"bad\.pbrt:2"):
+        wt.load_scene(pbrt)
+    with pytest.raises(wt.SceneError, match="missing.json"):
+        wt.load_scene(tmp_path / "missing.json")
+
+
+def test_warnings_become_python_warnings(tmp_path):
+    f = tmp_path / "warn.pbrt"
+    f.write_text('Camera "orthographic"\nWorldBegin\nShape "sphere"\n')
+    with pytest.warns(UserWarning, match="orthographic"):
+        wt.load_scene(f)
+
+
+def test_a_built_scene_is_checked_before_it_is_rendered():
+    s = wt.Scene()
+    s.add_sphere(wt.Sphere(center=(0, 0, -3), radius=1, material=5))
+    with pytest.raises(wt.SceneError, match="sphere 0: names no material"):
+        wt.render(s, width=8, height=8, spp=1)
+    s = wt.Scene()
+    m = s.add_material(wt.Material(kind=wt.MaterialKind.Lambertian))  # no albedo
+    s.add_sphere(wt.Sphere(center=(0, 0, -3), radius=1, material=m))
+    with pytest.raises(wt.SceneError, match="albedo is needed"):
+        s.check()
+    with pytest.raises(TypeError, match="no attribute 'colour'"):
+        wt.Material(colour=(1, 0, 0))
+
+
+def test_a_mesh_from_arrays_is_hit_where_it_lies():
+    s = wt.Scene()
+    m = s.add_material(wt.Material(kind=wt.MaterialKind.Lambertian, albedo=s.add_solid((1, 1, 1))))
+    positions = np.array([[-1, -1, -2], [1, -1, -2], [1, 1, -2], [-1, 1, -2]], np.float32)
+    indices = np.array([[0, 1, 2], [0, 2, 3], [0, 0, 1]])  # the last one is degenerate
+    assert s.add_mesh(positions, indices, m, name="square") == 1
+    hits = wt.Bvh(s).intersect(np.zeros((2, 3)), np.array([[0.5, -0.5, -1], [3, 0, -1]]))
+    assert hits.hit.tolist() == [True, False]
+    assert hits.t[0] == pytest.approx(2) and hits.kind[0] == 0 and hits.prim[0] == 0
