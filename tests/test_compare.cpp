@@ -232,3 +232,25 @@ TEST(Cli, CompareAndVarianceRefuseBadInput) {
     CliResult self = run_cli(dir, "compare " + path("x.exr") + " " + path("x.exr"));
     EXPECT_EQ(self.code, 0) << self.out;
 }
+
+// Two black images are the same image (no "-nan"), and images of different sizes are named.
+TEST(Cli, CompareOfBlackImagesPassesAndOfOtherSizesNamesTheFiles) {
+    TempDir dir;
+    auto path = [&](const char* name) { return (dir.path() / name).string(); };
+    write_image(path("a.exr"), Image(8, 8));
+    write_image(path("b.exr"), Image(8, 8));
+    write_image(path("c.exr"), Image(8, 4));
+    CliResult same = run_cli(dir, "compare '" + path("a.exr") + "' '" + path("b.exr") + "'");
+    EXPECT_EQ(same.code, 0) << same.out << same.err;
+    EXPECT_EQ(same.out.find("nan"), std::string::npos) << same.out;
+    EXPECT_NE(same.out.find("relative difference 0.000e+00"), std::string::npos) << same.out;
+    CliResult sizes = run_cli(dir, "compare '" + path("a.exr") + "' '" + path("c.exr") + "'");
+    EXPECT_EQ(sizes.code, 2);
+    EXPECT_NE(sizes.err.find(path("a.exr") + " vs " + path("c.exr") + ": "), std::string::npos)
+        << sizes.err;
+    Image lit(8, 8);
+    lit.pixels[0] = Color(1.0f);
+    const ImageComparison c = compare_images(lit, Image(8, 8), nullptr, nullptr);
+    EXPECT_TRUE(std::isinf(c.mean_rel_diff));
+    EXPECT_FALSE(c.pass);
+}

@@ -319,7 +319,10 @@ TEST(HostileInput, PlyBodyAssimpWouldMisreadIsRefused) {
 TEST(HostileInput, BrokenPlyUnderAnotherExtensionIsRefused) {
     TempDir dir;
     dir.write("m.gltf", "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\n");
-    expect_refused(dir, mesh_scene("m.gltf"), "not a .gltf file that its readers recognise");
+    expect_refused(dir, mesh_scene("m.gltf"), "glTF JSON:1:1: invalid JSON");
+    // A .glb that is none: its header is read before any reader is tried.
+    dir.write("m.glb", "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\n");
+    expect_refused(dir, mesh_scene("m.glb"), "not a binary glTF 2.0 file (header)");
 }
 
 // Found by tests/fuzz/fuzz_mesh: Assimp's OFF reader allocates what the header asks for.

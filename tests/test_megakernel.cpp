@@ -330,7 +330,7 @@ TEST(Megakernel, SpotAndDirectionalLightsMatchTheirClosedForms) {
         s.lights.push_back(light);
         return s;
     };
-    const double kPi = 3.14159265358979;
+    const double pi = 3.14159265358979;
     // A spot 2 above the origin aimed 26.57 degrees away from it: the origin lies in the
     // falloff band between 20 and 35 degrees.
     for (Light::Falloff falloff : {Light::Falloff::Linear, Light::Falloff::Smoothstep}) {
@@ -342,17 +342,17 @@ TEST(Megakernel, SpotAndDirectionalLightsMatchTheirClosedForms) {
         spot.cutoff_degrees = 35;
         spot.falloff_start_degrees = 20;
         spot.falloff = falloff;
-        const double off = std::atan(0.5) * 180 / kPi;  // degrees between axis and the origin
-        const double cos_off = std::cos(off * kPi / 180);
+        const double off = std::atan(0.5) * 180 / pi;  // degrees between axis and the origin
+        const double cos_off = std::cos(off * pi / 180);
         double f;
         if (falloff == Light::Falloff::Linear) {
             f = (35 - off) / (35 - 20);
         } else {
-            const double c0 = std::cos(35 * kPi / 180), c1 = std::cos(20 * kPi / 180);
+            const double c0 = std::cos(35 * pi / 180), c1 = std::cos(20 * pi / 180);
             const double t = (cos_off - c0) / (c1 - c0);
             f = t * t * (3 - 2 * t);
         }
-        const double expected = rho / kPi * 9.0 * f / 4.0;  // cos = 1 at the origin, d = 2
+        const double expected = rho / pi * 9.0 * f / 4.0;  // cos = 1 at the origin, d = 2
         const double mean =
             luminance(render(plane(spot), Strategy::Mis, 1, 1, 16, 3, 2).mean().at(0, 0));
         std::printf("spot (%s falloff) %.6f (closed form %.6f)\n",
@@ -363,7 +363,7 @@ TEST(Megakernel, SpotAndDirectionalLightsMatchTheirClosedForms) {
     sun.kind = Light::Kind::Directional;
     sun.direction = normalize(Vec3(0.6f, -0.8f, 0.0f));
     sun.intensity = Color(3.0f);
-    const double expected = rho / kPi * 3.0 * 0.8;  // E cos(theta) rho / pi
+    const double expected = rho / pi * 3.0 * 0.8;  // E cos(theta) rho / pi
     for (Strategy st : {Strategy::Nee, Strategy::Mis, Strategy::Bsdf}) {
         const double mean = luminance(render(plane(sun), st, 1, 1, 16, 3, 2).mean().at(0, 0));
         std::printf("directional %-8s %.6f (closed form %.6f)\n", to_string(st), mean, expected);

@@ -3,6 +3,7 @@
 // turns SIGINT, SIGTERM and --time-limit into the image of the completed passes.
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
+#include <signal.h>
 #include <sys/wait.h>
 
 #include <algorithm>
@@ -105,6 +106,7 @@ namespace {
 struct Stopped {
     int status;  // as from waitpid
     std::string err;
+    bool guard_left = false;  // the guard's sleep outlived the render: a process left behind
 };
 
 // Starts a long render, sends `signals` (e.g. "INT") after `delay` seconds, 0.05 s apart,
@@ -114,17 +116,25 @@ Stopped render_and_signal(const TempDir& dir,
                           const std::string& delay,
                           const std::vector<std::string>& signals) {
     // Run by std::system's sh; a guard kills the render after 60 s, so that one that ignored
-    // the signal fails the test instead of running on. The guard's output goes nowhere: its
-    // sleep outlives the test and would hold ctest's pipe open until it ends.
+    // the signal fails the test instead of running on. Stopped, the guard stops its own sleep
+    // too and waits for it: a sleep left running would hold ctest's pipe open until it ends.
+    const std::string guard_pid = (dir.path() / "guard-pid").string();
     std::string script = "'" + cli_path().string() + "' render " + args + " 2> '" +
                          (dir.path() / "err").string() + "' > /dev/null & p=$!; " +
-                         "(sleep 60; kill -9 $p) > /dev/null 2>&1 & guard=$!; sleep " + delay + ";";
+                         "(trap 'kill $s; wait $s; exit 0' TERM; sleep 60 & s=$!; echo $s > '" +
+                         guard_pid + "'; wait $s; kill -9 $p) > /dev/null 2>&1 & guard=$!; " +
+                         "sleep " + delay + ";";
     for (const std::string& s : signals) script += " kill -" + s + " $p; sleep 0.05;";
-    script += " wait $p; status=$?; kill $guard 2> /dev/null; exit $status";
+    script += " wait $p; status=$?; kill $guard 2> /dev/null; wait $guard; exit $status";
     int status = std::system(script.c_str());
     std::stringstream err;
     err << std::ifstream(dir.path() / "err").rdbuf();
-    return {status, err.str()};
+    Stopped r{status, err.str()};
+    pid_t sleeper = 0;
+    std::ifstream(guard_pid) >> sleeper;
+    r.guard_left = sleeper <= 0 || ::kill(sleeper, 0) == 0;
+    std::filesystem::remove(guard_pid);
+    return r;
 }
 
 int spp_in_header(const std::filesystem::path& exr) {
@@ -146,6 +156,7 @@ TEST(Passes, SigintWritesTheCompletedPassesAndExits130) {
                                       "2", {"INT"});
         ASSERT_TRUE(WIFEXITED(r.status)) << engine << r.err;
         EXPECT_EQ(WEXITSTATUS(r.status), 130) << engine << r.err;
+        EXPECT_FALSE(r.guard_left) << "no process outlives the test";
         EXPECT_NE(r.err.find("of 1000000 requested (interrupted)"), std::string::npos) << r.err;
         int spp = spp_in_header(out);
         EXPECT_GE(spp, 1) << engine;
@@ -154,6 +165,32 @@ TEST(Passes, SigintWritesTheCompletedPassesAndExits130) {
         for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir.path()))
             ++files;
         EXPECT_EQ(files, 2u) << "the image and the captured stderr, nothing else";
+    }
+}
+
+// A SIGINT that arrives while a checkpoint is being written still stops the render at the
+// next pass boundary with the image of the passes done: the temporary file's guard hands the
+// signal to the CLI's handler instead of ending the process. Twenty signals at delays spread
+// over a checkpoint interval of 50 ms, once the render is under way (before that a
+// background job ignores SIGINT).
+TEST(Passes, SigintDuringCheckpointsAlwaysLeavesAnImage) {
+    for (int i = 0; i < 20; ++i) {
+        TempDir dir;
+        const auto out = dir.path() / "x.exr", film = dir.path() / "x.film";
+        const std::string delay = std::to_string(1.5 + 0.0037 * i);  // once rendering
+        Stopped r = render_and_signal(
+            dir,
+            "'" + scene_path("cornell").string() +
+                "' --width 96 --height 96 --spp 1000000 --checkpoint-every 0.05 --film '" +
+                film.string() + "' -o '" + out.string() + "'",
+            delay, {"INT"});
+        ASSERT_TRUE(WIFEXITED(r.status)) << "signal " << i << ": " << r.err;
+        EXPECT_EQ(WEXITSTATUS(r.status), 130) << "signal " << i << ": " << r.err;
+        EXPECT_GE(spp_in_header(out), 1) << "signal " << i;
+        size_t files = 0;
+        for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir.path()))
+            ++files;
+        EXPECT_EQ(files, 3u) << "signal " << i << ": the image, the film and the captured stderr";
     }
 }
 
@@ -173,6 +210,7 @@ TEST(Passes, SigtermExits143AndSecondSigintAbortsAtOnce) {
         {"INT", "INT"});
     EXPECT_EQ(WEXITSTATUS(twice.status), 128 + SIGINT)
         << "bash reports death by SIGINT: " << twice.err;
+    EXPECT_FALSE(term.guard_left || twice.guard_left) << "no process outlives the test";
     EXPECT_EQ(twice.err.find("requested (interrupted)"), std::string::npos) << twice.err;
 }
 

@@ -27,6 +27,7 @@ inline std::map<std::string, std::string> parse_defines(const std::vector<std::s
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitFailure = 1;   // the render or the write failed; compare: differs
 inline constexpr int kExitBadInput = 2;  // bad scene, bad option: nothing was written
+inline constexpr int kExitFilmNotWritten = 3;  // render: the image is written, the film is not
 
 struct RenderOptions {
     std::string scene;

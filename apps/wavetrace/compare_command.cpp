@@ -80,8 +80,16 @@ int run_compare(const CompareOptions& o) {
         options.alpha = o.alpha;
         options.max_mean_rel_diff = o.max_mean_diff;
         options.max_rel_mse = o.max_rel_mse;
-        c = compare_images(ours, ref, ours_var ? &*ours_var : nullptr,
-                           ref_var ? &*ref_var : nullptr, options);
+        try {
+            c = compare_images(ours, ref, ours_var ? &*ours_var : nullptr,
+                               ref_var ? &*ref_var : nullptr, options);
+        } catch (const std::invalid_argument& e) {
+            // The sizes or variances of the files as given: name them.
+            std::string files = o.ours + " vs " + o.ref;
+            for (const std::string* v : {&o.ours_var, &o.ref_var})
+                if (!v->empty()) files += ", " + *v;
+            throw std::invalid_argument(files + ": " + e.what());
+        }
     } catch (const std::exception& e) {
         return bad_input(e.what());
     }

@@ -222,6 +222,36 @@ std::optional<std::string> check_options(const RenderOptions& o, const RenderSet
     return std::nullopt;
 }
 
+// Whether two names are one file: the same inode where both exist, else the same absolute
+// path once `.` and `..` (and symbolic links of the folders that exist) are resolved.
+bool same_file(const fs::path& a, const fs::path& b) {
+    std::error_code ec;
+    if (fs::exists(a, ec) && fs::exists(b, ec)) return fs::equivalent(a, b, ec);
+    return fs::weakly_canonical(a, ec) == fs::weakly_canonical(b, ec);
+}
+
+// The files a render reads and writes must be distinct: an output named like the scene, or
+// like another output, would destroy it. (--resume's film is rewritten on purpose unless
+// --film names another file, which must then not be the scene either.)
+std::optional<std::string> check_distinct_files(const RenderOptions& o, const fs::path& output) {
+    std::vector<std::pair<std::string, fs::path>> outputs = {{"-o/--output", output}};
+    if (!o.variance.empty()) outputs.push_back({"--variance", o.variance});
+    if (!o.film.empty()) outputs.push_back({"--film", o.film});
+    if (o.film.empty() && !o.resume.empty()) outputs.push_back({"--resume", o.resume});
+    for (size_t i = 0; i < outputs.size(); ++i) {
+        if (same_file(outputs[i].second, o.scene))
+            return outputs[i].first + ": " + outputs[i].second.string() +
+                   " is the scene file; writing it would destroy the scene";
+        for (size_t j = 0; j < i; ++j)
+            if (same_file(outputs[i].second, outputs[j].second))
+                return outputs[i].first + " and " + outputs[j].first + " name the same file " +
+                       outputs[i].second.string();
+    }
+    if (!o.film.empty() && !o.resume.empty() && same_file(o.resume, output))
+        return "--resume: " + o.resume + " is the output image";
+    return std::nullopt;
+}
+
 // What a render produced: the image, its metadata and the summary line; spp_done is -1 for
 // renders that are not pass-based (AOVs).
 struct Rendered {
@@ -230,6 +260,7 @@ struct Rendered {
     Image variance;  // of the pixel means, when --variance asks for it
     std::string summary;
     int spp_done = -1;
+    std::string film_error;  // why the final film was not written; "" if it was (or none asked)
 };
 
 // The request of a colour render: every option that changes the samples (not yet their range).
@@ -295,9 +326,17 @@ Rendered render_to_image(const RenderOptions& o,
             return info;
         };
 
-        RenderWatch watch(
-            request, already, o.time_limit, o.checkpoint_every,
-            [&](const Film& f, int done) { save_film(film_path, f, film_info(done)); });
+        // A checkpoint that cannot be written (a full disk) is a warning: the render goes on,
+        // and the final film write tries again.
+        RenderWatch watch(request, already, o.time_limit, o.checkpoint_every,
+                          [&](const Film& f, int done) {
+                              try {
+                                  save_film(film_path, f, film_info(done));
+                              } catch (const FilmError& e) {
+                                  std::cerr << "\nwavetrace: warning: checkpoint not written: "
+                                            << e.what() << "; the render goes on\n";
+                              }
+                          });
         std::signal(SIGINT, on_stop_signal);
         std::signal(SIGTERM, on_stop_signal);
         RenderStats stats;
@@ -305,7 +344,15 @@ Rendered render_to_image(const RenderOptions& o,
         watch.finish();
         const int total = already + stats.spp_done;
         r.spp_done = total;
-        if (!film_path.empty()) save_film(film_path, film, film_info(stats.spp_done));
+        // A film that cannot be written does not cost the image: it is written, and the exit
+        // code says the film failed.
+        if (!film_path.empty()) {
+            try {
+                save_film(film_path, film, film_info(stats.spp_done));
+            } catch (const FilmError& e) {
+                r.film_error = e.what();
+            }
+        }
         image = film.mean();
         if (!o.variance.empty()) r.variance = film.variance_of_mean();
         write.metadata.insert(write.metadata.end(),
@@ -359,6 +406,7 @@ int run_render(const RenderOptions& o) {
     try {
         // Every check that can fail before the render does: no render is wasted on an output
         // that cannot be written.
+        if (auto clash = check_distinct_files(o, output)) throw SceneError(*clash);
         check_output_writable(output);
         if (!o.variance.empty()) {
             if (o.aov != "color")
@@ -443,6 +491,11 @@ int run_render(const RenderOptions& o) {
     std::cerr << fmt::format("wavetrace: {} -> {} ({:.2f} s in all)\n", r.summary, output.string(),
                              seconds);
     std::cout << output.string() << "\n";
+    if (!r.film_error.empty()) {
+        std::cerr << "wavetrace: error: the image is written, the film is not: " << r.film_error
+                  << "\n";
+        return kExitFilmNotWritten;
+    }
     return signal_exit != 0 ? signal_exit : kExitOk;
 }
 

@@ -13,12 +13,32 @@ namespace wavetrace {
 namespace fs = std::filesystem;
 namespace {
 
-// The temporary file being written, for the signal handler below: a signal during the write
-// removes it before the process dies, so that no temporary file is ever left behind.
+// The temporary file being written, for the signal handler below: a signal that would end the
+// process during the write removes it first, so that no temporary file is ever left behind.
 char g_temp_path[4096];
 volatile std::sig_atomic_t g_temp_active = 0;
 
-extern "C" void remove_temp_and_reraise(int sig) {
+constexpr int kGuarded = 4;
+constexpr int kGuardedSignals[kGuarded] = {SIGINT, SIGTERM, SIGHUP, SIGXFSZ};
+// The handlers the guard displaced, which it hands the signal on to.
+using Handler = void (*)(int);
+Handler g_previous[kGuarded] = {};
+
+bool is_function(Handler h) {
+    return h != SIG_DFL && h != SIG_IGN && h != SIG_ERR && h != nullptr;
+}
+
+// A program's own handler (the CLI's: stop at the next pass boundary) still handles the signal:
+// the write goes on. A signal that ends the process (the default action, or a handler that
+// restores it to die) first removes the temporary file.
+extern "C" void on_signal_during_write(int sig) {
+    int i = 0;
+    while (i < kGuarded && kGuardedSignals[i] != sig) ++i;
+    if (i < kGuarded && is_function(g_previous[i])) {
+        g_previous[i](sig);
+        struct sigaction now {};
+        if (::sigaction(sig, nullptr, &now) == 0 && now.sa_handler != SIG_DFL) return;
+    }
     if (g_temp_active) ::unlink(g_temp_path);
     std::signal(sig, SIG_DFL);
     std::raise(sig);
@@ -33,24 +53,19 @@ class TempFileGuard {
         if (s.size() >= sizeof g_temp_path) return;
         std::memcpy(g_temp_path, s.c_str(), s.size() + 1);
         g_temp_active = 1;
-        for (int i = 0; i < kCount; ++i) {
-            old_[i] = std::signal(kSignals[i], remove_temp_and_reraise);
+        for (int i = 0; i < kGuarded; ++i) {
+            g_previous[i] = std::signal(kGuardedSignals[i], on_signal_during_write);
             // An ignored signal (nohup, `trap '' XFSZ`) stays ignored.
-            if (old_[i] == SIG_IGN) std::signal(kSignals[i], SIG_IGN);
+            if (g_previous[i] == SIG_IGN) std::signal(kGuardedSignals[i], SIG_IGN);
         }
     }
     ~TempFileGuard() {
         if (!g_temp_active) return;
-        for (int i = 0; i < kCount; ++i) std::signal(kSignals[i], old_[i]);
+        for (int i = 0; i < kGuarded; ++i) std::signal(kGuardedSignals[i], g_previous[i]);
         g_temp_active = 0;
     }
     TempFileGuard(const TempFileGuard&) = delete;
     TempFileGuard& operator=(const TempFileGuard&) = delete;
-
-  private:
-    static constexpr int kCount = 4;
-    static constexpr int kSignals[kCount] = {SIGINT, SIGTERM, SIGHUP, SIGXFSZ};
-    void (*old_[kCount])(int) = {};
 };
 
 // Writes all of `bytes` to a new file at `path` and flushes it to disk; returns the error, or
@@ -80,11 +95,15 @@ std::string write_all(const fs::path& path, const std::vector<unsigned char>& by
 
 }  // namespace
 
+fs::path temporary_path(const fs::path& path) {
+    const fs::path dir = path.parent_path().empty() ? fs::path(".") : path.parent_path();
+    return dir / ("." + path.filename().string() + ".tmp" + std::to_string(::getpid()));
+}
+
 void write_file_atomically(const fs::path& path, const std::vector<unsigned char>& bytes) {
     // A temporary name in the same folder; rename() then replaces the target atomically, so a
     // failed write keeps the previous file.
-    fs::path dir = path.parent_path().empty() ? fs::path(".") : path.parent_path();
-    fs::path tmp = dir / ("." + path.filename().string() + ".tmp" + std::to_string(::getpid()));
+    const fs::path tmp = temporary_path(path);
     TempFileGuard guard(tmp);
     std::string err = write_all(tmp, bytes);
     if (err.empty() && ::rename(tmp.c_str(), path.c_str()) != 0) err = std::strerror(errno);

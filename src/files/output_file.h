@@ -13,4 +13,9 @@ namespace wavetrace {
 void write_file_atomically(const std::filesystem::path& path,
                            const std::vector<unsigned char>& bytes);
 
+// The temporary file write_file_atomically() writes before renaming it to `path`: a hidden
+// name beside it, ".NAME.tmpPID". Creating it is the test that `path` can be written (a name
+// too long for the file system fails here, not after a render).
+std::filesystem::path temporary_path(const std::filesystem::path& path);
+
 }  // namespace wavetrace

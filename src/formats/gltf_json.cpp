@@ -165,7 +165,9 @@ GltfPlacements gltf_placements(const std::filesystem::path& path, bool binary) {
         stack.pop_back();
         const std::string where = "/nodes/" + std::to_string(e.node);
         if (seen[e.node]) throw std::runtime_error(where + ": reached twice (a cycle?)");
-        if (e.depth > 1024) throw std::runtime_error(where + ": nested deeper than 1024 nodes");
+        if (e.depth > kMaxGltfNodeDepth)
+            throw std::runtime_error(where + ": nested deeper than " +
+                                     std::to_string(kMaxGltfNodeDepth) + " nodes");
         seen[e.node] = true;
         const auto& node = nodes[e.node];
         if (!node.is_object()) throw std::runtime_error(where + ": expected an object");
@@ -254,6 +256,70 @@ GltfPlacements gltf_placements(const std::filesystem::path& path, bool binary) {
                              world, e.depth + 1});
     }
     return out;
+}
+
+void check_gltf(const std::filesystem::path& path, bool binary) {
+    const std::string text = json_text(path, binary);
+    if (binary) {
+        // Every chunk within the length the header gives, and that length within the file.
+        std::ifstream in(path, std::ios::binary | std::ios::ate);
+        const uint64_t size = uint64_t(in.tellg());
+        std::string head(12, '\0');
+        in.seekg(0);
+        in.read(head.data(), 12);
+        const uint64_t length = le32(head, 8);
+        if (length > size)
+            throw std::runtime_error("binary glTF: the header claims " + std::to_string(length) +
+                                     " bytes; the file has " + std::to_string(size));
+        std::string chunk(8, '\0');
+        for (uint64_t at = 12; at + 8 <= length;) {
+            in.seekg(std::streamoff(at));
+            in.read(chunk.data(), 8);
+            const uint64_t bytes = le32(chunk, 0);
+            if (!in || bytes > length - at - 8)
+                throw std::runtime_error("binary glTF: the chunk at byte " + std::to_string(at) +
+                                         " claims " + std::to_string(bytes) +
+                                         " bytes, beyond the file's length");
+            at += 8 + bytes;
+        }
+    }
+    const auto doc = json_reader::parse(text, "glTF JSON");
+    if (!doc.contains("nodes") || !doc["nodes"].is_array()) return;
+    const auto& nodes = doc["nodes"];
+    // Each node at most one parent (glTF 2.0, "Nodes and Hierarchy"), then depth first from the
+    // roots: a node never reached sits on a cycle.
+    std::vector<int> parents(nodes.size(), 0);
+    std::vector<std::vector<size_t>> children(nodes.size());
+    for (size_t i = 0; i < nodes.size(); ++i) {
+        if (!nodes[i].is_object() || !nodes[i].contains("children")) continue;
+        const auto& list = nodes[i]["children"];
+        if (!list.is_array()) continue;
+        for (const auto& c : list) {
+            if (!c.is_number_unsigned() || c.get<size_t>() >= nodes.size())
+                throw std::runtime_error("/nodes/" + std::to_string(i) +
+                                         "/children: expected node indices below " +
+                                         std::to_string(nodes.size()));
+            const size_t child = c.get<size_t>();
+            if (++parents[child] > 1)
+                throw std::runtime_error("/nodes/" + std::to_string(child) +
+                                         ": a child of two nodes (or twice of one)");
+            children[i].push_back(child);
+        }
+    }
+    std::vector<std::pair<size_t, int>> stack;
+    for (size_t i = 0; i < nodes.size(); ++i)
+        if (parents[i] == 0) stack.push_back({i, 1});
+    size_t reached = 0;
+    while (!stack.empty()) {
+        const auto [node, depth] = stack.back();
+        stack.pop_back();
+        ++reached;
+        if (depth > kMaxGltfNodeDepth)
+            throw std::runtime_error("/nodes/" + std::to_string(node) + ": nested deeper than " +
+                                     std::to_string(kMaxGltfNodeDepth) + " nodes");
+        for (size_t c : children[node]) stack.push_back({c, depth + 1});
+    }
+    if (reached != nodes.size()) throw std::runtime_error("/nodes: the hierarchy has a cycle");
 }
 
 std::vector<float> gltf_emissive_strengths(const std::filesystem::path& path, bool binary) {

@@ -11,6 +11,17 @@
 
 namespace wavetrace {
 
+// How deep glTF nodes may nest: Assimp walks the hierarchy recursively.
+inline constexpr int kMaxGltfNodeDepth = 1024;
+
+// What must hold before Assimp reads a glTF 2.0 file (`binary`: a .glb), which it cannot take
+// otherwise: a .glb's header length within the file and every chunk within that length
+// (Assimp allocates a chunk's claimed length before reading it); JSON nested at most
+// json_reader::kMaxNesting deep, and a node hierarchy without cycles or shared children at
+// most kMaxGltfNodeDepth deep (Assimp recurses through both and overflows its stack). Throws
+// std::runtime_error (without the path).
+void check_gltf(const std::filesystem::path& path, bool binary);
+
 // Per material, in the file's order (Assimp's too): KHR_materials_emissive_strength's
 // emissiveStrength, 1 where the material does not give one. `binary`: a .glb, whose JSON is
 // its first chunk. Throws std::runtime_error (without the path) for a malformed container or

@@ -74,7 +74,12 @@ ImageComparison compare_images(const Image& ours,
         }
     r.mean_ours = sum_o / values;
     r.mean_ref = sum_r / values;
-    r.mean_rel_diff = std::fabs(r.mean_ours - r.mean_ref) / std::fabs(r.mean_ref);
+    // Equal means differ by nothing, black images included; against a black reference any
+    // other mean differs infinitely.
+    r.mean_rel_diff = r.mean_ours == r.mean_ref ? 0.0
+                      : r.mean_ref == 0         ? INFINITY
+                                                : std::fabs(r.mean_ours - r.mean_ref) /
+                                                      std::fabs(r.mean_ref);
     r.rel_mse = sq / values;
 
     r.z_tested = ours_variance || ref_variance;

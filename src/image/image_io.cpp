@@ -72,8 +72,9 @@ void check_output_writable(const fs::path& path) {
     fs::path dir = path.parent_path().empty() ? fs::path(".") : path.parent_path();
     if (!fs::is_directory(dir, ec))
         throw ImageError(path.string() + ": folder '" + dir.string() + "' does not exist");
-    // Creating a file there is the one reliable test (permissions, read-only mounts, ACLs).
-    fs::path probe = dir / (".wavetrace-probe" + std::to_string(::getpid()));
+    // Creating the write's own temporary file there is the one reliable test (permissions,
+    // read-only mounts, ACLs, a name too long for the file system).
+    const fs::path probe = temporary_path(path);
     int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
     if (fd < 0)
         throw ImageError(path.string() + ": cannot write in folder '" + dir.string() +
@@ -143,7 +144,19 @@ const OIIO::ImageSpec& unassociated_alpha() {
 }
 
 // An opened image read whole as linear RGB (see read_image); `name` for messages.
-ImageData read_opened(OIIO::ImageInput& in, const std::string& name, ImageChannels wanted) {
+// The most texels a file of `bytes` bytes can hold in `format` (OpenImageIO's name): PNM
+// stores every pixel (at least a bit each); every other format compresses at most ~1000:1
+// (deflate's limit) of at least a bit per texel, for which 2^14 texels a byte leave room, plus
+// a header's worth. A header claiming more is refused before its pixels are allocated.
+uint64_t most_texels(const std::string& format, uint64_t bytes) {
+    if (format == "pnm") return 8 * bytes;
+    return (uint64_t(1) << 14) * bytes + (uint64_t(1) << 16);
+}
+
+ImageData read_opened(OIIO::ImageInput& in,
+                      const std::string& name,
+                      uint64_t file_bytes,
+                      ImageChannels wanted) {
     const OIIO::ImageSpec& spec = in.spec();
     if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
         throw ImageError(name + ": empty image");
@@ -154,10 +167,18 @@ ImageData read_opened(OIIO::ImageInput& in, const std::string& name, ImageChanne
                          std::to_string(spec.height) + " x " + std::to_string(spec.nchannels) +
                          " channels exceeds the limit of " + std::to_string(kMaxImageTexels) +
                          " texels (and 64 channels)");
+    if (texels > most_texels(in.format_name(), file_bytes))
+        throw ImageError(name + ": the header claims " + std::to_string(spec.width) + " x " +
+                         std::to_string(spec.height) + " pixels, more than a " +
+                         in.format_name() + " file of " + std::to_string(file_bytes) +
+                         " bytes can hold");
     const int channels = spec.nchannels;
     std::vector<float> data(static_cast<size_t>(spec.width) * spec.height * channels);
-    if (!in.read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, data.data()))
-        throw ImageError(name + ": cannot read image: " + in.geterror());
+    if (!in.read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, data.data())) {
+        const std::string err = in.geterror();
+        throw ImageError(name + ": cannot read image: " +
+                         (err.empty() ? "the pixels end early or are malformed" : err));
+    }
     const bool decode = wanted == ImageChannels::Linear &&
                         spec.format.basetype != OIIO::TypeDesc::FLOAT &&
                         spec.format.basetype != OIIO::TypeDesc::HALF &&
@@ -194,7 +215,9 @@ ImageData read_image(const fs::path& path, ImageChannels channels) {
         throw ImageError(path.string() +
                          ": cannot read image: " + (err.empty() ? "unknown error" : err));
     }
-    return read_opened(*in, path.string(), channels);
+    std::error_code ec;
+    const uintmax_t bytes = fs::file_size(path, ec);
+    return read_opened(*in, path.string(), ec ? 0 : uint64_t(bytes), channels);
 }
 
 ImageData read_image_bytes(std::span<const unsigned char> bytes,
@@ -214,7 +237,7 @@ ImageData read_image_bytes(std::span<const unsigned char> bytes,
         std::string err = OIIO::geterror();
         throw ImageError(name + ": cannot read image: " + (err.empty() ? "unknown error" : err));
     }
-    return read_opened(*in, name, channels);
+    return read_opened(*in, name, bytes.size(), channels);
 }
 
 }  // namespace wavetrace

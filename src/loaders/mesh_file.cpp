@@ -18,6 +18,7 @@
 #include "files/input_file.h"
 #include "formats/gltf_json.h"
 #include "loaders/mesh_guards.h"
+#include "loaders/mesh_io.h"
 
 namespace wavetrace {
 namespace {
@@ -126,6 +127,8 @@ FileMaterial read_material(const aiMaterial& m, bool gltf) {
 MeshFile read_mesh_file(const std::filesystem::path& path) {
     check_input_file(path, kMaxMeshFileBytes, "meshes");
     Assimp::Importer importer;
+    auto* io = new MeshIO(path);
+    importer.SetIOHandler(io);  // the importer owns it
     std::string ext = path.extension().string();
     if (ext.empty() || !importer.IsExtensionSupported(ext))
         throw std::runtime_error("unsupported mesh format '" + ext +
@@ -134,6 +137,8 @@ MeshFile read_mesh_file(const std::filesystem::path& path) {
     for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     if (lower == "ply") check_ply(path);
     if (lower == "off") check_off(path);
+    if (lower == "obj") check_obj(path);
+    if (lower == "gltf" || lower == "glb") check_gltf(path, lower == "glb");
     refuse_unrecognised(importer, path, lower);
     // Keep only triangles. Assimp's OBJ reader un-indexes faces; joining identical vertices
     // restores the shared indexing (and the memory) of the file.
@@ -143,8 +148,11 @@ MeshFile read_mesh_file(const std::filesystem::path& path) {
     // Assimp's post-processing steps assert (abort the process) on faces that its readers let
     // through, e.g. a binary PLY face with no indices (found by tests/fuzz/fuzz_mesh).
     const aiScene* scene = importer.ReadFile(path.string(), aiProcess_ValidateDataStructure);
+    // A file it refused to open is the error, whatever Assimp made of its absence.
+    if (!io->refused().empty()) throw std::runtime_error(io->refused().front());
     if (!scene || (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) || !scene->mRootNode)
-        throw std::runtime_error(importer.GetErrorString());
+        throw std::runtime_error(io->missing().empty() ? std::string(importer.GetErrorString())
+                                                       : io->missing().front());
     for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
         const aiMesh* mesh = scene->mMeshes[m];
         for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
@@ -165,6 +173,8 @@ MeshFile read_mesh_file(const std::filesystem::path& path) {
     if (!scene || !scene->mRootNode) throw std::runtime_error(importer.GetErrorString());
 
     MeshFile out;
+    // Assimp looks for a missing file under several names: the first is the file's own.
+    if (!io->missing().empty()) out.warnings.push_back("names " + io->missing().front());
     const bool gltf = lower == "gltf" || lower == "glb";
     for (unsigned m = 0; m < scene->mNumMaterials; ++m)
         out.materials.push_back(read_material(*scene->mMaterials[m], gltf));

@@ -55,12 +55,16 @@ struct MeshFile {
     std::vector<FileMaterial> materials;
     std::vector<MeshPart> parts;  // in triangle order, covering every triangle
     std::vector<EmbeddedImage> embedded;
+    // Files the mesh names that are not there ("names x.mtl: no such file"): Assimp carries on
+    // without them.
+    std::vector<std::string> warnings;
 };
 
 // Reads OBJ (+MTL), PLY (ASCII or binary) or glTF 2.0 through Assimp. Polygons are
 // triangulated (fans of the file's own faces), points and lines dropped; materials are read as
-// the file states them. Throws
-// std::runtime_error with a message that does not repeat the path.
+// the file states them. Every file it reads goes through MeshIO (loaders/mesh_io.h): regular,
+// within the size limit, inside the mesh's folder. Throws std::runtime_error with a message
+// that does not repeat the path (but names any other file).
 MeshFile read_mesh_file(const std::filesystem::path& path);
 
 // Area-weighted vertex normals (each face adds its unnormalized cross product).

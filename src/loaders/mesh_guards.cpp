@@ -8,6 +8,7 @@
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -439,6 +440,56 @@ void check_off(const std::filesystem::path& path) {
             throw std::runtime_error("OFF header announces " + text +
                                      " elements, more than a file of " +
                                      std::to_string(uint64_t(size)) + " bytes can hold");
+}
+
+}  // namespace wavetrace
+
+namespace wavetrace {
+
+// Assimp 5.2's OBJ reader makes a mesh and a material for every name `usemtl` gives, and its
+// post-processing then takes time that grows faster than their count (100,000 names in 5 MB:
+// over 40 s and 3.7 GB); its triangulation clips ears in time quadratic in a polygon's
+// vertices (five polygons of 32,767 vertices in 1.7 MB: over a minute). Both are bounded
+// here: at most kMaxObjMaterials names, and at most kMaxObjPolygonWork for the sum of n^2
+// over the polygons of n >= 5 vertices (quads and triangles cost nothing to split).
+void check_obj(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::set<std::string> names;
+    uint64_t work = 0;
+    size_t line_number = 0;
+    std::string line, logical;
+    while (std::getline(in, line)) {
+        ++line_number;
+        // A backslash at the end of a line continues it, for Assimp as for the format.
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        if (!line.empty() && line.back() == '\\') {
+            logical += line.substr(0, line.size() - 1) + " ";
+            continue;
+        }
+        logical += line;
+        std::istringstream words(logical);
+        logical.clear();
+        std::string key;
+        if (!(words >> key)) continue;
+        if (key == "usemtl") {
+            std::string name;
+            std::getline(words >> std::ws, name);
+            names.insert(name);
+            if (names.size() > kMaxObjMaterials)
+                throw std::runtime_error("line " + std::to_string(line_number) +
+                                         ": more than " + std::to_string(kMaxObjMaterials) +
+                                         " material names (usemtl)");
+        } else if (key == "f") {
+            uint64_t n = 0;
+            for (std::string v; words >> v;) ++n;
+            if (n >= 5) work += n * n;
+            if (work > kMaxObjPolygonWork)
+                throw std::runtime_error(
+                    "line " + std::to_string(line_number) + ": polygons too large to triangulate " +
+                    "(the sum of their vertex counts squared passes " +
+                    std::to_string(kMaxObjPolygonWork) + "); split them into smaller ones");
+        }
+    }
 }
 
 }  // namespace wavetrace

@@ -3,6 +3,8 @@
 // repeat the path (read_mesh_file adds it). Each guard says which reader fails and how.
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
 #include <filesystem>
 
 namespace wavetrace {
@@ -12,5 +14,11 @@ namespace wavetrace {
 void check_ply(const std::filesystem::path& path);
 // An OFF file: vertex and face counts that a file of its size can hold.
 void check_off(const std::filesystem::path& path);
+
+// An OBJ file: at most this many material names, and polygons whose triangulation stays
+// within this many steps (the sum of n^2 over polygons of n >= 5 vertices; about a second).
+inline constexpr size_t kMaxObjMaterials = 4096;
+inline constexpr uint64_t kMaxObjPolygonWork = uint64_t(1) << 26;
+void check_obj(const std::filesystem::path& path);
 
 }  // namespace wavetrace

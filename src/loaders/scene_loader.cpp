@@ -93,6 +93,7 @@ class Loader {
         }
         json_ = nlohmann::json::object();
         add_mesh_parts(mesh, path_, kNone, Transform{}, Value(json_, file_, "/materials"));
+        for (const std::string& w : mesh.warnings) warn(w);
         for (const std::string& w : placed.warnings) warn(w);
         const Aabb box = scene_.bounds();
         if (box.empty()) throw SceneError(file_ + ": no triangles in the default scene");
@@ -1005,6 +1006,8 @@ class Loader {
                 } catch (const std::exception& e) {
                     file.fail("cannot read mesh '" + p.string() + "': " + e.what());
                 }
+                for (const std::string& w : mesh.warnings)
+                    warn(file.pointer() + ": mesh '" + p.string() + "' " + w);
             }
             if (normals == "flat") mesh.normals.clear();
             if (normals == "smooth") mesh.normals = smooth_normals(mesh.positions, mesh.indices);
