@@ -248,3 +248,47 @@ TEST(HostileInput, ObjWorkOutOfProportionToItsSizeIsRefused) {
     dir.write("polygon.obj", polygon + face + "\n");
     expect_mesh_refused(dir, "polygon.obj", "polygons too large to triangulate");
 }
+
+// The smaller messages: each names the file, the place and the reason.
+TEST(HostileInput, MessagesNameThePlaceAndTheReason) {
+    TempDir dir;
+    const std::string head = R"({"camera": {"look_from": [0, 0, -5], "look_at": [0, 0, 0]},
+ "materials": {"t": {"type": "lambertian", "albedo": {"type": "image", "file": )";
+    const std::string tail =
+        R"(}}}, "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "t"}]})";
+    auto info = [&](const std::string& scene) {
+        const fs::path p = dir.write("x.json", scene);
+        return run_guarded(dir, "info '" + p.string() + "'");
+    };
+    CliResult overflow = info("{\n \"camera\": {\"look_from\": [0, 0, -5], \"look_at\": [0, 0, 1e999]}}");
+    EXPECT_EQ(overflow.code, 2);
+    EXPECT_NE(overflow.err.find("x.json:2:56: invalid JSON: number overflow parsing '1e999'"),
+              std::string::npos)
+        << overflow.err;
+    fs::create_symlink("loop1.png", dir.path() / "loop2.png");
+    fs::create_symlink("loop2.png", dir.path() / "loop1.png");
+    CliResult loop = info(head + R"("loop1.png")" + tail);
+    EXPECT_EQ(loop.code, 2);
+    EXPECT_NE(loop.err.find("loop1.png': Too many levels of symbolic links"), std::string::npos)
+        << loop.err;
+    dir.write("x.png", "not read");
+    CliResult nul = info(head + R"("x.png\u0000.jpg")" + tail);
+    EXPECT_EQ(nul.code, 2);
+    EXPECT_NE(nul.err.find("/materials/t/albedo/file: a file name cannot hold a NUL character"),
+              std::string::npos)
+        << nul.err;
+}
+
+// A resume asking for fewer samples than the film holds renders nothing, and says so.
+TEST(HostileOutput, ResumingToFewerSamplesThanTheFilmHoldsIsSaid) {
+    TempDir dir;
+    const std::string film = (dir.path() / "x.film").string(), out = (dir.path() / "x.exr").string();
+    const std::string render = "render '" + scene_path("cornell").string() +
+                               "' --width 16 --height 16 -o '" + out + "' ";
+    ASSERT_EQ(run_guarded(dir, render + "--spp 4 --film '" + film + "'").code, 0);
+    CliResult r = run_guarded(dir, render + "--spp 2 --resume '" + film + "'");
+    EXPECT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.err.find("holds 4 samples per pixel, more than --spp 2; nothing is rendered"),
+              std::string::npos)
+        << r.err;
+}

@@ -215,7 +215,7 @@ TEST(SceneLoader, NonFiniteNumbersAreRejected) {
         dir,
         scene_with_objects(
             R"({"type": "sphere", "center": [0, 0, 1e999], "radius": 1, "material": "white"})"));
-    EXPECT_EQ(err, ": invalid JSON: number overflow parsing '1e999'");
+    EXPECT_EQ(err, ":1:184: invalid JSON: number overflow parsing '1e999'");
     EXPECT_EQ(
         load_error(
             dir,

@@ -101,6 +101,11 @@ extern "C" void on_stop_signal(int sig) {
     g_stop_signal.store(sig);
 }
 
+// Memory ran out at a step that says which (the film's own shortage is reported below).
+struct OutOfMemory : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
 // The process's peak resident set so far (getrusage reports KiB on Linux).
 double peak_rss_mib() {
     rusage usage{};
@@ -299,7 +304,15 @@ Rendered render_to_image(const RenderOptions& o,
                          const fs::path& output,
                          const std::string& film_settings_text,
                          std::optional<std::pair<Film, FilmInfo>>& resumed) {
-    Bvh bvh = Bvh::build(scene);
+    Bvh bvh;
+    try {
+        bvh = Bvh::build(scene);
+    } catch (const std::bad_alloc&) {
+        throw OutOfMemory(fmt::format(
+            "out of memory building the BVH of {} primitives; render on a machine with more "
+            "memory",
+            scene.primitive_count()));
+    }
     Rendered r;
     WriteOptions& write = r.write;
     Image& image = r.image;
@@ -315,6 +328,11 @@ Rendered render_to_image(const RenderOptions& o,
         Film film = resumed ? std::move(resumed->first) : Film(width, height);
         request.first_sample = static_cast<int>(offset) + already;
         request.spp = std::max(0, requested - already);
+        if (already > requested)
+            std::cerr << fmt::format(
+                "wavetrace: warning: {}: holds {} samples per pixel, more than --spp {}; nothing "
+                "is rendered and the image is of the {}\n",
+                o.resume, already, requested, already);
         // Checkpoints come between passes: passes no longer than half the interval.
         if (o.checkpoint_every)
             request.pass_seconds = std::min(request.pass_seconds, *o.checkpoint_every / 2);
@@ -421,6 +439,10 @@ int run_render(const RenderOptions& o) {
         load.params = parse_defines(o.defines);
         scene = load_scene(o.scene, load);
         if (auto problem = check_options(o, scene.render)) throw SceneError(*problem);
+    } catch (const std::bad_alloc&) {
+        std::cerr << "wavetrace: error: " << o.scene
+                  << ": out of memory loading the scene (its meshes and textures)\n";
+        return kExitBadInput;
     } catch (const std::exception& e) {
         std::cerr << "wavetrace: error: " << e.what() << "\n";
         return kExitBadInput;
@@ -457,6 +479,9 @@ int run_render(const RenderOptions& o) {
     } catch (const FilmError& e) {
         std::cerr << "wavetrace: error: " << e.what() << "\n";
         return kExitFailure;
+    } catch (const OutOfMemory& e) {
+        std::cerr << "wavetrace: error: " << e.what() << "\n";
+        return kExitBadInput;
     } catch (const std::bad_alloc&) {
         // Name what needed the memory and what would fit, instead of dying on SIGABRT.
         const double pixels = double(width) * height;

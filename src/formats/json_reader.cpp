@@ -214,6 +214,24 @@ void Object::finish() const {
     }
 }
 
+namespace {
+
+// ":LINE:COLUMN" of the character at `offset` of `text`, both from 1.
+std::string line_column(const std::string& text, size_t offset) {
+    size_t line = 1, col = 1;
+    for (size_t i = 0; i < offset && i < text.size(); ++i) {
+        if (text[i] == '\n') {
+            ++line;
+            col = 1;
+        } else {
+            ++col;
+        }
+    }
+    return ":" + std::to_string(line) + ":" + std::to_string(col);
+}
+
+}  // namespace
+
 json parse(const std::string& text, const std::string& file) {
     // Deeply nested input is refused before parsing: nothing downstream (reading, error
     // messages, freeing) then needs more than kMaxNesting levels of anything.
@@ -248,27 +266,25 @@ json parse(const std::string& text, const std::string& file) {
     try {
         return json::parse(text);
     } catch (const json::parse_error& e) {
-        // Turn the byte offset into line:column for editors.
-        size_t line = 1, col = 1;
-        for (size_t i = 0; i + 1 < e.byte && i < text.size(); ++i) {
-            if (text[i] == '\n') {
-                ++line;
-                col = 1;
-            } else {
-                ++col;
-            }
-        }
+        // The byte offset (1-based) as line:column, for editors.
         std::string what = e.what();
         auto pos = what.find(": ", what.find("parse error"));
         std::string detail = pos == std::string::npos ? what : what.substr(pos + 2);
-        throw SceneError(file + ":" + std::to_string(line) + ":" + std::to_string(col) +
+        throw SceneError(file + line_column(text, e.byte > 0 ? e.byte - 1 : 0) +
                          ": invalid JSON: " + detail);
     } catch (const json::exception& e) {
-        // E.g. a number too large for a double ("1e999"); nlohmann gives no position here.
+        // E.g. a number too large for a double ("number overflow parsing '1e999'"): nlohmann
+        // gives no position here, so the literal it quotes is looked for in the text.
         std::string what = e.what();
         auto pos = what.find("] ");
-        throw SceneError(
-            file + ": invalid JSON: " + (pos == std::string::npos ? what : what.substr(pos + 2)));
+        const std::string detail = pos == std::string::npos ? what : what.substr(pos + 2);
+        std::string place;
+        const size_t open = detail.find('\''), close = detail.rfind('\'');
+        if (open != std::string::npos && close > open + 1) {
+            const size_t at = text.find(detail.substr(open + 1, close - open - 1));
+            if (at != std::string::npos) place = line_column(text, at);
+        }
+        throw SceneError(file + place + ": invalid JSON: " + detail);
     }
 }
 

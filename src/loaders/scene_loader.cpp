@@ -179,8 +179,12 @@ class Loader {
 
     // A path in the scene file, relative to the scene file's folder.
     fs::path resolve(const Value& v) const {
-        fs::path p = v.string();
-        if (p.empty()) v.fail("expected a file name, got \"\"");
+        const std::string name = v.string();
+        if (name.empty()) v.fail("expected a file name, got \"\"");
+        // The file system ends a name at a NUL: "a.png\u0000.jpg" would open a.png.
+        if (name.find('\0') != std::string::npos)
+            v.fail("a file name cannot hold a NUL character (\\u0000)");
+        fs::path p = name;
         return p.is_absolute() ? p : path_.parent_path() / p;
     }
 
@@ -295,11 +299,16 @@ class Loader {
     ImageData read_image_at(const Value& file, bool raw = false) const {
         fs::path p = resolve(file);
         std::error_code ec;
-        if (!fs::exists(p, ec)) file.fail("cannot open image '" + p.string() + "': no such file");
+        const fs::file_status st = fs::status(p, ec);
+        if (st.type() == fs::file_type::not_found)
+            file.fail("cannot open image '" + p.string() + "': no such file");
+        if (ec) file.fail("cannot open image '" + p.string() + "': " + ec.message());
         try {
             return read_image(p, raw ? ImageChannels::Raw : ImageChannels::Linear);
         } catch (const ImageError& e) {
             file.fail(e.what());
+        } catch (const std::bad_alloc&) {
+            file.fail("out of memory reading image '" + p.string() + "'");
         }
     }
 
