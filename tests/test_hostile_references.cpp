@@ -78,10 +78,10 @@ TEST(HostileInput, MeshReferencesOutsideTheMeshFolderAreRefused) {
     TempDir dir;
     dir.write("secret.bin", std::string(36, '\0'));
     dir.write("meshes/m.gltf", gltf_with_buffer("../secret.bin"));
-    expect_mesh_refused(dir, "meshes/m.gltf", "secret.bin: outside the mesh's folder");
+    expect_mesh_refused(dir, "meshes/m.gltf", "secret.bin: outside the folder");
     dir.write("secret.mtl", "newmtl m\nKd 1 1 1\n");
     dir.write("meshes/m.obj", std::string("mtllib ../secret.mtl\n") + kTriangleObj);
-    expect_mesh_refused(dir, "meshes/m.obj", "secret.mtl: outside the mesh's folder");
+    expect_mesh_refused(dir, "meshes/m.obj", "secret.mtl: outside the folder");
 }
 
 TEST(HostileInput, MissingMtlIsAWarningNamingIt) {
@@ -291,4 +291,66 @@ TEST(HostileOutput, ResumingToFewerSamplesThanTheFilmHoldsIsSaid) {
     EXPECT_NE(r.err.find("holds 4 samples per pixel, more than --spp 2; nothing is rendered"),
               std::string::npos)
         << r.err;
+}
+
+// --asset-root confines every file a scene reads, whatever names it, with symbolic links
+// resolved; without it a scene reads beside itself as before, but a mesh's own references stay
+// in the mesh's folder.
+TEST(HostileInput, AnAssetRootConfinesEveryFileTheSceneReads) {
+    TempDir dir;
+    const fs::path root = dir.path() / "root";
+    dir.write("outside/tex.ppm", "P3\n1 1\n255\n200 100 50\n");
+    dir.write("root/tex.ppm", "P3\n1 1\n255\n200 100 50\n");
+    fs::create_symlink(dir.path() / "outside" / "tex.ppm", root / "link.ppm");
+    auto scene_with_texture = [&](const std::string& file) {
+        return std::string(R"({"camera": {"look_from": [0, 0, -5], "look_at": [0, 0, 0]},
+ "materials": {"t": {"type": "lambertian", "albedo": {"type": "image", "file": ")") +
+               file + R"("}}},
+ "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "t"}]})";
+    };
+    auto info = [&](const std::string& scene_file, const std::string& extra) {
+        return run_guarded(dir, "info '" + (dir.path() / scene_file).string() + "' " + extra);
+    };
+    const std::string confined = "--asset-root '" + root.string() + "'";
+    dir.write("root/inside.json", scene_with_texture("tex.ppm"));
+    EXPECT_EQ(info("root/inside.json", confined).code, 0);
+    dir.write("root/escape.json", scene_with_texture("../outside/tex.ppm"));
+    EXPECT_EQ(info("root/escape.json", "").code, 0) << "no root: as before";
+    CliResult escape = info("root/escape.json", confined);
+    EXPECT_EQ(escape.code, 2);
+    EXPECT_NE(escape.err.find("/materials/t/albedo/file: " + root.string() +
+                              "/../outside/tex.ppm: outside the asset root " + root.string()),
+              std::string::npos)
+        << escape.err;
+    dir.write("root/link.json", scene_with_texture("link.ppm"));
+    CliResult link = info("root/link.json", confined);
+    EXPECT_EQ(link.code, 2);
+    EXPECT_NE(link.err.find("link.ppm: outside the asset root"), std::string::npos) << link.err;
+    dir.write("outside/scene.json", scene_with_texture("tex.ppm"));
+    CliResult scene = info("outside/scene.json", confined);
+    EXPECT_EQ(scene.code, 2);
+    EXPECT_NE(scene.err.find("scene.json: outside the asset root"), std::string::npos)
+        << scene.err;
+    // Includes of the other formats.
+    dir.write("outside/part.xml", R"(<scene version="3.0.0"/>)");
+    dir.write("root/a.xml", R"(<scene version="3.0.0"><include filename="../outside/part.xml"/>
+<shape type="sphere"><bsdf type="diffuse"/></shape></scene>)");
+    CliResult xml = info("root/a.xml", confined);
+    EXPECT_EQ(xml.code, 2);
+    EXPECT_NE(xml.err.find("outside the asset root"), std::string::npos) << xml.err;
+    dir.write("outside/part.pbrt", "\n");
+    dir.write("root/a.pbrt", "WorldBegin\nInclude \"../outside/part.pbrt\"\nShape \"sphere\"\n");
+    CliResult pbrt = info("root/a.pbrt", confined);
+    EXPECT_EQ(pbrt.code, 2);
+    EXPECT_NE(pbrt.err.find("outside the asset root"), std::string::npos) << pbrt.err;
+}
+
+// A mesh's texture (map_Kd) is one of its own references: it may not leave the mesh's folder.
+TEST(HostileInput, MeshTexturesOutsideTheMeshFolderAreRefused) {
+    TempDir dir;
+    dir.write("tex.ppm", "P3\n1 1\n255\n200 100 50\n");
+    dir.write("meshes/m.mtl", "newmtl m\nKd 1 1 1\nmap_Kd ../tex.ppm\n");
+    dir.write("meshes/m.obj", std::string("mtllib m.mtl\nvt 0 0\nvt 1 0\nvt 0 1\n") +
+                                  "v 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl m\nf 1/1 2/2 3/3\n");
+    expect_mesh_refused(dir, "meshes/m.obj", "tex.ppm': outside the folder");
 }

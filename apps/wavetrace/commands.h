@@ -33,6 +33,7 @@ struct RenderOptions {
     std::string scene;
     std::string camera;  // a glTF scene's camera, by name
     std::vector<std::string> defines;  // a Mitsuba scene's parameters, NAME=VALUE
+    std::string asset_root;            // every file read must lie inside it ("": anywhere)
     std::string output;
     // Not given: the scene file's value (or the engine's default, for the wave size).
     std::optional<int> width, height, spp, max_depth;
@@ -72,11 +73,13 @@ struct ConvertOptions {
     std::string scene;
     std::string output;
     std::vector<std::string> defines;
+    std::string asset_root;
 };
 
 struct InfoOptions {
     std::string scene;
     std::vector<std::string> defines;
+    std::string asset_root;
     int threads = 0;
 };
 

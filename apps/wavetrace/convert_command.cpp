@@ -14,6 +14,9 @@ void add_convert_command(CLI::App& app, ConvertOptions& o) {
     cmd->add_option("-o,--output", o.output, "the JSON file to write")->required();
     cmd->add_option("-D,--define", o.defines,
                     "Mitsuba scenes: NAME=VALUE for a $NAME parameter (overrides <default>)");
+    cmd->add_option("--asset-root", o.asset_root,
+                    "every file the scene reads (meshes, textures, includes, and what meshes name) "
+                    "must lie inside this folder, symbolic links resolved");
 }
 
 int run_convert(const ConvertOptions& o) {
@@ -23,6 +26,7 @@ int run_convert(const ConvertOptions& o) {
             throw SceneError("-o " + o.output + ": that is the scene file itself");
         LoadOptions load;
         load.params = parse_defines(o.defines);
+        load.asset_root = o.asset_root;
         for (const fs::path& written : convert_scene(o.scene, o.output, load))
             std::cout << written.string() << "\n";
     } catch (const SceneError& e) {

@@ -15,6 +15,9 @@ void add_info_command(CLI::App& app, InfoOptions& o) {
         ->required();
     cmd->add_option("-D,--define", o.defines,
                     "Mitsuba scenes: NAME=VALUE for a $NAME parameter (overrides <default>)");
+    cmd->add_option("--asset-root", o.asset_root,
+                    "every file the scene reads (meshes, textures, includes, and what meshes name) "
+                    "must lie inside this folder, symbolic links resolved");
     cmd->add_option("--threads", o.threads, "worker threads for the BVH build (default: all)");
 }
 
@@ -42,6 +45,7 @@ int run_info(const InfoOptions& o) {
     try {
         LoadOptions load;
         load.params = parse_defines(o.defines);
+        load.asset_root = o.asset_root;
         scene = load_scene(o.scene, load);
     } catch (const std::exception& e) {
         std::cerr << "wavetrace: error: " << e.what() << "\n";

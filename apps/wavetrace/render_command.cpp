@@ -26,6 +26,9 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
         ->required();
     cmd->add_option("-D,--define", o.defines,
                     "Mitsuba scenes: NAME=VALUE for a $NAME parameter (overrides <default>)");
+    cmd->add_option("--asset-root", o.asset_root,
+                    "every file the scene reads (meshes, textures, includes, and what meshes name) "
+                    "must lie inside this folder, symbolic links resolved");
     cmd->add_option("-o,--output", o.output,
                     "output image: .png/.jpg (8-bit sRGB) or .exr/.hdr/.pfm (linear float); "
                     "default: <scene>.png");
@@ -437,6 +440,7 @@ int run_render(const RenderOptions& o) {
         LoadOptions load;
         load.camera = o.camera;
         load.params = parse_defines(o.defines);
+        load.asset_root = o.asset_root;
         scene = load_scene(o.scene, load);
         if (auto problem = check_options(o, scene.render)) throw SceneError(*problem);
     } catch (const std::bad_alloc&) {

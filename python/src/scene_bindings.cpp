@@ -5,6 +5,7 @@
 #include <fstream>
 #include <iterator>
 #include <mutex>
+#include <optional>
 
 #include "casters.h"
 #include "py_scene.h"
@@ -21,7 +22,8 @@ std::vector<std::string>* g_warnings = nullptr;
 
 std::shared_ptr<PyScene> load(const std::filesystem::path& path,
                               const std::string& camera,
-                              const std::map<std::string, std::string>& params) {
+                              const std::map<std::string, std::string>& params,
+                              const std::optional<std::filesystem::path>& asset_root) {
     auto s = std::make_shared<PyScene>();
     std::vector<std::string> warnings;
     {
@@ -30,6 +32,7 @@ std::shared_ptr<PyScene> load(const std::filesystem::path& path,
         LoadOptions options;
         options.camera = camera;
         options.params = params;
+        if (asset_root) options.asset_root = *asset_root;
         g_warnings = &warnings;
         options.warn = [](const std::string& message) {
             static std::mutex mutex;
@@ -368,8 +371,10 @@ void bind_scene(py::module_& m) {
 
     m.def("load_scene", &load, py::arg("path"), py::arg("camera") = "",
           py::arg("params") = std::map<std::string, std::string>{},
+          py::arg("asset_root") = py::none(),
           "Loads a scene file: our JSON, Mitsuba 3 XML (.xml; params are its $parameters), "
-          "pbrt-v4 (.pbrt) or glTF 2.0 (.gltf, .glb; camera: the one to render through). Raises "
+          "pbrt-v4 (.pbrt) or glTF 2.0 (.gltf, .glb; camera: the one to render through); with "
+          "asset_root, every file read must lie inside it. Raises "
           "SceneError naming the file and the place; warnings become UserWarnings.");
 }
 

@@ -14,6 +14,7 @@
 #include <set>
 #include <sstream>
 
+#include "files/confinement.h"
 #include "files/input_file.h"
 #include "formats/affine.h"
 #include "formats/spectrum_rgb.h"
@@ -99,9 +100,17 @@ std::string snake_case(std::string name) {
 
 class Reader {
   public:
-    Reader(const fs::path& main, const std::map<std::string, std::string>& params)
-        : params_(params) {
+    Reader(const fs::path& main,
+           const std::map<std::string, std::string>& params,
+           const fs::path& asset_root)
+        : params_(params), asset_root_(asset_root) {
         search_.push_back(main.parent_path());
+    }
+
+    // Throws std::runtime_error unless `p` lies inside the asset root (if there is one).
+    void confine(const fs::path& p) const {
+        if (std::string why = Confinement{{}, asset_root_}.problem(p); !why.empty())
+            throw std::runtime_error(why);
     }
 
     Element read_main(const fs::path& path) {
@@ -144,6 +153,7 @@ class Reader {
         const std::string who = from.empty() ? name : from;
         try {
             check_input_file(path, kMaxSceneFileBytes, "scene files");
+            confine(path);
         } catch (const std::runtime_error& e) {
             fail(who, (from.empty() ? "cannot open scene file: " : "cannot include '" + name +
                                                                        "': ") +
@@ -323,6 +333,7 @@ class Reader {
     std::vector<fs::path> search_;
     std::vector<fs::path> stack_;
     size_t elements_ = 0;
+    fs::path asset_root_;
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -663,6 +674,7 @@ class Translator {
         const fs::path p = reader_.resolve(f, c);
         try {
             check_input_file(p, uintmax_t(1) << 20, "spectrum files");
+            reader_.confine(p);
         } catch (const std::runtime_error& e) {
             fail(c, "spectrum file '" + p.string() + "': " + e.what());
         }
@@ -1219,8 +1231,9 @@ class Translator {
 
 MitsubaDocument translate_mitsuba_xml(const fs::path& path,
                                       const std::map<std::string, std::string>& params,
-                                      const std::function<void(const std::string&)>& warn) {
-    Reader reader(path, params);
+                                      const std::function<void(const std::string&)>& warn,
+                                      const fs::path& asset_root) {
+    Reader reader(path, params, asset_root);
     const Element scene = reader.read_main(path);
     return Translator(reader, path, warn).translate(scene);
 }

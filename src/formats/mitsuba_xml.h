@@ -22,9 +22,11 @@ struct MitsubaDocument {
 // Reads `path` with its includes; `params` are the -D name=value overrides of <default>s.
 // Throws SceneError naming the file and line on bad input; `warn` gets, for each element it
 // cannot represent, a message naming its place, the plugin and the property
-// ("a.xml:12: warning: sensor: near_clip and far_clip are not supported; ...").
+// ("a.xml:12: warning: sensor: near_clip and far_clip are not supported; ..."). Every file it
+// reads (includes, spectra) must lie inside `asset_root`, if not empty.
 MitsubaDocument translate_mitsuba_xml(const std::filesystem::path& path,
                                       const std::map<std::string, std::string>& params,
-                                      const std::function<void(const std::string&)>& warn);
+                                      const std::function<void(const std::string&)>& warn,
+                                      const std::filesystem::path& asset_root = {});
 
 }  // namespace wavetrace

@@ -124,10 +124,11 @@ FileMaterial read_material(const aiMaterial& m, bool gltf) {
 
 }  // namespace
 
-MeshFile read_mesh_file(const std::filesystem::path& path) {
+MeshFile read_mesh_file(const std::filesystem::path& path,
+                        const std::filesystem::path& asset_root) {
     check_input_file(path, kMaxMeshFileBytes, "meshes");
     Assimp::Importer importer;
-    auto* io = new MeshIO(path);
+    auto* io = new MeshIO(path, asset_root);
     importer.SetIOHandler(io);  // the importer owns it
     std::string ext = path.extension().string();
     if (ext.empty() || !importer.IsExtensionSupported(ext))

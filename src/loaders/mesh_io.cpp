@@ -8,28 +8,12 @@
 namespace wavetrace {
 namespace fs = std::filesystem;
 
-namespace {
-
-// Whether `path` is `folder` or lies below it (both absolute and normalized).
-bool inside(const fs::path& path, const fs::path& folder) {
-    auto [f, p] = std::mismatch(folder.begin(), folder.end(), path.begin(), path.end());
-    // A trailing empty element (a folder written with a final separator) matches anything.
-    return f == folder.end() || (std::next(f) == folder.end() && f->empty());
-}
-
-fs::path normalized(const fs::path& p) {
-    return fs::absolute(p).lexically_normal();
-}
-
-}  // namespace
-
-MeshIO::MeshIO(const fs::path& mesh) : folder_(normalized(mesh).parent_path()) {}
+MeshIO::MeshIO(const fs::path& mesh, const fs::path& asset_root)
+    : confinement_{fs::absolute(mesh).lexically_normal().parent_path(), asset_root} {}
 
 std::string MeshIO::problem(const fs::path& file) const {
-    const fs::path p = normalized(file);
-    if (!inside(p, folder_))
-        return "outside the mesh's folder " + folder_.string() +
-               " (a mesh's own references may not leave it)";
+    const fs::path p = fs::absolute(file).lexically_normal();
+    if (std::string why = confinement_.problem(p); !why.empty()) return why;
     try {
         check_input_file(p, kMaxMeshFileBytes, "meshes");
     } catch (const std::runtime_error& e) {

@@ -1,8 +1,7 @@
 // The file system Assimp reads a mesh through. Every file a mesh pulls in (an OBJ's mtllib, a
 // glTF's buffers and images) passes the checks the mesh itself passed: a regular file (a FIFO
 // or a device would hang or flood memory) within the size limit for meshes, inside the mesh's
-// folder (its own references may not climb out of it with ".." or name absolute paths
-// elsewhere).
+// folder and the asset root, if any (files/confinement.h).
 #pragma once
 
 #include <assimp/DefaultIOSystem.h>
@@ -11,12 +10,15 @@
 #include <string>
 #include <vector>
 
+#include "files/confinement.h"
+
 namespace wavetrace {
 
 class MeshIO : public Assimp::DefaultIOSystem {
   public:
-    // `mesh`: the mesh file Assimp is asked to read.
-    explicit MeshIO(const std::filesystem::path& mesh);
+    // `mesh`: the mesh file Assimp is asked to read; `asset_root`: empty, or the folder every
+    // file must lie in.
+    MeshIO(const std::filesystem::path& mesh, const std::filesystem::path& asset_root);
 
     bool Exists(const char* file) const override;
     Assimp::IOStream* Open(const char* file, const char* mode = "rb") override;
@@ -31,7 +33,7 @@ class MeshIO : public Assimp::DefaultIOSystem {
     std::string problem(const std::filesystem::path& file) const;
     void note(const std::filesystem::path& file, const std::string& why) const;
 
-    std::filesystem::path folder_;  // the mesh's, absolute and normalized
+    Confinement confinement_;
     mutable std::vector<std::string> refused_, missing_;
 };
 

@@ -10,6 +10,7 @@
 #include <map>
 #include <sstream>
 
+#include "files/confinement.h"
 #include "files/input_file.h"
 #include "formats/gltf_json.h"
 #include "formats/json_reader.h"
@@ -46,6 +47,8 @@ class Loader {
         } catch (const std::runtime_error& e) {
             throw SceneError(file_ + ": cannot open scene file: " + e.what());
         }
+        if (std::string why = Confinement{{}, options_.asset_root}.problem(path_); !why.empty())
+            throw SceneError(file_ + ": " + why);
         std::ifstream in(path_, std::ios::binary);
         if (!in) throw SceneError(file_ + ": cannot open scene file: " + std::strerror(errno));
         std::stringstream text;
@@ -86,7 +89,7 @@ class Loader {
         MeshFile mesh;
         GltfPlacements placed;
         try {
-            mesh = read_mesh_file(path_);
+            mesh = read_mesh_file(path_, options_.asset_root);
             placed = gltf_placements(path_, binary);
         } catch (const std::exception& e) {
             throw SceneError(file_ + ": " + e.what());
@@ -185,7 +188,10 @@ class Loader {
         if (name.find('\0') != std::string::npos)
             v.fail("a file name cannot hold a NUL character (\\u0000)");
         fs::path p = name;
-        return p.is_absolute() ? p : path_.parent_path() / p;
+        if (!p.is_absolute()) p = path_.parent_path() / p;
+        if (std::string why = Confinement{{}, options_.asset_root}.problem(p); !why.empty())
+            v.fail(p.string() + ": " + why);
+        return p;
     }
 
     void read_render(const Value& v) {
@@ -804,6 +810,9 @@ class Loader {
                            const Value& where,
                            const std::string& who) {
         fs::path tex = mesh_path.parent_path() / relative;
+        if (std::string why = Confinement{mesh_path.parent_path(), options_.asset_root}.problem(tex);
+            !why.empty())
+            where.fail(who + ": " + key + " '" + tex.string() + "': " + why);
         std::error_code ec;
         if (!fs::exists(tex, ec))
             where.fail(who + ": " + key + " '" + tex.string() + "': no such file");
@@ -1011,7 +1020,7 @@ class Loader {
             } else {
                 p = resolve(file);
                 try {
-                    mesh = read_mesh_file(p);
+                    mesh = read_mesh_file(p, options_.asset_root);
                 } catch (const std::exception& e) {
                     file.fail("cannot read mesh '" + p.string() + "': " + e.what());
                 }
@@ -1112,7 +1121,7 @@ Scene load_mitsuba(const fs::path& path, const LoadOptions& options) {
     if (!options.camera.empty())
         throw SceneError(path.string() + ": --camera chooses among a glTF file's cameras; a "
                                          "Mitsuba scene has one sensor");
-    MitsubaDocument doc = translate_mitsuba_xml(path, options.params, warner(options));
+    MitsubaDocument doc = translate_mitsuba_xml(path, options.params, warner(options), options.asset_root);
     return build_translated(path, options, std::move(doc.scene), doc.object_places, nullptr);
 }
 
@@ -1124,7 +1133,7 @@ Scene load_pbrt(const fs::path& path, const LoadOptions& options) {
     if (!options.params.empty())
         throw SceneError(path.string() + ": -D sets a Mitsuba scene's parameters; a pbrt "
                                          "scene has none");
-    PbrtDocument doc = translate_pbrt(path, warner(options));
+    PbrtDocument doc = translate_pbrt(path, warner(options), options.asset_root);
     return build_translated(path, options, std::move(doc.scene), doc.object_places, &doc.meshes);
 }
 

@@ -13,6 +13,7 @@
 #include <set>
 #include <sstream>
 
+#include "files/confinement.h"
 #include "files/input_file.h"
 #include "formats/affine.h"
 #include "pbrt/params.h"
@@ -75,7 +76,16 @@ json matrix_step(const M4& m) {
 
 class Reader {
   public:
-    explicit Reader(const fs::path& main) : folder_(main.parent_path()) { open(main, main.string()); }
+    Reader(const fs::path& main, const fs::path& asset_root)
+        : folder_(main.parent_path()), asset_root_(asset_root) {
+        open(main, main.string());
+    }
+
+    // Throws std::runtime_error unless `p` lies inside the asset root (if there is one).
+    void confine(const fs::path& p) const {
+        if (std::string why = Confinement{{}, asset_root_}.problem(p); !why.empty())
+            throw std::runtime_error(why);
+    }
 
     // pbrt resolves every relative path against the main file's folder.
     fs::path resolve(const std::string& name) const {
@@ -129,6 +139,7 @@ class Reader {
         const std::string name = p.string();
         try {
             check_input_file(p, kMaxPbrtFileBytes, "pbrt files");
+            confine(p);
         } catch (const std::runtime_error& e) {
             throw SceneError((stack_.empty() ? name : place) + ": cannot open " +
                              (stack_.empty() ? "scene file: " : "'" + name + "': ") + e.what());
@@ -144,6 +155,7 @@ class Reader {
     fs::path folder_;
     std::vector<Source> stack_;
     std::string last_place_;
+    fs::path asset_root_;
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -163,8 +175,10 @@ double named_glass(const std::string& name) {
 
 class Translator {
   public:
-    Translator(const fs::path& path, const std::function<void(const std::string&)>& warn)
-        : reader_(path), warn_(warn) {}
+    Translator(const fs::path& path,
+               const std::function<void(const std::string&)>& warn,
+               const fs::path& asset_root)
+        : reader_(path, asset_root), warn_(warn) {}
 
     PbrtDocument translate() {
         out_["render"] = {{"width", 1280}, {"height", 720}, {"spp", 16}, {"max_depth", 6}};
@@ -707,6 +721,7 @@ class Translator {
             fail(p.place, "\"" + p.name + "\": no named spectrum or file \"" + name + "\"");
         try {
             check_input_file(path, uintmax_t(1) << 20, "spectrum files");
+            reader_.confine(path);
         } catch (const std::runtime_error& e) {
             fail(p.place, "spectrum file '" + path.string() + "': " + e.what());
         }
@@ -1368,8 +1383,9 @@ class Translator {
 }  // namespace
 
 PbrtDocument translate_pbrt(const fs::path& path,
-                            const std::function<void(const std::string&)>& warn) {
-    return Translator(path, warn).translate();
+                            const std::function<void(const std::string&)>& warn,
+                            const fs::path& asset_root) {
+    return Translator(path, warn, asset_root).translate();
 }
 
 }  // namespace wavetrace

@@ -35,8 +35,10 @@ struct PbrtDocument {
 
 // Reads `path` with its includes. Throws SceneError naming the file and line on bad input;
 // `warn` gets, for each directive or parameter it cannot represent, a message naming its place
-// ("a.pbrt:12: warning: Shape \"curve\" is not supported; skipped").
+// ("a.pbrt:12: warning: Shape \"curve\" is not supported; skipped"). Every file it reads
+// (includes, spectra) must lie inside `asset_root`, if not empty.
 PbrtDocument translate_pbrt(const std::filesystem::path& path,
-                            const std::function<void(const std::string&)>& warn);
+                            const std::function<void(const std::string&)>& warn,
+                            const std::filesystem::path& asset_root = {});
 
 }  // namespace wavetrace

@@ -110,3 +110,9 @@ def test_a_mesh_from_arrays_is_hit_where_it_lies():
     hits = wt.Bvh(s).intersect(np.zeros((2, 3)), np.array([[0.5, -0.5, -1], [3, 0, -1]]))
     assert hits.hit.tolist() == [True, False]
     assert hits.t[0] == pytest.approx(2) and hits.kind[0] == 0 and hits.prim[0] == 0
+
+
+def test_an_asset_root_confines_the_files_read(tmp_path):
+    assert wt.load_scene(SCENES / "bunny.json", asset_root=SCENES).info()["triangles"] > 0
+    with pytest.raises(wt.SceneError, match="outside the asset root"):
+        wt.load_scene(SCENES / "bunny.json", asset_root=tmp_path)

@@ -18,6 +18,10 @@ struct LoadOptions {
     std::string camera;
     // A Mitsuba XML scene: values for its $parameters (-D name=value), overriding <default>s.
     std::map<std::string, std::string> params;
+    // Empty, or the folder every file the scene reads must lie in once symbolic links are
+    // resolved (the scene file, its includes, meshes, what the meshes name, textures): a
+    // render farm's confinement. A file outside is an error naming it.
+    std::filesystem::path asset_root;
 };
 
 // Loads a scene file and the meshes, textures and environment maps it names: our JSON
