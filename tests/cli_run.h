@@ -11,6 +11,20 @@
 #include "temp_dir.h"
 #include "test_paths.h"
 
+// Whether this build runs under AddressSanitizer, which reserves terabytes of shadow memory:
+// no `ulimit -v` leaves it room to start.
+#if defined(__SANITIZE_ADDRESS__)
+inline constexpr bool kUnderAddressSanitizer = true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+inline constexpr bool kUnderAddressSanitizer = true;
+#else
+inline constexpr bool kUnderAddressSanitizer = false;
+#endif
+#else
+inline constexpr bool kUnderAddressSanitizer = false;
+#endif
+
 struct CliResult {
     int code;  // exit status, -1 if killed by a signal
     std::string out, err;

@@ -490,13 +490,8 @@ TEST(HostileOutput, SignalDuringTheWriteLeavesNoTemporary) {
 }
 
 TEST(HostileOutput, RunningOutOfMemoryIsAnErrorNotACrash) {
-#if defined(__SANITIZE_ADDRESS__)
-    GTEST_SKIP() << "AddressSanitizer reserves terabytes of shadow memory: no `ulimit -v` fits";
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-    GTEST_SKIP() << "AddressSanitizer reserves terabytes of shadow memory: no `ulimit -v` fits";
-#endif
-#endif
+    if (kUnderAddressSanitizer)
+        GTEST_SKIP() << "AddressSanitizer reserves terabytes of shadow memory: no `ulimit -v` fits";
     TempDir dir;
     fs::path out = dir.path() / "big.exr";
     // 16384 x 8192 pixels: the film alone needs 6.5 GiB; 3 GiB of address space is not enough.
