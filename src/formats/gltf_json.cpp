@@ -19,13 +19,18 @@ uint32_t le32(const std::string& s, size_t at) {
     return v;  // glTF is little-endian, as every platform we build for
 }
 
-// The JSON text of a .gltf, or of a .glb's first chunk: the 12-byte header (magic "glTF",
-// version 2, total length) and a chunk of type "JSON" whose length fits in the file (glTF 2.0
-// specification, "Binary glTF Layout").
-std::string json_text(const std::filesystem::path& path, bool binary) {
+// The whole file.
+std::string file_bytes(const std::filesystem::path& path) {
     std::ifstream in(path, std::ios::binary);
     std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     if (!in.good() && !in.eof()) throw std::runtime_error("cannot read the file");
+    return bytes;
+}
+
+// The JSON text of a .gltf, or of a .glb's first chunk: the 12-byte header (magic "glTF",
+// version 2, total length) and a chunk of type "JSON" whose length fits in the file (glTF 2.0
+// specification, "Binary glTF Layout").
+std::string json_text(const std::string& bytes, bool binary) {
     if (!binary) return bytes;
     if (bytes.size() < 20 || le32(bytes, 0) != 0x46546C67u || le32(bytes, 4) != 2)
         throw std::runtime_error("not a binary glTF 2.0 file (header)");
@@ -121,7 +126,7 @@ Vec3 unit(Vec3 v, const std::string& what) {
 }  // namespace
 
 GltfPlacements gltf_placements(const std::filesystem::path& path, bool binary) {
-    const auto doc = json_reader::parse(json_text(path, binary), "glTF JSON");
+    const auto doc = json_reader::parse(json_text(file_bytes(path), binary), "glTF JSON");
     GltfPlacements out;
     const auto empty = json_reader::json::array();
     auto array = [&](const json_reader::json& o, const char* key) -> const json_reader::json& {
@@ -258,33 +263,26 @@ GltfPlacements gltf_placements(const std::filesystem::path& path, bool binary) {
     return out;
 }
 
-void check_gltf(const std::filesystem::path& path, bool binary) {
-    const std::string text = json_text(path, binary);
+json_reader::json check_gltf(const std::filesystem::path& path, bool binary) {
+    const std::string bytes = file_bytes(path);
+    const std::string text = json_text(bytes, binary);
     if (binary) {
         // Every chunk within the length the header gives, and that length within the file.
-        std::ifstream in(path, std::ios::binary | std::ios::ate);
-        const uint64_t size = uint64_t(in.tellg());
-        std::string head(12, '\0');
-        in.seekg(0);
-        in.read(head.data(), 12);
-        const uint64_t length = le32(head, 8);
-        if (length > size)
+        const uint64_t length = le32(bytes, 8);
+        if (length > bytes.size())
             throw std::runtime_error("binary glTF: the header claims " + std::to_string(length) +
-                                     " bytes; the file has " + std::to_string(size));
-        std::string chunk(8, '\0');
+                                     " bytes; the file has " + std::to_string(bytes.size()));
         for (uint64_t at = 12; at + 8 <= length;) {
-            in.seekg(std::streamoff(at));
-            in.read(chunk.data(), 8);
-            const uint64_t bytes = le32(chunk, 0);
-            if (!in || bytes > length - at - 8)
+            const uint64_t chunk = le32(bytes, size_t(at));
+            if (chunk > length - at - 8)
                 throw std::runtime_error("binary glTF: the chunk at byte " + std::to_string(at) +
-                                         " claims " + std::to_string(bytes) +
+                                         " claims " + std::to_string(chunk) +
                                          " bytes, beyond the file's length");
-            at += 8 + bytes;
+            at += 8 + chunk;
         }
     }
     const auto doc = json_reader::parse(text, "glTF JSON");
-    if (!doc.contains("nodes") || !doc["nodes"].is_array()) return;
+    if (!doc.contains("nodes") || !doc["nodes"].is_array()) return doc;
     const auto& nodes = doc["nodes"];
     // Each node at most one parent (glTF 2.0, "Nodes and Hierarchy"), then depth first from the
     // roots: a node never reached sits on a cycle.
@@ -320,10 +318,10 @@ void check_gltf(const std::filesystem::path& path, bool binary) {
         for (size_t c : children[node]) stack.push_back({c, depth + 1});
     }
     if (reached != nodes.size()) throw std::runtime_error("/nodes: the hierarchy has a cycle");
+    return doc;
 }
 
-std::vector<float> gltf_emissive_strengths(const std::filesystem::path& path, bool binary) {
-    const auto doc = json_reader::parse(json_text(path, binary), "glTF JSON");
+std::vector<float> gltf_emissive_strengths(const json_reader::json& doc) {
     std::vector<float> out;
     const auto materials = doc.find("materials");
     if (materials == doc.end() || !materials->is_array()) return out;

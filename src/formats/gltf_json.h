@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "formats/json_reader.h"
 #include "wavetrace/math/vec3.h"
 
 namespace wavetrace {
@@ -18,15 +19,14 @@ inline constexpr int kMaxGltfNodeDepth = 1024;
 // otherwise: a .glb's header length within the file and every chunk within that length
 // (Assimp allocates a chunk's claimed length before reading it); JSON nested at most
 // json_reader::kMaxNesting deep, and a node hierarchy without cycles or shared children at
-// most kMaxGltfNodeDepth deep (Assimp recurses through both and overflows its stack). Throws
-// std::runtime_error (without the path).
-void check_gltf(const std::filesystem::path& path, bool binary);
+// most kMaxGltfNodeDepth deep (Assimp recurses through both and overflows its stack). Returns
+// the parsed JSON; throws std::runtime_error (without the path).
+json_reader::json check_gltf(const std::filesystem::path& path, bool binary);
 
-// Per material, in the file's order (Assimp's too): KHR_materials_emissive_strength's
-// emissiveStrength, 1 where the material does not give one. `binary`: a .glb, whose JSON is
-// its first chunk. Throws std::runtime_error (without the path) for a malformed container or
-// JSON, or a strength that is negative or not finite.
-std::vector<float> gltf_emissive_strengths(const std::filesystem::path& path, bool binary);
+// Per material of the file's JSON `doc` (as check_gltf returns it), in the file's order
+// (Assimp's too): KHR_materials_emissive_strength's emissiveStrength, 1 where the material does
+// not give one. Throws std::runtime_error for a strength that is negative or not finite.
+std::vector<float> gltf_emissive_strengths(const json_reader::json& doc);
 
 // A perspective camera where a node puts it, in world space: glTF cameras look along their
 // node's -z with +y up.

@@ -139,7 +139,9 @@ MeshFile read_mesh_file(const std::filesystem::path& path,
     if (lower == "ply") check_ply(path);
     if (lower == "off") check_off(path);
     if (lower == "obj") check_obj(path);
-    if (lower == "gltf" || lower == "glb") check_gltf(path, lower == "glb");
+    const bool gltf = lower == "gltf" || lower == "glb";
+    json_reader::json gltf_doc;
+    if (gltf) gltf_doc = check_gltf(path, lower == "glb");
     refuse_unrecognised(importer, path, lower);
     // Keep only triangles. Assimp's OBJ reader un-indexes faces; joining identical vertices
     // restores the shared indexing (and the memory) of the file.
@@ -176,12 +178,11 @@ MeshFile read_mesh_file(const std::filesystem::path& path,
     MeshFile out;
     // Assimp looks for a missing file under several names: the first is the file's own.
     if (!io->missing().empty()) out.warnings.push_back("names " + io->missing().front());
-    const bool gltf = lower == "gltf" || lower == "glb";
     for (unsigned m = 0; m < scene->mNumMaterials; ++m)
         out.materials.push_back(read_material(*scene->mMaterials[m], gltf));
     if (gltf) {
         // Assimp keeps the file's materials in order (appending a default one at most).
-        const std::vector<float> strengths = gltf_emissive_strengths(path, lower == "glb");
+        const std::vector<float> strengths = gltf_emissive_strengths(gltf_doc);
         for (size_t m = 0; m < strengths.size() && m < out.materials.size(); ++m)
             out.materials[m].ke *= strengths[m];
     }
