@@ -11,6 +11,7 @@
 #include <fstream>
 #include <regex>
 #include <sstream>
+#include <vector>
 
 #include "cli_run.h"
 
@@ -503,4 +504,79 @@ TEST(HostileOutput, RunningOutOfMemoryIsAnErrorNotACrash) {
     EXPECT_EQ(r.code, 2) << r.err;
     EXPECT_NE(r.err.find("out of memory rendering 16384 x 8192"), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(out));
+}
+
+// The address space (KiB, for `ulimit -v`) in which a tiny render just runs: the shared
+// libraries alone take about 460 MB, which differs between machines. 0 if none up to 2 GB.
+long tiny_render_kib(const TempDir& dir) {
+    for (long kib = 300000; kib <= 2000000; kib += 20000) {
+        CliResult r = run_guarded(dir,
+                                  "render '" + scene_path("cornell").string() +
+                                      "' --width 8 --height 8 --spp 1 --threads 2 -o '" +
+                                      (dir.path() / "tiny.png").string() + "'",
+                                  "ulimit -v " + std::to_string(kib) + ";");
+        if (r.code == 0) return kib;
+    }
+    return 0;
+}
+
+// Out of memory at any point of loading or rendering (a sweep of address-space limits above
+// what a tiny render needs): exit 0 with an image, or exit 2 naming what ran out — never an
+// abort. Before: nlohmann's JSON destructor allocates (its flattening stack), so a scene file
+// with a large array aborted (exit 134) at every limit from 630 MB to 1 GB here, and a mesh
+// that ran out said "std::bad_alloc".
+TEST(HostileOutput, RunningOutOfMemoryAnywhereNamesWhatRanOut) {
+    if (kUnderAddressSanitizer)
+        GTEST_SKIP() << "AddressSanitizer reserves terabytes of shadow memory: no `ulimit -v` fits";
+    TempDir dir;
+    const long base = tiny_render_kib(dir);
+    ASSERT_GT(base, 0) << "no `ulimit -v` up to 2 GB lets a tiny render run";
+    // A scene whose description is an array of 12 million zeros (24 MB): parsed, it takes
+    // 12e6 x 16 bytes plus the vector's growth.
+    const fs::path big = dir.path() / "big.json";
+    {
+        std::ofstream f(big);
+        f << R"({"description": [0)";
+        for (int i = 1; i < 12000000; ++i) f << ",0";
+        f << "]}";
+    }
+    struct Case {
+        fs::path scene;
+        std::vector<long> extra_kib;
+    };
+    const std::vector<Case> cases = {
+        {scene_path("dragon"), {0, 40000, 80000, 120000, 160000, 200000}},
+        {scene_path("materials"), {0, 40000, 80000, 120000}},
+        {big, {0, 100000, 200000, 300000, 400000, 500000}},
+    };
+    int out_of_memory = 0;
+    for (const Case& c : cases) {
+        for (long extra : c.extra_kib) {
+            const fs::path out = dir.path() / "out.png";
+            fs::remove(out);
+            const long kib = base + extra;
+            CliResult r = run_guarded(dir,
+                                      "render '" + c.scene.string() +
+                                          "' --width 64 --height 64 --spp 1 --threads 2 -o '" +
+                                          out.string() + "'",
+                                      "ulimit -v " + std::to_string(kib) + ";");
+            SCOPED_TRACE(c.scene.filename().string() + " under ulimit -v " + std::to_string(kib));
+            ASSERT_TRUE(r.code == 0 || r.code == 2) << "exit " << r.code << ": " << r.err;
+            EXPECT_EQ(r.err.find("bad_alloc"), std::string::npos) << r.err;
+            EXPECT_EQ(fs::exists(out), r.code == 0) << r.err;
+            if (r.code == 2 && r.err.find("out of memory") != std::string::npos) {
+                ++out_of_memory;
+                // What ran out: the scene file, a mesh or image with its place, the BVH, the
+                // render; never the bare words.
+                EXPECT_NE(r.err.find("out of memory "), std::string::npos) << r.err;
+                EXPECT_EQ(r.err.find("out of memory\n"), std::string::npos) << r.err;
+            } else if (r.code == 2) {
+                // The big scene, parsed in full, fails on its description.
+                EXPECT_EQ(c.scene, big) << r.err;
+                EXPECT_NE(r.err.find("/description: expected a string"), std::string::npos)
+                    << r.err;
+            }
+        }
+    }
+    EXPECT_GE(out_of_memory, 3) << "the sweep should run out of memory in places";
 }

@@ -419,7 +419,13 @@ Rendered render_to_image(const RenderOptions& o,
 int run_render(const RenderOptions& o) {
     auto start = std::chrono::steady_clock::now();
     std::optional<tbb::global_control> threads;
-    if (o.threads > 0) threads.emplace(tbb::global_control::max_allowed_parallelism, o.threads);
+    try {
+        if (o.threads > 0) threads.emplace(tbb::global_control::max_allowed_parallelism, o.threads);
+    } catch (const std::bad_alloc&) {
+        std::cerr << "wavetrace: error: out of memory before reading the scene (setting up "
+                  << o.threads << " threads)\n";
+        return kExitBadInput;
+    }
 
     fs::path output = o.output.empty() ? fs::path(fs::path(o.scene).stem().string() + ".png")
                                        : fs::path(o.output);
@@ -445,7 +451,7 @@ int run_render(const RenderOptions& o) {
         if (auto problem = check_options(o, scene.render)) throw SceneError(*problem);
     } catch (const std::bad_alloc&) {
         std::cerr << "wavetrace: error: " << o.scene
-                  << ": out of memory loading the scene (its meshes and textures)\n";
+                  << ": out of memory loading the scene\n";
         return kExitBadInput;
     } catch (const std::exception& e) {
         std::cerr << "wavetrace: error: " << e.what() << "\n";
@@ -487,13 +493,14 @@ int run_render(const RenderOptions& o) {
         std::cerr << "wavetrace: error: " << e.what() << "\n";
         return kExitBadInput;
     } catch (const std::bad_alloc&) {
-        // Name what needed the memory and what would fit, instead of dying on SIGABRT.
+        // Say what the pixels cost and what would fit, instead of dying on SIGABRT.
         const double pixels = double(width) * height;
         const double film_mib = pixels * Film::kBytesPerPixel / (1 << 20);
         std::cerr << fmt::format(
-            "wavetrace: error: out of memory rendering {} x {}: the film alone takes {:.0f} MiB "
-            "({} bytes per pixel) besides the scene and the image; render fewer pixels "
-            "(--width/--height) or on a machine with more memory\n",
+            "wavetrace: error: out of memory rendering {} x {}, with the scene and its BVH in "
+            "memory: the film takes {:.0f} MiB ({} bytes per pixel) besides the engine's "
+            "queues and the image; render fewer pixels (--width/--height) or on a machine "
+            "with more memory\n",
             width, height, film_mib, Film::kBytesPerPixel);
         return kExitBadInput;
     }

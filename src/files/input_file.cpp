@@ -4,6 +4,8 @@
 
 #include <cerrno>
 #include <cstring>
+#include <fstream>
+#include <new>
 #include <stdexcept>
 #include <string>
 
@@ -36,6 +38,25 @@ void check_input_file(const std::filesystem::path& path, uintmax_t max_bytes, co
     if (uintmax_t(st.st_size) > max_bytes)
         throw std::runtime_error("is " + size_text(uintmax_t(st.st_size)) + "; the limit for " +
                                  kind + " is " + size_text(max_bytes));
+}
+
+std::string read_input_file(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary | std::ios::ate);
+    if (!in) throw std::runtime_error(std::strerror(errno));
+    const std::streamoff size = in.tellg();
+    if (size < 0) throw std::runtime_error("cannot tell its size");
+    std::string bytes;
+    try {
+        bytes.resize(static_cast<size_t>(size));
+    } catch (const std::bad_alloc&) {
+        throw std::runtime_error("out of memory reading its " + size_text(uintmax_t(size)));
+    }
+    in.seekg(0);
+    in.read(bytes.data(), size);
+    if (in.gcount() != size)
+        throw std::runtime_error("read " + std::to_string(in.gcount()) + " of its " +
+                                 std::to_string(size) + " bytes");
+    return bytes;
 }
 
 }  // namespace wavetrace

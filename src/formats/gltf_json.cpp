@@ -3,11 +3,10 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <fstream>
-#include <iterator>
 #include <stdexcept>
 #include <string>
 
+#include "files/input_file.h"
 #include "formats/json_reader.h"
 
 namespace wavetrace {
@@ -20,13 +19,6 @@ uint32_t le32(const std::string& s, size_t at) {
 }
 
 // The whole file.
-std::string file_bytes(const std::filesystem::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (!in.good() && !in.eof()) throw std::runtime_error("cannot read the file");
-    return bytes;
-}
-
 // The JSON text of a .gltf, or of a .glb's first chunk: the 12-byte header (magic "glTF",
 // version 2, total length) and a chunk of type "JSON" whose length fits in the file (glTF 2.0
 // specification, "Binary glTF Layout").
@@ -126,7 +118,9 @@ Vec3 unit(Vec3 v, const std::string& what) {
 }  // namespace
 
 GltfPlacements gltf_placements(const std::filesystem::path& path, bool binary) {
-    const auto doc = json_reader::parse(json_text(file_bytes(path), binary), "glTF JSON");
+    const json_reader::Document document =
+        json_reader::parse(json_text(read_input_file(path), binary), "glTF JSON");
+    const json_reader::json& doc = document.root;
     GltfPlacements out;
     const auto empty = json_reader::json::array();
     auto array = [&](const json_reader::json& o, const char* key) -> const json_reader::json& {
@@ -263,8 +257,8 @@ GltfPlacements gltf_placements(const std::filesystem::path& path, bool binary) {
     return out;
 }
 
-json_reader::json check_gltf(const std::filesystem::path& path, bool binary) {
-    const std::string bytes = file_bytes(path);
+json_reader::Document check_gltf(const std::filesystem::path& path, bool binary) {
+    const std::string bytes = read_input_file(path);
     const std::string text = json_text(bytes, binary);
     if (binary) {
         // Every chunk within the length the header gives, and that length within the file.
@@ -281,8 +275,9 @@ json_reader::json check_gltf(const std::filesystem::path& path, bool binary) {
             at += 8 + chunk;
         }
     }
-    const auto doc = json_reader::parse(text, "glTF JSON");
-    if (!doc.contains("nodes") || !doc["nodes"].is_array()) return doc;
+    json_reader::Document document = json_reader::parse(text, "glTF JSON");
+    const json_reader::json& doc = document.root;
+    if (!doc.contains("nodes") || !doc["nodes"].is_array()) return document;
     const auto& nodes = doc["nodes"];
     // Each node at most one parent (glTF 2.0, "Nodes and Hierarchy"), then depth first from the
     // roots: a node never reached sits on a cycle.
@@ -318,7 +313,7 @@ json_reader::json check_gltf(const std::filesystem::path& path, bool binary) {
         for (size_t c : children[node]) stack.push_back({c, depth + 1});
     }
     if (reached != nodes.size()) throw std::runtime_error("/nodes: the hierarchy has a cycle");
-    return doc;
+    return document;
 }
 
 std::vector<float> gltf_emissive_strengths(const json_reader::json& doc) {

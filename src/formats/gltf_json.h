@@ -21,7 +21,7 @@ inline constexpr int kMaxGltfNodeDepth = 1024;
 // json_reader::kMaxNesting deep, and a node hierarchy without cycles or shared children at
 // most kMaxGltfNodeDepth deep (Assimp recurses through both and overflows its stack). Returns
 // the parsed JSON; throws std::runtime_error (without the path).
-json_reader::json check_gltf(const std::filesystem::path& path, bool binary);
+json_reader::Document check_gltf(const std::filesystem::path& path, bool binary);
 
 // Per material of the file's JSON `doc` (as check_gltf returns it), in the file's order
 // (Assimp's too): KHR_materials_emissive_strength's emissiveStrength, 1 where the material does

@@ -230,9 +230,86 @@ std::string line_column(const std::string& text, size_t offset) {
     return ":" + std::to_string(line) + ":" + std::to_string(col);
 }
 
+// nlohmann's SAX interface building the tree as its DOM parser does, but owning it in a
+// Document: an exception (std::bad_alloc above all) mid-parse frees the partial tree through
+// release(), where nlohmann's parser would free it by the allocating destructor.
+class TreeBuilder {
+  public:
+    Document root;
+
+    bool null() { return add(nullptr); }
+    bool boolean(bool b) { return add(b); }
+    bool number_integer(json::number_integer_t n) { return add(n); }
+    bool number_unsigned(json::number_unsigned_t n) { return add(n); }
+    bool number_float(json::number_float_t x, const json::string_t&) { return add(x); }
+    bool string(json::string_t& s) { return add(std::move(s)); }
+    bool binary(json::binary_t& b) { return add(std::move(b)); }
+    bool start_object(size_t) { return open(json::object()); }
+    bool key(json::string_t& k) {
+        // A repeated key keeps its last value, as nlohmann's DOM parser does.
+        slot_ = &open_.back()->get_ref<json::object_t&>()[k];
+        return true;
+    }
+    bool end_object() { return close(); }
+    bool start_array(size_t) { return open(json::array()); }
+    bool end_array() { return close(); }
+    template <class Exception>
+    bool parse_error(size_t, const std::string&, const Exception& e) {
+        throw e;  // by its own type: json::parse_error keeps its byte offset
+    }
+
+  private:
+    // Where the next value goes: the root, the open array's end, or the key just read.
+    json* place(json&& v) {
+        if (open_.empty()) {
+            root.root = std::move(v);  // replaces a null: nothing to free
+            return &root.root;
+        }
+        json& top = *open_.back();
+        if (top.is_array()) {
+            auto& a = top.get_ref<json::array_t&>();
+            a.push_back(std::move(v));
+            return &a.back();
+        }
+        *slot_ = std::move(v);  // the null the key inserted
+        return slot_;
+    }
+    template <class T>
+    bool add(T&& v) {
+        place(json(std::forward<T>(v)));
+        return true;
+    }
+    bool open(json&& container) {
+        open_.reserve(open_.size() + 1);  // no allocation left between place() and push_back
+        open_.push_back(place(std::move(container)));
+        return true;
+    }
+    bool close() {
+        open_.pop_back();
+        return true;
+    }
+
+    // The containers being filled, outermost first; a pointer into its parent stays valid
+    // while it is open, because its parent grows only after it closes.
+    std::vector<json*> open_;
+    json* slot_ = nullptr;
+};
+
 }  // namespace
 
-json parse(const std::string& text, const std::string& file) {
+void release(json& j) noexcept {
+    if (j.is_array()) {
+        auto& a = j.get_ref<json::array_t&>();
+        for (json& e : a) release(e);
+        a.clear();  // each element now a scalar or an empty container: no allocation
+    } else if (j.is_object()) {
+        auto& o = j.get_ref<json::object_t&>();
+        for (auto& kv : o) release(kv.second);
+        o.clear();
+    }
+}
+
+Document parse(const std::string& text, const std::string& file) {
     // Deeply nested input is refused before parsing: nothing downstream (reading, error
     // messages, freeing) then needs more than kMaxNesting levels of anything.
     size_t at_line = 1, at_col = 0;
@@ -264,7 +341,13 @@ json parse(const std::string& text, const std::string& file) {
         }
     }
     try {
-        return json::parse(text);
+        TreeBuilder builder;
+        json::sax_parse(text, &builder);
+        return std::move(builder.root);
+    } catch (const std::bad_alloc&) {
+        // The partial tree is freed by now: there is memory for the message.
+        throw SceneError(file + ": out of memory parsing its " +
+                         std::to_string((text.size() + (1 << 20) - 1) >> 20) + " MiB of JSON");
     } catch (const json::parse_error& e) {
         // The byte offset (1-based) as line:column, for editors.
         std::string what = e.what();

@@ -75,8 +75,26 @@ class Object {
 // Arrays and objects nest at most this deep in a scene file (groups, textures in textures).
 inline constexpr int kMaxNesting = 64;
 
+// Empties `j` depth first and frees it without allocating. nlohmann's own destructor moves a
+// container's elements onto a heap-allocated stack before freeing them (so that deep nesting
+// cannot overflow the call stack); out of memory, that allocation throws from a destructor and
+// ends the process. Documents from parse() nest at most kMaxNesting deep, so recursion is safe.
+void release(json& j) noexcept;
+
+// A parsed document that release()s its tree when destroyed: a scene that ran out of memory
+// while being read fails with an error, not std::terminate.
+struct Document {
+    json root;
+
+    Document() = default;
+    Document(Document&& d) noexcept : root(std::move(d.root)) {}
+    Document& operator=(const Document&) = delete;
+    ~Document() { release(root); }
+};
+
 // Parses `text` from `file`; syntax errors and nesting beyond kMaxNesting become SceneErrors
-// with line and column.
-json parse(const std::string& text, const std::string& file);
+// with line and column. If it runs out of memory, std::bad_alloc leaves it with what it had
+// read freed by release().
+Document parse(const std::string& text, const std::string& file);
 
 }  // namespace wavetrace::json_reader

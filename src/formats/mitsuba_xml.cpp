@@ -12,7 +12,6 @@
 #include <fstream>
 #include <pugixml.hpp>
 #include <set>
-#include <sstream>
 
 #include "files/confinement.h"
 #include "files/input_file.h"
@@ -166,10 +165,14 @@ class Reader {
         if (static_cast<int>(stack_.size()) > kMaxIncludeDepth)
             fail(who, "includes nested deeper than " + std::to_string(kMaxIncludeDepth));
 
-        std::ifstream in(path, std::ios::binary);
-        std::stringstream buffer;
-        buffer << in.rdbuf();
-        const std::string text = buffer.str();
+        std::string text;
+        try {
+            text = read_input_file(path);
+        } catch (const std::runtime_error& e) {
+            fail(who, (from.empty() ? "cannot read scene file: " : "cannot include '" + name +
+                                                                       "': ") +
+                          e.what());
+        }
         Source source{name, {}};
         for (size_t i = 0; i < text.size(); ++i)
             if (text[i] == '\n') source.line_starts.push_back(i);

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <assimp/Importer.hpp>
 #include <cctype>
+#include <new>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -40,6 +41,14 @@ void refuse_unrecognised(const Assimp::Importer& importer,
     for (size_t i : readers)
         if (importer.GetImporter(i)->CanRead(path.string(), importer.GetIOHandler(), false)) return;
     throw std::runtime_error("not a ." + extension + " file that its readers recognise");
+}
+
+// Assimp catches what its readers throw and keeps only the message: running out of memory
+// becomes the error string "std::bad_alloc", which is rethrown as what it was.
+[[noreturn]] void import_failed(const Assimp::Importer& importer) {
+    const std::string why = importer.GetErrorString();
+    if (why == std::bad_alloc().what()) throw std::bad_alloc();
+    throw std::runtime_error(why);
 }
 
 Color color_of(const aiMaterial& m, const char* key, unsigned type, unsigned index) {
@@ -140,8 +149,8 @@ MeshFile read_mesh_file(const std::filesystem::path& path,
     if (lower == "off") check_off(path);
     if (lower == "obj") check_obj(path);
     const bool gltf = lower == "gltf" || lower == "glb";
-    json_reader::json gltf_doc;
-    if (gltf) gltf_doc = check_gltf(path, lower == "glb");
+    const json_reader::Document gltf_doc =
+        gltf ? check_gltf(path, lower == "glb") : json_reader::Document();
     refuse_unrecognised(importer, path, lower);
     // Keep only triangles. Assimp's OBJ reader un-indexes faces; joining identical vertices
     // restores the shared indexing (and the memory) of the file.
@@ -153,9 +162,10 @@ MeshFile read_mesh_file(const std::filesystem::path& path,
     const aiScene* scene = importer.ReadFile(path.string(), aiProcess_ValidateDataStructure);
     // A file it refused to open is the error, whatever Assimp made of its absence.
     if (!io->refused().empty()) throw std::runtime_error(io->refused().front());
-    if (!scene || (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) || !scene->mRootNode)
-        throw std::runtime_error(io->missing().empty() ? std::string(importer.GetErrorString())
-                                                       : io->missing().front());
+    if (!scene || (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) || !scene->mRootNode) {
+        if (!io->missing().empty()) throw std::runtime_error(io->missing().front());
+        import_failed(importer);
+    }
     for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
         const aiMesh* mesh = scene->mMeshes[m];
         for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
@@ -173,7 +183,7 @@ MeshFile read_mesh_file(const std::filesystem::path& path,
     }
     scene = importer.ApplyPostProcessing(aiProcess_Triangulate | aiProcess_PreTransformVertices |
                                          aiProcess_SortByPType | aiProcess_JoinIdenticalVertices);
-    if (!scene || !scene->mRootNode) throw std::runtime_error(importer.GetErrorString());
+    if (!scene || !scene->mRootNode) import_failed(importer);
 
     MeshFile out;
     // Assimp looks for a missing file under several names: the first is the file's own.
@@ -182,7 +192,7 @@ MeshFile read_mesh_file(const std::filesystem::path& path,
         out.materials.push_back(read_material(*scene->mMaterials[m], gltf));
     if (gltf) {
         // Assimp keeps the file's materials in order (appending a default one at most).
-        const std::vector<float> strengths = gltf_emissive_strengths(gltf_doc);
+        const std::vector<float> strengths = gltf_emissive_strengths(gltf_doc.root);
         for (size_t m = 0; m < strengths.size() && m < out.materials.size(); ++m)
             out.materials[m].ke *= strengths[m];
     }

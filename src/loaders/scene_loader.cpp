@@ -8,7 +8,6 @@
 #include <fstream>
 #include <iostream>
 #include <map>
-#include <sstream>
 
 #include "files/confinement.h"
 #include "files/input_file.h"
@@ -37,6 +36,9 @@ class Loader {
   public:
     Loader(const fs::path& path, const LoadOptions& options)
         : path_(path), file_(path.string()), options_(options) {}
+    Loader(const Loader&) = delete;
+    Loader& operator=(const Loader&) = delete;
+    ~Loader() { json_reader::release(json_); }  // freed without allocating: see release()
 
     Scene load() {
         if (!options_.camera.empty())
@@ -49,11 +51,15 @@ class Loader {
         }
         if (std::string why = Confinement{{}, options_.asset_root}.problem(path_); !why.empty())
             throw SceneError(file_ + ": " + why);
-        std::ifstream in(path_, std::ios::binary);
-        if (!in) throw SceneError(file_ + ": cannot open scene file: " + std::strerror(errno));
-        std::stringstream text;
-        text << in.rdbuf();
-        return build(json_reader::parse(text.str(), file_));
+        std::string text;
+        try {
+            text = read_input_file(path_);
+        } catch (const std::runtime_error& e) {
+            throw SceneError(file_ + ": cannot read scene file: " + e.what());
+        }
+        json_reader::Document document = json_reader::parse(text, file_);
+        std::string().swap(text);  // its memory back before the scene is built
+        return build(std::move(document.root));
     }
 
     // A scene document already in memory (a Mitsuba XML or pbrt file translated into our
@@ -1021,6 +1027,8 @@ class Loader {
                 p = resolve(file);
                 try {
                     mesh = read_mesh_file(p, options_.asset_root);
+                } catch (const std::bad_alloc&) {
+                    file.fail("out of memory reading mesh '" + p.string() + "'");
                 } catch (const std::exception& e) {
                     file.fail("cannot read mesh '" + p.string() + "': " + e.what());
                 }
@@ -1196,10 +1204,7 @@ std::vector<fs::path> convert_scene(const fs::path& path, const fs::path& output
         }
         doc["description"] = "converted from " + path.filename().string() + " by wavetrace convert";
     } else {
-        std::ifstream in(path, std::ios::binary);
-        std::stringstream text;
-        text << in.rdbuf();
-        doc = nlohmann::json::parse(text.str());
+        doc = std::move(json_reader::parse(read_input_file(path), path.string()).root);
     }
     // Meshes written out in the scene file become PLY files in a folder of their own.
     std::map<std::string, std::string> renamed;

@@ -144,12 +144,14 @@ class Reader {
             throw SceneError((stack_.empty() ? name : place) + ": cannot open " +
                              (stack_.empty() ? "scene file: " : "'" + name + "': ") + e.what());
         }
-        std::ifstream in(p, std::ios::binary);
-        if (!in) throw SceneError(place + ": cannot open '" + name + "'");
-        std::stringstream text;
-        text << in.rdbuf();
+        std::string text;
+        try {
+            text = read_input_file(p);
+        } catch (const std::runtime_error& e) {
+            throw SceneError(place + ": cannot read '" + name + "': " + e.what());
+        }
         std::error_code ec;
-        stack_.push_back({PbrtTokenizer(text.str(), name), fs::weakly_canonical(p, ec)});
+        stack_.push_back({PbrtTokenizer(std::move(text), name), fs::weakly_canonical(p, ec)});
     }
 
     fs::path folder_;
