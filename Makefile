@@ -43,19 +43,22 @@ CLANG_CMAKE = -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
 # runs only in `make test`.
 SAN_TESTS ?= Check*:SceneLoader.*:MitsubaScenes.*:PbrtScenes.*:Cli.*:Hostile*:Bvh.*:Triangle.*:Sphere.*:Quad.*:MeshFiles.*:Wavefront.*:Megakernel.*:Kernels.*:Lanes.*:Films.*:CompareImages.*:-Cli.WavefrontMemoryDoesNotGrowWithSamples:PbrtScenes.BitterlisCornellBoxRendersTungstensImageMean
 FUZZ_RUNS ?= 20000
-# An XML execution loads a dozen shapes, meshes and images: fewer runs keep it level in time
-# with the other targets.
+# An XML execution loads a dozen shapes, meshes and images, and an image's header may claim
+# up to 2^14 texels per byte of file (hundreds of MB to allocate and clear): fewer runs keep
+# them level in time with the other targets.
 FUZZ_XML_RUNS ?= 8000
+FUZZ_IMAGE_RUNS ?= 4000
 FUZZ_SECONDS ?= 600
 
 sanitize-build: deps
 	@cmake -S . -B $(SAN_DIR) $(CLANG_CMAKE) -DWAVETRACE_SANITIZE=ON
-	@cmake --build $(SAN_DIR) -j $(JOBS) --target wavetrace_cli wavetrace_tests fuzz_scene fuzz_xml fuzz_pbrt fuzz_mesh fuzz_film
+	@cmake --build $(SAN_DIR) -j $(JOBS) --target wavetrace_cli wavetrace_tests fuzz_scene fuzz_xml fuzz_pbrt fuzz_mesh fuzz_film fuzz_image
 
 sanitize: sanitize-build
 	@tools/check-deps.sh $(SAN_DIR)
 	@tools/run-sanitized-tests.sh $(SAN_DIR) $(JOBS) '$(SAN_TESTS)'
-	@FUZZ_XML_RUNS=$(FUZZ_XML_RUNS) tools/run-fuzzers.sh $(SAN_DIR) --runs $(FUZZ_RUNS)
+	@FUZZ_XML_RUNS=$(FUZZ_XML_RUNS) FUZZ_IMAGE_RUNS=$(FUZZ_IMAGE_RUNS) \
+	  tools/run-fuzzers.sh $(SAN_DIR) --runs $(FUZZ_RUNS)
 
 fuzz: sanitize-build
 	@tools/run-fuzzers.sh $(SAN_DIR) --seconds $(FUZZ_SECONDS)

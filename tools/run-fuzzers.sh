@@ -3,8 +3,9 @@
 #
 #   tools/run-fuzzers.sh BUILD_DIR --runs N      what CI runs: N executions per target from a
 #                                                fixed seed, on a copy of the committed corpus
-#                                                (the same inputs every time); FUZZ_XML_RUNS in
-#                                                the environment sets fuzz_xml's own count
+#                                                (the same inputs every time); FUZZ_XML_RUNS,
+#                                                FUZZ_IMAGE_RUNS, ... in the environment set a
+#                                                target's own count
 #   tools/run-fuzzers.sh BUILD_DIR --seconds S   explore for S seconds per target and merge the
 #                                                inputs that grow coverage into tests/fuzz/corpus
 #
@@ -18,7 +19,9 @@ mode=$2 amount=$3
 root=$(cd "$(dirname "$0")/.." && pwd)
 export LSAN_OPTIONS="suppressions=$root/tests/fuzz/lsan.supp"
 mkdir -p "$build/fuzz-artifacts"
-common=(-seed=1 -timeout=10 -rss_limit_mb=4096 -print_final_stats=1
+# Inputs up to 64 KiB: room for the nesting attacks (a chain of 1,100 glTF nodes is ~25 KB)
+# that libFuzzer's default cap, the corpus's largest input, would keep out of reach.
+common=(-seed=1 -timeout=10 -rss_limit_mb=4096 -max_len=65536 -print_final_stats=1
         "-artifact_prefix=$build/fuzz-artifacts/")
 # One target per process, all side by side (each is single-threaded); each reports to its own
 # file, printed in order once all are done.
@@ -30,8 +33,8 @@ fuzz_one() {
   log="$build/fuzz-$target.log"
   if [[ "$mode" == "--runs" ]]; then
     cp "$root/tests/fuzz/corpus/$target/"* "$work/"
-    local runs_here=$amount
-    [[ "$target" == xml && -n "${FUZZ_XML_RUNS:-}" ]] && runs_here=$FUZZ_XML_RUNS
+    local runs_here=$amount own="FUZZ_${target^^}_RUNS"
+    [[ -n "${!own:-}" ]] && runs_here=${!own}
     args=("$work" -runs="$runs_here")
   else
     args=("$work" "$root/tests/fuzz/corpus/$target" -max_total_time="$amount")
@@ -53,7 +56,7 @@ fuzz_one() {
     echo "fuzz_$target: corpus $before -> $(ls "$root/tests/fuzz/corpus/$target" | wc -l) inputs"
   fi
 }
-targets=(scene xml pbrt mesh film)
+targets=(scene xml pbrt mesh film image)
 pids=()
 for target in "${targets[@]}"; do
   ( fuzz_one "$target" ) >"$build/fuzz-$target.summary" 2>&1 &
