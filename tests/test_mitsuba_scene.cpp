@@ -143,6 +143,50 @@ TEST(MitsubaScenes, ShapesTransformsAndMaterialsTranslate) {
     EXPECT_NEAR(plastic.ior, 1.49f / 1.000277f, 1e-5f);  // polypropylene in air
 }
 
+// Mitsuba's disk (the unit disk at z = 0 facing +z, −z with flip_normals) and cylinder (open,
+// from p0 to p1, facing outwards) as tessellated meshes: where they are, which way they face,
+// and their area (128 segments a turn: a disk n sin(2π/n)/(2π) of πr², a tube n sin(π/n)/π
+// of 2πrh).
+TEST(MitsubaScenes, DisksAndCylindersBecomeMeshesFacingTheirWay) {
+    TempDir dir;
+    auto path = dir.write("a.xml", scene(R"(<sensor type="perspective"/>
+  <shape type="disk">
+    <transform name="to_world"><scale value="2"/><translate z="3"/></transform>
+    <boolean name="flip_normals" value="true"/>
+    <emitter type="area"><rgb name="radiance" value="1"/></emitter>
+  </shape>
+  <shape type="cylinder">
+    <point name="p0" x="1" y="0" z="0"/><point name="p1" x="1" y="0" z="4"/>
+    <float name="radius" value="0.5"/>
+  </shape>)"));
+    Scene s = load_scene(path, collecting());
+    EXPECT_TRUE(warnings.empty()) << warnings.front();
+    ASSERT_EQ(s.meshes.size(), 2u);
+    const double pi = 3.14159265358979323846, n = 128;
+    double area[2] = {0, 0};
+    for (const Triangle& t : s.triangles) {
+        const Vec3 a = s.positions[t.v[0]], b = s.positions[t.v[1]], c = s.positions[t.v[2]];
+        const Vec3 g = cross(b - a, c - a);  // the front side's normal, twice the area long
+        area[t.mesh] += 0.5 * length(g);
+        const Vec3 centroid = (a + b + c) / 3.0f;
+        if (t.mesh == 0) {
+            EXPECT_NEAR(a.z, 3.0f, 1e-5f);
+            EXPECT_LT(g.z, 0.0f) << "flip_normals: the disk faces -z";
+            EXPECT_LE(std::hypot(centroid.x, centroid.y), 2.0f);
+        } else {
+            // Outwards: from the axis (x = 1, y = 0) towards the triangle.
+            EXPECT_GT(dot(g, Vec3{centroid.x - 1.0f, centroid.y, 0.0f}), 0.0f);
+            EXPECT_GE(centroid.z, 0.0f);
+            EXPECT_LE(centroid.z, 4.0f);
+        }
+    }
+    EXPECT_NEAR(area[0], pi * 4 * n * std::sin(2 * pi / n) / (2 * pi), 1e-4);
+    EXPECT_NEAR(area[1], 2 * pi * 0.5 * 4 * n * std::sin(pi / n) / pi, 1e-4);
+    // The disk is the scene's light; the cylinder shades round (vertex normals).
+    EXPECT_TRUE(s.meshes[1].has_normals);
+    EXPECT_EQ(s.materials[s.meshes[0].material].kind, MaterialKind::DiffuseLight);
+}
+
 TEST(MitsubaScenes, EmittersBecomeLightsAndBackgrounds) {
     TempDir dir;
     auto path = dir.write("a.xml", scene(R"(
@@ -294,12 +338,13 @@ TEST(MitsubaScenes, BadInputNamesTheFileAndLine) {
 TEST(MitsubaScenes, WhatCannotBeRepresentedIsAWarningWithItsPlace) {
     TempDir dir;
     auto path = dir.write("a.xml", scene(R"(<shape type="sphere"/>
-  <shape type="disk"/>
+  <shape type="serialized"><string name="filename" value="a.serialized"/></shape>
   <shape type="sphere"><bsdf type="hair"/></shape>
   <shape type="sphere"><float name="wobble" value="1"/></shape>)"));
     Scene s = load_scene(path, collecting());
     EXPECT_EQ(s.spheres.size(), 3u);
-    EXPECT_TRUE(warned("a.xml:3: warning: shape \"disk\" is not supported")) << warnings.size();
+    EXPECT_TRUE(warned("a.xml:3: warning: shape \"serialized\" is not supported"))
+        << warnings.size();
     EXPECT_TRUE(warned("a.xml:4: warning: bsdf \"hair\""));
     EXPECT_TRUE(warned("a.xml:5: warning: shape \"sphere\": property \"wobble\""));
 }

@@ -188,6 +188,45 @@ AttributeEnd
     EXPECT_TRUE(warned("an area light's surface reflects only as a diffuse surface"));
 }
 
+// Shape "cylinder": its side from zmin to zmax (pbrt's defaults -1 and 1), facing outwards,
+// inwards under ReverseOrientation, its shading normals turned with it.
+TEST(PbrtScenes, CylindersFaceOutwardsUnlessReversed) {
+    TempDir dir;
+    auto path = dir.write("a.pbrt", R"(
+LookAt 0 0 -10  0 0 0  0 1 0
+Camera "perspective"
+WorldBegin
+Material "diffuse"
+Shape "cylinder" "float radius" 2
+AttributeBegin
+  Translate 10 0 0
+  ReverseOrientation
+  Shape "cylinder" "float zmin" 0 "float zmax" 3
+AttributeEnd
+)");
+    Scene s = load_scene(path, collecting());
+    ASSERT_EQ(s.meshes.size(), 2u);
+    EXPECT_EQ(s.triangles.size(), 2u * 256u);
+    for (const Triangle& t : s.triangles) {
+        const Vec3 a = s.positions[t.v[0]], b = s.positions[t.v[1]], c = s.positions[t.v[2]];
+        const Vec3 m = (a + b + c) / 3.0f;
+        const Vec3 out = t.mesh == 0 ? Vec3{m.x, m.y, 0} : Vec3{m.x - 10, m.y, 0};
+        const float facing = dot(cross(b - a, c - a), out);
+        const float shading = dot(s.normals[t.v[0]], out);
+        if (t.mesh == 0) {
+            EXPECT_GT(facing, 0.0f);
+            EXPECT_GT(shading, 0.0f);
+            EXPECT_GE(m.z, -1.0f);
+            EXPECT_LE(m.z, 1.0f);
+        } else {
+            EXPECT_LT(facing, 0.0f);
+            EXPECT_LT(shading, 0.0f);
+            EXPECT_GE(m.z, 0.0f);
+            EXPECT_LE(m.z, 3.0f);
+        }
+    }
+}
+
 TEST(PbrtScenes, LightsBecomeLightsAndBackgrounds) {
     TempDir dir;
     auto path = dir.write("a.pbrt", R"(

@@ -189,8 +189,8 @@ TEST(SceneLoader, WrongTypesAreNamed) {
                 R"({"type": "sphere", "center": [0, 0, 0], "radius": "big", "material": "white"})")),
         ": /objects/0/radius: expected a positive number, got \"big\"");
     EXPECT_EQ(load_error(dir, scene_with_objects(R"({"type": "cone", "material": "white"})")),
-              ": /objects/0/type: unknown object type \"cone\" (expected sphere, quad, box, mesh "
-              "or group)");
+              ": /objects/0/type: unknown object type \"cone\" (expected sphere, quad, box, disk, "
+              "cylinder, mesh or group)");
     EXPECT_EQ(
         load_error(
             dir,
@@ -281,6 +281,47 @@ TEST(SceneLoader, NegativeAndZeroSizesAreRejected) {
         R"(, "materials": {"m": {"type": "lambertian", "albedo": [1, -1, 1]}}, "objects": []})";
     EXPECT_EQ(load_error(dir, bad_albedo),
               ": /materials/m/albedo/1: expected a non-negative number, got -1");
+}
+
+// Disks and cylinders: tessellated where and as they are asked for, and read strictly.
+TEST(SceneLoader, DisksAndCylindersAreMeshesWhereAsked) {
+    TempDir dir;
+    std::filesystem::path p = dir.write(
+        "x.json",
+        scene_with_objects(
+            R"({"type": "disk", "center": [1, 2, 3], "normal": [0, 2, 0], "radius": 0.5,
+                "material": "white"},
+               {"type": "cylinder", "p0": [0, 0, 0], "p1": [0, 0, 2], "radius": 1,
+                "material": "white", "transform": [{"translate": [5, 0, 0]}]})"));
+    Scene s = load_scene(p);
+    ASSERT_EQ(s.meshes.size(), 2u);
+    EXPECT_EQ(s.triangles.size(), 128u + 256u);
+    for (const Triangle& t : s.triangles) {
+        const Vec3 a = s.positions[t.v[0]], b = s.positions[t.v[1]], c = s.positions[t.v[2]];
+        const Vec3 g = cross(b - a, c - a);
+        if (t.mesh == 0) {
+            EXPECT_NEAR(a.y, 2.0f, 1e-6f);
+            EXPECT_LE(length(a - Vec3{1, 2, 3}), 0.5f + 1e-6f);
+            EXPECT_GT(g.y, 0.0f) << "the disk faces its normal";
+        } else {
+            const Vec3 m = (a + b + c) / 3.0f;
+            EXPECT_GT(dot(g, Vec3{m.x - 5, m.y, 0}), 0.0f) << "the tube faces outwards";
+            EXPECT_NEAR(std::hypot(a.x - 5, a.y), 1.0f, 1e-5f);
+        }
+    }
+    EXPECT_EQ(load_error(dir, scene_with_objects(R"({"type": "disk", "center": [0, 0, 0],
+        "normal": [0, 0, 0], "radius": 1, "material": "white"})")),
+              ": /objects/0/normal: expected a non-zero vector, got [0,0,0]");
+    EXPECT_EQ(load_error(dir, scene_with_objects(R"({"type": "cylinder", "p0": [1, 1, 1],
+        "p1": [1, 1, 1], "radius": 1, "material": "white"})")),
+              ": /objects/0/p1: p1 must differ from p0");
+    EXPECT_EQ(load_error(dir, scene_with_objects(R"({"type": "cylinder", "p0": [0, 0, 0],
+        "p1": [0, 0, 1], "radius": 0, "material": "white"})")),
+              ": /objects/0/radius: expected a positive number, got 0");
+    EXPECT_EQ(load_error(dir, scene_with_objects(R"({"type": "disk", "center": [0, 0, 0],
+        "normal": [0, 0, 1], "radius": 1, "height": 2, "material": "white"})"))
+                  .find(": /objects/0/height: unknown key"),
+              0u);
 }
 
 TEST(SceneLoader, PixelFiltersAreReadStrictly) {

@@ -896,6 +896,21 @@ class Translator {
             o = {{"type", "quad"}, {"q", {-1, -1, 0}}, {"u", {2, 0, 0}}, {"v", {0, 2, 0}}};
         } else if (type == "cube") {
             o = {{"type", "box"}, {"min", {-1, -1, -1}}, {"max", {1, 1, 1}}};
+        } else if (type == "disk") {
+            // The unit disk at z = 0, facing +z, or -z with flip_normals: the side that emits
+            // and that one-sided materials reflect from.
+            const bool flip = p.boolean("flip_normals", false);
+            o = {{"type", "disk"},
+                 {"center", {0, 0, 0}},
+                 {"normal", {0, 0, flip ? -1 : 1}},
+                 {"radius", 1}};
+        } else if (type == "cylinder") {
+            const Element* p0 = p.get("p0");
+            const Element* p1 = p.get("p1");
+            o = {{"type", "cylinder"},
+                 {"p0", p0 ? to_json(xyz(*p0, 0.0)) : json::array({0, 0, 0})},
+                 {"p1", p1 ? to_json(xyz(*p1, 0.0)) : json::array({0, 0, 1})},
+                 {"radius", p.number("radius", 1.0)}};
         } else if (type == "instance") {
             const std::vector<const Element*> groups = p.nested("shape");
             if (groups.size() != 1 || groups.front()->attr_or("type", "") != "shapegroup")
@@ -912,7 +927,7 @@ class Translator {
             return;
         }
         if (!to_world.steps.empty()) o["transform"] = to_world.steps;
-        if (p.boolean("flip_normals", false))
+        if (type != "disk" && p.boolean("flip_normals", false))
             warn(e, type + ": flip_normals is not supported; ignored");
 
         const std::vector<const Element*> bsdfs = p.nested("bsdf");

@@ -19,7 +19,9 @@
 #include "formats/ply_write.h"
 #include "files/output_file.h"
 #include "scene/named_metals.h"
+#include "scene/tessellate.h"
 #include "wavetrace/image/image.h"
+#include "wavetrace/math/frame.h"
 #include "wavetrace/loaders/load_scene.h"
 #include "wavetrace/scene/scene.h"
 
@@ -1047,9 +1049,36 @@ class Loader {
                 skipped_triangles_ += scene_.add_mesh(std::move(m), mesh.positions, mesh.normals,
                                                       mesh.uvs, mesh.indices, to_world);
             }
+        } else if (type == "disk" || type == "cylinder") {
+            // Tessellated in a frame whose +z is the disk's normal or the cylinder's axis.
+            constexpr double kTurn = 6.28318530717958647692;
+            TessellatedShape t;
+            Point3 origin;
+            Vec3 axis;
+            if (type == "disk") {
+                origin = point(o.required("center"));
+                axis = o.required("normal").nonzero_vec3();
+                t = tessellate_disk(o.required("radius").positive(), 0, kTurn, 0);
+            } else {
+                origin = point(o.required("p0"));
+                Value p1 = o.required("p1");
+                axis = point(p1) - origin;
+                if (!(length(axis) > 0)) p1.fail("p1 must differ from p0");
+                t = tessellate_cylinder(o.required("radius").positive(), 0, length(axis), kTurn);
+            }
+            o.finish();
+            const Frame frame = Frame::from_normal(normalize(axis));
+            for (Point3& p : t.positions) p = origin + frame.to_world(p);
+            for (Normal3& n : t.normals) n = frame.to_world(n);
+            Mesh m;
+            m.name = type;
+            m.material = material;
+            m.interior = interior;
+            skipped_triangles_ += scene_.add_mesh(std::move(m), t.positions, t.normals, t.uvs,
+                                                  t.indices, to_world);
         } else {
             type_value.fail("unknown object type \"" + type +
-                            "\" (expected sphere, quad, box, mesh or group)");
+                            "\" (expected sphere, quad, box, disk, cylinder, mesh or group)");
         }
         check_new_primitives(v, before);
     }

@@ -5,14 +5,13 @@
 #include <map>
 #include <utility>
 
+#include "scene/tessellate.h"
 #include "wavetrace/scene/scene.h"
 
 namespace wavetrace {
 namespace {
 
 constexpr double kPiD = 3.14159265358979323846;
-// Segments of a full disk: its area is n sin(2 pi / n) / (2 pi) of the true one, 0.9996.
-constexpr int kDiskSegments = 128;
 // The most triangles a subdivided mesh may reach: pbrt's default 3 levels of any mesh, or a
 // quarter million, so that the work stays proportional to the file.
 size_t max_subdivided_triangles(size_t control) { return 64 * control + (size_t(1) << 18); }
@@ -142,25 +141,29 @@ PbrtMesh disk(PbrtParams& p, const std::string& place) {
     const double ri = p.number("innerradius", 0), phimax = p.number("phimax", 360);
     if (!(r > 0) || !(ri >= 0 && ri < r)) fail(place, p.what + ": needs 0 <= innerradius < radius");
     if (!(phimax > 0 && phimax <= 360)) fail(place, p.what + ": phimax must lie in (0, 360]");
-    const int segments = std::max(4, static_cast<int>(std::ceil(kDiskSegments * phimax / 360)));
+    TessellatedShape t = tessellate_disk(r, ri, phimax * kPiD / 180, h);
     PbrtMesh m;
-    const float z = static_cast<float>(h);
-    // Rings of radius r (v = 0) and ri (v = 1), pbrt's (u, v) = (phi / phimax, (r - rho) / (r - ri)).
-    for (int ring = 0; ring < 2; ++ring) {
-        const double rho = ring == 0 ? r : ri;
-        for (int i = 0; i <= segments; ++i) {
-            const double u = static_cast<double>(i) / segments;
-            const double phi = u * phimax * kPiD / 180;
-            m.positions.push_back({static_cast<float>(rho * std::cos(phi)),
-                                   static_cast<float>(rho * std::sin(phi)), z});
-            m.uvs.push_back({static_cast<float>(u), static_cast<float>(ring)});
-        }
-    }
-    const uint32_t inner = static_cast<uint32_t>(segments + 1);
-    for (uint32_t i = 0; i < static_cast<uint32_t>(segments); ++i) {
-        m.indices.insert(m.indices.end(), {i, i + 1, inner + i + 1});
-        if (ri > 0) m.indices.insert(m.indices.end(), {i, inner + i + 1, inner + i});
-    }
+    m.positions = std::move(t.positions);
+    m.uvs = std::move(t.uvs);
+    m.indices = std::move(t.indices);
+    return m;
+}
+
+// A cylinder's side about z from zmin to zmax, facing outwards, with the true normals.
+PbrtMesh cylinder(PbrtParams& p, const std::string& place) {
+    const double r = p.number("radius", 1), zmin = p.number("zmin", -1), zmax = p.number("zmax", 1);
+    const double phimax = p.number("phimax", 360);
+    if (!(r > 0)) fail(place, p.what + ": needs radius > 0");
+    if (!(zmin < zmax) && !(zmax < zmin)) fail(place, p.what + ": needs zmin != zmax");
+    if (!(phimax > 0 && phimax <= 360)) fail(place, p.what + ": phimax must lie in (0, 360]");
+    // pbrt swaps zmin and zmax where they come reversed.
+    TessellatedShape t =
+        tessellate_cylinder(r, std::min(zmin, zmax), std::max(zmin, zmax), phimax * kPiD / 180);
+    PbrtMesh m;
+    m.positions = std::move(t.positions);
+    m.normals = std::move(t.normals);
+    m.uvs = std::move(t.uvs);
+    m.indices = std::move(t.indices);
     return m;
 }
 
@@ -273,6 +276,7 @@ PbrtMesh pbrt_shape_mesh(const std::string& type, PbrtParams& p, const std::stri
     if (type == "trianglemesh") return triangle_mesh(p, place);
     if (type == "bilinearmesh") return bilinear_mesh(p, place);
     if (type == "disk") return disk(p, place);
+    if (type == "cylinder") return cylinder(p, place);
     return loop_subdivision(p, place);
 }
 

@@ -1,5 +1,6 @@
 // pbrt-v4's shapes that wavetrace renders as triangle meshes: `trianglemesh` and
-// `bilinearmesh` as written, `disk` tessellated, `loopsubdiv` subdivided (Loop 1987).
+// `bilinearmesh` as written, `disk` and `cylinder` tessellated (scene/tessellate.h),
+// `loopsubdiv` subdivided (Loop 1987).
 #pragma once
 
 #include <string>

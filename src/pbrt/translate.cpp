@@ -1322,10 +1322,14 @@ class Translator {
             if (p.get("displacement")) warn(place, "Shape plymesh: displacement is not supported; ignored");
             p.get("edgelength");
         } else if (type == "trianglemesh" || type == "bilinearmesh" || type == "disk" ||
-                   type == "loopsubdiv") {
+                   type == "cylinder" || type == "loopsubdiv") {
             PbrtMesh mesh = pbrt_shape_mesh(type, p, place);
-            // pbrt orients by N where given, by ReverseOrientation only without.
-            if (s.reverse && mesh.normals.empty()) reverse_winding(&mesh);
+            // pbrt orients a mesh by N where given, by ReverseOrientation only without; an
+            // analytic shape (its normals ours) by ReverseOrientation.
+            if (s.reverse && (mesh.normals.empty() || type == "cylinder")) {
+                reverse_winding(&mesh);
+                for (Normal3& n : mesh.normals) n = -n;
+            }
             const std::string key = "@mesh/" + std::to_string(doc_.meshes.size());
             const bool has_normals = !mesh.normals.empty();
             doc_.meshes.emplace(key, std::move(mesh));
