@@ -338,12 +338,12 @@ TEST(MitsubaScenes, BadInputNamesTheFileAndLine) {
 TEST(MitsubaScenes, WhatCannotBeRepresentedIsAWarningWithItsPlace) {
     TempDir dir;
     auto path = dir.write("a.xml", scene(R"(<shape type="sphere"/>
-  <shape type="serialized"><string name="filename" value="a.serialized"/></shape>
+  <shape type="bsplinecurve"><string name="filename" value="a.txt"/></shape>
   <shape type="sphere"><bsdf type="hair"/></shape>
   <shape type="sphere"><float name="wobble" value="1"/></shape>)"));
     Scene s = load_scene(path, collecting());
     EXPECT_EQ(s.spheres.size(), 3u);
-    EXPECT_TRUE(warned("a.xml:3: warning: shape \"serialized\" is not supported"))
+    EXPECT_TRUE(warned("a.xml:3: warning: shape \"bsplinecurve\" is not supported"))
         << warnings.size();
     EXPECT_TRUE(warned("a.xml:4: warning: bsdf \"hair\""));
     EXPECT_TRUE(warned("a.xml:5: warning: shape \"sphere\": property \"wobble\""));

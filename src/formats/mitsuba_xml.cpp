@@ -880,10 +880,14 @@ class Translator {
         Props p(e, *this);
         const Xform to_world = p.transform("to_world");
         json o;
-        if (type == "obj" || type == "ply" || type == "gltf") {
+        if (type == "obj" || type == "ply" || type == "gltf" || type == "serialized") {
             const std::string f = p.string("filename", "");
             if (f.empty()) fail(e, type + ": needs a filename");
             o = {{"type", "mesh"}, {"file", file(e, f)}};
+            if (type == "serialized") {
+                const int index = p.integer("shape_index", 0, 0, 1 << 30);
+                if (index > 0) o["shape_index"] = index;
+            }
             if (p.boolean("face_normals", false)) o["normals"] = "flat";
             if (type == "obj" && !p.boolean("flip_tex_coords", true))
                 warn(e, "obj: flip_tex_coords false is not supported (textures appear upside down)");

@@ -14,6 +14,7 @@
 #include "formats/gltf_json.h"
 #include "formats/json_reader.h"
 #include "loaders/mesh_file.h"
+#include "loaders/serialized_mesh.h"
 #include "formats/mitsuba_xml.h"
 #include "pbrt/translate.h"
 #include "formats/ply_write.h"
@@ -1007,6 +1008,7 @@ class Loader {
             scene_.add_box(lo, hi, material, interior, to_world);
         } else if (type == "mesh") {
             Value file = o.required("file");
+            std::optional<Value> shape_index = o.optional("shape_index");
             std::string normals = "file";
             if (auto x = o.optional("normals")) {
                 normals = x->string();
@@ -1027,8 +1029,20 @@ class Loader {
                 mesh.indices = held->second.indices;
             } else {
                 p = resolve(file);
+                std::string ext = p.extension().string();
+                for (char& ch : ext)
+                    ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+                const bool serialized = ext == ".serialized";
+                if (shape_index && !serialized)
+                    shape_index->fail("only a Mitsuba .serialized file holds several shapes");
                 try {
-                    mesh = read_mesh_file(p, options_.asset_root);
+                    mesh = serialized ? read_serialized_mesh(
+                                            p, shape_index ? static_cast<uint32_t>(
+                                                                 shape_index->integer(0, 1 << 30))
+                                                           : 0u)
+                                      : read_mesh_file(p, options_.asset_root);
+                } catch (const SceneError&) {
+                    throw;
                 } catch (const std::bad_alloc&) {
                     file.fail("out of memory reading mesh '" + p.string() + "'");
                 } catch (const std::exception& e) {
