@@ -1035,14 +1035,11 @@ class Loader {
                 const bool serialized = ext == ".serialized";
                 if (shape_index && !serialized)
                     shape_index->fail("only a Mitsuba .serialized file holds several shapes");
+                const uint32_t index =
+                    shape_index ? static_cast<uint32_t>(shape_index->integer(0, 1 << 30)) : 0;
                 try {
-                    mesh = serialized ? read_serialized_mesh(
-                                            p, shape_index ? static_cast<uint32_t>(
-                                                                 shape_index->integer(0, 1 << 30))
-                                                           : 0u)
+                    mesh = serialized ? read_serialized_mesh(p, index)
                                       : read_mesh_file(p, options_.asset_root);
-                } catch (const SceneError&) {
-                    throw;
                 } catch (const std::bad_alloc&) {
                     file.fail("out of memory reading mesh '" + p.string() + "'");
                 } catch (const std::exception& e) {
