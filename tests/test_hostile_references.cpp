@@ -355,3 +355,19 @@ TEST(HostileInput, MeshTexturesOutsideTheMeshFolderAreRefused) {
                                   "v 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl m\nf 1/1 2/2 3/3\n");
     expect_mesh_refused(dir, "meshes/m.obj", "tex.ppm': outside the folder");
 }
+
+// Assimp 5.2 segfaults (a write through a null material) on a texture statement before the
+// first `newmtl` of a material library, also when the OBJ names itself as its library (found
+// by fuzz_mesh after 720,240 executions: `mtllib m.obj` then `map_Kn...`).
+TEST(HostileInput, MaterialLibraryStatementBeforeNewmtlIsRefused) {
+    TempDir dir;
+    dir.write("a.obj", std::string("mtllib a.mtl\n") + kTriangleObj);
+    dir.write("a.mtl", "# a comment\n\nmap_Kd t.png\nnewmtl m\nKd 1 1 1\n");
+    expect_mesh_refused(dir, "a.obj", "material library a.mtl line 3: 'map_Kd' before the first newmtl");
+    dir.write("self.obj", "mtllib self.obj\nmap_Kn x\n");
+    expect_mesh_refused(dir, "self.obj", "material library self.obj line 1: 'mtllib'");
+    // Its default library, the OBJ's name with .mtl, is checked too.
+    dir.write("b.obj", kTriangleObj);
+    dir.write("b.mtl", "map_Ks t\n");
+    expect_mesh_refused(dir, "b.obj", "material library b.mtl line 1: 'map_Ks'");
+}

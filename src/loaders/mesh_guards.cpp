@@ -452,8 +452,31 @@ namespace wavetrace {
 // vertices (five polygons of 32,767 vertices in 1.7 MB: over a minute). Both are bounded
 // here: at most kMaxObjMaterials names, and at most kMaxObjPolygonWork for the sum of n^2
 // over the polygons of n >= 5 vertices (quads and triangles cost nothing to split).
+// Assimp 5.2's MTL reader applies a statement before the first `newmtl` to a material that
+// does not exist: a texture there (`map_Kd t.png`) writes through a null pointer (a segfault
+// on a two-line file, found by fuzz_mesh). Every statement must follow a `newmtl`.
+void check_mtl(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    size_t line_number = 0;
+    for (std::string line; std::getline(in, line);) {
+        ++line_number;
+        std::istringstream words(line);
+        std::string key;
+        if (!(words >> key) || key[0] == '#') continue;
+        if (key == "newmtl") return;
+        throw std::runtime_error("material library " + path.filename().string() + " line " +
+                                 std::to_string(line_number) + ": '" + key +
+                                 "' before the first newmtl");
+    }
+}
+
 void check_obj(const std::filesystem::path& path) {
     std::ifstream in(path, std::ios::binary);
+    // The material libraries Assimp will read: those `mtllib` names, else the OBJ's own name
+    // with .mtl.
+    const std::filesystem::path folder = path.parent_path();
+    std::vector<std::filesystem::path> libraries = {path.parent_path() /
+                                                    (path.stem().string() + ".mtl")};
     std::set<std::string> names;
     uint64_t work = 0;
     size_t line_number = 0;
@@ -471,7 +494,11 @@ void check_obj(const std::filesystem::path& path) {
         logical.clear();
         std::string key;
         if (!(words >> key)) continue;
-        if (key == "usemtl") {
+        if (key == "mtllib") {
+            std::string name;
+            std::getline(words >> std::ws, name);
+            libraries.push_back(folder / name);
+        } else if (key == "usemtl") {
             std::string name;
             std::getline(words >> std::ws, name);
             names.insert(name);
@@ -489,6 +516,10 @@ void check_obj(const std::filesystem::path& path) {
                     "(the sum of their vertex counts squared passes " +
                     std::to_string(kMaxObjPolygonWork) + "); split them into smaller ones");
         }
+    }
+    for (const std::filesystem::path& library : libraries) {
+        std::error_code ec;
+        if (std::filesystem::is_regular_file(library, ec)) check_mtl(library);
     }
 }
 

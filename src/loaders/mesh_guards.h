@@ -19,6 +19,9 @@ void check_off(const std::filesystem::path& path);
 // within this many steps (the sum of n^2 over polygons of n >= 5 vertices; about a second).
 inline constexpr size_t kMaxObjMaterials = 4096;
 inline constexpr uint64_t kMaxObjPolygonWork = uint64_t(1) << 26;
+// And the material libraries it names (or its own name with .mtl): no statement before the
+// first `newmtl`.
 void check_obj(const std::filesystem::path& path);
+void check_mtl(const std::filesystem::path& path);
 
 }  // namespace wavetrace
