@@ -25,7 +25,8 @@ const std::vector<std::string> kLayers = {
     "scene",     // the scene model and its builders
     "image",     // images: OpenImageIO in and out, comparisons
     "film",      // per-pixel sums and film files
-    "formats",   // file formats read strictly: JSON, Mitsuba XML (into our JSON), glTF's JSON
+    "formats",   // file formats read strictly: JSON, glTF's JSON, checks before Assimp
+    "mitsuba",   // Mitsuba XML scene files into our JSON document
     "pbrt",      // pbrt-v4 scene files into our JSON document
     "loaders",   // scene files and mesh files into a Scene
     "accel",     // the BVH: build, wide layout, traversal, primitive tests

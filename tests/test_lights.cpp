@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "chi2.h"
+#include "math/equal_area.h"
 #include "sampling/sampler.h"
 #include "sampling/warp.h"
 #include "shading/lights.h"
@@ -101,6 +102,26 @@ std::vector<LightCase> cases(const TempDir& dir) {
         c.scene.background.radiance = Color(1.0f);
         c.scene.background.rotation = 30.0f;
         c.scene.background.image = c.scene.add_image(read_image(dir.path() / "env.exr"));
+        out.push_back(std::move(c));
+    }
+    {
+        // A square equal-area map (a bright spot, a gradient, a black band) in a turned frame.
+        Image env(32, 32);
+        for (int y = 0; y < 32; ++y)
+            for (int x = 0; x < 32; ++x) {
+                float v = 0.3f + x / 32.0f + (y > 4 && y < 9 ? -2.0f : 0.0f);
+                if (std::abs(x - 22) < 2 && std::abs(y - 12) < 2) v = 40.0f;
+                env.at(x, y) = Color(std::max(0.0f, v), 0.5f * std::max(0.0f, v), 0.2f);
+            }
+        write_image(dir.path() / "equal-area.exr", env);
+        LightCase c{"background-equal-area", {}, {0, 0, 0}};
+        c.scene.background.kind = Background::Kind::Environment;
+        c.scene.background.mapping = Background::Mapping::EqualArea;
+        c.scene.background.radiance = Color(1.0f);
+        const Vec3 x = normalize(Vec3(0.6f, 0.8f, 0.0f)), z = normalize(Vec3(0.0f, 0.3f, 1.0f));
+        const Vec3 zz = normalize(z - dot(z, x) * x);
+        c.scene.background.frame = Frame{x, cross(zz, x), zz};
+        c.scene.background.image = c.scene.add_image(read_image(dir.path() / "equal-area.exr"));
         out.push_back(std::move(c));
     }
     return out;
@@ -231,4 +252,33 @@ TEST(Lights, PdfOfEmissionFoundIsTheSamplersPdf) {
             EXPECT_GT(compared, 1000u) << c.name;
         }
     }
+}
+
+// An equal-area map is seen in its own frame, each direction at its nearest texel (pbrt-v4's
+// lookup): the direction of a texel's centre, turned into the world by the frame, sees that
+// texel exactly, and the same direction without the frame another one.
+TEST(Lights, EqualAreaMapsAreSeenInTheirFrameAtTheNearestTexel) {
+    TempDir dir;
+    for (LightCase& c : cases(dir)) {
+        if (c.name != "background-equal-area") continue;
+        const Background& bg = c.scene.background;
+        const ImageData& img = c.scene.images[bg.image];
+        for (auto [x, y] : {std::pair{22, 12}, {3, 30}, {16, 16}, {31, 0}, {10, 6}}) {
+            const Vec3 local = equal_area_square_to_sphere((x + 0.5f) / 32, (y + 0.5f) / 32);
+            const Vec3 world = bg.frame->to_world(local);
+            EXPECT_EQ(eval_background(c.scene, world), img.texel(x, y)) << x << " " << y;
+            const Vec2 uv = environment_uv(bg, world);
+            EXPECT_NEAR(uv.x, (x + 0.5f) / 32, 1e-5f);
+            EXPECT_NEAR(uv.y, (y + 0.5f) / 32, 1e-5f);
+        }
+        const Color bright = img.texel(22, 12);
+        Scene unframed = std::move(c.scene);
+        unframed.background.frame.reset();
+        const Vec3 spot = equal_area_square_to_sphere(22.5f / 32, 12.5f / 32);
+        EXPECT_EQ(eval_background(unframed, spot), bright);
+        EXPECT_NE(eval_background(unframed, Frame{{0, 0, 1}, {1, 0, 0}, {0, 1, 0}}.to_world(spot)),
+                  bright);
+        return;
+    }
+    FAIL() << "no equal-area case";
 }

@@ -1,5 +1,8 @@
 #include <gtest/gtest.h>
 
+#include "chi2.h"
+#include "math/equal_area.h"
+#include "sampling/sampler.h"
 #include "wavetrace/math/aabb.h"
 #include "wavetrace/math/frame.h"
 #include "wavetrace/math/transform.h"
@@ -80,4 +83,46 @@ TEST(Aabb, GrowAndContain) {
     EXPECT_FLOAT_EQ(b.half_area(), 2 * 2 + 2 * 2 + 2 * 2);
     EXPECT_TRUE(b.contains(Aabb{{0, 1, 4}, {1, 2, 5}}));
     EXPECT_FALSE(b.contains(Aabb{{0, 1, 4}, {1, 2, 6}}));
+}
+
+// pbrt-v4's layout of the equal-area square: +z at the centre, -z at the corners, +x to the
+// right (u = 1) and +y at v = 1; the mapping is a bijection on the open square and keeps areas.
+TEST(EqualArea, LayoutIsPbrtV4s) {
+    expect_near(equal_area_square_to_sphere(0.5f, 0.5f), {0, 0, 1});
+    for (float u : {0.0f, 1.0f})
+        for (float v : {0.0f, 1.0f}) expect_near(equal_area_square_to_sphere(u, v), {0, 0, -1});
+    expect_near(equal_area_square_to_sphere(1.0f, 0.5f), {1, 0, 0});
+    expect_near(equal_area_square_to_sphere(0.0f, 0.5f), {-1, 0, 0});
+    expect_near(equal_area_square_to_sphere(0.5f, 1.0f), {0, 1, 0});
+    expect_near(equal_area_square_to_sphere(0.5f, 0.0f), {0, -1, 0});
+    // The inner diamond is the upper hemisphere.
+    EXPECT_GT(equal_area_square_to_sphere(0.7f, 0.6f).z, 0.0f);
+    EXPECT_LT(equal_area_square_to_sphere(0.9f, 0.8f).z, 0.0f);
+}
+
+TEST(EqualArea, SphereToSquareInvertsSquareToSphere) {
+    for (int i = 1; i < 64; ++i)
+        for (int j = 1; j < 64; ++j) {
+            const float u = i / 64.0f + 0.001f, v = j / 64.0f - 0.002f;
+            const Vec3 d = equal_area_square_to_sphere(u, v);
+            EXPECT_NEAR(length(d), 1.0f, 1e-6f);
+            const Vec2 back = equal_area_sphere_to_square(d);
+            EXPECT_NEAR(back.x, u, 2e-6f) << u << " " << v;
+            EXPECT_NEAR(back.y, v, 2e-6f) << u << " " << v;
+        }
+    // Near the poles, where 1 - |z| would lose its digits in float: within the resolution of
+    // the square's coordinates there (2^-24 near its centre, 4e-7 of the sphere's 2).
+    const Vec2 near_pole = equal_area_sphere_to_square(normalize(Vec3(1e-4f, 2e-4f, 1.0f)));
+    expect_near(equal_area_square_to_sphere(near_pole.x, near_pole.y),
+                normalize(Vec3(1e-4f, 2e-4f, 1.0f)), 4e-7f);
+}
+
+// Uniform points of the square land uniformly on the sphere (chi-square against 1 / 4 pi).
+TEST(EqualArea, KeepsAreas) {
+    auto result = chi2::test(
+        [](uint32_t i) -> std::optional<Vec3> {
+            return equal_area_square_to_sphere(sample_1d(17, i, 0, 0), sample_1d(17, i, 0, 1));
+        },
+        [](Vec3) { return 1.0 / (4 * 3.14159265358979323846); }, 300'000);
+    EXPECT_GT(result.p_value, 1e-3) << result.summary();
 }

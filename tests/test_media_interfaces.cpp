@@ -9,6 +9,7 @@
 #include <string>
 
 #include "render_film.h"
+#include "shading/trace.h"
 #include "temp_dir.h"
 #include "wavetrace/accel/bvh.h"
 #include "wavetrace/image/compare.h"
@@ -115,4 +116,26 @@ TEST(MediaInterfaces, BoundaryMarginIsAHair) {
     const float m = Scene::boundary_margin(box);
     EXPECT_GT(m, 4 * 400 * 1.2e-7f);  // well above the rounding of coordinates near 400
     EXPECT_LT(m, 1e-4f * 555);        // well below the lifts compared against
+}
+
+// Two overlapping spheres of one medium (density 0.5), a shadow ray through both along x:
+// nested boundaries make one volume, x in [-1, 2], where Mitsuba's interface rule leaves the
+// medium for vacuum on leaving the first sphere inside the second, x in [-1, 1] only.
+TEST(MediaInterfaces, InterfaceBoundariesAreMitsubasRule) {
+    TempDir dir;
+    for (const char* rule : {"nested", "interface"}) {
+        const auto path = dir.write("s.json", std::string(R"({"camera": {"look_from": [0, 0, 9],
+            "look_at": [0, 0, 0]}, "media": {"m": {"density": 0.5, "albedo": 0.5}},
+            "medium_boundaries": ")") + rule + R"(", "objects": [
+            {"type": "sphere", "center": [0, 0, 0], "radius": 1, "interior": "m"},
+            {"type": "sphere", "center": [1, 0, 0], "radius": 1, "interior": "m"}]})");
+        const Scene s = load_scene(path);
+        const Bvh bvh = Bvh::build(s);
+        uint64_t rays = 0;
+        const Ray ray{{-3, 0, 0}, {1, 0, 0}, 0.0f, 8.0f};
+        const float tr = transmittance(s, bvh, ray, MediumStack{}, &rays);
+        // Boundaries are moved outwards by a hair (the margin): a tolerance of 1e-4.
+        const float inside = std::string(rule) == "nested" ? 3.0f : 2.0f;
+        EXPECT_NEAR(tr, std::exp(-0.5f * inside), 1e-4f) << rule;
+    }
 }

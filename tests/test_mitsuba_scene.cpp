@@ -15,6 +15,7 @@
 #include "load_warnings.h"
 #include "formats/spectrum_rgb.h"
 #include "temp_dir.h"
+#include "wavetrace/image/image.h"
 #include "wavetrace/loaders/load_scene.h"
 #include "wavetrace/scene/scene.h"
 
@@ -213,6 +214,29 @@ TEST(MitsubaScenes, EmittersBecomeLightsAndBackgrounds) {
     EXPECT_EQ(lamp.kind, MaterialKind::DiffuseLight);
 }
 
+// Mitsuba's envmap looks a direction up in its to_world frame at u = atan2(d.x, -d.z) / 2pi,
+// v = acos(d.y) / pi, its rows from pole to pole; a to_world that turns the pole away from +y
+// (here +90 degrees about x: the map's +y to world +z, its -z to world +y) keeps that frame.
+TEST(MitsubaScenes, AnEnvmapTurnedAnyWayKeepsItsFrame) {
+    TempDir dir;
+    Image env(4, 2);
+    for (int y = 0; y < 2; ++y)
+        for (int x = 0; x < 4; ++x) env.at(x, y) = Color(static_cast<float>(x + 10 * y));
+    write_image(dir.path() / "env.exr", env);
+    auto path = dir.write("a.xml", scene(R"(
+  <emitter type="envmap"><string name="filename" value="env.exr"/>
+    <transform name="to_world"><rotate x="1" angle="90"/></transform></emitter>)"));
+    Scene s = load_scene(path, collecting());
+    EXPECT_FALSE(warned("envmap"));
+    // At the horizon the two rows mix (+5); columns sit at u = 1/8, 3/8, ...
+    EXPECT_NEAR(eval_background(s, {0, 1, 0}).x, 1.5f + 5, 1e-4f);   // the map's -z: u = 0
+    EXPECT_NEAR(eval_background(s, {1, 0, 0}).x, 0.5f + 5, 1e-4f);   // its +x: u = 1/4
+    EXPECT_NEAR(eval_background(s, {-1, 0, 0}).x, 2.5f + 5, 1e-4f);  // its -x: u = 3/4
+    // Near its poles, world +z and -z, its top and bottom rows (at u = 1/4).
+    EXPECT_NEAR(eval_background(s, {1e-3f, 0, 1}).x, 0.5f, 0.01f);
+    EXPECT_NEAR(eval_background(s, {1e-3f, 0, -1}).x, 10.5f, 0.01f);
+}
+
 TEST(MitsubaScenes, MediaFillShapesThatNameThemInterior) {
     TempDir dir;
     // Mitsuba's participating_media tests declare a medium once and refer to it by name.
@@ -231,6 +255,8 @@ TEST(MitsubaScenes, MediaFillShapesThatNameThemInterior) {
     EXPECT_EQ(s.materials[s.spheres[0].material].kind, MaterialKind::Dielectric);
     EXPECT_TRUE(s.is_boundary(s.spheres[1].material));  // null BSDF: a boundary, no surface
     EXPECT_FALSE(warned("medium"));
+    // Crossings follow Mitsuba's rule: the crossed shape's medium, not a nesting.
+    EXPECT_EQ(s.medium_boundaries, MediumBoundaries::Interface);
 }
 
 TEST(MitsubaScenes, SpectraBecomeRgbAsMitsubasRgbVariantsSeeThem) {

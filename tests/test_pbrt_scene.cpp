@@ -265,6 +265,44 @@ Shape "sphere"
     EXPECT_NEAR(s.background.radiance.y, 0.2f, 1e-6f);
 }
 
+// pbrt-v4's image infinite light: a square equal-area map in the light's frame (here turned
+// by the usual `Rotate -90 1 0 0`, its +z to world +y), each direction at its nearest texel;
+// a map that is not square is refused as pbrt-v4 refuses it, naming the file and line.
+TEST(PbrtScenes, InfiniteLightImagesAreEqualAreaMapsInTheLightsFrame) {
+    TempDir dir;
+    Image env(4, 4);
+    for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 4; ++x) env.at(x, y) = Color(static_cast<float>(x + 10 * y));
+    write_image(dir.path() / "sky.exr", env);
+    write_image(dir.path() / "wide.exr", Image(8, 4));
+    const std::string head = "Camera \"perspective\"\nWorldBegin\nAttributeBegin\n"
+                             "Rotate -90 1 0 0\n";
+    auto path = dir.write("a.pbrt", head + "LightSource \"infinite\" \"string filename\" "
+                                           "\"sky.exr\" \"float scale\" 2\nAttributeEnd\n");
+    Scene s = load_scene(path, collecting());
+    EXPECT_TRUE(warnings.empty()) << (warnings.empty() ? "" : warnings.front());
+    ASSERT_EQ(s.background.kind, Background::Kind::Environment);
+    EXPECT_EQ(s.background.mapping, Background::Mapping::EqualArea);
+    for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 4; ++x) {
+            // pbrt-v4's EqualAreaSquareToSphere at the texel's centre, in the light's frame.
+            const float a = 2 * (x + 0.5f) / 4 - 1, b = 2 * (y + 0.5f) / 4 - 1;
+            const float r = 1 - std::abs(1 - std::abs(a) - std::abs(b));
+            const float phi = ((std::abs(b) - std::abs(a)) / r + 1) * 3.14159265f / 4;
+            const float z = std::copysign(1 - r * r, 1 - std::abs(a) - std::abs(b));
+            const float planar = r * std::sqrt(2 - r * r);
+            const Vec3 l(std::copysign(std::cos(phi), a) * planar,
+                         std::copysign(std::sin(phi), b) * planar, z);
+            EXPECT_EQ(eval_background(s, {l.x, l.z, -l.y}).x, 2.0f * (x + 10 * y)) << x << y;
+        }
+    auto wide = dir.write("b.pbrt", head + "LightSource \"infinite\" \"string filename\" "
+                                           "\"wide.exr\"\nAttributeEnd\n");
+    const std::string e = error_of(wide);
+    EXPECT_NE(e.find("b.pbrt:5: "), std::string::npos) << e;
+    EXPECT_NE(e.find("an equal_area map must be square; '"), std::string::npos) << e;
+    EXPECT_NE(e.find("wide.exr' is 8 x 4"), std::string::npos) << e;
+}
+
 TEST(PbrtScenes, MediaFillShapesWithTheInterfaceMaterial) {
     TempDir dir;
     auto path = dir.write("a.pbrt", R"(

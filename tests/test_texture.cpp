@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "math/equal_area.h"
 #include "temp_dir.h"
 #include "test_paths.h"
 #include "wavetrace/image/image.h"
@@ -201,4 +202,63 @@ TEST(Background, EnvironmentMapIsLatLongWithMinusZAtTheCentre) {
     // The poles are clamped to the top and bottom rows, not wrapped into each other.
     EXPECT_NEAR(eval_background(s, {0, 3, 0}).x, 2 * 1.5f, 1e-5f);
     EXPECT_NEAR(eval_background(s, {0, -3, 0}).x, 2 * 11.5f, 1e-5f);
+}
+
+// pbrt-v4's equal-area map: square, looked up at the nearest texel, in the frame `to_world`
+// gives (here the map's +z is world +y and its +y world -z, as pbrt scenes turn their sky).
+TEST(Background, EqualAreaMapIsSeenThroughItsFrame) {
+    TempDir dir;
+    Image env(4, 4);
+    for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 4; ++x) env.at(x, y) = Color(static_cast<float>(x + 10 * y));
+    write_image(dir.path() / "sky.exr", env);
+    write_image(dir.path() / "wide.exr", Image(8, 4));
+    auto scene = [&](const std::string& background) {
+        return dir.write("s.json", R"({"camera": {"look_from": [0, 0, -5], "look_at": [0, 0, 0]},
+            "background": )" + background + R"(, "objects": []})");
+    };
+    Scene s = load_scene(scene(R"({"type": "environment", "file": "sky.exr", "scale": 2,
+        "mapping": "equal_area", "to_world": [[1, 0, 0], [0, 0, 1], [0, -1, 0]]})"));
+    ASSERT_EQ(s.background.mapping, Background::Mapping::EqualArea);
+    for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 4; ++x) {
+            const Vec3 l = equal_area_square_to_sphere((x + 0.5f) / 4, (y + 0.5f) / 4);
+            EXPECT_EQ(eval_background(s, {l.x, l.z, -l.y}).x, 2.0f * (x + 10 * y)) << x << y;
+        }
+    auto error = [&](const std::string& background) {
+        try {
+            load_scene(scene(background));
+        } catch (const SceneError& e) {
+            return std::string(e.what());
+        }
+        return std::string("(no error)");
+    };
+    std::string err = error(R"({"type": "environment", "file": "wide.exr", "mapping": "equal_area"})");
+    EXPECT_NE(err.find("/background/file: an equal_area map must be square; '"), std::string::npos) << err;
+    EXPECT_NE(err.find("wide.exr' is 8 x 4"), std::string::npos) << err;
+    err = error(R"({"type": "environment", "file": "sky.exr", "mapping": "equal_area", "rotation": 90})");
+    EXPECT_NE(err.find("/background/rotation: \"rotation\" applies to latlong maps only"),
+              std::string::npos) << err;
+    err = error(R"({"type": "environment", "file": "sky.exr", "to_world": [[1, 0, 0], [0, 2, 0], [0, 0, 1]]})");
+    EXPECT_NE(err.find("/background/to_world: expected a rotation"), std::string::npos) << err;
+    err = error(R"({"type": "environment", "file": "sky.exr", "mapping": "cube"})");
+    EXPECT_NE(err.find("/background/mapping: unknown mapping \"cube\""), std::string::npos) << err;
+}
+
+// A latitude-longitude map turned by `to_world` (here its pole to world +z): the direction
+// that sees the map's top row is the frame's +y.
+TEST(Background, LatLongMapTurnsWithItsFrame) {
+    TempDir dir;
+    Image env(4, 2);
+    for (int y = 0; y < 2; ++y)
+        for (int x = 0; x < 4; ++x) env.at(x, y) = Color(static_cast<float>(x + 10 * y));
+    write_image(dir.path() / "env.exr", env);
+    auto p = dir.write("s.json", R"({"camera": {"look_from": [0, 0, -5], "look_at": [0, 0, 0]},
+        "background": {"type": "environment", "file": "env.exr",
+                       "to_world": [[1, 0, 0], [0, 0, -1], [0, 1, 0]]}, "objects": []})");
+    Scene s = load_scene(p);
+    EXPECT_NEAR(eval_background(s, {0, 0, 3}).x, 1.5f, 1e-5f);    // the map's +y: top row
+    EXPECT_NEAR(eval_background(s, {0, 0, -3}).x, 11.5f, 1e-5f);  // its -y: the bottom row
+    // The map's -z (the image centre at the horizon) is world +y.
+    EXPECT_NEAR(eval_background(s, {0, 1, 0}).x, 1.5f + 5, 1e-5f);
 }

@@ -2,6 +2,7 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include <array>
 #include <fstream>
 #include <iterator>
 #include <mutex>
@@ -203,12 +204,36 @@ void bind_scene(py::module_& m) {
     py::enum_<Background::Kind>(background, "Kind")
         .value("Constant", Background::Kind::Constant)
         .value("Environment", Background::Kind::Environment);
+    py::enum_<Background::Mapping>(background, "Mapping")
+        .value("LatLong", Background::Mapping::LatLong)
+        .value("EqualArea", Background::Mapping::EqualArea);
     keyword_init(background);
+    using Rows = std::array<Vec3, 3>;
     background.def_readwrite("kind", &Background::kind)
         .def_readwrite("radiance", &Background::radiance)
         .def_readwrite("image", &Background::image)
+        .def_readwrite("mapping", &Background::mapping)
         .def_readwrite("rotation", &Background::rotation)
-        .def_readwrite("rows_at_poles", &Background::rows_at_poles);
+        .def_readwrite("rows_at_poles", &Background::rows_at_poles)
+        .def_property(
+            "to_world",
+            [](const Background& b) -> std::optional<Rows> {
+                if (!b.frame) return std::nullopt;
+                const Frame& f = *b.frame;
+                return Rows{Vec3{f.s.x, f.t.x, f.n.x}, Vec3{f.s.y, f.t.y, f.n.y},
+                            Vec3{f.s.z, f.t.z, f.n.z}};
+            },
+            [](Background& b, const std::optional<Rows>& rows) {
+                if (!rows) {
+                    b.frame.reset();
+                    return;
+                }
+                const Rows& r = *rows;
+                b.frame = Frame{{r[0].x, r[1].x, r[2].x}, {r[0].y, r[1].y, r[2].y},
+                                {r[0].z, r[1].z, r[2].z}};
+            },
+            "The map's frame as a 3 x 3 rotation (rows; its columns the map's axes in world "
+            "space), or None for the world's own axes.");
 
     py::class_<RenderSettings> settings(m, "RenderSettings",
                                         "A scene's default size, samples and depth.");
@@ -217,6 +242,10 @@ void bind_scene(py::module_& m) {
         .def_readwrite("height", &RenderSettings::height)
         .def_readwrite("spp", &RenderSettings::spp)
         .def_readwrite("max_depth", &RenderSettings::max_depth);
+
+    py::enum_<MediumBoundaries>(m, "MediumBoundaries")
+        .value("Nested", MediumBoundaries::Nested)
+        .value("Interface", MediumBoundaries::Interface);
 
     using S = PyScene;
     py::class_<S, std::shared_ptr<S>>(
@@ -237,6 +266,11 @@ void bind_scene(py::module_& m) {
             "background", [](S& s) -> Background& { return s.scene.background; },
             [](S& s, const Background& b) { s.scene.background = b; },
             py::return_value_policy::reference_internal)
+        .def_property(
+            "medium_boundaries", [](const S& s) { return s.scene.medium_boundaries; },
+            [](S& s, MediumBoundaries b) { s.scene.medium_boundaries = b; },
+            "How crossing a medium boundary changes the medium: Nested (a stack) or Interface "
+            "(Mitsuba's rule).")
         .def("add_texture",
              [](S& s, const Texture& t) {
                  s.begin_change();

@@ -59,4 +59,31 @@ M4 rotation(double degrees, V3 axis) {
             0, 0, 0, 1};
 }
 
+bool rotation_axes(const M4& m, std::array<V3, 3>* axes, bool* rigid) {
+    const V3 x = apply_vector(m, {1, 0, 0}), y = apply_vector(m, {0, 1, 0}),
+             z = apply_vector(m, {0, 0, 1});
+    const double det = dot(x, cross(y, z));
+    const double scale = std::cbrt(std::abs(det));
+    if (!(scale > 1e-12) || !std::isfinite(scale)) return false;
+    const V3 ax = normalized(x);
+    const double yx = dot(y, ax);
+    const V3 ay = normalized({y[0] - yx * ax[0], y[1] - yx * ax[1], y[2] - yx * ax[2]});
+    V3 az = cross(ax, ay);
+    if (det < 0) az = {-az[0], -az[1], -az[2]};
+    *axes = {ax, ay, az};
+    *rigid = true;
+    const V3 cols[3] = {x, y, z};
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            if (std::abs(dot(cols[i], cols[j]) / (scale * scale) - (i == j ? 1 : 0)) > 1e-5)
+                *rigid = false;
+    return true;
+}
+
+nlohmann::json axes_matrix(const std::array<V3, 3>& a) {
+    return nlohmann::json::array({nlohmann::json::array({a[0][0], a[1][0], a[2][0]}),
+                                  nlohmann::json::array({a[0][1], a[1][1], a[2][1]}),
+                                  nlohmann::json::array({a[0][2], a[1][2], a[2][2]})});
+}
+
 }  // namespace wavetrace::affine

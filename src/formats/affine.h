@@ -33,4 +33,11 @@ V3 apply_vector(const M4& m, V3 v);
 // Rotation by `degrees` counter-clockwise about `axis` (non-zero), Rodrigues' formula.
 M4 rotation(double degrees, V3 axis);
 
+// The rotation in m's linear part: the images of the x, y and z axes made orthonormal
+// (Gram-Schmidt from x, keeping m's handedness). False when the linear part is singular;
+// *rigid tells whether it already was a rotation times a uniform scale (within 1e-5).
+bool rotation_axes(const M4& m, std::array<V3, 3>* axes, bool* rigid);
+// Axes as the columns of a 3 x 3 matrix, written as its rows (our JSON's `to_world`).
+nlohmann::json axes_matrix(const std::array<V3, 3>& axes);
+
 }  // namespace wavetrace::affine

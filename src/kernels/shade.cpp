@@ -220,7 +220,7 @@ void cross_boundaries(const WaveInputs& in, const HitQueue& hits, Chunk& c, Shad
         const size_t i = c.begin + row;
         const Ray ray = ray_at(out.rays, i);
         MediumStack media = out.paths.media[i].unpack();
-        const Ray next = cross_boundary(surface_at(in.scene, ray, hit_at(hits, i)),
+        const Ray next = cross_boundary(in.scene, surface_at(in.scene, ray, hit_at(hits, i)),
                                         ray.d / length(ray.d), media);
         const float flight = in.scene.media.empty() ? out.paths.flight[i] : c.segments.flight[row];
         cross(i, media, flight, next, out);

@@ -18,7 +18,7 @@
 
 #include "files/input_file.h"
 #include "formats/gltf_json.h"
-#include "loaders/mesh_guards.h"
+#include "formats/mesh_guards.h"
 #include "loaders/mesh_io.h"
 
 namespace wavetrace {

@@ -15,7 +15,7 @@
 #include "formats/json_reader.h"
 #include "loaders/mesh_file.h"
 #include "loaders/serialized_mesh.h"
-#include "formats/mitsuba_xml.h"
+#include "mitsuba/mitsuba_xml.h"
 #include "pbrt/translate.h"
 #include "formats/ply_write.h"
 #include "files/output_file.h"
@@ -73,7 +73,7 @@ class Loader {
         memory_meshes_ = meshes;
         Object root(Value(json_, file_, ""));
         root.only({"description", "render", "camera", "background", "lights", "materials", "media",
-                   "objects"});
+                   "medium_boundaries", "objects"});
         scene_.name = path_.stem().string();
         if (auto v = root.optional("description")) v->string();
         if (auto v = root.optional("render")) read_render(*v);
@@ -82,6 +82,12 @@ class Loader {
         if (auto v = root.optional("lights")) read_lights(*v);
         if (auto v = root.optional("materials")) read_materials(*v);
         if (auto v = root.optional("media")) read_media(*v);
+        if (auto v = root.optional("medium_boundaries")) {
+            const std::string rule = v->string();
+            if (rule == "interface") scene_.medium_boundaries = MediumBoundaries::Interface;
+            else if (rule != "nested")
+                v->fail("unknown rule \"" + rule + "\" (expected nested or interface)");
+        }
         Value objects = root.required("objects");
         for (size_t i = 0; i < objects.size(); ++i) read_object(objects[i], Transform{});
         root.finish();
@@ -302,13 +308,50 @@ class Loader {
             bg.image = scene_.add_image(read_image_at(file));
             bg.radiance = Vec3(1.0f);
             if (auto x = o.optional("scale")) bg.radiance = x->color();
-            if (auto x = o.optional("rotation")) bg.rotation = x->number();
-            if (auto x = o.optional("rows_at_poles")) bg.rows_at_poles = x->boolean();
+            std::string mapping = "latlong";
+            if (auto x = o.optional("mapping")) {
+                mapping = x->string();
+                if (mapping == "equal_area") bg.mapping = Background::Mapping::EqualArea;
+                else if (mapping != "latlong")
+                    x->fail("unknown mapping \"" + mapping + "\" (expected latlong or equal_area)");
+            }
+            if (bg.mapping == Background::Mapping::LatLong) {
+                if (auto x = o.optional("rotation")) bg.rotation = x->number();
+                if (auto x = o.optional("rows_at_poles")) bg.rows_at_poles = x->boolean();
+            } else {
+                for (const char* key : {"rotation", "rows_at_poles"})
+                    if (auto x = o.optional(key))
+                        x->fail(std::string("\"") + key + "\" applies to latlong maps only "
+                                "(turn an equal_area map with \"to_world\")");
+                const ImageData& img = scene_.images[bg.image];
+                if (img.width != img.height)
+                    file.fail("an equal_area map must be square; '" + resolve(file).string() +
+                              "' is " + std::to_string(img.width) + " x " +
+                              std::to_string(img.height));
+            }
+            if (auto x = o.optional("to_world")) bg.frame = rotation_frame(*x);
         } else {
             o.required("type").fail("unknown background type \"" + type +
                                     "\" (expected constant or environment)");
         }
         o.finish();
+    }
+
+    // A 3 x 3 rotation (rows; possibly mirrored) as the frame of its columns: the map's own
+    // axes in world space.
+    static Frame rotation_frame(const Value& v) {
+        if (!v.is_array() || v.size() != 3)
+            v.fail("expected a 3 x 3 matrix [[a, b, c], [d, e, f], [g, h, i]], got " + v.describe());
+        const Vec3 rows[3] = {v[0].vec3(), v[1].vec3(), v[2].vec3()};
+        const Frame f{{rows[0].x, rows[1].x, rows[2].x},
+                      {rows[0].y, rows[1].y, rows[2].y},
+                      {rows[0].z, rows[1].z, rows[2].z}};
+        const Vec3 axes[3] = {f.s, f.t, f.n};
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j)
+                if (std::abs(dot(axes[i], axes[j]) - (i == j ? 1.0f : 0.0f)) > 1e-4f)
+                    v.fail("expected a rotation (orthonormal columns), got " + v.describe());
+        return f;
     }
 
     ImageData read_image_at(const Value& file, bool raw = false) const {
@@ -1139,6 +1182,7 @@ class Loader {
 // source file (an XML element, a pbrt directive) it came from.
 Scene build_translated(const fs::path& path, const LoadOptions& options, nlohmann::json scene,
                        const std::vector<std::string>& places,
+                       const std::string& background_place,
                        const std::map<std::string, PbrtMesh>* meshes) {
     const std::string file = path.string();
     try {
@@ -1150,6 +1194,8 @@ Scene build_translated(const fs::path& path, const LoadOptions& options, nlohman
             const size_t index = std::strtoul(message.c_str() + prefix.size(), nullptr, 10);
             if (index < places.size())
                 message = places[index] + ": " + message.substr(file.size() + 2);
+        } else if (!background_place.empty() && message.rfind(file + ": /background", 0) == 0) {
+            message = background_place + ": " + message.substr(file.size() + 2);
         }
         throw SceneError(message);
     }
@@ -1170,7 +1216,8 @@ Scene load_mitsuba(const fs::path& path, const LoadOptions& options) {
         throw SceneError(path.string() + ": --camera chooses among a glTF file's cameras; a "
                                          "Mitsuba scene has one sensor");
     MitsubaDocument doc = translate_mitsuba_xml(path, options.params, warner(options), options.asset_root);
-    return build_translated(path, options, std::move(doc.scene), doc.object_places, nullptr);
+    return build_translated(path, options, std::move(doc.scene), doc.object_places,
+                            doc.background_place, nullptr);
 }
 
 // A pbrt-v4 file: the same, its written-out meshes held in memory.
@@ -1182,7 +1229,8 @@ Scene load_pbrt(const fs::path& path, const LoadOptions& options) {
         throw SceneError(path.string() + ": -D sets a Mitsuba scene's parameters; a pbrt "
                                          "scene has none");
     PbrtDocument doc = translate_pbrt(path, warner(options), options.asset_root);
-    return build_translated(path, options, std::move(doc.scene), doc.object_places, &doc.meshes);
+    return build_translated(path, options, std::move(doc.scene), doc.object_places,
+                            doc.background_place, &doc.meshes);
 }
 
 namespace {

@@ -1138,11 +1138,13 @@ class Translator {
             if (out_.contains("background")) {
                 warn(place, "a second infinite light is ignored (wavetrace has one background)");
             } else if (PbrtParam* f = p.get("filename")) {
+                doc_.background_place = place;
                 infinite_map(p, *f, m, scale, place);
             } else {
                 const Color l = intensity("L");
                 const double e = p.number("illuminance", -1);
                 if (e > 0) scale *= e / kPiD;
+                doc_.background_place = place;
                 out_["background"] = {{"type", "constant"},
                                       {"radiance", color_json(l * static_cast<float>(scale))}};
             }
@@ -1154,35 +1156,28 @@ class Translator {
         p.finish(pwarn());
     }
 
-    // pbrt-v4 reads an environment image in the equal-area octahedral mapping (square
-    // images); wavetrace's environment is a latitude-longitude image. The image is read as
-    // latitude-longitude with pbrt-v3's orientation: the light's +z the pole, u = 0 at +x.
+    // pbrt-v4's image infinite light: a square image in the equal-area octahedral mapping,
+    // looked up in the light's frame (the CTM at the LightSource), which becomes the map's
+    // `to_world`. A non-square image is refused when the JSON is loaded, as pbrt-v4 refuses it.
     void infinite_map(PbrtParams& p, const PbrtParam& f, const M4& m, double scale,
                       const std::string& place) {
         if (f.strings.size() != 1) fail(f.place, "\"filename\" should be one string");
-        warn(place, "LightSource infinite: the image is read as a latitude-longitude map "
-                    "(pbrt-v3's); pbrt-v4's square equal-area maps are not supported");
         if (p.get("illuminance")) warn(place, "LightSource infinite: illuminance is not supported for images");
         if (p.get("L")) warn(place, "LightSource infinite: L beside an image is ignored");
-        const V3 pole = normalized(apply_vector(m, {0, 0, 1}));
-        const V3 u0 = normalized(apply_vector(m, {1, 0, 0}));
-        const V3 u90 = normalized(apply_vector(m, {0, 1, 0}));
-        double rotation = 0;
-        if (std::abs(pole[1] - 1) > 1e-4) {
-            warn(place, "LightSource infinite: its pole (+z) is not world +y; the map is left unrotated");
-        } else {
-            // Ours: u = 0.5 + (atan2(d.x, -d.z) - rotation) / 2pi; pbrt's u = 0 looks along u0.
-            rotation = std::atan2(u0[0], -u0[2]) * 180 / kPiD + 180;
-            // u grows from u0 towards u90 in pbrt; in ours towards atan2 increasing.
-            const double a0 = std::atan2(u0[0], -u0[2]), a90 = std::atan2(u90[0], -u90[2]);
-            if (std::sin(a90 - a0) < 0)
-                warn(place, "LightSource infinite: the map's frame is mirrored against ours; "
-                            "rendered unmirrored");
-        }
-        out_["background"] = {{"type", "environment"},
-                              {"file", reader_.relative(f.strings[0])},
-                              {"scale", json::array({scale, scale, scale})},
-                              {"rotation", rotation}};
+        std::array<V3, 3> axes;
+        bool rigid;
+        if (!affine::rotation_axes(m, &axes, &rigid))
+            fail(place, "LightSource infinite: its transform is singular");
+        if (!rigid)
+            warn(place, "LightSource infinite: its transform is not a rotation (times a uniform "
+                        "scale); the rotation of its x and y axes is used");
+        json bg = {{"type", "environment"},
+                   {"mapping", "equal_area"},
+                   {"file", reader_.relative(f.strings[0])},
+                   {"scale", json::array({scale, scale, scale})}};
+        const std::array<V3, 3> identity{V3{1, 0, 0}, V3{0, 1, 0}, V3{0, 0, 1}};
+        if (axes != identity) bg["to_world"] = affine::axes_matrix(axes);
+        out_["background"] = std::move(bg);
     }
 
     // ---- media ----

@@ -112,15 +112,17 @@ LightSet::LightSet(const Scene& scene) {
         float lum = luminance(bg.radiance);
         if (bg.kind == Background::Kind::Environment) {
             const ImageData& img = scene.images[bg.image];
-            // Texel weights: luminance times sin(theta) (the area of the texel's band of the
-            // sphere), plus a small floor so that no direction the bilinear lookup can light
-            // has zero density.
+            // Texel weights: luminance times the texel's solid angle (for a latitude-longitude
+            // map, in proportion to sin(theta), the area of its band of the sphere; equal-area
+            // texels are all alike), plus a small floor so that no direction the lookup can
+            // light has zero density.
+            const bool equal_area = bg.mapping == Background::Mapping::EqualArea;
             std::vector<float> w(static_cast<size_t>(img.width) * img.height);
             double mean = 0;
             for (int y = 0; y < img.height; ++y) {
-                float sin_theta = std::sin(kPi * (y + 0.5f) / img.height);
+                float area = equal_area ? 1.0f : std::sin(kPi * (y + 0.5f) / img.height);
                 for (int x = 0; x < img.width; ++x) {
-                    float v = luminance(img.texel(x, y)) * sin_theta;
+                    float v = luminance(img.texel(x, y)) * area;
                     w[static_cast<size_t>(y) * img.width + x] = v;
                     mean += v;
                 }
@@ -128,7 +130,8 @@ LightSet::LightSet(const Scene& scene) {
             mean /= static_cast<double>(w.size());
             for (float& v : w) v += static_cast<float>(1e-3 * mean) + 1e-12f;
             environment_ = Distribution2D(w, img.width, img.height);
-            lum *= static_cast<float>(mean * 2.0 / kPi);  // mean luminance over the sphere
+            // The mean luminance over the sphere (the mean of sin(theta) over rows is 2 / pi).
+            lum *= static_cast<float>(equal_area ? mean : mean * 2.0 / kPi);
         }
         power.push_back(4.0f * kPi * kPi * r * r * lum);
         area_power.push_back(power.back());
@@ -210,10 +213,10 @@ LightSample LightSet::sample(
         } else {
             float u, row, pdf_uv;
             environment_.sample(u1, u2, &u, &row, &pdf_uv);
-            float sin_theta = std::sin(kPi * row);
-            if (sin_theta <= 0.0f) return ls;
+            const float jacobian = environment_jacobian(bg, row);
+            if (jacobian <= 0.0f) return ls;
             ls.wi = environment_direction(bg, u, row);
-            pdf = pdf_uv / (2.0f * kPi * kPi * sin_theta);
+            pdf = pdf_uv / jacobian;
         }
         ls.radiance = eval_background(scene, ls.wi);
         ls.pdf = pdf * select_prob;
@@ -310,9 +313,9 @@ float LightSet::pdf_background(const Scene& scene, Vec3 wi) const {
     const Background& bg = scene.background;
     if (bg.kind == Background::Kind::Constant) return sel * uniform_sphere_pdf();
     Vec2 uv = environment_uv(bg, wi);
-    float sin_theta = std::sin(kPi * uv.y);
-    if (sin_theta <= 0.0f) return 0.0f;
-    return sel * environment_.pdf(uv.x, uv.y) / (2.0f * kPi * kPi * sin_theta);
+    const float jacobian = environment_jacobian(bg, uv.y);
+    if (jacobian <= 0.0f) return 0.0f;
+    return sel * environment_.pdf(uv.x, uv.y) / jacobian;
 }
 
 float LightSet::pdf_direction(const Scene& scene, Point3 ref, Vec3 wi) const {

@@ -1,11 +1,12 @@
 // The media a path is inside, innermost last. Crossing into a shape pushes its interior
 // medium (kNone for a shape without one: a glass ball in fog is fog-free inside); crossing out
-// pops. Media nest at most kMaxNesting deep; deeper nesting is clamped (the innermost wins).
+// pops (under the scene's Nested rule; see MediumBoundaries for the other). Media nest at most kMaxNesting deep; deeper nesting is clamped (the innermost wins).
 #pragma once
 
 #include <cstdint>
 
 #include "wavetrace/scene/ids.h"
+#include "wavetrace/scene/medium.h"
 
 namespace wavetrace {
 
@@ -24,8 +25,10 @@ struct MediumStack {
     void pop() {
         if (size > 0) --size;
     }
-    // Crossing a surface with interior `m`: entering from its front pushes, leaving pops.
-    void cross(MediumId m, bool entering) {
+    // Crossing a surface with interior `m`: entering from its front pushes, leaving pops; with
+    // Interface boundaries entering makes m the only medium and leaving empties the stack.
+    void cross(MediumId m, bool entering, MediumBoundaries rule) {
+        if (rule == MediumBoundaries::Interface) size = 0;
         if (entering)
             push(m);
         else

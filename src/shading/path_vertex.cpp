@@ -276,8 +276,8 @@ bool scatters_in_medium(const Scene& scene,
     return lanes::ScattersInMedium<OneLane>(seg, scene.media[m].density, &flight, s);
 }
 
-Ray cross_boundary(const SurfaceHit& s, Vec3 dir, MediumStack& media) {
-    media.cross(s.interior, s.front_face);
+Ray cross_boundary(const Scene& scene, const SurfaceHit& s, Vec3 dir, MediumStack& media) {
+    media.cross(s.interior, s.front_face, scene.medium_boundaries);
     return Ray{s.p + origin_offset(s.p) * dir, dir};
 }
 
@@ -316,7 +316,7 @@ SegmentResult resolve_segment(const Scene& scene,
     const MaterialKind kind = scene.materials[s.material].kind;
     if (kind == MaterialKind::Interface) {
         r.event = SegmentEvent::Cross;
-        r.next = cross_boundary(s, dir, media);
+        r.next = cross_boundary(scene, s, dir, media);
         return r;
     }
     if (const Material& mat = scene.materials[s.material]; mat.is_emissive()) {
@@ -381,7 +381,7 @@ PathStep continue_path(const Scene& scene,
         lanes::to_lanes(beta * c.weight), u_roulette, bounce + 1 >= config.rr_depth);
     if (!rr.survives) return step;
     step.weight = c.weight * rr.scale;
-    if (c.transmitted) media.cross(v.interior, dot(c.wi, v.ng) < 0.0f);
+    if (c.transmitted) media.cross(v.interior, dot(c.wi, v.ng) < 0.0f, scene.medium_boundaries);
     step.prev = {v.p, c.pdf_bsdf, c.delta || !can_sample_lights(v, lights)};
     step.next = Ray{offset_origin(v, c.wi), c.wi};
     step.alive = true;

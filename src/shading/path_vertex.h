@@ -193,7 +193,7 @@ bool scatters_in_medium(const Scene& scene,
 
 // A segment of unit direction dir reaches s, a medium boundary (an Interface surface): the path
 // crosses into or out of its interior (`media`) and goes straight on, from just past it.
-Ray cross_boundary(const SurfaceHit& s, Vec3 dir, MediumStack& media);
+Ray cross_boundary(const Scene& scene, const SurfaceHit& s, Vec3 dir, MediumStack& media);
 
 // Resolves one ray segment given its closest hit: medium scattering before the hit (consuming
 // `flight`, the optical depth left, drawn once per segment), escaping, emitters, medium

@@ -50,7 +50,7 @@ float transmittance_walk(
         // A surface blocks it; only a boundary needs the point, to step over it.
         if (!scene.is_boundary(scene.prim_material(hit.prim))) return 0.0f;
         SurfaceHit s = surface_at(scene, ray, hit);
-        media.cross(s.interior, s.front_face);
+        media.cross(s.interior, s.front_face, scene.medium_boundaries);
         ray.tmin = hit.t;
         // Step over the boundary: restart just past it along the same line.
         ray.o = ray.at(hit.t) + origin_offset(s.p) * normalize(ray.d);

@@ -116,3 +116,19 @@ def test_an_asset_root_confines_the_files_read(tmp_path):
     assert wt.load_scene(SCENES / "bunny.json", asset_root=SCENES).info()["triangles"] > 0
     with pytest.raises(wt.SceneError, match="outside the asset root"):
         wt.load_scene(SCENES / "bunny.json", asset_root=tmp_path)
+
+
+def test_an_environment_map_and_the_medium_rule_are_set_as_in_json(tmp_path):
+    (tmp_path / "s.json").write_text(json.dumps({
+        "camera": {"look_from": [0, 0, 5], "look_at": [0, 0, 0]},
+        "background": {"type": "environment", "file": "sky.pfm", "mapping": "equal_area",
+                       "to_world": [[1, 0, 0], [0, 0, 1], [0, -1, 0]]},
+        "medium_boundaries": "interface", "objects": []}))
+    sky = np.ones((4, 4, 3), dtype=np.float32)
+    wt.write_image(str(tmp_path / "sky.pfm"), sky)
+    s = wt.load_scene(tmp_path / "s.json")
+    assert s.background.mapping == wt.Background.Mapping.EqualArea
+    assert np.allclose(s.background.to_world, [[1, 0, 0], [0, 0, 1], [0, -1, 0]])
+    assert s.medium_boundaries == wt.MediumBoundaries.Interface
+    b = wt.Background(kind=wt.Background.Kind.Environment, to_world=None)
+    assert b.to_world is None and b.mapping == wt.Background.Mapping.LatLong

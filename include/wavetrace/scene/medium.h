@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstdint>
 #include <string>
 
 #include "wavetrace/scene/ids.h"
@@ -10,6 +11,18 @@ namespace wavetrace {
 // (constant_medium in Ray Tracing: The Next Week). Extinction coefficient sigma_t = density, the
 // same in every channel; scattering follows `phase` (an Isotropic material whose albedo is the
 // single-scattering albedo sigma_s / sigma_t).
+// How crossing a medium boundary changes the medium a path is in.
+enum class MediumBoundaries : uint8_t {
+    // Boundaries nest: entering a shape puts the path in its interior medium, leaving it puts
+    // the path back in the medium it was in before (a glass of water in fog).
+    Nested,
+    // Mitsuba 3's rule (and pbrt-v4's, for shapes without an outside medium): the medium after
+    // a crossing is the crossed shape's own, its interior when entering and vacuum when
+    // leaving, whatever the path was in before; overlapping shapes of one medium are not
+    // merged, so leaving one inside the other reaches vacuum.
+    Interface,
+};
+
 struct Medium {
     std::string name;
     float density = 0.0f;  // per world unit

@@ -44,6 +44,7 @@ struct Scene {
     Camera camera;
     RenderSettings render;
     Background background;
+    MediumBoundaries medium_boundaries = MediumBoundaries::Nested;
 
     std::vector<Texture> textures;
     std::vector<ImageData> images;

@@ -1,4 +1,4 @@
-#include "loaders/mesh_guards.h"
+#include "formats/mesh_guards.h"
 
 #include <algorithm>
 #include <bit>

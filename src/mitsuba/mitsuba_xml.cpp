@@ -3,7 +3,7 @@
 // own parser upgrades them), then the tree is translated plugin by plugin. Mitsuba's scene
 // format and plugin parameters are documented in its manual ("Scene file format", "Plugin
 // reference"); every default below is the manual's.
-#include "formats/mitsuba_xml.h"
+#include "mitsuba/mitsuba_xml.h"
 
 #include <algorithm>
 #include <array>
@@ -489,7 +489,11 @@ class Translator {
         }
         if (!sensor) warn(scene, "no <sensor>: Mitsuba's default camera at the origin looking down +z");
         if (!integrator) out_["render"]["max_depth"] = kMaxDepth;
-        if (!media_.empty()) out_["media"] = media_;
+        if (!media_.empty()) {
+            out_["media"] = media_;
+            // Mitsuba sets the medium at each crossing from the crossed shape alone.
+            out_["medium_boundaries"] = "interface";
+        }
         if (!lights_.empty()) out_["lights"] = lights_;
         doc_.scene = std::move(out_);
         return std::move(doc_);
@@ -735,10 +739,19 @@ class Translator {
             warn(e, "texture \"" + type + "\" is not supported; a grey 0.5 stands for it");
             return 0.5;
         }
-        if (const Element* to_uv = p.get("to_uv")) {
-            if (to_uv->tag != "transform") fail(*to_uv, "to_uv should be a <transform>");
-            t["uv_transform"] = uv_transform(*to_uv, read_transform(*to_uv));
+        const Element* to_uv = p.get("to_uv");
+        if (to_uv && to_uv->tag != "transform") fail(*to_uv, "to_uv should be a <transform>");
+        Xform x = to_uv ? read_transform(*to_uv) : Xform{};
+        if (type == "checkerboard") {
+            // Mitsuba reads an OBJ's uvs as (u, 1 - v) (`flip_tex_coords`), where wavetrace
+            // keeps the file's; images agree all the same (Mitsuba's rows run from the top),
+            // but a checkerboard's cells would swap: it is looked up at to_uv(u, 1 - v).
+            for (int row : {0, 4}) {
+                x.m[row + 3] += x.m[row + 1];
+                x.m[row + 1] = -x.m[row + 1];
+            }
         }
+        if (to_uv || type == "checkerboard") t["uv_transform"] = uv_transform(to_uv ? *to_uv : e, x);
         p.finish({"format", "accel"});
         return t;
     }
@@ -1068,15 +1081,18 @@ class Translator {
                                {"irradiance", color_property(p, "irradiance",
                                                              to_json_color(kD65Rgb), false, true)}});
         } else if (type == "constant" || type == "envmap") {
-            if (out_.contains("background"))
+            if (out_.contains("background")) {
                 warn(e, "a second background emitter is ignored (wavetrace has one background)");
-            else if (type == "constant")
-                out_["background"] = {{"type", "constant"},
-                                      {"radiance", color_property(p, "radiance",
-                                                                  to_json_color(kD65Rgb), false,
-                                                                  true)}};
-            else
-                out_["background"] = envmap(e, p, to_world);
+            } else {
+                doc_.background_place = e.place;
+                if (type == "constant")
+                    out_["background"] = {{"type", "constant"},
+                                          {"radiance", color_property(p, "radiance",
+                                                                      to_json_color(kD65Rgb),
+                                                                      false, true)}};
+                else
+                    out_["background"] = envmap(e, p, to_world);
+            }
         } else {
             warn(e, "emitter \"" + type + "\" is not supported; ignored");
             return;
@@ -1086,25 +1102,30 @@ class Translator {
 
     // Mitsuba's envmap looks up direction d (in its local frame, +y up) at
     // u = atan2(d.x, -d.z) / 2pi, v = acos(d.y) / pi, rows from pole to pole; ours puts
-    // u = 0.5 + (atan2(d.x, -d.z) - rotation) / 2pi. A to_world turning about +y by any angle
-    // maps to our rotation; other frames cannot be expressed.
+    // u = 0.5 + (atan2(d.x, -d.z) - rotation) / 2pi in the map's frame. A to_world turning
+    // about +y maps to our rotation alone; any other rotation becomes the map's `to_world`.
     json envmap(const Element& e, Props& p, const Xform& to_world) {
         const std::string f = p.string("filename", "");
         if (f.empty()) fail(e, "envmap: needs a filename");
         const double scale = p.number("scale", 1.0);
-        const V3 up = to_world.vector(0, 1, 0);
-        const V3 back = to_world.vector(0, 0, -1);
-        const bool rigid = std::abs(norm(up) - 1) < 1e-5 && std::abs(norm(back) - 1) < 1e-5 &&
-                           std::abs(up[1] - 1) < 1e-5 &&
-                           std::abs(dot(to_world.vector(1, 0, 0), cross(to_world.vector(0, 1, 0),
-                                                                     to_world.vector(0, 0, 1))) -
-                                    1) < 1e-5;
-        double rotation = 180;
-        if (rigid) rotation = std::atan2(back[0], -back[2]) * 180 / kPiD + 180;
-        else warn(e, "envmap: to_world is not a rotation about +y; the map is left unrotated");
-        return {{"type", "environment"}, {"file", file(e, f)},
-                {"scale", json::array({scale, scale, scale})}, {"rotation", rotation},
-                {"rows_at_poles", true}};
+        std::array<V3, 3> axes;
+        bool rigid;
+        if (!affine::rotation_axes(to_world.m, &axes, &rigid)) fail(e, "envmap: to_world is singular");
+        if (!rigid)
+            warn(e, "envmap: to_world is not a rotation (times a uniform scale); the rotation "
+                    "of its x and y axes is used");
+        json bg = {{"type", "environment"}, {"file", file(e, f)},
+                   {"scale", json::array({scale, scale, scale})}, {"rows_at_poles", true}};
+        const V3 up = axes[1], back = affine::normalized({-axes[2][0], -axes[2][1], -axes[2][2]});
+        const bool about_y = std::abs(up[1] - 1) < 1e-5 &&
+                             affine::dot(axes[0], affine::cross(axes[1], axes[2])) > 0;
+        if (about_y) {
+            bg["rotation"] = std::atan2(back[0], -back[2]) * 180 / kPiD + 180;
+        } else {
+            bg["rotation"] = 180;
+            bg["to_world"] = affine::axes_matrix(axes);
+        }
+        return bg;
     }
 
     void sensor_(const Element& e) {

@@ -17,6 +17,8 @@ struct MitsubaDocument {
     nlohmann::json scene;  // our JSON scene; file names relative to the XML file's folder
     // For each entry of scene["objects"]: the XML element it came from ("a.xml:12").
     std::vector<std::string> object_places;
+    // The element the background came from, if any.
+    std::string background_place;
 };
 
 // Reads `path` with its includes; `params` are the -D name=value overrides of <default>s.
