@@ -346,11 +346,8 @@ class Loader {
         const Frame f{{rows[0].x, rows[1].x, rows[2].x},
                       {rows[0].y, rows[1].y, rows[2].y},
                       {rows[0].z, rows[1].z, rows[2].z}};
-        const Vec3 axes[3] = {f.s, f.t, f.n};
-        for (int i = 0; i < 3; ++i)
-            for (int j = 0; j < 3; ++j)
-                if (std::abs(dot(axes[i], axes[j]) - (i == j ? 1.0f : 0.0f)) > 1e-4f)
-                    v.fail("expected a rotation (orthonormal columns), got " + v.describe());
+        if (!f.is_orthonormal(1e-4f))
+            v.fail("expected a rotation (orthonormal columns), got " + v.describe());
         return f;
     }
 

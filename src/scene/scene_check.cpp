@@ -120,13 +120,8 @@ void check_scene(const Scene& scene) {
         bg.mapping == Background::Mapping::EqualArea &&
         scene.images[bg.image].width != scene.images[bg.image].height)
         throw SceneError("scene: an equal-area environment map must be square");
-    if (bg.frame) {
-        const Vec3 axes[3] = {bg.frame->s, bg.frame->t, bg.frame->n};
-        for (int i = 0; i < 3; ++i)
-            for (int j = 0; j < 3; ++j)
-                if (!finite(axes[i]) || !(std::abs(dot(axes[i], axes[j]) - (i == j)) <= 1e-4f))
-                    throw SceneError("scene: the environment's frame is not a rotation");
-    }
+    if (bg.frame && !bg.frame->is_orthonormal(1e-4f))
+        throw SceneError("scene: the environment's frame is not a rotation");
     const Camera& c = scene.camera;
     if (!finite(c.look_from) || !finite(c.look_at) || !finite(c.up) ||
         length(c.look_at - c.look_from) == 0 || length(cross(c.up, c.look_at - c.look_from)) == 0)

@@ -16,6 +16,9 @@ struct Frame {
     static Frame from_normal(Vec3 n);
     constexpr Vec3 to_local(Vec3 v) const { return {dot(v, s), dot(v, t), dot(v, n)}; }
     constexpr Vec3 to_world(Vec3 v) const { return v.x * s + v.y * t + v.z * n; }
+    // True when s, t, n are finite, of unit length and perpendicular to within `tolerance`
+    // (a rotation, possibly mirrored).
+    bool is_orthonormal(float tolerance) const;
 };
 
 }  // namespace wavetrace
