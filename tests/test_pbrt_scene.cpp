@@ -295,6 +295,22 @@ TEST(PbrtScenes, InfiniteLightImagesAreEqualAreaMapsInTheLightsFrame) {
                          std::copysign(std::sin(phi), b) * planar, z);
             EXPECT_EQ(eval_background(s, {l.x, l.z, -l.y}).x, 2.0f * (x + 10 * y)) << x << y;
         }
+    // `illuminance` as pbrt-v4 applies it: scale E_v / k_e, k_e the sum over the texels whose
+    // centre lies above the map's horizon of Y cos(theta), times 2 pi / N.
+    path = dir.write("i.pbrt", head + "LightSource \"infinite\" \"string filename\" "
+                                      "\"sky.exr\" \"float illuminance\" 3\nAttributeEnd\n");
+    s = load_scene(path, collecting());
+    EXPECT_TRUE(warnings.empty()) << (warnings.empty() ? "" : warnings.front());
+    double k_e = 0;
+    for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 4; ++x) {
+            const float a = 2 * (x + 0.5f) / 4 - 1, b = 2 * (y + 0.5f) / 4 - 1;
+            const float r = 1 - std::abs(1 - std::abs(a) - std::abs(b));
+            const float z = std::copysign(1 - r * r, 1 - std::abs(a) - std::abs(b));
+            if (z > 0) k_e += (x + 10 * y) * z;  // a grey texel's luminance is its value
+        }
+    k_e *= 2 * 3.14159265 / 16;
+    EXPECT_NEAR(s.background.radiance.x, 3 / k_e, 1e-5 * 3 / k_e);
     auto wide = dir.write("b.pbrt", head + "LightSource \"infinite\" \"string filename\" "
                                            "\"wide.exr\"\nAttributeEnd\n");
     const std::string e = error_of(wide);

@@ -329,6 +329,17 @@ class Loader {
                               "' is " + std::to_string(img.width) + " x " +
                               std::to_string(img.height));
             }
+            if (auto x = o.optional("illuminance")) {
+                // Scaled so that a surface facing the map's pole receives this illuminance
+                // (pbrt-v4's `illuminance`), then by `scale`.
+                const float target = x->positive();
+                const double e = environment_illuminance(bg, scene_.images[bg.image]);
+                const float k = static_cast<float>(target / e);
+                if (!(e > 0) || !std::isfinite(k))
+                    x->fail("the map '" + resolve(file).string() + "' is black above its "
+                            "horizon: no scale gives it an illuminance of " + x->describe());
+                bg.radiance = bg.radiance * k;
+            }
             if (auto x = o.optional("to_world")) bg.frame = rotation_frame(*x);
         } else {
             o.required("type").fail("unknown background type \"" + type +

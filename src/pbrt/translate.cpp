@@ -1162,7 +1162,6 @@ class Translator {
     void infinite_map(PbrtParams& p, const PbrtParam& f, const M4& m, double scale,
                       const std::string& place) {
         if (f.strings.size() != 1) fail(f.place, "\"filename\" should be one string");
-        if (p.get("illuminance")) warn(place, "LightSource infinite: illuminance is not supported for images");
         if (p.get("L")) warn(place, "LightSource infinite: L beside an image is ignored");
         std::array<V3, 3> axes;
         bool rigid;
@@ -1175,6 +1174,11 @@ class Translator {
                    {"mapping", "equal_area"},
                    {"file", reader_.relative(f.strings[0])},
                    {"scale", json::array({scale, scale, scale})}};
+        // pbrt-v4 sums the upper hemisphere's texels as if each spanned 2 pi / N sr, half an
+        // equal-area texel's 4 pi / N, so its maps reach twice the illuminance asked for: kept,
+        // so that its scenes render as pbrt-v4 renders them.
+        const double illuminance = p.number("illuminance", -1);
+        if (illuminance > 0) bg["illuminance"] = 2 * illuminance;
         const std::array<V3, 3> identity{V3{1, 0, 0}, V3{0, 1, 0}, V3{0, 0, 1}};
         if (axes != identity) bg["to_world"] = affine::axes_matrix(axes);
         out_["background"] = std::move(bg);

@@ -6,6 +6,7 @@
 #include "math/equal_area.h"
 #include "wavetrace/math/constants.h"
 #include "wavetrace/scene/scene.h"
+#include "wavetrace/scene/texture.h"
 
 namespace wavetrace {
 
@@ -38,6 +39,28 @@ Vec3 environment_direction(const Background& bg, float u, float row) {
 float environment_jacobian(const Background& bg, float row) {
     if (bg.mapping == Background::Mapping::EqualArea) return 4.0f * kPi;
     return 2.0f * kPi * kPi * std::sin(kPi * row);
+}
+
+double environment_illuminance(const Background& bg, const ImageData& image) {
+    const bool equal_area = bg.mapping == Background::Mapping::EqualArea;
+    // Lat-long rows sit at their bands' centres, or on the poles with rows_at_poles (the end
+    // rows then carry no solid angle); columns are centred either way.
+    const bool at_poles = !equal_area && bg.rows_at_poles && image.height > 1;
+    const double dv = at_poles ? 1.0 / (image.height - 1) : 1.0 / image.height;
+    const double du = 1.0 / image.width;
+    Background own = bg;
+    own.frame.reset();
+    double sum = 0.0;
+    for (int y = 0; y < image.height; ++y) {
+        const float row = static_cast<float>(at_poles ? y * dv : (y + 0.5) * dv);
+        const double jacobian = environment_jacobian(own, row);
+        for (int x = 0; x < image.width; ++x) {
+            const Vec3 w = environment_direction(own, static_cast<float>((x + 0.5) * du), row);
+            const double cos_theta = equal_area ? w.z : w.y;
+            if (cos_theta > 0) sum += luminance(image.texel(x, y)) * cos_theta * jacobian;
+        }
+    }
+    return sum * du * dv;
 }
 
 Color eval_background(const Scene& scene, Vec3 d) {

@@ -49,4 +49,12 @@ Vec2 environment_uv(const Background& bg, Vec3 unit_dir);
 Vec3 environment_direction(const Background& bg, float u, float row);
 float environment_jacobian(const Background& bg, float row);
 
+struct ImageData;
+// The illuminance that environment image `image`, in bg's mapping and at unit scale, casts on
+// a surface facing the map's pole (+z of an equal-area map, +y of a lat-long one: its top row),
+// in the map's own frame: E = integral over the upper hemisphere of Y(L) cos(theta) d omega,
+// Y the Rec. 709 luminance, as the Riemann sum over texel centres (each texel's solid angle
+// from the mapping's Jacobian). Scenes scale a map by E_target / E to meet an illuminance.
+double environment_illuminance(const Background& bg, const ImageData& image);
+
 }  // namespace wavetrace
