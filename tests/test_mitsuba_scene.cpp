@@ -15,9 +15,12 @@
 #include "load_warnings.h"
 #include "formats/spectrum_rgb.h"
 #include "temp_dir.h"
+#include "wavetrace/accel/bvh.h"
 #include "wavetrace/image/image.h"
 #include "wavetrace/loaders/load_scene.h"
 #include "wavetrace/scene/scene.h"
+#include "wavetrace/scene/texture.h"
+#include "wavetrace/shading/surface.h"
 
 using namespace wavetrace;
 
@@ -142,6 +145,72 @@ TEST(MitsubaScenes, ShapesTransformsAndMaterialsTranslate) {
     EXPECT_NEAR(plastic.alpha_u, 0.1f, 1e-6f);  // roughplastic's defaults: Beckmann, 0.1
     EXPECT_EQ(plastic.distribution, Microfacet::Beckmann);
     EXPECT_NEAR(plastic.ior, 1.49f / 1.000277f, 1e-5f);  // polypropylene in air
+}
+
+// Textures sit where Mitsuba puts them: at its uv of each shape, (u, v) = ((x + 1) / 2,
+// (y + 1) / 2) on a rectangle, a PLY's uv as in the file, an OBJ's as (u, 1 - v), on the cube's
+// +z face ((y + 1) / 2, (x + 1) / 2) (its vertices (1, -1, 1), (1, 1, 1), (-1, 1, 1), (-1, -1, 1)
+// carry uv (0, 1), (1, 1), (1, 0), (0, 0)); then `to_uv`; then an image's texel in column u W
+// and row v H from the top, a checkerboard's color0 where u and v (mod 1) lie on the same side
+// of 0.5. The image's texel (i, j) holds i + 10 j; each point is a texel centre.
+TEST(MitsubaScenes, TexturesSitWhereMitsubaPutsThem) {
+    TempDir dir;
+    Image img(4, 4);
+    for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 4; ++i) img.at(i, j) = Color(static_cast<float>(i + 10 * j));
+    write_image(dir.path() / "t.exr", img);
+    const std::string square = "-1 -1 0 0 0\n1 -1 0 1 0\n1 1 0 1 1\n-1 1 0 0 1\n";
+    dir.write("m.ply", "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\n"
+                       "property float y\nproperty float z\nproperty float u\nproperty float v\n"
+                       "element face 2\nproperty list uchar int vertex_indices\nend_header\n" +
+                           square + "3 0 1 2\n3 0 2 3\n");
+    dir.write("m.obj", "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+                       "f 1/1 2/2 3/3\nf 1/1 3/3 4/4\n");
+    const std::string image = R"(<bsdf type="diffuse"><texture name="reflectance" type="bitmap">
+      <string name="filename" value="t.exr"/><boolean name="raw" value="true"/>)";
+    auto at = [](int x) { return "<transform name=\"to_world\"><translate x=\"" +
+                                 std::to_string(x) + "\"/></transform>"; };
+    auto path = dir.write("a.xml", scene(R"(<sensor type="perspective"/>
+  <shape type="rectangle">)" + at(0) + image + R"(</texture></bsdf></shape>
+  <shape type="rectangle">)" + at(3) + image + R"(
+      <transform name="to_uv"><scale x="2"/><translate x="0.125" y="0.5"/></transform>
+    </texture></bsdf></shape>
+  <shape type="rectangle">)" + at(6) + R"(<bsdf type="diffuse">
+    <texture name="reflectance" type="checkerboard"><rgb name="color0" value="0.25"/>
+      <rgb name="color1" value="0.75"/></texture></bsdf></shape>
+  <shape type="ply"><string name="filename" value="m.ply"/>)" + at(9) + image + R"(</texture></bsdf></shape>
+  <shape type="obj"><string name="filename" value="m.obj"/>)" + at(12) + image + R"(</texture></bsdf></shape>
+  <shape type="cube">)" + at(15) + image + R"(</texture></bsdf></shape>)"));
+    Scene s = load_scene(path, collecting());
+    EXPECT_TRUE(warnings.empty()) << warnings.front();
+    const Bvh bvh = Bvh::build(s);
+    // The texture's value seen from above at (x, y) (the cube's top face at z = 1).
+    auto seen = [&](float x, float y) {
+        const Ray ray{{x, y, 3}, {0, 0, -1}};
+        const Hit hit = bvh.intersect(ray);
+        EXPECT_TRUE(hit.found()) << x << ", " << y;
+        if (!hit.found()) return -1.0f;
+        const SurfaceHit h = surface_at(s, ray, hit);
+        return eval_texture(s, s.materials[h.material].albedo, h.uv, h.p).x;
+    };
+    for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 4; ++i) {
+            const float u = (i + 0.5f) / 4, v = (j + 0.5f) / 4;  // Mitsuba's uv there
+            const float texel = i + 10.0f * j;
+            // Rectangle: (x, y) = (2u - 1, 2v - 1).
+            EXPECT_EQ(seen(2 * u - 1, 2 * v - 1), texel) << "rectangle " << i << j;
+            // to_uv: u' = 2u + 0.125, v' = v + 0.5 (mod 1).
+            const float u2 = std::fmod(2 * u + 0.125f, 1.0f), v2 = std::fmod(v + 0.5f, 1.0f);
+            EXPECT_EQ(seen(3 + 2 * u - 1, 2 * v - 1),
+                      std::floor(u2 * 4) + 10 * std::floor(v2 * 4)) << "to_uv " << i << j;
+            EXPECT_EQ(seen(6 + 2 * u - 1, 2 * v - 1), (u > 0.5f) == (v > 0.5f) ? 0.25f : 0.75f)
+                << "checkerboard " << i << j;
+            // PLY: the file's uv (u, v) = ((x + 1) / 2, (y + 1) / 2); OBJ: v = 1 - file's.
+            EXPECT_EQ(seen(9 + 2 * u - 1, 2 * v - 1), texel) << "ply " << i << j;
+            EXPECT_EQ(seen(12 + 2 * u - 1, 1 - 2 * v), texel) << "obj " << i << j;
+            // Cube, +z face: (x, y) = (2v - 1, 2u - 1).
+            EXPECT_EQ(seen(15 + 2 * v - 1, 2 * u - 1), texel) << "cube " << i << j;
+        }
 }
 
 // Mitsuba's disk (the unit disk at z = 0 facing +z, −z with flip_normals) and cylinder (open,
@@ -366,9 +435,11 @@ TEST(MitsubaScenes, WhatCannotBeRepresentedIsAWarningWithItsPlace) {
     auto path = dir.write("a.xml", scene(R"(<shape type="sphere"/>
   <shape type="bsplinecurve"><string name="filename" value="a.txt"/></shape>
   <shape type="sphere"><bsdf type="hair"/></shape>
-  <shape type="sphere"><float name="wobble" value="1"/></shape>)"));
+  <shape type="sphere"><float name="wobble" value="1"/></shape>
+  <shape type="disk"><bsdf type="diffuse"><texture name="reflectance" type="checkerboard"/></bsdf></shape>)"));
     Scene s = load_scene(path, collecting());
     EXPECT_EQ(s.spheres.size(), 3u);
+    EXPECT_TRUE(warned("a.xml:6: warning: disk: its texture coordinates are wavetrace's, not Mitsuba's"));
     EXPECT_TRUE(warned("a.xml:3: warning: shape \"bsplinecurve\" is not supported"))
         << warnings.size();
     EXPECT_TRUE(warned("a.xml:4: warning: bsdf \"hair\""));

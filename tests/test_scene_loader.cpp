@@ -8,8 +8,10 @@
 
 #include "temp_dir.h"
 #include "test_paths.h"
+#include "wavetrace/accel/bvh.h"
 #include "wavetrace/loaders/load_scene.h"
 #include "wavetrace/scene/scene.h"
+#include "wavetrace/shading/surface.h"
 
 using namespace wavetrace;
 
@@ -437,6 +439,39 @@ TEST(SceneLoader, MirroringTransformsKeepOutsidesOutside) {
     Vec3 n =
         cross(s.positions[t.v[1]] - s.positions[t.v[0]], s.positions[t.v[2]] - s.positions[t.v[0]]);
     EXPECT_LT(n.z, 0.0f);
+}
+
+// `flip_v` reads a mesh's uvs as (u, 1 - v) and gives a quad (a, 1 - b); a mirroring transform
+// leaves each point of a quad its texture coordinates (the quad turns to face outwards).
+TEST(SceneLoader, FlipVAndMirrorsKeepTextureCoordinates) {
+    TempDir dir;
+    dir.write("t.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0.25\nvt 1 0.25\nvt 0 1\nf 1/1 2/2 3/3\n");
+    std::filesystem::path p = dir.write("x.json", scene_with_objects(R"(
+        {"type": "quad", "q": [0, 0, 0], "u": [1, 0, 0], "v": [0, 1, 0], "material": "white",
+         "flip_v": true},
+        {"type": "quad", "q": [3, 0, 0], "u": [1, 0, 0], "v": [0, 1, 0], "material": "white",
+         "transform": [{"scale": [-1, 1, 1]}, {"translate": [9, 0, 0]}]},
+        {"type": "mesh", "file": "t.obj", "material": "white", "flip_v": true}
+    )"));
+    Scene s = load_scene(p);
+    ASSERT_EQ(s.uvs.size(), 3u);
+    EXPECT_EQ(s.uvs[0].y, 0.75f);
+    EXPECT_EQ(s.uvs[2].y, 0.0f);
+    const Bvh bvh = Bvh::build(s);
+    auto uv_at = [&](float x, float y) {
+        const Ray ray{{x, y, 5}, {0, 0, -1}};
+        const Hit hit = bvh.intersect(ray);
+        EXPECT_TRUE(hit.found());
+        return surface_at(s, ray, hit).uv;
+    };
+    const Vec2 flipped = uv_at(0.25f, 0.125f);
+    EXPECT_NEAR(flipped.x, 0.25f, 1e-6f);
+    EXPECT_NEAR(flipped.y, 0.875f, 1e-6f);
+    // (a, b) = (0.25, 0.125) was at x = 3.25 before the mirror, 9 - 3.25 after.
+    const Vec2 mirrored = uv_at(5.75f, 0.125f);
+    EXPECT_NEAR(mirrored.x, 0.25f, 1e-6f);
+    EXPECT_NEAR(mirrored.y, 0.125f, 1e-6f);
+    EXPECT_GT(cross(s.quads[1].u, s.quads[1].v).z, 0.0f);
 }
 
 TEST(SceneLoader, ReflectancesAboveOneAndFarGeometryAreRejected) {

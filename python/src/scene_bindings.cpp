@@ -160,6 +160,7 @@ void bind_scene(py::module_& m) {
         .def_readwrite("u", &Quad::u)
         .def_readwrite("v", &Quad::v)
         .def_readwrite("material", &Quad::material)
+        .def_readwrite("flip_v", &Quad::flip_v)
         .def_readwrite("interior", &Quad::interior);
 
     py::class_<Light> light(m, "Light", "A point, spot or directional light.");

@@ -484,6 +484,7 @@ size_t VertexBlock::start_row(size_t entry_, HitShape shape_, const BsdfParams& 
     alpha[k] = bsdf.alpha;
     lobe[k] = int32_t(lane_lobe(bsdf.kind));
     smooth[k] = 0;
+    flip_v[k] = 0;
     entry[k] = static_cast<uint32_t>(entry_);
     return k;
 }
@@ -509,6 +510,7 @@ size_t VertexBlock::push_quad_hit(size_t entry_,
     const size_t k = start_row(entry_, HitShape::Quad, bsdf, beta_);
     hit_u[k] = u;
     hit_v[k] = v;
+    flip_v[k] = quad.flip_v ? 1 : 0;
     for (int a = 0; a < 3; ++a) {
         dir[a][k] = d[a];
         corner[0][a][k] = quad.q[a];

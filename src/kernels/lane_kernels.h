@@ -120,6 +120,7 @@ struct VertexBlock {
     alignas(64) float corner[3][3][kShadeChunk];
     alignas(64) float vertex_normal[3][3][kShadeChunk];
     alignas(64) int32_t smooth[kShadeChunk];
+    alignas(64) int32_t flip_v[kShadeChunk];  // a quad's texture v is 1 - hit_v (Quad::flip_v)
     // the vertex: in for given rows, out of resolve_surface_hits for the others
     alignas(64) float p[3][kShadeChunk];
     alignas(64) float ng[3][kShadeChunk];  // zero in a medium

@@ -338,14 +338,16 @@ void resolve_in_scalar(const WaveInputs& in, const HitQueue& hits, Chunk& c, Sha
 }
 
 // The textured albedo of SurfaceHit rows [0, rows) once their hits are resolved: surface_at's
-// texture coordinates (the sphere's from its outward normal, the quad's the hit's (u, v)).
+// texture coordinates (the sphere's from its outward normal, the quad's the hit's (u, v) or
+// (u, 1 - v)).
 void look_up_textures(const Scene& scene, size_t rows, Chunk& c) {
     VertexBlock& b = c.block;
     for (size_t k = 0; k < rows; ++k) {
         if (c.textured[k] == kNone) continue;
         const Point3 p = block_row(b.p, k);
-        const Vec2 uv = b.shape[k] == int32_t(HitShape::Sphere) ? sphere_uv(block_row(b.ng, k))
-                                                                : Vec2{b.hit_u[k], b.hit_v[k]};
+        const Vec2 uv = b.shape[k] == int32_t(HitShape::Sphere)
+                            ? sphere_uv(block_row(b.ng, k))
+                            : Vec2{b.hit_u[k], b.flip_v[k] ? 1.0f - b.hit_v[k] : b.hit_v[k]};
         const Material& mat = scene.materials[c.textured[k]];
         const BsdfParams bsdf = material_bsdf(mat, eval_texture(scene, mat.albedo, uv, p));
         for (int a = 0; a < 3; ++a) b.albedo[a][k] = bsdf.albedo[a];

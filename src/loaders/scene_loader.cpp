@@ -1047,6 +1047,7 @@ class Loader {
             if (length_squared(cross(q.u, q.v)) == 0.0f) vv.fail("u and v must not be parallel");
             q.material = material;
             q.interior = interior;
+            if (auto x = o.optional("flip_v")) q.flip_v = x->boolean();
             o.finish();
             scene_.add_quad(q, to_world);
         } else if (type == "box") {
@@ -1066,6 +1067,8 @@ class Loader {
                 if (normals != "file" && normals != "flat" && normals != "smooth")
                     x->fail("expected \"file\", \"flat\" or \"smooth\", got " + x->describe());
             }
+            bool flip_v = false;  // uvs read as (u, 1 - v)
+            if (auto x = o.optional("flip_v")) flip_v = x->boolean();
             o.finish();
             MeshFile mesh;
             fs::path p;
@@ -1099,6 +1102,8 @@ class Loader {
                 for (const std::string& w : mesh.warnings)
                     warn(file.pointer() + ": mesh '" + p.string() + "' " + w);
             }
+            if (flip_v)
+                for (Vec2& t : mesh.uvs) t.y = 1.0f - t.y;
             if (normals == "flat") mesh.normals.clear();
             if (normals == "smooth") mesh.normals = smooth_normals(mesh.positions, mesh.indices);
             if (file_materials) {

@@ -742,14 +742,17 @@ class Translator {
         const Element* to_uv = p.get("to_uv");
         if (to_uv && to_uv->tag != "transform") fail(*to_uv, "to_uv should be a <transform>");
         Xform x = to_uv ? read_transform(*to_uv) : Xform{};
-        if (type == "checkerboard") {
-            // Mitsuba reads an OBJ's uvs as (u, 1 - v) (`flip_tex_coords`), where wavetrace
-            // keeps the file's; images agree all the same (Mitsuba's rows run from the top),
-            // but a checkerboard's cells would swap: it is looked up at to_uv(u, 1 - v).
-            for (int row : {0, 4}) {
-                x.m[row + 3] += x.m[row + 1];
-                x.m[row + 1] = -x.m[row + 1];
-            }
+        // Mitsuba looks a texture up at to_uv(uv_M), where uv_M is (u, 1 - v) of our uv on every
+        // mesh and quad the reader writes (see shape(): flip_v) and v_M runs down an image from
+        // its top row, ours up from its bottom row. With F(u, v) = (u, 1 - v): a checkerboard is
+        // looked up at to_uv F, an image at F to_uv F (the identity without a to_uv).
+        for (int row : {0, 4}) {  // to_uv F
+            x.m[row + 3] += x.m[row + 1];
+            x.m[row + 1] = -x.m[row + 1];
+        }
+        if (type == "bitmap") {  // F to_uv F
+            for (int k : {4, 5, 7}) x.m[k] = -x.m[k];
+            x.m[7] += 1;
         }
         if (to_uv || type == "checkerboard") t["uv_transform"] = uv_transform(to_uv ? *to_uv : e, x);
         p.finish({"format", "accel"});
@@ -902,17 +905,33 @@ class Translator {
                 if (index > 0) o["shape_index"] = index;
             }
             if (p.boolean("face_normals", false)) o["normals"] = "flat";
-            if (type == "obj" && !p.boolean("flip_tex_coords", true))
-                warn(e, "obj: flip_tex_coords false is not supported (textures appear upside down)");
+            // Mitsuba's v runs down an image from its top row, ours up from the bottom row: a
+            // file's v is ours where Mitsuba flips it (an OBJ's by default), else flipped.
+            const bool mitsuba_flips = type != "serialized" && type != "gltf" &&
+                                       p.boolean("flip_tex_coords", type == "obj");
+            if (type != "gltf" && !mitsuba_flips) o["flip_v"] = true;
         } else if (type == "sphere") {
             const Element* c = p.get("center");
             o = {{"type", "sphere"},
                  {"center", c ? to_json(xyz(*c, 0.0)) : json::array({0, 0, 0})},
                  {"radius", p.number("radius", 1.0)}};
         } else if (type == "rectangle") {
-            o = {{"type", "quad"}, {"q", {-1, -1, 0}}, {"u", {2, 0, 0}}, {"v", {0, 2, 0}}};
+            // Mitsuba's uv ((x + 1) / 2, (y + 1) / 2), as ours: (u, 1 - v) is flip_v's.
+            o = {{"type", "quad"}, {"q", {-1, -1, 0}}, {"u", {2, 0, 0}}, {"v", {0, 2, 0}},
+                 {"flip_v", true}};
         } else if (type == "cube") {
-            o = {{"type", "box"}, {"min", {-1, -1, -1}}, {"max", {1, 1, 1}}};
+            // [-1, 1]^3 as six quads whose (a, b) is (u, 1 - v) of Mitsuba's faces, each of
+            // which maps onto [0, 1]^2 (its cube.cpp); u x v is the outward normal.
+            static const int faces[6][9] = {
+                {1, -1, -1, 0, 0, 2, -2, 0, 0},  {1, 1, -1, -2, 0, 0, 0, 0, 2},
+                {1, -1, -1, 0, 2, 0, 0, 0, 2},   {1, -1, 1, 0, 2, 0, -2, 0, 0},
+                {-1, -1, 1, 0, 2, 0, 0, 0, -2},  {1, 1, -1, 0, -2, 0, -2, 0, 0}};
+            o = {{"type", "group"}, {"objects", json::array()}};
+            for (const int* f : faces)
+                o["objects"].push_back({{"type", "quad"},
+                                        {"q", {f[0], f[1], f[2]}},
+                                        {"u", {f[3], f[4], f[5]}},
+                                        {"v", {f[6], f[7], f[8]}}});
         } else if (type == "disk") {
             // The unit disk at z = 0, facing +z, or -z with flip_normals: the side that emits
             // and that one-sided materials reflect from.
@@ -967,8 +986,36 @@ class Translator {
         } else {
             o["material"] = default_material();
         }
+        if (type == "cube") {  // the group's quads carry its material and medium
+            for (const char* key : {"material", "interior"}) {
+                if (!o.contains(key)) continue;
+                for (json& face : o["objects"]) face[key] = o[key];
+                o.erase(key);
+            }
+        }
+        if ((type == "sphere" || type == "disk" || type == "cylinder") && o.contains("material") &&
+            reads_uv(out_["materials"][o["material"].get<std::string>()]))
+            warn(e, type + ": its texture coordinates are wavetrace's, not Mitsuba's; its "
+                           "textures and normal maps appear differently");
         p.finish({"id"});
         push(objects, places, std::move(o), e);
+    }
+
+    // Whether a material we wrote looks anything up at the surface's texture coordinates.
+    static bool reads_uv(const json& j) {
+        if (j.is_object()) {
+            if (j.contains("normal_map") || j.contains("bump_map")) return true;
+            const auto type = j.find("type");
+            if (type != j.end() && type->is_string() &&
+                (*type == "image" || *type == "uv_checker"))
+                return true;
+            for (const auto& [key, value] : j.items())
+                if (reads_uv(value)) return true;
+        } else if (j.is_array()) {
+            for (const json& value : j)
+                if (reads_uv(value)) return true;
+        }
+        return false;
     }
 
     static void push(json& objects, std::vector<std::string>* places, json o, const Element& e) {

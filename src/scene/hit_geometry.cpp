@@ -18,7 +18,7 @@ Vec2 hit_uv(const Scene& scene, PrimRef prim, float u, float v, Point3 p) {
             return {w * t0.x + u * t1.x + v * t2.x, w * t0.y + u * t1.y + v * t2.y};
         }
         case PrimKind::Quad:
-            return {u, v};
+            return {u, scene.quads[prim.index()].flip_v ? 1.0f - v : v};
         case PrimKind::Sphere: {
             const Sphere& s = scene.spheres[prim.index()];
             return sphere_uv((p - s.center) / s.radius);
@@ -50,7 +50,7 @@ Tangents hit_tangents(const Scene& scene, PrimRef prim, Point3 p) {
         case PrimKind::Quad: {
             const Quad& q = scene.quads[prim.index()];
             t.dpdu = q.u;
-            t.dpdv = q.v;
+            t.dpdv = q.flip_v ? -q.v : q.v;
             return t;
         }
         case PrimKind::Sphere: {

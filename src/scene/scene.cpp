@@ -125,8 +125,12 @@ void Scene::add_quad(Quad quad, const Transform& to_world) {
     quad.u = to_world.vector(quad.u);
     quad.v = to_world.vector(quad.v);
     // cross(M u, M v) = det(M) M^-T (u x v): a mirroring transform turns the normal inwards
-    // unless u and v trade places.
-    if (to_world.flips_handedness()) std::swap(quad.u, quad.v);
+    // unless v is reversed, from the far edge; flip_v keeps each point's texture coordinates.
+    if (to_world.flips_handedness()) {
+        quad.q += quad.v;
+        quad.v = -quad.v;
+        quad.flip_v = !quad.flip_v;
+    }
     if (is_boundary(quad.material)) {  // outwards: along u x v
         Aabb b{min(quad.q, quad.q + quad.u + quad.v), max(quad.q, quad.q + quad.u + quad.v)};
         b.lo = min(b.lo, min(quad.q + quad.u, quad.q + quad.v));

@@ -42,7 +42,7 @@ SurfaceHit surface_at(const Scene& scene, const Ray& ray, const Hit& hit) {
                 to_lanes(q.q), to_lanes(q.u), to_lanes(q.v), hit.u, hit.v);
             s.p = to_vec3(sp.p);
             s.ng = s.ns = to_vec3(sp.ng);
-            s.uv = {hit.u, hit.v};
+            s.uv = {hit.u, q.flip_v ? 1.0f - hit.v : hit.v};
             s.material = q.material;
             s.interior = q.interior;
             break;

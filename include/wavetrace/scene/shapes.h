@@ -19,12 +19,14 @@ struct Sphere {
 };
 
 // Parallelogram q + a u + b v, a, b in [0, 1]; normal along u x v (the quad of Ray Tracing: The
-// Next Week).
+// Next Week). Its texture coordinates are (a, b), or (a, 1 - b) with flip_v (Mitsuba's
+// rectangle, whose v runs the other way about its normal).
 struct Quad {
     Point3 q;
     Vec3 u, v;
     MaterialId material = kNone;
     MediumId interior = kNone;
+    bool flip_v = false;
 };
 
 // A triangle mesh's shared attributes; its vertices live in the scene's vertex arrays from
