@@ -150,7 +150,8 @@ TEST(MitsubaScenes, ShapesTransformsAndMaterialsTranslate) {
 // Textures sit where Mitsuba puts them: at its uv of each shape, (u, v) = ((x + 1) / 2,
 // (y + 1) / 2) on a rectangle, a PLY's uv as in the file, an OBJ's as (u, 1 - v), on the cube's
 // +z face ((y + 1) / 2, (x + 1) / 2) (its vertices (1, -1, 1), (1, 1, 1), (-1, 1, 1), (-1, -1, 1)
-// carry uv (0, 1), (1, 1), (1, 0), (0, 0)); then `to_uv`; then an image's texel in column u W
+// carry uv (0, 1), (1, 1), (1, 0), (0, 0)), on a sphere (phi / 2 pi, theta / pi) about its own
+// +z; then `to_uv`; then an image's texel in column u W
 // and row v H from the top, a checkerboard's color0 where u and v (mod 1) lie on the same side
 // of 0.5. The image's texel (i, j) holds i + 10 j; each point is a texel centre.
 TEST(MitsubaScenes, TexturesSitWhereMitsubaPutsThem) {
@@ -180,19 +181,23 @@ TEST(MitsubaScenes, TexturesSitWhereMitsubaPutsThem) {
       <rgb name="color1" value="0.75"/></texture></bsdf></shape>
   <shape type="ply"><string name="filename" value="m.ply"/>)" + at(9) + image + R"(</texture></bsdf></shape>
   <shape type="obj"><string name="filename" value="m.obj"/>)" + at(12) + image + R"(</texture></bsdf></shape>
-  <shape type="cube">)" + at(15) + image + R"(</texture></bsdf></shape>)"));
+  <shape type="cube">)" + at(15) + image + R"(</texture></bsdf></shape>
+  <shape type="sphere"><float name="radius" value="0.5"/>
+    <transform name="to_world"><rotate x="1" angle="90"/><translate x="18"/></transform>)" +
+                                             image + R"(</texture></bsdf></shape>)"));
     Scene s = load_scene(path, collecting());
     EXPECT_TRUE(warnings.empty()) << warnings.front();
     const Bvh bvh = Bvh::build(s);
-    // The texture's value seen from above at (x, y) (the cube's top face at z = 1).
-    auto seen = [&](float x, float y) {
-        const Ray ray{{x, y, 3}, {0, 0, -1}};
+    // The texture's value seen along a ray, by default from above at (x, y) (the cube's top
+    // face at z = 1).
+    auto seen_along = [&](const Ray& ray) {
         const Hit hit = bvh.intersect(ray);
-        EXPECT_TRUE(hit.found()) << x << ", " << y;
+        EXPECT_TRUE(hit.found()) << ray.o.x << ", " << ray.o.y;
         if (!hit.found()) return -1.0f;
         const SurfaceHit h = surface_at(s, ray, hit);
         return eval_texture(s, s.materials[h.material].albedo, h.uv, h.p).x;
     };
+    auto seen = [&](float x, float y) { return seen_along(Ray{{x, y, 3}, {0, 0, -1}}); };
     for (int j = 0; j < 4; ++j)
         for (int i = 0; i < 4; ++i) {
             const float u = (i + 0.5f) / 4, v = (j + 0.5f) / 4;  // Mitsuba's uv there
@@ -210,6 +215,14 @@ TEST(MitsubaScenes, TexturesSitWhereMitsubaPutsThem) {
             EXPECT_EQ(seen(12 + 2 * u - 1, 1 - 2 * v), texel) << "obj " << i << j;
             // Cube, +z face: (x, y) = (2v - 1, 2u - 1).
             EXPECT_EQ(seen(15 + 2 * v - 1, 2 * u - 1), texel) << "cube " << i << j;
+            // Sphere: its local n = (sin theta cos phi, sin theta sin phi, cos theta) at
+            // (u, v) = (phi / 2 pi, theta / pi), turned by to_world (+y to +z, +z to -y).
+            const float phi = 2 * 3.14159265f * u, theta = 3.14159265f * v;
+            const Vec3 local{std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
+                             std::cos(theta)};
+            const Vec3 n{local.x, -local.z, local.y};
+            const Point3 centre{18, 0, 0};
+            EXPECT_NEAR(seen_along(Ray{centre + 2.0f * n, -n}), texel, 1e-3f) << "sphere " << i << j;
         }
 }
 

@@ -82,6 +82,42 @@ TEST(Tangents, SphereFollowsItsMapping) {
     }
 }
 
+// The same for pbrt-v4's mapping (SphereMapping::ZUp) in a sphere's own frame, its transform's
+// rotation: here its +z turned to world +x.
+TEST(Tangents, TurnedZUpSphereFollowsItsMapping) {
+    Scene s;
+    Sphere sphere{{0, 0, 0}, 1.0f, s.add_material(Material{})};
+    sphere.mapping = SphereMapping::ZUp;
+    s.add_sphere(sphere, Transform::rotate({0, 1, 0}, 90));
+    s.add_sphere(sphere, Transform::translate({1, 2, 3}) * Transform::scale(Vec3(2.0f)));
+    ASSERT_EQ(s.sphere_frames.size(), 1u);
+    ASSERT_EQ(s.spheres[1].frame, kNone);
+    // The pole (+z in its frame, v = 1) is at world +x; u = 0 (its +x) at world -z.
+    const Vec2 pole = sphere_uv(s, s.spheres[0], {1, 0, 0});
+    EXPECT_NEAR(pole.y, 1.0f, 1e-6f);
+    const Vec2 seam = sphere_uv(s, s.spheres[0], {0, 0, -1});
+    EXPECT_NEAR(seam.x, 0.0f, 1e-6f);
+    EXPECT_NEAR(seam.y, 0.5f, 1e-6f);
+    for (size_t i : {0u, 1u}) {
+        const Sphere& sp = s.spheres[i];
+        const PrimRef prim = PrimRef::make(PrimKind::Sphere, static_cast<uint32_t>(i));
+        for (Vec3 n : {normalize(Vec3{0.3f, 0.4f, 0.8f}), normalize(Vec3{-0.7f, -0.2f, 0.3f})}) {
+            const Point3 p = sp.center + sp.radius * n;
+            const Tangents t = hit_tangents(s, prim, p);
+            EXPECT_NEAR(dot(t.dpdu, n), 0.0f, 1e-5f);
+            EXPECT_NEAR(dot(t.dpdv, n), 0.0f, 1e-5f);
+            const Vec2 uv = sphere_uv(s, sp, n);
+            const float eps = 1e-3f;
+            const Vec2 a = sphere_uv(s, sp, normalize(p + eps * t.dpdu / length(t.dpdu) - sp.center));
+            const Vec2 b = sphere_uv(s, sp, normalize(p + eps * t.dpdv / length(t.dpdv) - sp.center));
+            EXPECT_NEAR((a.x - uv.x) * length(t.dpdu), eps, 4e-5f) << i;
+            EXPECT_NEAR(a.y - uv.y, 0.0f, 2e-5f) << i;
+            EXPECT_NEAR((b.y - uv.y) * length(t.dpdv), eps, 4e-5f) << i;
+            EXPECT_NEAR(b.x - uv.x, 0.0f, 2e-5f) << i;
+        }
+    }
+}
+
 // (0.5, 0.5, 1) is the unperturbed normal; (0.75, 0.5, 1) tilts it towards +u by atan(0.5), and
 // (0.5, 0.25, 1) towards -v.
 TEST(NormalMaps, NormalMapTiltsInTheTangentFrame) {

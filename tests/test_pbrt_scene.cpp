@@ -319,6 +319,43 @@ TEST(PbrtScenes, InfiniteLightImagesAreEqualAreaMapsInTheLightsFrame) {
     EXPECT_NE(e.find("wide.exr' is 8 x 4"), std::string::npos) << e;
 }
 
+// A sphere's texture coordinates are pbrt-v4's, in the frame of its CTM: u = phi / 2 pi about
+// its +z from +x, v = 1 - theta / pi; pbrt-v4's image textures read row (1 - v) H from the top.
+// Here `Rotate 90 1 0 0` turns its +z to world -y; texel (i, j) holds i + 10 j.
+TEST(PbrtScenes, SphereTexturesFollowPbrtsMappingInItsFrame) {
+    TempDir dir;
+    Image img(4, 4);
+    for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 4; ++i) img.at(i, j) = Color(static_cast<float>(i + 10 * j));
+    write_image(dir.path() / "t.exr", img);
+    auto path = dir.write("a.pbrt", R"(Camera "perspective"
+WorldBegin
+Texture "t" "spectrum" "imagemap" "string filename" "t.exr"
+Material "diffuse" "texture reflectance" "t"
+AttributeBegin
+  Rotate 90 1 0 0
+  Shape "sphere"
+AttributeEnd
+)");
+    Scene s = load_scene(path, collecting());
+    EXPECT_TRUE(warnings.empty()) << (warnings.empty() ? "" : warnings.front());
+    const Bvh bvh = Bvh::build(s);
+    for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 4; ++i) {
+            const float u = (i + 0.5f) / 4, theta = 3.14159265f * (j + 0.5f) / 4;
+            const float phi = 2 * 3.14159265f * u;
+            const Vec3 local{std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
+                             std::cos(theta)};
+            const Vec3 n{local.x, -local.z, local.y};
+            const Ray ray{2.0f * n, -n};
+            const Hit hit = bvh.intersect(ray);
+            ASSERT_TRUE(hit.found());
+            const SurfaceHit h = surface_at(s, ray, hit);
+            EXPECT_NEAR(eval_texture(s, s.materials[h.material].albedo, h.uv, h.p).x, i + 10.0f * j,
+                        1e-3f) << i << j;
+        }
+}
+
 TEST(PbrtScenes, MediaFillShapesWithTheInterfaceMaterial) {
     TempDir dir;
     auto path = dir.write("a.pbrt", R"(

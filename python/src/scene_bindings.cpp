@@ -148,11 +148,15 @@ void bind_scene(py::module_& m) {
         .def_readwrite("bump_map", &Material::bump_map)
         .def_readwrite("bump_scale", &Material::bump_scale);
 
+    py::enum_<SphereMapping>(m, "SphereMapping", "How a sphere's texture coordinates follow it.")
+        .value("YUp", SphereMapping::YUp)
+        .value("ZUp", SphereMapping::ZUp);
     py::class_<Sphere> sphere(m, "Sphere");
     keyword_init(sphere);
     sphere.def_readwrite("center", &Sphere::center)
         .def_readwrite("radius", &Sphere::radius)
         .def_readwrite("material", &Sphere::material)
+        .def_readwrite("mapping", &Sphere::mapping)
         .def_readwrite("interior", &Sphere::interior);
     py::class_<Quad> quad(m, "Quad", "The parallelogram q + a u + b v, a, b in [0, 1].");
     keyword_init(quad);

@@ -121,6 +121,7 @@ struct Chunk {
     VertexBlock block;                 // the lane vertices
     MaterialId textured[kShadeChunk];  // per row of the block: its material where the
                                        // albedo is a texture, else kNone
+    uint32_t sphere[kShadeChunk];      // per textured row on a sphere: which one
 };
 
 // Whether the lanes resolve the chunk's medium segments and lane vertices: a strategy whose
@@ -287,6 +288,7 @@ void push_surface_hits(const WaveInputs& in,
             }
         }
         c.textured[k] = c.surface[row].textured ? c.surface[row].material : kNone;
+        c.sphere[k] = prim.kind() == PrimKind::Sphere ? prim.index() : kNone;
         set_lane_step(in, c, k, i, out.paths.bounce[i], c.block);
     }
 }
@@ -346,7 +348,7 @@ void look_up_textures(const Scene& scene, size_t rows, Chunk& c) {
         if (c.textured[k] == kNone) continue;
         const Point3 p = block_row(b.p, k);
         const Vec2 uv = b.shape[k] == int32_t(HitShape::Sphere)
-                            ? sphere_uv(block_row(b.ng, k))
+                            ? sphere_uv(scene, scene.spheres[c.sphere[k]], block_row(b.ng, k))
                             : Vec2{b.hit_u[k], b.flip_v[k] ? 1.0f - b.hit_v[k] : b.hit_v[k]};
         const Material& mat = scene.materials[c.textured[k]];
         const BsdfParams bsdf = material_bsdf(mat, eval_texture(scene, mat.albedo, uv, p));

@@ -1033,6 +1033,12 @@ class Loader {
             s.radius = radius.positive();
             s.material = material;
             s.interior = interior;
+            if (auto x = o.optional("uv_mapping")) {
+                const std::string mapping = x->string();
+                if (mapping == "z_up") s.mapping = SphereMapping::ZUp;
+                else if (mapping != "y_up")
+                    x->fail("unknown uv_mapping \"" + mapping + "\" (expected y_up or z_up)");
+            }
             o.finish();
             float scale;
             if (!to_world.preserves_shape(&scale))

@@ -912,9 +912,11 @@ class Translator {
             if (type != "gltf" && !mitsuba_flips) o["flip_v"] = true;
         } else if (type == "sphere") {
             const Element* c = p.get("center");
+            // Mitsuba's (u, v) in its to_world frame is (u, 1 - v) of pbrt-v4's mapping.
             o = {{"type", "sphere"},
                  {"center", c ? to_json(xyz(*c, 0.0)) : json::array({0, 0, 0})},
-                 {"radius", p.number("radius", 1.0)}};
+                 {"radius", p.number("radius", 1.0)},
+                 {"uv_mapping", "z_up"}};
         } else if (type == "rectangle") {
             // Mitsuba's uv ((x + 1) / 2, (y + 1) / 2), as ours: (u, 1 - v) is flip_v's.
             o = {{"type", "quad"}, {"q", {-1, -1, 0}}, {"u", {2, 0, 0}}, {"v", {0, 2, 0}},
@@ -993,7 +995,7 @@ class Translator {
                 o.erase(key);
             }
         }
-        if ((type == "sphere" || type == "disk" || type == "cylinder") && o.contains("material") &&
+        if ((type == "disk" || type == "cylinder") && o.contains("material") &&
             reads_uv(out_["materials"][o["material"].get<std::string>()]))
             warn(e, type + ": its texture coordinates are wavetrace's, not Mitsuba's; its "
                            "textures and normal maps appear differently");

@@ -1311,7 +1311,7 @@ class Translator {
                 warn(place, "Shape sphere: partial spheres are not supported; the whole sphere is rendered");
             if (s.reverse && s.area)
                 warn(place, "Shape sphere: ReverseOrientation is not supported; it emits outwards");
-            o = {{"type", "sphere"}, {"center", {0, 0, 0}}, {"radius", r}};
+            o = {{"type", "sphere"}, {"center", {0, 0, 0}}, {"radius", r}, {"uv_mapping", "z_up"}};
         } else if (type == "plymesh") {
             const std::string file = p.string("filename", "");
             if (file.empty()) fail(place, "Shape plymesh needs a filename");

@@ -21,7 +21,7 @@ Vec2 hit_uv(const Scene& scene, PrimRef prim, float u, float v, Point3 p) {
             return {u, scene.quads[prim.index()].flip_v ? 1.0f - v : v};
         case PrimKind::Sphere: {
             const Sphere& s = scene.spheres[prim.index()];
-            return sphere_uv((p - s.center) / s.radius);
+            return sphere_uv(scene, s, (p - s.center) / s.radius);
         }
     }
     return {};
@@ -54,16 +54,33 @@ Tangents hit_tangents(const Scene& scene, PrimRef prim, Point3 p) {
             return t;
         }
         case PrimKind::Sphere: {
-            // sphere_uv: n = (-sin theta cos phi, -cos theta, sin theta sin phi) at
-            // (u, v) = (phi / 2 pi, theta / pi), p = c + r n.
+            // In the sphere's own frame, p = c + r n:
+            // YUp: n = (-sin theta cos phi, -cos theta, sin theta sin phi) at
+            //      (u, v) = (phi / 2 pi, theta / pi);
+            // ZUp: n = (sin theta cos phi, sin theta sin phi, cos theta) at
+            //      (u, v) = (phi / 2 pi, 1 - theta / pi).
             const Sphere& s = scene.spheres[prim.index()];
-            const Vec3 n = (p - s.center) / s.radius;
-            const float sin_theta = std::sqrt(std::fmax(0.0f, n.x * n.x + n.z * n.z));
-            if (!(sin_theta > 1e-6f)) return t;  // a pole
-            const float cos_phi = -n.x / sin_theta, sin_phi = n.z / sin_theta, cos_theta = -n.y;
+            const Frame* frame = s.frame == kNone ? nullptr : &scene.sphere_frames[s.frame];
+            Vec3 n = (p - s.center) / s.radius;
+            if (frame) n = frame->to_local(n);
             const float r = s.radius;
-            t.dpdu = 2.0f * kPi * r * Vec3{sin_theta * sin_phi, 0.0f, sin_theta * cos_phi};
-            t.dpdv = kPi * r * Vec3{-cos_theta * cos_phi, sin_theta, cos_theta * sin_phi};
+            if (s.mapping == SphereMapping::YUp) {
+                const float sin_theta = std::sqrt(std::fmax(0.0f, n.x * n.x + n.z * n.z));
+                if (!(sin_theta > 1e-6f)) return t;  // a pole
+                const float cos_phi = -n.x / sin_theta, sin_phi = n.z / sin_theta, cos_theta = -n.y;
+                t.dpdu = 2.0f * kPi * r * Vec3{sin_theta * sin_phi, 0.0f, sin_theta * cos_phi};
+                t.dpdv = kPi * r * Vec3{-cos_theta * cos_phi, sin_theta, cos_theta * sin_phi};
+            } else {
+                const float sin_theta = std::sqrt(std::fmax(0.0f, n.x * n.x + n.y * n.y));
+                if (!(sin_theta > 1e-6f)) return t;  // a pole
+                const float cos_phi = n.x / sin_theta, sin_phi = n.y / sin_theta, cos_theta = n.z;
+                t.dpdu = 2.0f * kPi * r * Vec3{-n.y, n.x, 0.0f};
+                t.dpdv = kPi * r * Vec3{-cos_theta * cos_phi, -cos_theta * sin_phi, sin_theta};
+            }
+            if (frame) {
+                t.dpdu = frame->to_world(t.dpdu);
+                t.dpdv = frame->to_world(t.dpdv);
+            }
             return t;
         }
     }

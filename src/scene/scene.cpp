@@ -113,6 +113,19 @@ void Scene::add_sphere(Sphere sphere, const Transform& to_world) {
         throw std::invalid_argument("a sphere's transform must not scale non-uniformly or shear");
     sphere.center = to_world.point(sphere.center);
     sphere.radius *= s;
+    // Its own frame (for its texture coordinates): the transform's rotation, possibly mirrored,
+    // after any frame it had; none while that is the identity.
+    Frame f = sphere.frame == kNone ? Frame{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}
+                                    : sphere_frames.at(sphere.frame);
+    f = {to_world.vector(f.s) / s, to_world.vector(f.t) / s, to_world.vector(f.n) / s};
+    const Frame identity{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    const float change = length(f.s - identity.s) + length(f.t - identity.t) + length(f.n - identity.n);
+    if (change > 1e-6f) {
+        sphere.frame = static_cast<uint32_t>(sphere_frames.size());
+        sphere_frames.push_back(f);
+    } else {
+        sphere.frame = kNone;
+    }
     if (is_boundary(sphere.material)) {
         const Vec3 r(sphere.radius);
         sphere.radius += boundary_margin(Aabb{sphere.center - r, sphere.center + r});

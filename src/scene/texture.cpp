@@ -160,6 +160,15 @@ Vec2 sphere_uv(Normal3 ng) {
     return {phi * (0.5f * kInvPi), theta * kInvPi};
 }
 
+Vec2 sphere_uv(const Scene& scene, const Sphere& s, Normal3 ng) {
+    const Vec3 n = s.frame == kNone ? ng : scene.sphere_frames[s.frame].to_local(ng);
+    if (s.mapping == SphereMapping::YUp) return sphere_uv(n);
+    float phi = std::atan2(n.y, n.x);
+    if (phi < 0.0f) phi += 2.0f * kPi;
+    const float theta = std::acos(std::fmax(-1.0f, std::fmin(1.0f, n.z)));
+    return {phi * (0.5f * kInvPi), 1.0f - theta * kInvPi};
+}
+
 Color texture_mean(const Scene& scene, TextureId id) {
     // A checker's cells name textures added before it (the loader's rule), so this ends; the
     // depth bound guards scenes built by hand.

@@ -58,7 +58,7 @@ SurfaceHit surface_at(const Scene& scene, const Ray& ray, const Hit& hit) {
                  texture_reads_uv(scene, scene.materials[sp.material].emission) ||
                  texture_reads_uv(scene, scene.materials[sp.material].metallic_roughness) ||
                  scene.materials[sp.material].has_normal_maps())) {
-                s.uv = sphere_uv(s.ng);
+                s.uv = sphere_uv(scene, sp, s.ng);
             }
             s.material = sp.material;
             s.interior = sp.interior;

@@ -103,7 +103,8 @@ def test_a_built_scene_is_checked_before_it_is_rendered():
 
 def test_a_mesh_from_arrays_is_hit_where_it_lies():
     s = wt.Scene()
-    m = s.add_material(wt.Material(kind=wt.MaterialKind.Lambertian, albedo=s.add_solid((1, 1, 1))))
+    m = s.add_material(wt.Material(kind=wt.MaterialKind.Lambertian,
+                                   albedo=s.add_solid((1, 1, 1))))
     positions = np.array([[-1, -1, -2], [1, -1, -2], [1, 1, -2], [-1, 1, -2]], np.float32)
     indices = np.array([[0, 1, 2], [0, 2, 3], [0, 0, 1]])  # the last one is degenerate
     assert s.add_mesh(positions, indices, m, name="square") == 1
@@ -132,3 +133,15 @@ def test_an_environment_map_and_the_medium_rule_are_set_as_in_json(tmp_path):
     assert s.medium_boundaries == wt.MediumBoundaries.Interface
     b = wt.Background(kind=wt.Background.Kind.Environment, to_world=None)
     assert b.to_world is None and b.mapping == wt.Background.Mapping.LatLong
+
+
+def test_sphere_mappings_and_flipped_quads_are_fields():
+    s = wt.Scene()
+    m = s.add_material(wt.Material(kind=wt.MaterialKind.Lambertian,
+                                   albedo=s.add_solid((1, 1, 1))))
+    sphere = wt.Sphere(center=(0, 0, 0), radius=1, material=m, mapping=wt.SphereMapping.ZUp)
+    assert sphere.mapping == wt.SphereMapping.ZUp
+    assert wt.Sphere().mapping == wt.SphereMapping.YUp
+    assert wt.Quad(q=(0, 0, 0), u=(1, 0, 0), v=(0, 1, 0), material=m, flip_v=True).flip_v
+    s.add_sphere(sphere)
+    s.check()

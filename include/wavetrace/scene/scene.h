@@ -52,6 +52,7 @@ struct Scene {
     std::vector<Medium> media;
 
     std::vector<Sphere> spheres;
+    std::vector<Frame> sphere_frames;  // the own frames of spheres whose transform rotates them
     std::vector<Quad> quads;
     std::vector<Mesh> meshes;
     std::vector<Triangle> triangles;

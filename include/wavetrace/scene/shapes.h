@@ -11,11 +11,21 @@ namespace wavetrace {
 // Every shape carries the material of its surface and the medium inside it (kNone: none).
 // Geometric normals point outwards; emitters emit on that side unless two-sided.
 
+// How a sphere's texture coordinates follow its outward normal n, taken into the sphere's own
+// frame (its transform's rotation, Scene::sphere_frames; none: the world's):
+// - YUp (the default): Ray Tracing: The Next Week's, u = (atan2(-n.z, n.x) + pi) / 2 pi,
+//   v = acos(-n.y) / pi.
+// - ZUp: pbrt-v4's, u = phi / 2 pi with phi = atan2(n.y, n.x) in [0, 2 pi), v = 1 - acos(n.z) / pi;
+//   Mitsuba 3's (u, 1 - v).
+enum class SphereMapping : uint8_t { YUp, ZUp };
+
 struct Sphere {
     Point3 center;
     float radius = 1.0f;
     MaterialId material = kNone;
     MediumId interior = kNone;
+    SphereMapping mapping = SphereMapping::YUp;
+    uint32_t frame = kNone;  // index into Scene::sphere_frames; kNone: the world's axes
 };
 
 // Parallelogram q + a u + b v, a, b in [0, 1]; normal along u x v (the quad of Ray Tracing: The

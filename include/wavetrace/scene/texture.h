@@ -53,6 +53,7 @@ struct ImageData {
 };
 
 struct Scene;
+struct Sphere;
 // Evaluates texture `id` at surface coordinates `uv` and world point `p`.
 // Whether texture `id` (kNone: no texture) reads the surface's uv: image textures, directly or
 // as a checker's cell. The others read the point or nothing.
@@ -65,6 +66,9 @@ Color texture_mean(const Scene& scene, TextureId id);
 // A sphere's texture coordinates at the point of outward unit normal ng: u = phi / 2 pi around
 // -x..+z.., v = theta / pi from -y (Ray Tracing: The Next Week's mapping).
 Vec2 sphere_uv(Normal3 ng);
+// Sphere s's texture coordinates at the point of outward unit normal ng (in world space), in its
+// mapping and frame (SphereMapping).
+Vec2 sphere_uv(const Scene& scene, const Sphere& s, Normal3 ng);
 // Perlin turbulence (RTNW §5.6): the sum of 7 octaves of |noise|, in [0, ~1.5).
 float perlin_turbulence(Point3 p, int octaves = 7);
 // Perlin gradient noise in [-1, 1].
