@@ -14,6 +14,7 @@
 #include "cli_run.h"
 #include "load_warnings.h"
 #include "formats/spectrum_rgb.h"
+#include "ramp_image.h"
 #include "temp_dir.h"
 #include "wavetrace/accel/bvh.h"
 #include "wavetrace/image/image.h"
@@ -156,9 +157,7 @@ TEST(MitsubaScenes, ShapesTransformsAndMaterialsTranslate) {
 // of 0.5. The image's texel (i, j) holds i + 10 j; each point is a texel centre.
 TEST(MitsubaScenes, TexturesSitWhereMitsubaPutsThem) {
     TempDir dir;
-    Image img(4, 4);
-    for (int j = 0; j < 4; ++j)
-        for (int i = 0; i < 4; ++i) img.at(i, j) = Color(static_cast<float>(i + 10 * j));
+    const Image img = ramp_image(4, 4);
     write_image(dir.path() / "t.exr", img);
     const std::string square = "-1 -1 0 0 0\n1 -1 0 1 0\n1 1 0 1 1\n-1 1 0 0 1\n";
     dir.write("m.ply", "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\n"
@@ -301,9 +300,7 @@ TEST(MitsubaScenes, EmittersBecomeLightsAndBackgrounds) {
 // (here +90 degrees about x: the map's +y to world +z, its -z to world +y) keeps that frame.
 TEST(MitsubaScenes, AnEnvmapTurnedAnyWayKeepsItsFrame) {
     TempDir dir;
-    Image env(4, 2);
-    for (int y = 0; y < 2; ++y)
-        for (int x = 0; x < 4; ++x) env.at(x, y) = Color(static_cast<float>(x + 10 * y));
+    const Image env = ramp_image(4, 2);
     write_image(dir.path() / "env.exr", env);
     auto path = dir.write("a.xml", scene(R"(
   <emitter type="envmap"><string name="filename" value="env.exr"/>

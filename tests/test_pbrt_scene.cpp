@@ -16,6 +16,7 @@
 
 #include "cli_run.h"
 #include "load_warnings.h"
+#include "ramp_image.h"
 #include "temp_dir.h"
 #include "wavetrace/wavetrace.h"
 
@@ -270,9 +271,7 @@ Shape "sphere"
 // a map that is not square is refused as pbrt-v4 refuses it, naming the file and line.
 TEST(PbrtScenes, InfiniteLightImagesAreEqualAreaMapsInTheLightsFrame) {
     TempDir dir;
-    Image env(4, 4);
-    for (int y = 0; y < 4; ++y)
-        for (int x = 0; x < 4; ++x) env.at(x, y) = Color(static_cast<float>(x + 10 * y));
+    const Image env = ramp_image(4, 4);
     write_image(dir.path() / "sky.exr", env);
     write_image(dir.path() / "wide.exr", Image(8, 4));
     const std::string head = "Camera \"perspective\"\nWorldBegin\nAttributeBegin\n"
@@ -324,9 +323,7 @@ TEST(PbrtScenes, InfiniteLightImagesAreEqualAreaMapsInTheLightsFrame) {
 // Here `Rotate 90 1 0 0` turns its +z to world -y; texel (i, j) holds i + 10 j.
 TEST(PbrtScenes, SphereTexturesFollowPbrtsMappingInItsFrame) {
     TempDir dir;
-    Image img(4, 4);
-    for (int j = 0; j < 4; ++j)
-        for (int i = 0; i < 4; ++i) img.at(i, j) = Color(static_cast<float>(i + 10 * j));
+    const Image img = ramp_image(4, 4);
     write_image(dir.path() / "t.exr", img);
     auto path = dir.write("a.pbrt", R"(Camera "perspective"
 WorldBegin

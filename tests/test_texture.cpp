@@ -4,6 +4,7 @@
 #include <random>
 
 #include "math/equal_area.h"
+#include "ramp_image.h"
 #include "temp_dir.h"
 #include "test_paths.h"
 #include "wavetrace/image/image.h"
@@ -186,9 +187,7 @@ TEST(Background, EnvironmentMapIsLatLongWithMinusZAtTheCentre) {
     TempDir dir;
     // Four columns of grey 0, 1, 2, 3 in the top row, 10 more in the bottom row (HDR values
     // survive EXR).
-    Image env(4, 2);
-    for (int y = 0; y < 2; ++y)
-        for (int x = 0; x < 4; ++x) env.at(x, y) = Color(static_cast<float>(x + 10 * y));
+    const Image env = ramp_image(4, 2);
     write_image(dir.path() / "env.exr", env);
     auto p = dir.write("s.json", R"({"camera": {"look_from": [0, 0, -5], "look_at": [0, 0, 0]},
         "background": {"type": "environment", "file": "env.exr", "scale": [2, 2, 2]},
@@ -211,9 +210,7 @@ TEST(Background, EnvironmentMapIsLatLongWithMinusZAtTheCentre) {
 // gives (here the map's +z is world +y and its +y world -z, as pbrt scenes turn their sky).
 TEST(Background, EqualAreaMapIsSeenThroughItsFrame) {
     TempDir dir;
-    Image env(4, 4);
-    for (int y = 0; y < 4; ++y)
-        for (int x = 0; x < 4; ++x) env.at(x, y) = Color(static_cast<float>(x + 10 * y));
+    const Image env = ramp_image(4, 4);
     write_image(dir.path() / "sky.exr", env);
     write_image(dir.path() / "wide.exr", Image(8, 4));
     auto scene = [&](const std::string& background) {
@@ -252,9 +249,7 @@ TEST(Background, EqualAreaMapIsSeenThroughItsFrame) {
 // that sees the map's top row is the frame's +y.
 TEST(Background, LatLongMapTurnsWithItsFrame) {
     TempDir dir;
-    Image env(4, 2);
-    for (int y = 0; y < 2; ++y)
-        for (int x = 0; x < 4; ++x) env.at(x, y) = Color(static_cast<float>(x + 10 * y));
+    const Image env = ramp_image(4, 2);
     write_image(dir.path() / "env.exr", env);
     auto p = dir.write("s.json", R"({"camera": {"look_from": [0, 0, -5], "look_at": [0, 0, 0]},
         "background": {"type": "environment", "file": "env.exr",
