@@ -38,6 +38,7 @@ struct LightCase {
     std::string name;
     Scene scene;
     Point3 ref;
+    bool compensated = false;  // the LightSet's MIS compensation
 };
 
 std::vector<LightCase> cases(const TempDir& dir) {
@@ -124,6 +125,14 @@ std::vector<LightCase> cases(const TempDir& dir) {
         c.scene.background.image = c.scene.add_image(read_image(dir.path() / "equal-area.exr"));
         out.push_back(std::move(c));
     }
+    // The environment maps again, sampled as under MIS (MIS compensation).
+    for (size_t i = 0, n = out.size(); i < n; ++i) {
+        if (out[i].scene.background.kind != Background::Kind::Environment) continue;
+        LightCase c = out[i];
+        c.name += "-compensated";
+        c.compensated = true;
+        out.push_back(std::move(c));
+    }
     return out;
 }
 
@@ -133,7 +142,7 @@ TEST(Lights, SamplingMatchesDensityChiSquare) {
     TempDir dir;
     uint32_t seed = 500;
     for (LightCase& c : cases(dir)) {
-        LightSet lights(c.scene);
+        LightSet lights(c.scene, c.compensated);
         ++seed;
         auto result = chi2::test(
             [&](uint32_t i) -> std::optional<Vec3> {
@@ -152,7 +161,7 @@ TEST(Lights, SamplingMatchesDensityChiSquare) {
 TEST(Lights, SampledPdfAndRadianceAreConsistent) {
     TempDir dir;
     for (LightCase& c : cases(dir)) {
-        LightSet lights(c.scene);
+        LightSet lights(c.scene, c.compensated);
         for (uint32_t i = 0; i < 3000; ++i) {
             LightSample ls =
                 lights.sample(c.scene, c.ref, lights.select(u(3, i, 0)), u(3, i, 1), u(3, i, 2));
@@ -173,7 +182,7 @@ TEST(Lights, SampledPdfAndRadianceAreConsistent) {
 TEST(Lights, DensityIntegratesToOne) {
     TempDir dir;
     for (LightCase& c : cases(dir)) {
-        LightSet lights(c.scene);
+        LightSet lights(c.scene, c.compensated);
         const uint32_t n = 1'000'000;
         double sum = 0, sum2 = 0;
         for (uint32_t i = 0; i < n; ++i) {
@@ -186,6 +195,38 @@ TEST(Lights, DensityIntegratesToOne) {
         std::printf("integral %-24s %.5f +- %.5f\n", c.name.c_str(), mean, se);
         EXPECT_NEAR(mean, 1.0, 4 * se) << c.name;
     }
+}
+
+// MIS compensation samples a map in proportion to the excess of its radiance over the mean:
+// texels below the mean keep only the floor's density, those above gain; a constant map keeps
+// its plain distribution (it has no excess).
+TEST(Lights, CompensationSamplesTheExcessOverTheMean) {
+    TempDir dir;
+    for (LightCase& c : cases(dir)) {
+        if (c.name != "background-environment") continue;
+        const LightSet plain(c.scene), compensated(c.scene, true);
+        const Background& bg = c.scene.background;
+        const ImageData& img = c.scene.images[bg.image];
+        // Texel centres: (4, 22) in the black band, (10, 10) dim, (40, 10) the bright spot.
+        auto dir_of = [&](int x, int y) {
+            return environment_direction(bg, (x + 0.5f) / img.width, (y + 0.5f) / img.height);
+        };
+        EXPECT_LT(compensated.pdf_background(c.scene, dir_of(10, 10)),
+                  0.01f * plain.pdf_background(c.scene, dir_of(10, 10)));
+        EXPECT_GT(compensated.pdf_background(c.scene, dir_of(40, 10)),
+                  plain.pdf_background(c.scene, dir_of(40, 10)));
+        EXPECT_GT(compensated.pdf_background(c.scene, dir_of(4, 22)), 0.0f);  // the floor
+    }
+    Scene constant;
+    Image grey(8, 4);
+    for (Color& p : grey.pixels) p = Color(0.5f);
+    write_image(dir.path() / "grey.exr", grey);
+    constant.background.kind = Background::Kind::Environment;
+    constant.background.radiance = Color(1.0f);
+    constant.background.image = constant.add_image(read_image(dir.path() / "grey.exr"));
+    const Vec3 w = normalize(Vec3{0.3f, 0.5f, -0.2f});
+    EXPECT_EQ(LightSet(constant, true).pdf_background(constant, w),
+              LightSet(constant).pdf_background(constant, w));
 }
 
 TEST(Lights, SelectionFollowsPower) {
@@ -215,7 +256,7 @@ TEST(Lights, PdfOfEmissionFoundIsTheSamplersPdf) {
     Estimator mis;
     mis.strategy = Strategy::Mis;
     for (LightCase& c : cases(dir)) {
-        const LightSet lights(c.scene);
+        const LightSet lights(c.scene, c.compensated);
         const Bvh bvh = Bvh::build(c.scene);
         size_t compared = 0;
         for (uint32_t i = 0; i < 2000; ++i) {

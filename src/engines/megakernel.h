@@ -102,7 +102,7 @@ RenderStats megakernel(const Scene& scene,
                        RenderObserver* observer) {
     using megakernel_detail::kTile;
     auto start = std::chrono::steady_clock::now();
-    LightSet lights(scene);
+    LightSet lights(scene, request.estimator.strategy == Strategy::Mis);
     CameraRays camera(scene.camera, request.width, request.height);
     const MediumStack camera_media = media_at(scene, bvh, scene.camera.look_from);
     const int width = request.width, height = request.height;

@@ -209,7 +209,7 @@ RenderStats wavefront(const Scene& scene,
                       RenderObserver* observer) {
     auto start = std::chrono::steady_clock::now();
     const WavefrontOptions& options = request.wavefront;
-    const LightSet lights(scene);
+    const LightSet lights(scene, request.estimator.strategy == Strategy::Mis);
     const CameraRays camera(scene.camera, request.width, request.height);
     const WaveInputs in{scene,
                         lights,

@@ -60,7 +60,7 @@ float delta_light_power(const Light& l, float scene_radius) {
     return 0.0f;
 }
 
-LightSet::LightSet(const Scene& scene) {
+LightSet::LightSet(const Scene& scene, bool mis_compensation) {
     emitters_ = collect_emitters(scene);
     std::vector<float> power;
     for (uint32_t i = 0; i < emitters_.size(); ++i) {
@@ -112,23 +112,46 @@ LightSet::LightSet(const Scene& scene) {
         float lum = luminance(bg.radiance);
         if (bg.kind == Background::Kind::Environment) {
             const ImageData& img = scene.images[bg.image];
-            // Texel weights: luminance times the texel's solid angle (for a latitude-longitude
-            // map, in proportion to sin(theta), the area of its band of the sphere; equal-area
-            // texels are all alike), plus a small floor so that no direction the lookup can
-            // light has zero density.
+            // Texel weights: luminance (with MIS compensation, its excess over the mean radiance,
+            // where that excess carries at least 1% of the map's light) times the texel's solid
+            // angle (for a latitude-longitude map, in proportion to sin(theta), the area of its
+            // band of the sphere; equal-area texels are all alike), plus a small floor so that
+            // no direction the lookup can light has zero density.
             const bool equal_area = bg.mapping == Background::Mapping::EqualArea;
+            auto area = [&](int y) {
+                return equal_area ? 1.0f : std::sin(kPi * (y + 0.5f) / img.height);
+            };
             std::vector<float> w(static_cast<size_t>(img.width) * img.height);
-            double mean = 0;
+            double mean = 0, total_area = 0;
             for (int y = 0; y < img.height; ++y) {
-                float area = equal_area ? 1.0f : std::sin(kPi * (y + 0.5f) / img.height);
                 for (int x = 0; x < img.width; ++x) {
-                    float v = luminance(img.texel(x, y)) * area;
+                    float v = luminance(img.texel(x, y)) * area(y);
                     w[static_cast<size_t>(y) * img.width + x] = v;
                     mean += v;
+                    total_area += area(y);
                 }
             }
+            // The mean radiance over the sphere, each texel weighted by its solid angle.
+            const double mean_radiance = mean / total_area;
             mean /= static_cast<double>(w.size());
-            for (float& v : w) v += static_cast<float>(1e-3 * mean) + 1e-12f;
+            double w_mean = mean;  // of the weights sampled by
+            if (mis_compensation) {
+                std::vector<float> excess(w.size());
+                double sum = 0;
+                for (int y = 0; y < img.height; ++y)
+                    for (int x = 0; x < img.width; ++x) {
+                        const size_t i = static_cast<size_t>(y) * img.width + x;
+                        const double l = luminance(img.texel(x, y));
+                        excess[i] = static_cast<float>(std::max(0.0, l - mean_radiance) * area(y));
+                        sum += excess[i];
+                    }
+                // A map (nearly) constant has (almost) no excess: it keeps the plain weights.
+                if (sum >= 0.01 * mean * static_cast<double>(w.size())) {
+                    w = std::move(excess);
+                    w_mean = sum / static_cast<double>(w.size());
+                }
+            }
+            for (float& v : w) v += static_cast<float>(1e-3 * w_mean) + 1e-12f;
             environment_ = Distribution2D(w, img.width, img.height);
             // The mean luminance over the sphere (the mean of sin(theta) over rows is 2 / pi).
             lum *= static_cast<float>(equal_area ? mean : mean * 2.0 / kPi);

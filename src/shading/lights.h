@@ -12,6 +12,11 @@
 // irradiance), flagged `delta`; no direction finds one. The one-sample strategies (light,
 // mixture) sample directions from the other lights only (sample_direction_light,
 // pdf_direction), in proportion to the same powers.
+//
+// An environment map is sampled in proportion to its texels' luminance times their solid angle,
+// or, with MIS compensation (for MIS with BSDF sampling only, which then finds the rest), to
+// max(L - mean L, 0) times it: Karlík et al., "MIS compensation: optimizing sampling techniques
+// in multiple importance sampling" (2019), as pbrt-v4's image infinite light samples under MIS.
 #pragma once
 
 #include <cstdint>
@@ -60,7 +65,7 @@ struct LightChoice {
 class LightSet {
   public:
     LightSet() = default;
-    explicit LightSet(const Scene& scene);
+    explicit LightSet(const Scene& scene, bool mis_compensation = false);
 
     bool empty() const { return count_ == 0; }
     // Whether any light can be found by a direction (an emitter or the background).
@@ -125,7 +130,9 @@ class LightSet {
     Distribution1D select_;
     float only_probability_ = 0.0f;  // select_'s probability of light 0, when it is the only one
     LightChoice select_in_table(float u_select) const;
-    Distribution2D environment_;  // over the environment image's texels, luminance x sin(theta)
+    // Over the environment image's texels: luminance (or its excess over the mean, with MIS
+    // compensation) times the texel's solid angle.
+    Distribution2D environment_;
 };
 
 // A spot light's falloff for a direction at cos_theta from its axis: 1 within the falloff
