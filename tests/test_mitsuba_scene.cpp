@@ -186,6 +186,7 @@ TEST(MitsubaScenes, TexturesSitWhereMitsubaPutsThem) {
                                              image + R"(</texture></bsdf></shape>)"));
     Scene s = load_scene(path, collecting());
     EXPECT_TRUE(warnings.empty()) << warnings.front();
+    EXPECT_FALSE(s.geometric_side_test);  // Mitsuba's BSDFs answer in the shading frame
     const Bvh bvh = Bvh::build(s);
     // The texture's value seen along a ray, by default from above at (x, y) (the cube's top
     // face at z = 1).

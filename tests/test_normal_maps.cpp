@@ -8,7 +8,9 @@
 #include <cmath>
 
 #include "scene/hit_geometry.h"
+#include "shading/lights.h"
 #include "shading/normal_maps.h"
+#include "shading/path_vertex.h"
 #include "wavetrace/scene/scene.h"
 #include "wavetrace/scene/texture.h"
 #include "wavetrace/shading/surface.h"
@@ -156,4 +158,25 @@ TEST(NormalMaps, BumpRampTiltsAgainstItsSlope) {
     Scene plain = quad_scene(Scene{}, Material{});
     const SurfaceHit p = hit_quad(plain, 0.4f, 0.5f);
     EXPECT_EQ(length_squared(p.dpdu), 0.0f);
+}
+
+// Where the shading normal tilts far from the geometric one, a mirror reflects wo to below the
+// geometric surface: with the geometric-side test (our default) that direction carries nothing,
+// without it (pbrt-v4's and Mitsuba 3's rule, which their readers set) the path goes on.
+TEST(ShadingNormals, GeometricSideTestIsTheScenesChoice) {
+    Scene s;
+    const LightSet lights(s);
+    Vertex v;
+    v.ng = {0, 0, 1};
+    v.frame = Frame::from_normal(normalize(Vec3{0.8f, 0, 0.6f}));
+    v.bsdf.kind = MaterialKind::Mirror;
+    v.bsdf.albedo = Color(1.0f);
+    const Vec3 wo = normalize(Vec3{-0.3f, 0, 0.954f});
+    const ContinuationSamples u{0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f};
+    const Continuation tested = sample_continuation(Strategy::Bsdf, s, lights, v, wo, u);
+    EXPECT_FALSE(tested.valid);
+    v.geometric_side_test = false;
+    const Continuation free = sample_continuation(Strategy::Bsdf, s, lights, v, wo, u);
+    ASSERT_TRUE(free.valid);
+    EXPECT_LT(free.wi.z, 0.0f);  // below the geometric surface
 }

@@ -336,6 +336,7 @@ AttributeEnd
 )");
     Scene s = load_scene(path, collecting());
     EXPECT_TRUE(warnings.empty()) << (warnings.empty() ? "" : warnings.front());
+    EXPECT_FALSE(s.geometric_side_test);  // pbrt-v4's BSDFs answer in the shading frame
     const Bvh bvh = Bvh::build(s);
     for (int j = 0; j < 4; ++j)
         for (int i = 0; i < 4; ++i) {

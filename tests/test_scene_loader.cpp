@@ -454,6 +454,9 @@ TEST(SceneLoader, FlipVAndMirrorsKeepTextureCoordinates) {
         {"type": "mesh", "file": "t.obj", "material": "white", "flip_v": true}
     )"));
     Scene s = load_scene(p);
+    EXPECT_TRUE(s.geometric_side_test);  // the default
+    EXPECT_FALSE(load_scene(dir.write("y.json", scene_with_objects("", R"("geometric_side_test": false)")))
+                     .geometric_side_test);
     ASSERT_EQ(s.uvs.size(), 3u);
     EXPECT_EQ(s.uvs[0].y, 0.75f);
     EXPECT_EQ(s.uvs[2].y, 0.0f);

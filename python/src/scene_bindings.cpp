@@ -276,6 +276,12 @@ void bind_scene(py::module_& m) {
             [](S& s, MediumBoundaries b) { s.scene.medium_boundaries = b; },
             "How crossing a medium boundary changes the medium: Nested (a stack) or Interface "
             "(Mitsuba's rule).")
+        .def_property(
+            "geometric_side_test", [](const S& s) { return s.scene.geometric_side_test; },
+            [](S& s, bool on) { s.scene.geometric_side_test = on; },
+            "Whether sampled and evaluated directions must also lie on the geometric surface's "
+            "side their lobe says (False: the shading frame alone decides, as pbrt-v4 and "
+            "Mitsuba 3).")
         .def("add_texture",
              [](S& s, const Texture& t) {
                  s.begin_change();

@@ -244,7 +244,8 @@ void StepVertices(VertexBlock* b) {
             hn::Load(d, b->u1 + k),
             hn::Load(d, b->u2 + k),
             hn::Load(d, b->u_rr + k),
-            hn::RebindMask(d, hn::Ne(hn::Load(di, b->roulette + k), hn::Zero(di)))};
+            hn::RebindMask(d, hn::Ne(hn::Load(di, b->roulette + k), hn::Zero(di))),
+            b->geometric_side_test};
         // Each lane's lobe: vectors of one lobe run one step, mixed ones each of theirs.
         const LobeMasks<D> lobes = LobesAt(d, b->lobe, k);
         // The first lobe present gives the vector's result, the others' lanes are selected in.
@@ -326,7 +327,8 @@ size_t SampleLights(LightSampleBlock* b,
                                      lobes.metal,
                                      lobes.phase,
                                      u1,
-                                     u2};
+                                     u2,
+                                     b->geometric_side_test};
         auto fetcher = [&](hn::Vec<decltype(di)> light) {
             const auto index = hn::Max(light, hn::Zero(di));
             const int32_t first = hn::GetLane(index);

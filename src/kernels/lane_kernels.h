@@ -135,6 +135,7 @@ struct VertexBlock {
     alignas(64) int32_t roulette[kShadeChunk];
     uint32_t entry[kShadeChunk];  // the wave entry of each row
     size_t n = 0;
+    bool geometric_side_test = true;  // Scene::geometric_side_test, for every row
     // out: the next ray, the throughput factor and the BSDF density, for rows with alive = 1
     alignas(64) float origin[3][kShadeChunk];
     alignas(64) float wi[3][kShadeChunk];
@@ -192,6 +193,7 @@ void step_vertices(VertexBlock& b);
 struct LightSampleBlock {
     const LightSampleQueue* queue = nullptr;
     size_t first = 0, n = 0;
+    bool geometric_side_test = true;  // Scene::geometric_side_test, for every row
     // the vertex's lobe (LaneLobe); the light, as its index among the LightSet's quad emitters
     // or its sphere emitters (both -1: the row's light is another kind, not sampled here), and
     // its selection probability

@@ -18,6 +18,7 @@ Vertex queued_vertex(const Scene& scene, const LightSampleQueue& q, size_t i) {
     Vertex v;
     v.p = WAVETRACE_XYZ_AT(q, p, i);
     v.ng = WAVETRACE_XYZ_AT(q, ng, i);
+    v.geometric_side_test = scene.geometric_side_test;
     v.material = q.material[i];
     if (v.material != kNone) {
         v.bsdf = material_bsdf(scene.materials[v.material], WAVETRACE_XYZ_AT(q, albedo, i));
@@ -44,6 +45,7 @@ size_t light_sample(const WaveInputs& in,
     WT_DCHECK_LE(end, queue.capacity);
     LightSampleBlock block;
     block.queue = &queue;
+    block.geometric_side_test = in.scene.geometric_side_test;
     DirectSample scalar[kShadeChunk];
     size_t s = first_shadow;
     for (size_t c = begin; c < end; c += kShadeChunk) {

@@ -459,6 +459,7 @@ ShadeCounts shade(const WaveInputs& in,
         classify(in, hits, paths, c);
 
         c.block.n = 0;
+        c.block.geometric_side_test = in.scene.geometric_side_test;
         cross_boundaries(in, hits, c, out);
         push_surface_hits(in, hits, c, out);
         const size_t surface_rows = c.block.n;

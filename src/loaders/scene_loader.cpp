@@ -73,7 +73,7 @@ class Loader {
         memory_meshes_ = meshes;
         Object root(Value(json_, file_, ""));
         root.only({"description", "render", "camera", "background", "lights", "materials", "media",
-                   "medium_boundaries", "objects"});
+                   "medium_boundaries", "geometric_side_test", "objects"});
         scene_.name = path_.stem().string();
         if (auto v = root.optional("description")) v->string();
         if (auto v = root.optional("render")) read_render(*v);
@@ -88,6 +88,7 @@ class Loader {
             else if (rule != "nested")
                 v->fail("unknown rule \"" + rule + "\" (expected nested or interface)");
         }
+        if (auto v = root.optional("geometric_side_test")) scene_.geometric_side_test = v->boolean();
         Value objects = root.required("objects");
         for (size_t i = 0; i < objects.size(); ++i) read_object(objects[i], Transform{});
         root.finish();

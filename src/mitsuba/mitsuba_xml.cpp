@@ -495,6 +495,8 @@ class Translator {
             out_["medium_boundaries"] = "interface";
         }
         if (!lights_.empty()) out_["lights"] = lights_;
+        // Mitsuba's BSDFs answer in the shading frame alone (no geometric-side test).
+        out_["geometric_side_test"] = false;
         doc_.scene = std::move(out_);
         return std::move(doc_);
     }

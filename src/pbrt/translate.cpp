@@ -200,6 +200,8 @@ class Translator {
         camera();
         if (!lights_.empty()) out_["lights"] = lights_;
         if (!media_.empty()) out_["media"] = media_;
+        // pbrt-v4's BSDF::f and Sample_f answer in the shading frame alone.
+        out_["geometric_side_test"] = false;
         doc_.scene = std::move(out_);
         return std::move(doc_);
     }

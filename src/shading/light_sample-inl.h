@@ -66,6 +66,7 @@ struct LightSampleVertex {
     typename L::M metal;   // a rough metal; else Lambertian
     typename L::M phase;   // in a medium (ng = 0): the isotropic phase function
     typename L::F u1, u2;  // the point on the light
+    bool geometric_side_test = true;  // Scene::geometric_side_test
 };
 
 // The light sample seen from the vertex: what it contributes and the shadow ray that tests it.
@@ -143,7 +144,7 @@ HWY_INLINE VertexLightSample<L> SampleTowards(const LightSampleVertex<L>& v,
     // The BSDF's f |cos| and density, zero where wi leaves through the geometric surface
     // (eval_world) or the shading surface (each lobe); in a medium, the phase function's
     // f = albedo / (4 pi), the density of a uniform direction.
-    ok = L::AndNot(CrossesGeometricSurface<L>(v.wo, r.wi, v.ng), ok);
+    if (v.geometric_side_test) ok = L::AndNot(CrossesGeometricSurface<L>(v.wo, r.wi, v.ng), ok);
     V3<F> f{zero, zero, zero};
     F pdf_bsdf = zero;
     if (L::Any(L::Not(v.metal)))

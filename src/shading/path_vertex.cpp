@@ -40,6 +40,7 @@ Vertex surface_vertex(const Scene& scene, const SurfaceHit& hit) {
     v.frame = frame_from_normal(m.has_normal_maps() ? mapped_normal(scene, m, hit) : hit.ns);
     v.interior = hit.interior;
     v.material = hit.material;
+    v.geometric_side_test = scene.geometric_side_test;
     v.bsdf = material_bsdf(
         m, m.albedo != kNone ? eval_texture(scene, m.albedo, hit.uv, hit.p) : Color(0.0f));
     if (m.metallic_roughness != kNone) {
@@ -100,7 +101,7 @@ Color eval_world(const Vertex& v, Vec3 wo, Vec3 wi, float* pdf) {
     const bool transmits = (v.bsdf.kind == MaterialKind::Dielectric ||
                             v.bsdf.kind == MaterialKind::MetallicRoughness) &&
                            lo.z * li.z < 0.0f;
-    if (crosses != transmits) {
+    if (v.geometric_side_test && crosses != transmits) {
         *pdf = 0.0f;
         return {};
     }
@@ -143,7 +144,7 @@ Continuation sample_continuation(Strategy strategy,
         if (!s.valid) return c;
         c.wi = v.frame.to_world(s.wi);
         // Reflection must stay on wo's side of the geometric surface, transmission cross it.
-        if (v.on_surface()) {
+        if (v.on_surface() && v.geometric_side_test) {
             const bool crosses = lanes::CrossesGeometricSurface<OneLane>(
                 lanes::to_lanes(wo), lanes::to_lanes(c.wi), lanes::to_lanes(v.ng));
             if (crosses != s.transmitted) return c;
@@ -234,7 +235,8 @@ DirectSample next_event(const Scene& scene,
                                                v.bsdf.kind == MaterialKind::Metal,
                                                v.bsdf.kind == MaterialKind::Isotropic,
                                                u.light_u,
-                                               u.light_v};
+                                               u.light_v,
+                                               v.geometric_side_test};
     const size_t k = size_t(quad >= 0 ? quad : sphere);
     auto fetch = [&](const std::vector<float>& column) { return column[k]; };
     const lanes::LightPoint<OneLane> point =
@@ -363,7 +365,8 @@ PathStep continue_path(const Scene& scene,
                                             u.bsdf_u1,
                                             u.bsdf_u2,
                                             u_roulette,
-                                            bounce + 1 >= config.rr_depth};
+                                            bounce + 1 >= config.rr_depth,
+                                            v.geometric_side_test};
         const lanes::StepResult<OneLane> r =
             v.bsdf.kind == MaterialKind::Metal       ? lanes::MetalStep(lv)
             : v.bsdf.kind == MaterialKind::Isotropic ? lanes::PhaseStep(lv)

@@ -31,6 +31,7 @@ struct Vertex {
     BsdfParams bsdf;
     MediumId interior = kNone;    // the surface's inside medium, for transmission
     MaterialId material = kNone;  // whose BSDF it is (a medium's: its phase function)
+    bool geometric_side_test = true;  // Scene::geometric_side_test, at a surface
     bool on_surface() const { return ng.x != 0 || ng.y != 0 || ng.z != 0; }
 };
 

@@ -56,6 +56,7 @@ struct StepVertex {
     V3<typename L::F> beta;      // path throughput before this vertex
     typename L::F u1, u2, u_rr;  // direction and Russian roulette samples
     typename L::M roulette;      // whether Russian roulette applies at this bounce
+    bool geometric_side_test = true;  // Scene::geometric_side_test
 };
 
 template <class L>
@@ -79,7 +80,7 @@ HWY_INLINE StepResult<L> FinishStep(const StepVertex<L>& v,
     StepResult<L> r;
     r.wi = wi;
     r.pdf = pdf;
-    ok = L::AndNot(CrossesGeometricSurface<L>(v.wo, wi, v.ng), ok);
+    if (v.geometric_side_test) ok = L::AndNot(CrossesGeometricSurface<L>(v.wo, wi, v.ng), ok);
     const Roulette<L> rr = RussianRoulette<L>(v.beta * weight, v.u_rr, v.roulette);
     r.alive = L::And(ok, rr.survives);
     r.weight = weight * rr.scale;

@@ -145,3 +145,6 @@ def test_sphere_mappings_and_flipped_quads_are_fields():
     assert wt.Quad(q=(0, 0, 0), u=(1, 0, 0), v=(0, 1, 0), material=m, flip_v=True).flip_v
     s.add_sphere(sphere)
     s.check()
+    assert s.geometric_side_test
+    s.geometric_side_test = False
+    assert not s.geometric_side_test

@@ -45,6 +45,11 @@ struct Scene {
     RenderSettings render;
     Background background;
     MediumBoundaries medium_boundaries = MediumBoundaries::Nested;
+    // Whether a direction must also lie on the side of the geometric surface its lobe says
+    // (reflection on wo's side, transmission across), else it carries nothing: Veach 1997,
+    // §5.3, against light leaking where the shading normal disagrees. False: the shading frame
+    // alone decides, as in pbrt-v4 and Mitsuba 3 (their readers set it).
+    bool geometric_side_test = true;
 
     std::vector<Texture> textures;
     std::vector<ImageData> images;
