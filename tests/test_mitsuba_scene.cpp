@@ -152,7 +152,7 @@ TEST(MitsubaScenes, ShapesTransformsAndMaterialsTranslate) {
 // (y + 1) / 2) on a rectangle, a PLY's uv as in the file, an OBJ's as (u, 1 - v), on the cube's
 // +z face ((y + 1) / 2, (x + 1) / 2) (its vertices (1, -1, 1), (1, 1, 1), (-1, 1, 1), (-1, -1, 1)
 // carry uv (0, 1), (1, 1), (1, 0), (0, 0)), on a sphere (phi / 2 pi, theta / pi) about its own
-// +z; then `to_uv`; then an image's texel in column u W
+// +z, on a cylinder (phi / 2 pi, the fraction of its axis); then `to_uv`; then an image's texel in column u W
 // and row v H from the top, a checkerboard's color0 where u and v (mod 1) lie on the same side
 // of 0.5. The image's texel (i, j) holds i + 10 j; each point is a texel centre.
 TEST(MitsubaScenes, TexturesSitWhereMitsubaPutsThem) {
@@ -183,7 +183,9 @@ TEST(MitsubaScenes, TexturesSitWhereMitsubaPutsThem) {
   <shape type="cube">)" + at(15) + image + R"(</texture></bsdf></shape>
   <shape type="sphere"><float name="radius" value="0.5"/>
     <transform name="to_world"><rotate x="1" angle="90"/><translate x="18"/></transform>)" +
-                                             image + R"(</texture></bsdf></shape>)"));
+                                             image + R"(</texture></bsdf></shape>
+  <shape type="cylinder"><float name="radius" value="0.5"/>)" + at(21) + image +
+                                             R"(</texture></bsdf></shape>)"));
     Scene s = load_scene(path, collecting());
     EXPECT_TRUE(warnings.empty()) << warnings.front();
     EXPECT_FALSE(s.geometric_side_test);  // Mitsuba's BSDFs answer in the shading frame
@@ -223,6 +225,10 @@ TEST(MitsubaScenes, TexturesSitWhereMitsubaPutsThem) {
             const Vec3 n{local.x, -local.z, local.y};
             const Point3 centre{18, 0, 0};
             EXPECT_NEAR(seen_along(Ray{centre + 2.0f * n, -n}), texel, 1e-3f) << "sphere " << i << j;
+            // Cylinder (p0 at the origin, p1 = +z): (cos phi, sin phi, v) at (phi / 2 pi, v).
+            const Vec3 out{std::cos(phi), std::sin(phi), 0.0f};
+            EXPECT_NEAR(seen_along(Ray{Point3{21, 0, v} + 2.0f * out, -out}), texel, 1e-2f)
+                << "cylinder " << i << j;
         }
 }
 

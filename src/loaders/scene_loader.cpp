@@ -1140,6 +1140,8 @@ class Loader {
                 if (!(length(axis) > 0)) p1.fail("p1 must differ from p0");
                 t = tessellate_cylinder(o.required("radius").positive(), 0, length(axis), kTurn);
             }
+            if (auto x = o.optional("flip_v"); x && x->boolean())
+                for (Vec2& uv : t.uvs) uv.y = 1.0f - uv.y;
             o.finish();
             const Frame frame = Frame::from_normal(normalize(axis));
             for (Point3& p : t.positions) p = origin + frame.to_world(p);

@@ -947,10 +947,13 @@ class Translator {
         } else if (type == "cylinder") {
             const Element* p0 = p.get("p0");
             const Element* p1 = p.get("p1");
+            // Mitsuba's uv (phi / 2 pi, the fraction of the axis), phi in the same frame of the
+            // axis as ours (Duff et al. 2017): flip_v gives its (u, 1 - v).
             o = {{"type", "cylinder"},
                  {"p0", p0 ? to_json(xyz(*p0, 0.0)) : json::array({0, 0, 0})},
                  {"p1", p1 ? to_json(xyz(*p1, 0.0)) : json::array({0, 0, 1})},
-                 {"radius", p.number("radius", 1.0)}};
+                 {"radius", p.number("radius", 1.0)},
+                 {"flip_v", true}};
         } else if (type == "instance") {
             const std::vector<const Element*> groups = p.nested("shape");
             if (groups.size() != 1 || groups.front()->attr_or("type", "") != "shapegroup")
@@ -997,7 +1000,7 @@ class Translator {
                 o.erase(key);
             }
         }
-        if ((type == "disk" || type == "cylinder") && o.contains("material") &&
+        if (type == "disk" && o.contains("material") &&
             reads_uv(out_["materials"][o["material"].get<std::string>()]))
             warn(e, type + ": its texture coordinates are wavetrace's, not Mitsuba's; its "
                            "textures and normal maps appear differently");
