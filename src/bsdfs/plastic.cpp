@@ -41,6 +41,27 @@ double specular_albedo(const MicrofacetDistribution& md, float mu, float eta, in
     return sum / (double(n) * n);
 }
 
+// The coating's transmittance from o = (sqrt(1 - mu^2), 0, mu) into the material: the mean of
+// (1 - F(o.m)) G1(t) over o's visible normals m, t the refraction of o at m, on the same grid
+// (Mitsuba 3's eval_transmittance: light refracted into a facet that the surface then masks
+// does not reach the base).
+double specular_transmittance(const MicrofacetDistribution& md, float mu, float eta, int n) {
+    const Vec3 o{std::sqrt(std::max(0.0f, 1.0f - mu * mu)), 0.0f, mu};
+    double sum = 0.0;
+    for (int a = 0; a < n; ++a)
+        for (int b = 0; b < n; ++b) {
+            const Vec3 m = md.sample_visible(o, (a + 0.5f) / n, (b + 0.5f) / n);
+            const float cos_om = dot(o, m);
+            const float sin2_t = (1.0f - cos_om * cos_om) / (eta * eta);
+            if (!(cos_om > 0.0f) || !(sin2_t < 1.0f)) continue;
+            const float cos_t = std::sqrt(1.0f - sin2_t);
+            const Vec3 t = -o / eta + (cos_om / eta - cos_t) * m;
+            if (!(t.z < 0.0f)) continue;
+            sum += double(1.0f - fresnel_dielectric(cos_om, eta)) * md.g1(t);
+        }
+    return sum / (double(n) * n);
+}
+
 // The probability of the specular lobe given its share E of the light (see plastic.h).
 float specular_probability(float e, float w) {
     const float s = e * w, d = (1.0f - e) * (1.0f - w);
@@ -94,7 +115,7 @@ CoatingTable rough_coating_table(Microfacet distribution, float alpha, float eta
     double inner = 0.0;
     for (int k = 0; k < CoatingTable::kSize; ++k) {
         const float mu = std::max(1e-6f, float(k) / float(CoatingTable::kSize - 1));
-        t.transmittance[k] = float(1.0 - specular_albedo(md, mu, eta, kGrid));
+        t.transmittance[k] = float(specular_transmittance(md, mu, eta, kGrid));
         inner += mu * specular_albedo(md, mu, 1.0f / eta, kGrid);
     }
     t.internal_reflectance = float(2.0 * inner / CoatingTable::kSize);

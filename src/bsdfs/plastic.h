@@ -22,8 +22,9 @@
 // - Rough (alpha > 0, isotropic): the coating's microfacet reflection with the separable Smith
 //   masking-shadowing G1(o) G1(i) (Mitsuba's choice),
 //     f cos_i = S F(o.h) D(h) G1(o) G1(i) / (4 cos_o),
-//   plus R' T(cos_o) T(cos_i) / eta^2 * cos_i / pi, T = CoatingTable::transmittance (1 - the
-//   directional albedo of that reflection), Fdr = CoatingTable::internal_reflectance.
+//   plus R' T(cos_o) T(cos_i) / eta^2 * cos_i / pi, T = CoatingTable::transmittance (what the
+//   coating's facets refract in and the surface does not mask), Fdr =
+//   CoatingTable::internal_reflectance.
 //
 // S is the specular reflectance (1 by default). Sampling picks the specular lobe with
 // probability P = E w / (E w + (1 - E)(1 - w)), E = F(cos_o) (smooth) or 1 - T(cos_o) (rough),
@@ -43,9 +44,11 @@ BsdfSample plastic_sample(const BsdfParams& b, Vec3 wo, float u_lobe, float u1, 
 float plastic_internal_reflectance(float eta);
 
 // The rough coating's table for a distribution, roughness alpha and eta (Mitsuba 3's
-// definition): T(mu) = 1 - the directional albedo of F D G1 G1 / (4 cos_o) from a direction of
-// cosine mu, by quadrature over its visible normals; Fdr = 2 * the mean of mu R_in(mu) over the
-// table's nodes, R_in that albedo seen from inside (relative index 1 / eta).
+// definition): T(mu) = the mean over the visible normals m of a direction o of cosine mu of
+// (1 - F(o.m)) G1(t), t the refraction of o at m, by quadrature; Fdr = 2 * the mean of
+// mu R_in(mu) over the table's nodes, R_in the directional albedo of F D G1 G1 / (4 cos_o)
+// seen from inside (relative index 1 / eta). T <= 1 - the albedo from outside: what the
+// surface masks after refraction is lost (no multiple scattering), as in Mitsuba.
 CoatingTable rough_coating_table(Microfacet distribution, float alpha, float eta);
 
 }  // namespace wavetrace

@@ -8,8 +8,8 @@ namespace wavetrace {
 
 struct CoatingTable {
     static constexpr int kSize = 64;
-    // 1 - the directional albedo of the coating's specular reflection, at cos theta = i / 63
-    // (the first node at 1e-6), looked up linearly in between.
+    // The share of light from a direction at cos theta = i / 63 (the first node at 1e-6) that
+    // the coating refracts into the material, looked up linearly in between.
     std::array<float, kSize> transmittance{};
     // The share of light diffused inside the coating that is reflected back in.
     float internal_reflectance = 0.0f;
