@@ -8,6 +8,8 @@
 #include <cmath>
 
 #include "scene/hit_geometry.h"
+#include "temp_dir.h"
+#include "wavetrace/loaders/load_scene.h"
 #include "shading/lights.h"
 #include "shading/normal_maps.h"
 #include "shading/path_vertex.h"
@@ -179,4 +181,33 @@ TEST(ShadingNormals, GeometricSideTestIsTheScenesChoice) {
     const Continuation free = sample_continuation(Strategy::Bsdf, s, lights, v, wo, u);
     ASSERT_TRUE(free.valid);
     EXPECT_LT(free.wi.z, 0.0f);  // below the geometric surface
+}
+
+// An anisotropic conductor's roughness runs along dp/du: its vertex frame's s is dp/du made
+// perpendicular to the shading normal (here a quad's u edge, where the basis built from the
+// normal alone would give +x).
+TEST(ShadingNormals, AnisotropicRoughnessFollowsDpDu) {
+    TempDir dir;
+    auto scene = [&](const std::string& roughness) {
+        return dir.write("s.json", R"({"camera": {"look_from": [0, 0, 5], "look_at": [0, 0, 0]},
+            "materials": {"brushed": {"type": "conductor", "metal": "Al", )" + roughness + R"(}},
+            "objects": [{"type": "quad", "q": [0, 0, 0], "u": [0, 2, 0], "v": [-1, 0, 0],
+                         "material": "brushed"}]})");
+    };
+    const Scene s = load_scene(scene(R"("alpha_u": 0.3, "alpha_v": 0.05)"));
+    EXPECT_EQ(s.materials[0].alpha_u, 0.3f);
+    EXPECT_EQ(s.materials[0].alpha_v, 0.05f);
+    const Ray ray{{-0.5f, 0.5f, 3}, {0, 0, -1}};
+    const SurfaceHit hit = surface_at(s, ray, Hit{3.0f, PrimRef::make(PrimKind::Quad, 0), 0.25f, 0.5f});
+    const Vertex v = surface_vertex(s, hit);
+    EXPECT_NEAR(v.frame.s.y, 1.0f, 1e-6f);
+    EXPECT_NEAR(v.frame.n.z, 1.0f, 1e-6f);
+    EXPECT_NEAR(dot(cross(v.frame.s, v.frame.t), v.frame.n), 1.0f, 1e-6f);
+    for (const char* bad : {R"("alpha": 0.1, "alpha_u": 0.3, "alpha_v": 0.05)", R"("alpha_u": 0.3)"}) {
+        try {
+            load_scene(scene(bad));
+            ADD_FAILURE() << bad;
+        } catch (const SceneError&) {
+        }
+    }
 }

@@ -531,6 +531,16 @@ class Loader {
                     .fail("eta and k are both 0 in channel " + std::to_string(c) +
                           ": a conductor needs eta > 0 or k > 0");
         read_roughness(o, m);
+        // Anisotropic: alpha_u along the surface's dp/du, alpha_v across it (Mitsuba 3's and
+        // pbrt-v4's uroughness / vroughness).
+        if (auto u = o.optional("alpha_u")) {
+            Value v = o.required("alpha_v");
+            if (o.optional("alpha")) u->fail("give \"alpha\" or \"alpha_u\" and \"alpha_v\", not both");
+            m.alpha_u = u->in_range(0.0f, 1.0f);
+            m.alpha_v = v.in_range(0.0f, 1.0f);
+            if ((m.alpha_u == 0.0f) != (m.alpha_v == 0.0f))
+                v.fail("alpha_u and alpha_v are both 0 (smooth) or both > 0");
+        }
         auto x = o.optional("reflectance");
         m.albedo = x ? read_texture(*x, Range::Reflectance) : scene_.add_solid(Vec3(1.0f));
     }

@@ -737,6 +737,12 @@ class Translator {
             t = {{"type", "uv_checker"}, {"scale", 0.5},
                  {"even", c0 ? color(*c0, true, false) : json(0.4)},
                  {"odd", c1 ? color(*c1, true, false) : json(0.2)}};
+        } else if (type == "rawconstant") {
+            // Its value as it stands (a number, or a vector such as a flat normal map's).
+            const Element* v = p.get("value");
+            if (!v) fail(e, "rawconstant: needs a value");
+            p.finish();
+            return to_json(xyz(*v, 0.0));
         } else {
             warn(e, "texture \"" + type + "\" is not supported; a grey 0.5 stands for it");
             return 0.5;
@@ -769,12 +775,20 @@ class Translator {
 
     // ---- materials ----
 
-    void roughness(Props& p, json& m, const Element& e, const char* default_distribution) {
+    // `anisotropic`: the material takes alpha_u and alpha_v (conductors); others their mean.
+    void roughness(Props& p, json& m, const Element& e, const char* default_distribution,
+                   bool anisotropic = false) {
         const std::string d = p.string("distribution", default_distribution);
         if (d != "ggx" && d != "beckmann") fail(e, "distribution \"" + d + "\" (expected ggx or beckmann)");
         double alpha = p.number("alpha", 0.1);
         if (p.get("alpha_u") || p.get("alpha_v")) {
             const double au = p.number("alpha_u", 0.1), av = p.number("alpha_v", 0.1);
+            if (au != av && anisotropic) {
+                m["alpha_u"] = au;
+                m["alpha_v"] = av;
+                m["distribution"] = d;
+                return;
+            }
             if (au != av)
                 warn(e, "anisotropic roughness (alpha_u " + std::to_string(au) + ", alpha_v " +
                             std::to_string(av) + ") is rendered isotropic with their mean");
@@ -830,7 +844,7 @@ class Translator {
             }
             if (const Element* r = p.get("specular_reflectance"))
                 m["reflectance"] = color(*r, true, false);
-            if (type == "roughconductor") roughness(p, m, e, "beckmann");
+            if (type == "roughconductor") roughness(p, m, e, "beckmann", true);
         } else if (type == "dielectric" || type == "roughdielectric" || type == "thindielectric") {
             m = {{"type", type == "thindielectric" ? "thin_dielectric" : "dielectric"},
                  {"ior", p.ior("int_ior", "bk7")},

@@ -37,7 +37,17 @@ Vertex surface_vertex(const Scene& scene, const SurfaceHit& hit) {
     v.p = hit.p;
     v.ng = hit.ng;
     const Material& m = scene.materials[hit.material];
-    v.frame = frame_from_normal(m.has_normal_maps() ? mapped_normal(scene, m, hit) : hit.ns);
+    const Normal3 n = m.has_normal_maps() ? mapped_normal(scene, m, hit) : hit.ns;
+    v.frame = frame_from_normal(n);
+    if (m.alpha_u != m.alpha_v) {
+        // An anisotropic roughness runs along dp/du: the frame's s is dp/du made perpendicular
+        // to the shading normal (Mitsuba 3's shading frame), where it has a direction.
+        const Vec3 s = hit.dpdu - dot(n, hit.dpdu) * n;
+        if (length_squared(s) > 1e-20f * length_squared(hit.dpdu) && length_squared(s) > 0.0f) {
+            const Vec3 su = normalize(s);
+            v.frame = {su, cross(n, su), n};
+        }
+    }
     v.interior = hit.interior;
     v.material = hit.material;
     v.geometric_side_test = scene.geometric_side_test;

@@ -65,7 +65,7 @@ SurfaceHit surface_at(const Scene& scene, const Ray& ray, const Hit& hit) {
             break;
         }
     }
-    if (s.material != kNone && scene.materials[s.material].has_normal_maps()) {
+    if (s.material != kNone && scene.materials[s.material].needs_tangents()) {
         const Tangents t = hit_tangents(scene, hit.prim, s.p);
         s.dpdu = t.dpdu;
         s.dpdv = t.dpdv;

@@ -60,6 +60,9 @@ struct Material {
     TextureId bump_map = kNone;
     float bump_scale = 1.0f;
     bool has_normal_maps() const { return normal_map != kNone || bump_map != kNone; }
+    // Whether its shading frame must follow the surface's dp/du: normal and bump maps, and an
+    // anisotropic roughness (alpha_u along dp/du, alpha_v across it).
+    bool needs_tangents() const { return has_normal_maps() || alpha_u != alpha_v; }
 
     bool is_emissive() const { return emission != kNone; }
 };
