@@ -354,6 +354,28 @@ AttributeEnd
         }
 }
 
+// pbrt-v4's uroughness and vroughness, remapped (alpha = sqrt(roughness)), become a conductor's
+// alpha_u and alpha_v; equal ones its alpha.
+TEST(PbrtScenes, ConductorRoughnessMayBeAnisotropic) {
+    TempDir dir;
+    auto path = dir.write("a.pbrt", R"(Camera "perspective"
+WorldBegin
+Material "conductor" "float uroughness" 0.09 "float vroughness" 0.01
+Shape "sphere"
+Material "conductor" "float uroughness" 0.04 "float vroughness" 0.04
+Shape "sphere"
+)");
+    Scene s = load_scene(path, collecting());
+    EXPECT_TRUE(warnings.empty()) << (warnings.empty() ? "" : warnings.front());
+    ASSERT_EQ(s.spheres.size(), 2u);
+    const Material& brushed = s.materials[s.spheres[0].material];
+    EXPECT_NEAR(brushed.alpha_u, 0.3f, 1e-6f);
+    EXPECT_NEAR(brushed.alpha_v, 0.1f, 1e-6f);
+    const Material& even = s.materials[s.spheres[1].material];
+    EXPECT_NEAR(even.alpha_u, 0.2f, 1e-6f);
+    EXPECT_EQ(even.alpha_u, even.alpha_v);
+}
+
 TEST(PbrtScenes, MediaFillShapesWithTheInterfaceMaterial) {
     TempDir dir;
     auto path = dir.write("a.pbrt", R"(

@@ -905,23 +905,34 @@ class Translator {
         return key;
     }
 
-    // pbrt-v4's roughness: alpha = sqrt(roughness) unless remaproughness is false.
-    double alpha(PbrtParams& p, const std::string& place, const std::string& prefix = "") {
+    // pbrt-v4's roughness: alpha = sqrt(roughness) unless remaproughness is false. With
+    // `anisotropic` (a material that takes them), unequal uroughness and vroughness go there as
+    // (alpha_u, alpha_v) and the return value is -1; otherwise they are rendered as their mean.
+    double alpha(PbrtParams& p, const std::string& place, const std::string& prefix = "",
+                 std::pair<double, double>* anisotropic = nullptr) {
+        const bool remap = p.boolean("remaproughness", true);
+        auto to_alpha = [&](double r) {
+            double a = remap ? std::sqrt(std::max(r, 0.0)) : r;
+            if (a < 0) fail(place, p.what + ": roughness must not be negative");
+            if (a > 1) {
+                warn(place, p.what + ": alpha above 1 is clamped to 1");
+                a = 1;
+            }
+            return a;
+        };
         double r = float_param(p, prefix + "roughness", 0);
         const bool has_uv = p.get(prefix + "uroughness") || p.get(prefix + "vroughness");
         if (has_uv) {
             const double u = float_param(p, prefix + "uroughness", r),
                          v = float_param(p, prefix + "vroughness", r);
+            if (u != v && anisotropic && (u > 0) == (v > 0)) {
+                *anisotropic = {to_alpha(u), to_alpha(v)};
+                return -1;
+            }
             if (u != v) warn(place, p.what + ": anisotropic roughness is rendered with the mean");
             r = 0.5 * (u + v);
         }
-        double a = p.boolean("remaproughness", true) ? std::sqrt(std::max(r, 0.0)) : r;
-        if (a < 0) fail(place, p.what + ": roughness must not be negative");
-        if (a > 1) {
-            warn(place, p.what + ": alpha above 1 is clamped to 1");
-            a = 1;
-        }
-        return a;
+        return to_alpha(r);
     }
 
     json ior(PbrtParams& p, const std::string& name, double fallback, const std::string& place) {
@@ -983,7 +994,10 @@ class Translator {
             if (type == "coatedconductor")
                 warn(place, p.what + ": the coating is not rendered; a bare conductor");
             const std::string prefix = type == "coatedconductor" ? "conductor." : "";
-            m = {{"type", "conductor"}, {"alpha", alpha(p, place, prefix)}};
+            std::pair<double, double> uv;
+            const double a = alpha(p, place, prefix, &uv);
+            m = a >= 0 ? json{{"type", "conductor"}, {"alpha", a}}
+                       : json{{"type", "conductor"}, {"alpha_u", uv.first}, {"alpha_v", uv.second}};
             conductor(p, prefix, m, place);
             if (type == "coatedconductor")
                 for (const char* n : {"interface.roughness", "interface.uroughness",
