@@ -26,6 +26,10 @@ fs::path setup() {
     wavetrace::Image tiny(8, 4);
     for (wavetrace::Color& c : tiny.pixels) c = wavetrace::Color(0.5f, 0.6f, 0.7f);
     wavetrace::write_image(dir / "tex.png", tiny);
+    // A square one, as an equal-area map of an infinite light must be.
+    wavetrace::Image sky(4, 4);
+    for (wavetrace::Color& c : sky.pixels) c = wavetrace::Color(0.9f, 0.8f, 0.7f);
+    wavetrace::write_image(dir / "sky.png", sky);
     return dir;
 }
 
