@@ -88,7 +88,8 @@ class Loader {
             else if (rule != "nested")
                 v->fail("unknown rule \"" + rule + "\" (expected nested or interface)");
         }
-        if (auto v = root.optional("geometric_side_test")) scene_.geometric_side_test = v->boolean();
+        if (auto v = root.optional("geometric_side_test"))
+            scene_.geometric_side_test = v->boolean();
         Value objects = root.required("objects");
         for (size_t i = 0; i < objects.size(); ++i) read_object(objects[i], Transform{});
         root.finish();
@@ -535,7 +536,8 @@ class Loader {
         // pbrt-v4's uroughness / vroughness).
         if (auto u = o.optional("alpha_u")) {
             Value v = o.required("alpha_v");
-            if (o.optional("alpha")) u->fail("give \"alpha\" or \"alpha_u\" and \"alpha_v\", not both");
+            if (o.optional("alpha"))
+                u->fail("give \"alpha\" or \"alpha_u\" and \"alpha_v\", not both");
             m.alpha_u = u->in_range(0.0f, 1.0f);
             m.alpha_v = v.in_range(0.0f, 1.0f);
             if ((m.alpha_u == 0.0f) != (m.alpha_v == 0.0f))

@@ -119,7 +119,8 @@ void Scene::add_sphere(Sphere sphere, const Transform& to_world) {
                                     : sphere_frames.at(sphere.frame);
     f = {to_world.vector(f.s) / s, to_world.vector(f.t) / s, to_world.vector(f.n) / s};
     const Frame identity{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
-    const float change = length(f.s - identity.s) + length(f.t - identity.t) + length(f.n - identity.n);
+    const float change =
+        length(f.s - identity.s) + length(f.t - identity.t) + length(f.n - identity.n);
     if (change > 1e-6f) {
         sphere.frame = static_cast<uint32_t>(sphere_frames.size());
         sphere_frames.push_back(f);

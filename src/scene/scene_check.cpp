@@ -86,8 +86,8 @@ void check_scene(const Scene& scene) {
             fail("sphere", i, "needs a finite centre and a positive radius");
         if (s.mapping != SphereMapping::YUp && s.mapping != SphereMapping::ZUp)
             fail("sphere", i, "has no known texture mapping");
-        if (s.frame != kNone &&
-            (s.frame >= scene.sphere_frames.size() || !scene.sphere_frames[s.frame].is_orthonormal(1e-4f)))
+        if (s.frame != kNone && (s.frame >= scene.sphere_frames.size() ||
+                                 !scene.sphere_frames[s.frame].is_orthonormal(1e-4f)))
             fail("sphere", i, "names no orthonormal frame of the scene's sphere_frames");
     }
     for (size_t i = 0; i < scene.quads.size(); ++i) {
