@@ -1,5 +1,10 @@
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <fstream>
+#include <iterator>
+#include <string>
+
 #include "temp_dir.h"
 #include "wavetrace/image/image.h"
 
@@ -95,4 +100,64 @@ TEST(ImageIo, PngChunkLongerThanTheFileIsRefused) {
                       std::string::npos) << m;
         }
     }
+}
+
+// Images are read a band of rows at a time: one of several bands comes back texel for texel,
+// alpha from the fourth channel included.
+TEST(ImageIo, ImagesTallerThanABandReadWhole) {
+    TempDir dir;
+    Image img = gradient(611, 517);  // 2^18 floats a band: 107 rows of 611 RGBA texels
+    write_image(dir.path() / "tall.exr", img);
+    ImageData back = read_image(dir.path() / "tall.exr");
+    ASSERT_EQ(back.width, 611);
+    ASSERT_EQ(back.height, 517);
+    for (int y = 0; y < 517; ++y)
+        for (int x = 0; x < 611; ++x) ASSERT_EQ(back.texel(x, y), img.at(x, y)) << x << " " << y;
+}
+
+namespace {
+// This process's peak resident memory in KiB since the last reset_peak_memory().
+long peak_memory_kib() {
+    std::ifstream status("/proc/self/status");
+    for (std::string line; std::getline(status, line);)
+        if (line.rfind("VmHWM:", 0) == 0) return std::stol(line.substr(6));
+    return -1;
+}
+void reset_peak_memory() { std::ofstream("/proc/self/clear_refs") << "5"; }
+}  // namespace
+
+// A header that claims more pixels than the file's data holds fails having touched memory for
+// the rows it had, not for the claim: a 4096 x 4096 PNG cut after its first IDAT chunk (a
+// claim of 200 MB as float RGB) fails within 64 MiB of peak memory.
+TEST(ImageIo, PixelsEndingEarlyCostOnlyWhatTheFileHolds) {
+    TempDir dir;
+    Image img(4096, 4096);
+    for (int y = 0; y < 4096; ++y)
+        for (int x = 0; x < 4096; ++x) img.at(x, y) = Color(float((x * 7 + y * 13) % 256) / 255);
+    write_image(dir.path() / "whole.png", img);
+    std::ifstream in(dir.path() / "whole.png", std::ios::binary);
+    const std::string png((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    // The signature and the chunks up to and including the first IDAT, then IEND.
+    size_t at = 8;
+    auto chunk_length = [&](size_t p) {
+        return size_t((unsigned char)png[p]) << 24 | size_t((unsigned char)png[p + 1]) << 16 |
+               size_t((unsigned char)png[p + 2]) << 8 | size_t((unsigned char)png[p + 3]);
+    };
+    while (png.compare(at + 4, 4, "IDAT") != 0) at += 12 + chunk_length(at);
+    at += 12 + chunk_length(at);
+    ASSERT_LT(at, png.size() / 4) << "the cut keeps most of the image";
+    const std::string iend("\0\0\0\0IEND\xae\x42\x60\x82", 12);
+    const auto cut = dir.write("cut.png", png.substr(0, at) + iend);
+    reset_peak_memory();
+    const long before = peak_memory_kib();
+    ASSERT_GT(before, 0);
+    try {
+        read_image(cut);
+        ADD_FAILURE() << "read";
+    } catch (const ImageError& e) {
+        EXPECT_NE(std::string(e.what()).find(cut.string()), std::string::npos) << e.what();
+    }
+    const long grew = peak_memory_kib() - before;
+    std::printf("peak memory grew %ld KiB reading %zu of %zu bytes\n", grew, at, png.size());
+    EXPECT_LT(grew, 64 * 1024);
 }

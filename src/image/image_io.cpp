@@ -173,7 +173,6 @@ void check_png_chunks(uint64_t size, ReadAt read_at, const std::string& name) {
     }
 }
 
-// An opened image read whole as linear RGB (see read_image); `name` for messages.
 // The most texels a file of `bytes` bytes can hold in `format` (OpenImageIO's name): PNM
 // stores every pixel (at least a bit each); every other format compresses at most ~1000:1
 // (deflate's limit) of at least a bit per texel, for which 2^14 texels a byte leave room, plus
@@ -183,6 +182,7 @@ uint64_t most_texels(const std::string& format, uint64_t bytes) {
     return (uint64_t(1) << 14) * bytes + (uint64_t(1) << 16);
 }
 
+// An opened image read whole as linear RGB (see read_image); `name` for messages.
 ImageData read_opened(OIIO::ImageInput& in,
                       const std::string& name,
                       uint64_t file_bytes,
@@ -202,13 +202,9 @@ ImageData read_opened(OIIO::ImageInput& in,
                          std::to_string(spec.height) + " pixels, more than a " +
                          in.format_name() + " file of " + std::to_string(file_bytes) +
                          " bytes can hold");
-    const int channels = spec.nchannels;
-    std::vector<float> data(static_cast<size_t>(spec.width) * spec.height * channels);
-    if (!in.read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, data.data())) {
-        const std::string err = in.geterror();
-        throw ImageError(name + ": cannot read image: " +
-                         (err.empty() ? "the pixels end early or are malformed" : err));
-    }
+    if (spec.depth > 1) throw ImageError(name + ": volume images (depth > 1) are not read");
+    // Only the channels used: RGB and alpha (the second of two, the fourth of four or more).
+    const int channels = std::min(spec.nchannels, 4);
     const bool decode = wanted == ImageChannels::Linear &&
                         spec.format.basetype != OIIO::TypeDesc::FLOAT &&
                         spec.format.basetype != OIIO::TypeDesc::HALF &&
@@ -218,15 +214,32 @@ ImageData read_opened(OIIO::ImageInput& in,
     image.path = name;
     image.width = spec.width;
     image.height = spec.height;
-    image.texels.resize(static_cast<size_t>(spec.width) * spec.height);
-    for (size_t i = 0; i < image.texels.size(); ++i) {
-        const float* px = &data[i * channels];
-        Color c = channels >= 3 ? Color{px[0], px[1], px[2]} : Color{px[0]};
-        if (wanted == ImageChannels::Alpha)
-            c = Color(channels == 2 || channels >= 4 ? px[channels == 2 ? 1 : 3] : 1.0f);
-        if (decode) c = {srgb_decode(c.x), srgb_decode(c.y), srgb_decode(c.z)};
-        if (!is_finite(c)) throw ImageError(name + ": contains NaN or infinite texels");
-        image.texels[i] = c;
+    // Read a band of rows at a time, so that a file whose pixels end early (a header claiming
+    // more than its data holds) fails having touched memory only for the rows it had; the
+    // reservation is address space until rows fill it.
+    image.texels.reserve(static_cast<size_t>(texels));
+    const size_t width = static_cast<size_t>(spec.width);
+    const int band = static_cast<int>(
+        std::clamp<size_t>((size_t(1) << 18) / (width * channels), 1, size_t(spec.height)));
+    std::vector<float> data;
+    for (int y = 0; y < spec.height; y += band) {
+        const int rows = std::min(band, spec.height - y);
+        data.resize(width * rows * channels);
+        if (!in.read_scanlines(0, 0, spec.y + y, spec.y + y + rows, spec.z, 0, channels,
+                               OIIO::TypeDesc::FLOAT, data.data())) {
+            const std::string err = in.geterror();
+            throw ImageError(name + ": cannot read image: " +
+                             (err.empty() ? "the pixels end early or are malformed" : err));
+        }
+        for (size_t i = 0; i < width * rows; ++i) {
+            const float* px = &data[i * channels];
+            Color c = channels >= 3 ? Color{px[0], px[1], px[2]} : Color{px[0]};
+            if (wanted == ImageChannels::Alpha)
+                c = Color(channels == 2 || channels >= 4 ? px[channels == 2 ? 1 : 3] : 1.0f);
+            if (decode) c = {srgb_decode(c.x), srgb_decode(c.y), srgb_decode(c.z)};
+            if (!is_finite(c)) throw ImageError(name + ": contains NaN or infinite texels");
+            image.texels.push_back(c);
+        }
     }
     return image;
 }
