@@ -161,3 +161,50 @@ TEST(ImageIo, PixelsEndingEarlyCostOnlyWhatTheFileHolds) {
     std::printf("peak memory grew %ld KiB reading %zu of %zu bytes\n", grew, at, png.size());
     EXPECT_LT(grew, 64 * 1024);
 }
+
+namespace {
+std::string little_endian(int32_t v) {
+    std::string s(4, '\0');
+    for (int i = 0; i < 4; ++i) s[i] = char((uint32_t(v) >> (8 * i)) & 0xff);
+    return s;
+}
+// An OpenEXR file's magic number and version field, then the given attributes and the empty
+// name that closes a header.
+std::string exr_header(const std::string& attributes) {
+    return std::string("\x76\x2f\x31\x01\x02\0\0\0", 8) + attributes + std::string(1, '\0');
+}
+}  // namespace
+
+// OpenEXR allocates a string attribute's claimed size, and its tables from the data window,
+// before reading them: both claims are checked against the file's size first.
+TEST(ImageIo, ExrHeaderClaimsBeyondTheFileAreRefused) {
+    TempDir dir;
+    const auto long_attribute = dir.write(
+        "long.exr", exr_header(std::string("comments\0string\0", 16) + little_endian(1 << 30) +
+                               "abc"));
+    const auto big_window = dir.write(
+        "window.exr", exr_header(std::string("dataWindow\0box2i\0", 17) + little_endian(16) +
+                                 little_endian(0) + little_endian(0) + little_endian(65535) +
+                                 little_endian(65535)));
+    const auto wide_window = dir.write(
+        "wide.exr", exr_header(std::string("dataWindow\0box2i\0", 17) + little_endian(16) +
+                               little_endian(-8) + little_endian(0) + little_endian(1 << 20) +
+                               little_endian(0)));
+    const std::pair<std::filesystem::path, std::string> cases[] = {
+        {long_attribute,
+         "OpenEXR attribute 'comments' at byte 8 claims 1073741824 bytes; the file has 4 after it"},
+        {big_window, "the header claims 65536 x 65536 pixels, more than the limit of 67108864 texels"},
+        {wide_window,
+         "the header claims 1048585 x 1 pixels, more than an openexr file of 46 bytes can hold"},
+    };
+    for (const auto& [path, message] : cases) {
+        try {
+            read_image(path);
+            ADD_FAILURE() << path;
+        } catch (const ImageError& e) {
+            const std::string m = e.what();
+            EXPECT_NE(m.find(path.string() + ": "), std::string::npos) << m;
+            EXPECT_NE(m.find(message), std::string::npos) << m;
+        }
+    }
+}

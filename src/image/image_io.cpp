@@ -16,6 +16,7 @@
 
 #include "files/input_file.h"
 #include "files/output_file.h"
+#include "image/image_claims.h"
 #include "wavetrace/image/image.h"
 
 namespace wavetrace {
@@ -146,42 +147,6 @@ const OIIO::ImageSpec& unassociated_alpha() {
     return config;
 }
 
-// A PNG's chunks, walked before any reader sees them: each chunk's length must fit in what is
-// left of the file. libpng allocates a chunk's claimed length before reading it, so a 600-byte
-// file whose tEXt chunk claims 2 GB took 5 s and 2 GB of memory to fail (found by fuzz_image).
-// `read_at(offset, n, out)` reads n bytes at offset (false past the end); not a PNG: no check.
-template <class ReadAt>
-void check_png_chunks(uint64_t size, ReadAt read_at, const std::string& name) {
-    static const unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-    unsigned char head[8];
-    if (size < 8 || !read_at(0, 8, head) || std::memcmp(head, kSignature, 8) != 0) return;
-    for (uint64_t at = 8; at + 8 <= size;) {
-        if (!read_at(at, 8, head)) return;
-        const uint64_t length = (uint64_t(head[0]) << 24) | (uint64_t(head[1]) << 16) |
-                                (uint64_t(head[2]) << 8) | uint64_t(head[3]);
-        std::string type(reinterpret_cast<const char*>(head + 4), 4);
-        for (char& c : type)
-            if (!std::isalnum(static_cast<unsigned char>(c))) c = '?';
-        const uint64_t after_header = size - at - 8;  // its data and CRC must fit here
-        if (length + 4 > after_header)
-            throw ImageError(name + ": cannot read image: PNG chunk '" + type + "' at byte " +
-                             std::to_string(at) + " claims " + std::to_string(length) +
-                             " bytes; the file has " + std::to_string(after_header) +
-                             " after its header");
-        if (type == "IEND") return;
-        at += 12 + length;
-    }
-}
-
-// The most texels a file of `bytes` bytes can hold in `format` (OpenImageIO's name): PNM
-// stores every pixel (at least a bit each); every other format compresses at most ~1000:1
-// (deflate's limit) of at least a bit per texel, for which 2^14 texels a byte leave room, plus
-// a header's worth. A header claiming more is refused before its pixels are allocated.
-uint64_t most_texels(const std::string& format, uint64_t bytes) {
-    if (format == "pnm") return 8 * bytes;
-    return (uint64_t(1) << 14) * bytes + (uint64_t(1) << 16);
-}
-
 // An opened image read whole as linear RGB (see read_image); `name` for messages.
 ImageData read_opened(OIIO::ImageInput& in,
                       const std::string& name,
@@ -256,7 +221,7 @@ ImageData read_image(const fs::path& path, ImageChannels channels) {
     const uintmax_t bytes = fs::file_size(path, ec);
     {
         std::ifstream file(path, std::ios::binary);
-        check_png_chunks(
+        check_image_claims(
             ec ? 0 : uint64_t(bytes),
             [&](uint64_t at, size_t n, unsigned char* out) {
                 file.clear();
@@ -281,7 +246,7 @@ ImageData read_image_bytes(std::span<const unsigned char> bytes,
     if (format != "png" && format != "jpg" && format != "jpeg")
         throw ImageError(name + ": cannot read image: format \"" + format +
                          "\" (embedded images are read as png or jpeg)");
-    check_png_chunks(
+    check_image_claims(
         bytes.size(),
         [&](uint64_t at, size_t n, unsigned char* out) {
             if (at + n > bytes.size()) return false;
