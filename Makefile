@@ -43,11 +43,10 @@ CLANG_CMAKE = -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
 # runs only in `make test`.
 SAN_TESTS ?= Check*:SceneLoader.*:MitsubaScenes.*:PbrtScenes.*:Cli.*:Hostile*:Bvh.*:Triangle.*:Sphere.*:Quad.*:MeshFiles.*:Wavefront.*:Megakernel.*:Kernels.*:Lanes.*:Films.*:CompareImages.*:-Cli.WavefrontMemoryDoesNotGrowWithSamples:PbrtScenes.BitterlisCornellBoxRendersTungstensImageMean
 FUZZ_RUNS ?= 20000
-# An XML execution loads a dozen shapes, meshes and images, and an image's header may claim
-# up to 2^14 texels per byte of file (hundreds of MB to allocate and clear): fewer runs keep
-# them level in time with the other targets.
+# An XML execution loads a dozen shapes, meshes and images, and an image execution decodes
+# up to 2^14 texels per byte of file: fewer runs keep them level in time with the other targets.
 FUZZ_XML_RUNS ?= 8000
-FUZZ_IMAGE_RUNS ?= 4000
+FUZZ_IMAGE_RUNS ?= 10000
 FUZZ_SECONDS ?= 600
 
 sanitize-build: deps
