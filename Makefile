@@ -46,7 +46,7 @@ FUZZ_RUNS ?= 20000
 # An XML execution loads a dozen shapes, meshes and images, and an image execution decodes
 # up to 2^14 texels per byte of file: fewer runs keep them level in time with the other targets.
 FUZZ_XML_RUNS ?= 8000
-FUZZ_IMAGE_RUNS ?= 10000
+FUZZ_IMAGE_RUNS ?= 7000
 FUZZ_SECONDS ?= 600
 
 sanitize-build: deps
