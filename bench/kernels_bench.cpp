@@ -46,7 +46,7 @@ struct Captured {
         config.spp = 1;
         config.seed = 1;
         camera = std::make_unique<CameraRays>(scene.camera, config.width, config.height);
-        in = std::make_unique<WaveInputs>(WaveInputs{scene, *lights, config.estimator, config.seed,
+        in = std::make_unique<WaveInputs>(WaveInputs{scene, *lights, config.estimator, Sampler{config.seed},
                                                      config.width, config.height, *camera,
                                                      media_at(scene, bvh, scene.camera.look_from)});
         n = kWave;
@@ -183,7 +183,7 @@ struct LambertianRows {
             v.push_back(seg.vertex);
             wo.push_back(seg.wo);
             beta.push_back(Color(0.8f));
-            u.push_back(vertex_samples(c.config.seed, p, 0, 1));
+            u.push_back(vertex_samples(Sampler{c.config.seed}, p, 0, 1));
             pixel.push_back(p);
             bounce.push_back(1);
             x.push_back(float(p % uint32_t(c.config.width)));
@@ -203,13 +203,13 @@ void BM_CameraRays(benchmark::State& st, bool lanes) {
     CameraRayBlock block;
     for (auto _ : st) {
         if (lanes) {
-            draw_camera_rays(*r.c.camera, 1, 0, r.pixel.data(), r.x.data(), r.y.data(), n, false,
+            draw_camera_rays(*r.c.camera, Sampler{1}, 0, r.pixel.data(), r.x.data(), r.y.data(), n, false,
                              block);
             benchmark::DoNotOptimize(block);
         } else {
             for (size_t k = 0; k < n; ++k)
                 benchmark::DoNotOptimize(
-                    generate_camera_ray(*r.c.camera, 1, r.pixel[k], 0, int(r.x[k]), int(r.y[k])));
+                    generate_camera_ray(*r.c.camera, Sampler{1}, r.pixel[k], 0, int(r.x[k]), int(r.y[k])));
         }
     }
     st.SetItemsProcessed(st.iterations() * n);
@@ -221,11 +221,11 @@ void BM_VertexSamples(benchmark::State& st, bool lanes) {
     SampleBlock block;
     for (auto _ : st) {
         if (lanes) {
-            draw_vertex_samples(1, 0, r.pixel.data(), r.bounce.data(), n, false, block);
+            draw_vertex_samples(Sampler{1}, 0, r.pixel.data(), r.bounce.data(), n, false, block);
             benchmark::DoNotOptimize(block);
         } else {
             for (size_t k = 0; k < n; ++k)
-                benchmark::DoNotOptimize(vertex_samples(1, r.pixel[k], 0, r.bounce[k]));
+                benchmark::DoNotOptimize(vertex_samples(Sampler{1}, r.pixel[k], 0, r.bounce[k]));
         }
     }
     st.SetItemsProcessed(st.iterations() * n);

@@ -44,9 +44,10 @@ std::string after_first_checkpoint(const TempDir& dir) {
 
 // A render interrupted by SIGINT (its film written at the end, its checkpoints refreshed
 // during it) and resumed to the requested spp: the same film file, byte for byte, as the render
-// that was never stopped — and so the same image.
+// that was never stopped — and so the same image. Both engines, and the Sobol sampler.
 TEST(Films, InterruptedAndResumedEqualsUninterruptedBitForBit) {
-    for (const char* engine : {"wavefront", "megakernel"}) {
+    for (const char* engine :
+         {"wavefront", "megakernel", "wavefront --sampler sobol"}) {
         TempDir dir;
         const std::string common = kRender + "--engine " + engine;
         const int spp = 3000;  // about 2 s: the interrupt at 0.5 s comes well before the end
@@ -83,8 +84,11 @@ TEST(Films, InterruptedAndResumedEqualsUninterruptedBitForBit) {
 
 // Two- and four-way splits of [0, 24), rendered apart and merged in shuffled order: the
 // single render within 1e-6 relative per pixel (sums of doubles, associated differently), and
-// the same bits whatever the order.
+// the same bits whatever the order; for each sampler.
 TEST(Films, SplitsMergedInAnyOrderEqualTheSingleRender) {
+    for (const std::string sampler : {"independent", "sobol"}) {
+    SCOPED_TRACE(sampler);
+    const std::string kRender = ::kRender + "--sampler " + sampler + " ";
     TempDir dir;
     ASSERT_EQ(run_cli(dir, kRender + "--spp 24 -o " + q(dir.path() / "full.exr")).code, 0);
     const ImageData full = read_image(dir.path() / "full.exr");
@@ -126,6 +130,7 @@ TEST(Films, SplitsMergedInAnyOrderEqualTheSingleRender) {
             previous = bits;
         }
     }
+    }
 }
 
 TEST(Films, MismatchedOverlappingAndDamagedFilmsAreRefused) {
@@ -146,6 +151,14 @@ TEST(Films, MismatchedOverlappingAndDamagedFilmsAreRefused) {
     EXPECT_EQ(other.code, 2);
     EXPECT_NE(other.err.find("the film of another render (seed: 3 vs 4)"), std::string::npos)
         << other.err;
+    EXPECT_FALSE(std::filesystem::exists(film("x.exr")));
+    // Another sampler: another render.
+    CliResult sobol = run_cli(dir, kRender + "--spp 4 --sampler sobol --resume " +
+                                       q(film("a.film")) + " -o " + q(film("x.exr")));
+    EXPECT_EQ(sobol.code, 2);
+    EXPECT_NE(sobol.err.find("the film of another render (sampler: (none) vs sobol)"),
+              std::string::npos)
+        << sobol.err;
     EXPECT_FALSE(std::filesystem::exists(film("x.exr")));
     // Overlapping parts: [0, 2) and [1, 3).
     CliResult overlap = run_cli(

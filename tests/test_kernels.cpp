@@ -51,7 +51,7 @@ struct World {
         config.estimator.strategy = Strategy::Nee;
         lights = std::make_unique<LightSet>(scene);
         camera = std::make_unique<CameraRays>(scene.camera, config.width, config.height);
-        in = std::make_unique<WaveInputs>(WaveInputs{scene, *lights, config.estimator, config.seed,
+        in = std::make_unique<WaveInputs>(WaveInputs{scene, *lights, config.estimator, Sampler{config.seed},
                                                      config.width, config.height, *camera,
                                                      MediumStack{}});
         q.resize(16);
@@ -111,7 +111,7 @@ TEST(Kernels, GenerateStartsPathsAtTheirPixelsWithCameraRays) {
         EXPECT_EQ(w.q.paths.beta[i], Color(1.0f));
         EXPECT_EQ(w.q.paths.radiance[i], Color(0.0f));
         const Ray expect =
-            generate_camera_ray(*w.camera, w.config.seed, pixel, 5, static_cast<int>(pixel % 4),
+            generate_camera_ray(*w.camera, Sampler{w.config.seed}, pixel, 5, static_cast<int>(pixel % 4),
                                 static_cast<int>(pixel / 4));
         EXPECT_EQ(w.q.rays.origin[i], expect.o);
         EXPECT_EQ(w.q.rays.dir[i], expect.d);
@@ -176,7 +176,7 @@ TEST(Kernels, ShadeQueuesALightSampleAndTheEmissionFoundAndContinues) {
     ASSERT_EQ(found.light_samples, 1u);
     const SurfaceHit s = surface_at(w.scene, Ray{o, {0, -1, 0}}, hit_at(w.q.hits, 0));
     const Vertex v = surface_vertex(w.scene, s);
-    const VertexSamples u = vertex_samples(w.config.seed, 10, sample, 0);
+    const VertexSamples u = vertex_samples(Sampler{w.config.seed}, 10, sample, 0);
     const LightSampleQueue& ls = w.q.light_samples;
     EXPECT_EQ(ls.path[0], 0u);
     EXPECT_EQ(WAVETRACE_XYZ_AT(ls, p, 0), v.p);
@@ -222,7 +222,7 @@ TEST(Kernels, LightSampleAppendsTheMegakernelsShadowRay) {
     ASSERT_EQ(shadows, 1u);
     const SurfaceHit s = surface_at(w.scene, Ray{o, {0, -1, 0}}, hit_at(w.q.hits, 0));
     const Vertex v = surface_vertex(w.scene, s);
-    const VertexSamples u = vertex_samples(w.config.seed, 10, sample, 0);
+    const VertexSamples u = vertex_samples(Sampler{w.config.seed}, 10, sample, 0);
     const DirectSample d = next_event(w.scene, *w.lights, w.config.estimator, v, {0, 1, 0}, u);
     ASSERT_TRUE(d.valid);
     EXPECT_EQ(w.q.shadows.path[0], 0u);

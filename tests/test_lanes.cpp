@@ -201,21 +201,24 @@ TEST(Lanes, VertexSamplesAreTheScalarOnesOnEverySimdTarget) {
     }
     for (int64_t target : wide_simd_targets()) {
         use_wide_simd_target(target);
-        SCOPED_TRACE(wide_simd_target());
-        SampleBlock block;
-        draw_vertex_samples(42, 17, pixel, bounce, n, true, block);
-        for (size_t k = 0; k < n; ++k) {
-            const VertexSamples one = vertex_samples(42, pixel[k], 17, bounce[k]);
-            const VertexSamples lanes = block.at(k);
-            ASSERT_EQ(std::memcmp(&one, &lanes, sizeof one), 0) << "row " << k;
-            ASSERT_TRUE(
-                same_bits(one.light_select,
-                          sample_1d(42, pixel[k], 17, bounce_dim(bounce[k], kDimLightSelect))));
-            // The optical depth of the segment the vertex starts: segment_flight's.
-            const float u =
-                sample_1d(42, pixel[k], 17, bounce_dim(bounce[k] + 1, kDimMediumDistance));
-            ASSERT_TRUE(same_bits(block.next_flight[k], sample_free_flight(1.0f, u)))
-                << "row " << k;
+        for (SamplerKind kind : {SamplerKind::Independent, SamplerKind::Sobol}) {
+            SCOPED_TRACE(std::string(wide_simd_target()) + " " + to_string(kind));
+            const Sampler sampler{42, kind};
+            SampleBlock block;
+            draw_vertex_samples(sampler, 17, pixel, bounce, n, true, block);
+            for (size_t k = 0; k < n; ++k) {
+                const VertexSamples one = vertex_samples(sampler, pixel[k], 17, bounce[k]);
+                const VertexSamples lanes = block.at(k);
+                ASSERT_EQ(std::memcmp(&one, &lanes, sizeof one), 0) << "row " << k;
+                ASSERT_TRUE(same_bits(
+                    one.light_select,
+                    sample_1d(sampler, pixel[k], 17, bounce_dim(bounce[k], kDimLightSelect))));
+                // The optical depth of the segment the vertex starts: segment_flight's.
+                const float u = sample_1d(sampler, pixel[k], 17,
+                                          bounce_dim(bounce[k] + 1, kDimMediumDistance));
+                ASSERT_TRUE(same_bits(block.next_flight[k], sample_free_flight(1.0f, u)))
+                    << "row " << k;
+            }
         }
     }
     use_wide_simd_target(0);
@@ -490,17 +493,24 @@ TEST(Lanes, CameraRaysAreTheScalarOnesOnEverySimdTarget) {
         }
         for (int64_t target : wide_simd_targets()) {
             use_wide_simd_target(target);
-            SCOPED_TRACE(std::string(wide_simd_target()) + " aperture " + std::to_string(aperture));
-            CameraRayBlock block;
-            draw_camera_rays(rays, 5, 3, pixel, x, y, n, true, block);
-            for (size_t k = 0; k < n; ++k) {
-                const Ray one = generate_camera_ray(rays, 5, pixel[k], 3, int(x[k]), int(y[k]));
-                EXPECT_TRUE(same_bits(one.o, {block.o[0][k], block.o[1][k], block.o[2][k]}))
-                    << "row " << k;
-                EXPECT_TRUE(same_bits(one.d, {block.d[0][k], block.d[1][k], block.d[2][k]}))
-                    << "row " << k;
-                const float u = sample_1d(5, pixel[k], 3, bounce_dim(0, kDimMediumDistance));
-                EXPECT_TRUE(same_bits(block.flight[k], sample_free_flight(1.0f, u))) << "row " << k;
+            for (SamplerKind kind : {SamplerKind::Independent, SamplerKind::Sobol}) {
+                SCOPED_TRACE(std::string(wide_simd_target()) + " aperture " +
+                             std::to_string(aperture) + " " + to_string(kind));
+                const Sampler sampler{5, kind};
+                CameraRayBlock block;
+                draw_camera_rays(rays, sampler, 3, pixel, x, y, n, true, block);
+                for (size_t k = 0; k < n; ++k) {
+                    const Ray one =
+                        generate_camera_ray(rays, sampler, pixel[k], 3, int(x[k]), int(y[k]));
+                    EXPECT_TRUE(same_bits(one.o, {block.o[0][k], block.o[1][k], block.o[2][k]}))
+                        << "row " << k;
+                    EXPECT_TRUE(same_bits(one.d, {block.d[0][k], block.d[1][k], block.d[2][k]}))
+                        << "row " << k;
+                    const float u =
+                        sample_1d(sampler, pixel[k], 3, bounce_dim(0, kDimMediumDistance));
+                    EXPECT_TRUE(same_bits(block.flight[k], sample_free_flight(1.0f, u)))
+                        << "row " << k;
+                }
             }
         }
     }

@@ -27,9 +27,11 @@ Film render(const Scene& scene,
             int h,
             int spp,
             uint64_t seed = 1,
-            int max_depth = 50) {
+            int max_depth = 50,
+            SamplerKind sampler = SamplerKind::Independent) {
     Bvh bvh = Bvh::build(scene);
     RenderRequest c;
+    c.sampler = sampler;
     c.width = w;
     c.height = h;
     c.spp = spp;
@@ -247,14 +249,16 @@ TEST(Megakernel, StrategiesAgree) {
 
 TEST(Megakernel, BitIdenticalForAnyThreadCount) {
     Scene scene = load_scene(scene_path("cornell-smoke"));
-    auto with = [&](int threads) {
-        tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
-        return render(scene, Strategy::Mis, 40, 40, 8, 5).mean();
-    };
-    Image one = with(1), two = with(2), five = with(5);
-    for (size_t i = 0; i < one.pixels.size(); ++i) {
-        ASSERT_EQ(one.pixels[i], two.pixels[i]) << i;
-        ASSERT_EQ(one.pixels[i], five.pixels[i]) << i;
+    for (SamplerKind kind : {SamplerKind::Independent, SamplerKind::Sobol}) {
+        auto with = [&](int threads) {
+            tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+            return render(scene, Strategy::Mis, 40, 40, 8, 5, 50, kind).mean();
+        };
+        Image one = with(1), two = with(2), five = with(5);
+        for (size_t i = 0; i < one.pixels.size(); ++i) {
+            ASSERT_EQ(one.pixels[i], two.pixels[i]) << to_string(kind) << " " << i;
+            ASSERT_EQ(one.pixels[i], five.pixels[i]) << to_string(kind) << " " << i;
+        }
     }
 }
 

@@ -86,11 +86,13 @@ TEST(Passes, StoppingBetweenPassesGivesTheImageOfTheSamplesDone) {
 TEST(Passes, SampleRangesAddUpToTheWholeRender) {
     Scene scene = load_scene(scene_path("cornell"));
     Bvh bvh = Bvh::build(scene);
-    for (Engine engine : {Engine::Wavefront, Engine::Megakernel}) {
+    for (Engine engine : {Engine::Wavefront, Engine::Megakernel})
+    for (SamplerKind kind : {SamplerKind::Independent, SamplerKind::Sobol}) {
         RenderRequest first = small_config(3), second = small_config(4), all = small_config(7);
         second.first_sample = 3;
         for (RenderRequest* r : {&first, &second, &all}) {
             r->engine = engine;
+            r->sampler = kind;
             r->wavefront.wave_size = 300;
         }
         Film parts(first.width, first.height), whole(first.width, first.height);

@@ -30,16 +30,18 @@ RenderRequest config(Strategy st, int w, int h, int spp, uint64_t seed = 11) {
 
 }  // namespace
 
-// Every shipped scene, every strategy, 4 spp: per pixel within 1e-4 relative (or 1e-6
-// absolute) in at least 99.9% of pixel channels, image means within 1e-5 relative.
+// Every shipped scene, every strategy and sampler, 4 spp: per pixel within 1e-4 relative (or
+// 1e-6 absolute) in at least 99.9% of pixel channels, image means within 1e-5 relative.
 TEST(Wavefront, EqualsTheMegakernel) {
     for (const char* name : {"cornell", "cornell-glass", "cornell-mirror", "cornell-smoke",
                              "everything", "bunny", "dragon", "veach-mis", "materials"}) {
         Scene scene = load_scene(scene_path(name));
         Bvh bvh = Bvh::build(scene);
+        for (SamplerKind kind : {SamplerKind::Independent, SamplerKind::Sobol})
         for (Strategy st :
              {Strategy::Bsdf, Strategy::Light, Strategy::Mixture, Strategy::Nee, Strategy::Mis}) {
             RenderRequest c = config(st, 40, 40, 4);
+            c.sampler = kind;
             WavefrontOptions wf;
             wf.wave_size = 700;  // several waves, the last one partial
             Image mk = megakernel_film(scene, bvh, c).mean();
@@ -63,11 +65,11 @@ TEST(Wavefront, EqualsTheMegakernel) {
                 }
             double mean_rel = std::fabs(sum_mk - sum_wv) / std::max(sum_mk, 1e-30);
             std::printf(
-                "wavefront-vs-megakernel %-14s %-8s outside bound %zu/%zu, worst relative %.2e "
+                "wavefront-vs-megakernel %-14s %-8s %-11s outside bound %zu/%zu, worst relative %.2e "
                 "(pixel %d), image means %.2e relative\n",
-                name, to_string(st), outside, values, worst, worst_pixel, mean_rel);
-            EXPECT_LE(outside, values / 1000) << name << " " << to_string(st);
-            EXPECT_LE(mean_rel, 1e-5) << name << " " << to_string(st);
+                name, to_string(st), to_string(kind), outside, values, worst, worst_pixel, mean_rel);
+            EXPECT_LE(outside, values / 1000) << name << " " << to_string(st) << to_string(kind);
+            EXPECT_LE(mean_rel, 1e-5) << name << " " << to_string(st) << to_string(kind);
         }
     }
 }
@@ -75,7 +77,9 @@ TEST(Wavefront, EqualsTheMegakernel) {
 TEST(Wavefront, BitIdenticalForAnyThreadCountAndWaveSize) {
     Scene scene = load_scene(scene_path("cornell-smoke"));
     Bvh bvh = Bvh::build(scene);
+    for (SamplerKind kind : {SamplerKind::Independent, SamplerKind::Sobol}) {
     RenderRequest c = config(Strategy::Mis, 37, 23, 5);  // 851 pixels
+    c.sampler = kind;
     // Fewer threads than the machine has through a global_control limit (as --threads does),
     // more through an arena of that many (oversubscribed here, but every thread takes waves).
     auto render = [&](int threads, size_t wave, bool sort, Schedule schedule) {
@@ -106,7 +110,9 @@ TEST(Wavefront, BitIdenticalForAnyThreadCountAndWaveSize) {
         for (size_t i = 0; i < ref.pixels.size(); ++i)
             ASSERT_EQ(ref.pixels[i], img.pixels[i])
                 << "threads " << r.threads << " wave " << r.wave << " sort " << r.sort
-                << " schedule " << to_string(r.schedule) << " pixel " << i;
+                << " schedule " << to_string(r.schedule) << " sampler " << to_string(kind)
+                << " pixel " << i;
+    }
     }
 }
 
@@ -123,6 +129,8 @@ TEST(Wavefront, StageScheduleEqualsResidentBitForBit) {
         for (Strategy st :
              {Strategy::Bsdf, Strategy::Light, Strategy::Mixture, Strategy::Nee, Strategy::Mis}) {
             RenderRequest c = config(st, 61, 47, 2);  // 2,867 pixels
+            // Half the cases draw from the Sobol sampler.
+            if (st == Strategy::Nee || st == Strategy::Light) c.sampler = SamplerKind::Sobol;
             WavefrontOptions resident, stage;
             resident.wave_size = stage.wave_size = 700;
             stage.schedule = Schedule::Stage;

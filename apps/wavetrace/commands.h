@@ -53,6 +53,7 @@ struct RenderOptions {
     std::string engine = "wavefront";
     std::string strategy = "mis";
     std::string heuristic = "power";
+    std::string sampler = "independent";
 };
 
 struct CompareOptions {

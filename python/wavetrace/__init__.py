@@ -117,7 +117,8 @@ def render(scene: Scene, spp: Optional[int] = None, width: Optional[int] = None,
            progress: Union[bool, Callable[[int, int], Optional[bool]]] = False,
            variance: bool = False, film: Optional[Film] = None, mis_heuristic: str = "power",
            wave_size: Optional[int] = None, schedule: str = "resident",
-           sort_by_material: bool = False, return_stats: bool = False):
+           sort_by_material: bool = False, return_stats: bool = False,
+           sampler: str = "independent"):
     """Renders the scene; returns the image as float32 (height, width, 3), linear RGB.
 
     The same render as ``wavetrace render`` with the same options, bit for bit. None takes
@@ -126,6 +127,9 @@ def render(scene: Scene, spp: Optional[int] = None, width: Optional[int] = None,
     - engine: "wavefront" or "megakernel"; strategy: "bsdf", "light", "mixture", "nee", "mis".
     - seed, sample_offset: the samples are [sample_offset, sample_offset + spp) of each pixel's
       sequence from this seed; parts of one render merge with Film.merge.
+    - sampler: "independent" (a hash of each coordinate) or "sobol" (Owen-scrambled Sobol
+      points per pixel); the samples are a pure function of (seed, pixel, sample, dimension)
+      either way.
     - threads: worker threads (0: all). time_limit: seconds after which no pass starts.
     - aov: "color" (light transport), or "albedo", "normal", "depth" from primary rays (raw
       values: normals in [-1, 1], depth inf where nothing is hit).
@@ -151,7 +155,7 @@ def render(scene: Scene, spp: Optional[int] = None, width: Optional[int] = None,
         image, var, stats, interrupted = _wavetrace._render(
             scene, spp, width, height, engine, strategy, mis_heuristic, seed, threads, max_depth,
             sample_offset, 0.0 if time_limit is None else time_limit, wave_size, schedule,
-            sort_by_material, aov, callback, variance, film)
+            sort_by_material, aov, callback, variance, film, sampler)
     finally:
         if bar is not None:
             bar.close()

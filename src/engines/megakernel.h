@@ -30,7 +30,7 @@ struct PathContext {
     const Tracer& bvh;
     const LightSet& lights;
     const Estimator& estimator;
-    uint64_t seed;
+    Sampler sampler;
     uint32_t pixel;
     uint32_t sample;
     uint64_t rays = 0;
@@ -46,7 +46,7 @@ Color ray_color(PathContext<Tracer>& ctx,
                 const PreviousVertex& prev,
                 Color beta) {
     const Estimator& cfg = ctx.estimator;
-    float flight = segment_flight(ctx.scene, ctx.seed, ctx.pixel, ctx.sample, bounce);
+    float flight = segment_flight(ctx.scene, ctx.sampler, ctx.pixel, ctx.sample, bounce);
     for (int crossing = 0; crossing < kMaxBoundaryCrossings; ++crossing) {
         ++ctx.rays;
         Hit hit = ctx.bvh.intersect(ray);
@@ -71,7 +71,7 @@ Color ray_color(PathContext<Tracer>& ctx,
         }
         if (!may_scatter(cfg, bounce)) return emission;
         const Vertex& v = seg.vertex;
-        VertexSamples u = vertex_samples(ctx.seed, ctx.pixel, ctx.sample, bounce);
+        VertexSamples u = vertex_samples(ctx.sampler, ctx.pixel, ctx.sample, bounce);
 
         // Next-event estimation: a shadow ray to a light sample, weighted for the strategy.
         Color radiance = emission;
@@ -124,9 +124,9 @@ RenderStats megakernel(const Scene& scene,
                         const uint32_t pixel = static_cast<uint32_t>(y) * width + x;
                         for (uint32_t sample = first; sample < first + uint32_t(count); ++sample) {
                             megakernel_detail::PathContext<Tracer> ctx{
-                                scene, bvh, lights, request.estimator, request.seed, pixel, sample};
+                                scene, bvh, lights, request.estimator, Sampler{request.seed, request.sampler}, pixel, sample};
                             Ray ray =
-                                generate_camera_ray(camera, request.seed, pixel, sample, x, y);
+                                generate_camera_ray(camera, Sampler{request.seed, request.sampler}, pixel, sample, x, y);
                             Color c = megakernel_detail::ray_color(
                                 ctx, ray, 0, camera_media, PreviousVertex{ray.o}, Color(1.0f));
                             film.add(static_cast<int>(pixel), c);

@@ -36,7 +36,11 @@ std::string film_settings(uint64_t scene_fingerprint, const RenderRequest& reque
            "\nheight=" + std::to_string(request.height) + "\nseed=" + std::to_string(request.seed) +
            "\nengine=" + to_string(request.engine) + "\nstrategy=" + to_string(e.strategy) +
            "\nmis_heuristic=" + (e.heuristic == MisHeuristic::Balance ? "balance" : "power") +
-           "\nmax_depth=" + std::to_string(e.max_depth) + "\n";
+           "\nmax_depth=" + std::to_string(e.max_depth) + "\n" +
+           // Only when not the default, so that films written before samplers existed resume.
+           (request.sampler == SamplerKind::Independent
+                ? std::string()
+                : "sampler=" + std::string(to_string(request.sampler)) + "\n");
 }
 
 bool RenderObserver::on_pass(int, int, const Film&) {

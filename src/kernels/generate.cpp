@@ -70,7 +70,7 @@ void generate(const WaveInputs& in,
             x[k] = static_cast<float>(walk.x());
             y[k] = static_cast<float>(walk.y());
         }
-        draw_camera_rays(in.camera, in.seed, sample, pixel, x, y, n, flights, camera);
+        draw_camera_rays(in.camera, in.sampler, sample, pixel, x, y, n, flights, camera);
         for (size_t k = 0; k < n; ++k) {
             const size_t i = c + k;
             const Ray ray{{camera.o[0][k], camera.o[1][k], camera.o[2][k]},

@@ -60,7 +60,7 @@ HWY_INLINE void PadTail3(std::initializer_list<float (*)[kShadeChunk]> rows,
 }
 
 void DrawCameraRays(const CameraFrame* camera,
-                    uint64_t seed,
+                    const Sampler& sampler,
                     uint32_t sample,
                     const uint32_t* pixel,
                     const float* x,
@@ -81,7 +81,7 @@ void DrawCameraRays(const CameraFrame* camera,
     PadRows(y, n, fy);
     for (size_t k = 0; k < n; k += N) {
         V3<hn::Vec<decltype(df)>> o, d;
-        const auto state = PathState<L>(seed, hn::Load(d32, px + k), sample);
+        const auto state = PathState<L>(sampler, hn::Load(d32, px + k), sample);
         SampledCameraRay<L>(*camera, state, hn::Load(df, fx + k), hn::Load(df, fy + k), &o, &d);
         if (flights)
             hn::Store(OpticalDepth<L>(SampleDim<L>(
@@ -94,7 +94,7 @@ void DrawCameraRays(const CameraFrame* camera,
     }
 }
 
-void DrawVertexSamples(uint64_t seed,
+void DrawVertexSamples(const Sampler& sampler,
                        uint32_t sample,
                        const uint32_t* pixel,
                        const uint16_t* bounce,
@@ -114,7 +114,7 @@ void DrawVertexSamples(uint64_t seed,
     for (size_t k = 0; k < kShadeChunk; ++k)
         first_dim[k] = bounce_dim(bounce[k < n ? k : 0], BounceDim(0));
     for (size_t k = 0; k < n; k += N) {
-        const auto state = PathState<L>(seed, hn::Load(d32, px + k), sample);
+        const auto state = PathState<L>(sampler, hn::Load(d32, px + k), sample);
         const auto first = hn::PromoteTo(d64, hn::Load(d32, first_dim + k));
         for (uint32_t d = kDimLightSelect; d < kBounceDims; ++d)
             hn::Store(SampleDim<L>(state, hn::Add(first, hn::Set(d64, d))), df, out->u[d] + k);
@@ -419,7 +419,7 @@ HWY_EXPORT(SampleLights);
 HWY_EXPORT(MisWeights);
 
 void draw_camera_rays(const CameraRays& camera,
-                      uint64_t seed,
+                      const Sampler& sampler,
                       uint32_t sample,
                       const uint32_t* pixel,
                       const float* x,
@@ -428,17 +428,17 @@ void draw_camera_rays(const CameraRays& camera,
                       bool flights,
                       CameraRayBlock& out) {
     HWY_DYNAMIC_DISPATCH(DrawCameraRays)
-    (&camera.frame(), seed, sample, pixel, x, y, n, flights, &out);
+    (&camera.frame(), sampler, sample, pixel, x, y, n, flights, &out);
 }
 
-void draw_vertex_samples(uint64_t seed,
+void draw_vertex_samples(const Sampler& sampler,
                          uint32_t sample,
                          const uint32_t* pixel,
                          const uint16_t* bounce,
                          size_t n,
                          bool flights,
                          SampleBlock& out) {
-    HWY_DYNAMIC_DISPATCH(DrawVertexSamples)(seed, sample, pixel, bounce, n, flights, &out);
+    HWY_DYNAMIC_DISPATCH(DrawVertexSamples)(sampler, sample, pixel, bounce, n, flights, &out);
 }
 
 void medium_segments(MediumSegmentBlock& b, size_t n) {

@@ -452,7 +452,7 @@ ShadeCounts shade(const WaveInputs& in,
     for (c.begin = begin; c.begin < end; c.begin += kShadeChunk) {
         c.end = std::min(end, c.begin + kShadeChunk);
         std::fill(keep.begin() + c.begin, keep.begin() + c.end, uint8_t(0));
-        draw_vertex_samples(in.seed, sample, &paths.pixel[c.begin], &paths.bounce[c.begin],
+        draw_vertex_samples(in.sampler, sample, &paths.pixel[c.begin], &paths.bounce[c.begin],
                             c.end - c.begin, flights, c.samples);
         if (media_in_lanes) trace_media(in, hits, paths, rays, c);
         if (prefetch) prefetch_chunk_vertices(in.scene, hits, c.begin, c.end, records);

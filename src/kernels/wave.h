@@ -26,7 +26,7 @@ struct WaveInputs {
     const Scene& scene;
     const LightSet& lights;
     const Estimator& estimator;
-    uint64_t seed;
+    Sampler sampler;
     int width, height;  // of the image
     const CameraRays& camera;
     MediumStack camera_media;

@@ -79,8 +79,12 @@ struct OneLane {
     }
     static U64 Xor(U64 a, U64 b) { return a ^ b; }
     static U64 Or64(U64 a, U64 b) { return a | b; }
+    static U64 And64(U64 a, U64 b) { return a & b; }
     static U64 Add64(U64 a, U64 b) { return a + b; }
-    static U64 Mul64(U64 a, U64 b) { return a * b; }                // modulo 2^64
+    static U64 Sub64(U64 a, U64 b) { return a - b; }
+    static U64 Mul64(U64 a, U64 b) { return a * b; }  // modulo 2^64
+    // The product of the low 32 bits of each, modulo 2^32.
+    static U64 MulLow32(U64 a, U64 b) { return uint32_t(a) * uint32_t(b); }
     static F SmallToFloat(U64 x) { return static_cast<float>(x); }  // x < 2^24: exact
 };
 
@@ -135,7 +139,23 @@ struct HashLanes : FloatLanes<hn::Rebind<float, D64>> {
     }
     static HWY_INLINE U64 Xor(U64 a, U64 b) { return hn::Xor(a, b); }
     static HWY_INLINE U64 Or64(U64 a, U64 b) { return hn::Or(a, b); }
+    static HWY_INLINE U64 And64(U64 a, U64 b) { return hn::And(a, b); }
     static HWY_INLINE U64 Add64(U64 a, U64 b) { return hn::Add(a, b); }
+    static HWY_INLINE U64 Sub64(U64 a, U64 b) { return hn::Sub(a, b); }
+    static HWY_INLINE U64 MulLow32(U64 a, U64 b) {
+#if HWY_TARGET == HWY_SCALAR || HWY_TARGET == HWY_EMU128
+        const D64 d;
+        HWY_ALIGN uint64_t x[2], y[2];
+        hn::Store(a, d, x);
+        hn::Store(b, d, y);
+        for (size_t i = 0; i < hn::Lanes(d); ++i) x[i] = uint32_t(x[i]) * uint32_t(y[i]);
+        return hn::Load(d, x);
+#else
+        const hn::Repartition<uint32_t, D64> d32;
+        return hn::And(hn::MulEven(hn::BitCast(d32, a), hn::BitCast(d32, b)),
+                       hn::Set(D64(), 0xffffffffULL));
+#endif
+    }
     static HWY_INLINE U64 Mul64(U64 a, U64 b) {
 #if HWY_TARGET <= HWY_AVX3 && HWY_ARCH_X86
         return hn::Mul(a, b);

@@ -9,6 +9,8 @@
 #define WAVETRACE_SAMPLING_SAMPLER_INL_H_
 #endif
 
+#include <type_traits>
+
 #include "math/lanes-inl.h"
 #include "sampling/sampler.h"
 
@@ -25,21 +27,103 @@ HWY_INLINE typename L::U64 Mix64(typename L::U64 z) {
     return L::Xor(z, L::template ShiftRight<31>(z));
 }
 
-// The state all dimensions of path (pixel, sample) are drawn from: the counters folded in one
-// at a time through the mixer, so that neighbouring counters give independent-looking values.
+// The state all dimensions of path (pixel, sample) are drawn from.
 template <class L>
-HWY_INLINE typename L::U64 PathState(uint64_t seed, typename L::U32 pixel, uint32_t sample) {
-    const uint64_t seeded = Mix64<OneLane>(seed ^ 0x9e3779b97f4a7c15ULL);
-    return Mix64<L>(L::Xor(L::Set64(seeded),
-                           L::Or64(L::template ShiftLeft<32>(L::Widen(pixel)), L::Set64(sample))));
+struct SampleState {
+    typename L::U64 key;  // independent: the path's hash; Sobol: the pixel's
+    uint32_t sample;
+    SamplerKind kind;
+};
+
+// The counters folded in one at a time through the mixer, so that neighbouring counters give
+// independent-looking values; the Sobol sampler hashes the pixel alone, its points being
+// indexed by the sample.
+template <class L>
+HWY_INLINE SampleState<L> PathState(const Sampler& sampler,
+                                    typename L::U32 pixel,
+                                    uint32_t sample) {
+    if (sampler.kind == SamplerKind::Sobol) {
+        const uint64_t seeded = Mix64<OneLane>(sampler.seed ^ 0x2545f4914f6cdd1dULL);
+        return {Mix64<L>(L::Xor(L::Set64(seeded), L::Widen(pixel))), sample, sampler.kind};
+    }
+    const uint64_t seeded = Mix64<OneLane>(sampler.seed ^ 0x9e3779b97f4a7c15ULL);
+    return {Mix64<L>(L::Xor(L::Set64(seeded),
+                            L::Or64(L::template ShiftLeft<32>(L::Widen(pixel)), L::Set64(sample)))),
+            sample, sampler.kind};
 }
 
-// Dimension `dim` of a path: a uniform float in [0, 1) from the top 24 bits of its hash, so
-// that every value is exactly representable.
+// ---- Owen-scrambled Sobol points (Burley, "Practical Hash-based Owen Scrambling", JCGT 2020)
+// 32-bit words in the low half of 64-bit lanes.
+
+// Bits 0..31 in reverse order (a word's index bits as a binary fraction and back).
 template <class L>
-HWY_INLINE typename L::F SampleDim(typename L::U64 state, typename L::U64 dim) {
-    const typename L::U64 h = Mix64<L>(L::Add64(state, dim));
-    return L::SmallToFloat(L::template ShiftRight<40>(h)) * L::Set(0x1p-24f);
+HWY_INLINE typename L::U64 ReverseBits32(typename L::U64 x) {
+    auto swap = [](typename L::U64 v, uint64_t mask, auto shift) {
+        constexpr int k = decltype(shift)::value;
+        return L::Or64(L::And64(L::template ShiftRight<k>(v), L::Set64(mask)),
+                       L::template ShiftLeft<k>(L::And64(v, L::Set64(mask))));
+    };
+    x = swap(x, 0x55555555, std::integral_constant<int, 1>());
+    x = swap(x, 0x33333333, std::integral_constant<int, 2>());
+    x = swap(x, 0x0f0f0f0f, std::integral_constant<int, 4>());
+    x = swap(x, 0x00ff00ff, std::integral_constant<int, 8>());
+    return swap(x, 0x0000ffff, std::integral_constant<int, 16>());
+}
+
+// Burley's variant of the Laine-Karras hash: a permutation of 32-bit words in which bit k is
+// flipped as a function of the seed and bits 0..k-1 only (additions and products by even
+// constants carry upwards). On bit-reversed values that is Owen's nested uniform scrambling.
+template <class L>
+HWY_INLINE typename L::U64 LaineKarras(typename L::U64 x, typename L::U64 seed) {
+    x = L::And64(L::Add64(x, seed), L::Set64(0xffffffffULL));
+    x = L::Xor(x, L::MulLow32(x, L::Set64(0x6c50b47cULL)));
+    x = L::Xor(x, L::MulLow32(x, L::Set64(0xb82f1e52ULL)));
+    x = L::Xor(x, L::MulLow32(x, L::Set64(0xc7afe638ULL)));
+    return L::Xor(x, L::MulLow32(x, L::Set64(0x8d22f6e6ULL)));
+}
+
+// Sobol's second dimension before the bit reversal: its generator matrix is Pascal's triangle
+// modulo 2 (the direction numbers of the polynomial x + 1), so by Lucas' theorem the bit at
+// position p is the XOR of the index bits at positions j that contain p's bits: a sum over
+// supersets of the five position bits, one shift-and-XOR per bit. (The first dimension is
+// the index itself: the van der Corput sequence.)
+template <class L>
+HWY_INLINE typename L::U64 SobolSecond(typename L::U64 t) {
+    t = L::Xor(t, L::And64(L::template ShiftRight<1>(t), L::Set64(0x55555555)));
+    t = L::Xor(t, L::And64(L::template ShiftRight<2>(t), L::Set64(0x33333333)));
+    t = L::Xor(t, L::And64(L::template ShiftRight<4>(t), L::Set64(0x0f0f0f0f)));
+    t = L::Xor(t, L::And64(L::template ShiftRight<8>(t), L::Set64(0x00ff00ff)));
+    return L::Xor(t, L::And64(L::template ShiftRight<16>(t), L::Set64(0x0000ffff)));
+}
+
+// Dimension `dim` of a path: a uniform float in [0, 1) from the top 24 bits of a 32-bit
+// value, so that every value is exactly representable.
+// - Independent: a hash of the path's state and the dimension.
+// - Sobol: dimensions (2k, 2k + 1) are the two dimensions of Sobol's (0, 2)-sequence at the
+//   sample's index shuffled by a nested uniform scramble seeded per pixel and pair (Burley's
+//   padding: every power-of-two prefix of a pixel's samples stays a (0, m, 2)-net in each
+//   pair, and different pairs are decorrelated), each dimension then Owen-scrambled with its
+//   own seed.
+template <class L>
+HWY_INLINE typename L::F SampleDim(const SampleState<L>& state, typename L::U64 dim) {
+    typename L::U64 value;
+    if (state.kind == SamplerKind::Sobol) {
+        const typename L::U64 odd = L::And64(dim, L::Set64(1));
+        const typename L::U64 h = Mix64<L>(L::Add64(state.key, L::template ShiftRight<1>(dim)));
+        const typename L::U64 shuffle = L::And64(h, L::Set64(0xffffffffULL));
+        const typename L::U64 scramble =
+            L::Xor(L::template ShiftRight<32>(h), L::MulLow32(odd, L::Set64(0x9e3779b9ULL)));
+        const uint64_t reversed_sample = ReverseBits32<OneLane>(state.sample);
+        const typename L::U64 index =
+            ReverseBits32<L>(LaineKarras<L>(L::Set64(reversed_sample), shuffle));
+        const typename L::U64 second = SobolSecond<L>(index);
+        const typename L::U64 t =
+            L::Xor(index, L::And64(L::Xor(second, index), L::Sub64(L::Set64(0), odd)));
+        value = ReverseBits32<L>(LaineKarras<L>(t, scramble));
+    } else {
+        value = L::template ShiftRight<32>(Mix64<L>(L::Add64(state.key, dim)));
+    }
+    return L::SmallToFloat(L::template ShiftRight<8>(value)) * L::Set(0x1p-24f);
 }
 
 }  // namespace HWY_NAMESPACE

@@ -1,9 +1,12 @@
 // Counter-based random numbers: each one is a pure function of (seed, pixel, sample index,
 // dimension), with no generator state, so that an image does not depend on how its pixels
-// are spread over threads (see docs/architecture.md, "Random numbers").
+// are spread over threads (see docs/architecture.md, "Random numbers", and docs/sampling.md,
+// "Samplers").
 #pragma once
 
 #include <cstdint>
+
+#include "wavetrace/sampling/sampler.h"
 
 namespace wavetrace {
 
@@ -18,30 +21,31 @@ enum SampleDim : uint32_t {
     kCameraDims = 4,
 };
 
+// Dimensions come in pairs (2k, 2k + 1) that the Sobol sampler draws as one two-dimensional
+// point set: the pairs that sample a 2D domain (a point on a light, a direction) are aligned.
 enum BounceDim : uint32_t {
     kDimMediumDistance = 0,  // free-flight distance along the ray that reaches this vertex
     kDimLightSelect = 1,     // next-event estimation: which light ...
     kDimLightU = 2,          // ... and where on it
     kDimLightV = 3,
-    kDimTechnique = 4,   // one-sample strategies: which technique picks the direction
-    kDimDirectionU = 5,  // a light- or uniformly-sampled continuation direction
-    kDimDirectionV = 6,
-    kDimDirectionSelect = 7,  // ... its light choice
-    kDimBsdfLobe = 8,         // BSDF sampling: lobe choice (dielectric reflect / refract) ...
-    kDimBsdfU = 9,            // ... and direction
-    kDimBsdfV = 10,
-    kDimRoulette = 11,  // Russian roulette
+    kDimDirectionU = 4,  // a light- or uniformly-sampled continuation direction ...
+    kDimDirectionV = 5,
+    kDimBsdfU = 6,  // BSDF sampling: direction ...
+    kDimBsdfV = 7,
+    kDimTechnique = 8,        // one-sample strategies: which technique picks the direction
+    kDimDirectionSelect = 9,  // the light choice of a light-sampled continuation
+    kDimBsdfLobe = 10,        // BSDF sampling: lobe choice (dielectric reflect / refract)
+    kDimRoulette = 11,        // Russian roulette
     kBounceDims = 12,
 };
-
 constexpr uint32_t bounce_dim(int bounce, BounceDim d) {
     return kCameraDims + static_cast<uint32_t>(bounce) * kBounceDims + d;
 }
 
-// A uniform float in [0, 1) for the given coordinates, from a hash of them (SplitMix64's
-// finaliser applied to the counters folded in one at a time; 24 random bits, so every value is
-// exactly representable). The one formula both engines draw from: src/sampling/sampler-inl.h,
-// over lanes.
+// A uniform float in [0, 1): dimension `dim` of sample `sample` of `pixel`, from the sampler
+// (sampling/sampler-inl.h: the one formula both engines draw from, over lanes; the
+// independent sampler when given a seed alone).
+float sample_1d(const Sampler& sampler, uint32_t pixel, uint32_t sample, uint32_t dim);
 float sample_1d(uint64_t seed, uint32_t pixel, uint32_t sample, uint32_t dim);
 
 }  // namespace wavetrace

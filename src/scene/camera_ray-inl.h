@@ -52,7 +52,7 @@ HWY_INLINE void CameraRay(const CameraFrame& c,
 // of pixels) both run.
 template <class L>
 HWY_INLINE void SampledCameraRay(const CameraFrame& c,
-                                 typename L::U64 state,
+                                 const SampleState<L>& state,
                                  typename L::F x,
                                  typename L::F y,
                                  V3<typename L::F>* origin,

@@ -401,24 +401,24 @@ PathStep continue_path(const Scene& scene,
     return step;
 }
 
-VertexSamples vertex_samples(uint64_t seed, uint32_t pixel, uint32_t sample, int bounce) {
-    const uint64_t state = lanes::PathState<OneLane>(seed, pixel, sample);
+VertexSamples vertex_samples(const Sampler& sampler, uint32_t pixel, uint32_t sample, int bounce) {
+    const auto state = lanes::PathState<OneLane>(sampler, pixel, sample);
     return vertex_samples_of(
         [&](BounceDim d) { return lanes::SampleDim<OneLane>(state, bounce_dim(bounce, d)); });
 }
 
 Ray generate_camera_ray(
-    const CameraRays& camera, uint64_t seed, uint32_t pixel, uint32_t sample, int x, int y) {
+    const CameraRays& camera, const Sampler& sampler, uint32_t pixel, uint32_t sample, int x, int y) {
     lanes::V3<float> o, d;
-    lanes::SampledCameraRay<OneLane>(camera.frame(), lanes::PathState<OneLane>(seed, pixel, sample),
+    lanes::SampledCameraRay<OneLane>(camera.frame(), lanes::PathState<OneLane>(sampler, pixel, sample),
                                      float(x), float(y), &o, &d);
     return Ray{lanes::to_vec3(o), lanes::to_vec3(d)};
 }
 
 float segment_flight(
-    const Scene& scene, uint64_t seed, uint32_t pixel, uint32_t sample, int bounce) {
+    const Scene& scene, const Sampler& sampler, uint32_t pixel, uint32_t sample, int bounce) {
     if (scene.media.empty()) return 0.0f;
-    const uint64_t state = lanes::PathState<OneLane>(seed, pixel, sample);
+    const auto state = lanes::PathState<OneLane>(sampler, pixel, sample);
     return lanes::OpticalDepth<OneLane>(
         lanes::SampleDim<OneLane>(state, bounce_dim(bounce, kDimMediumDistance)));
 }

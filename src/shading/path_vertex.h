@@ -234,7 +234,7 @@ struct VertexSamples {
     ContinuationSamples continuation;
     float roulette;
 };
-VertexSamples vertex_samples(uint64_t seed, uint32_t pixel, uint32_t sample, int bounce);
+VertexSamples vertex_samples(const Sampler& sampler, uint32_t pixel, uint32_t sample, int bounce);
 // The same from u(d), the value of bounce dimension d: the one mapping of dimensions to fields,
 // for vertex_samples and for the rows the wavefront draws in SIMD lanes.
 template <class DimValue>
@@ -268,11 +268,11 @@ bool samples_lights(const Estimator& config, const Vertex& v, const LightSet& li
 // Optical depth a segment reaching vertex `bounce` may travel before scattering in a medium.
 // Without media no segment consumes it, so it is not drawn (its log1p was 5-7% of a render).
 float segment_flight(
-    const Scene& scene, uint64_t seed, uint32_t pixel, uint32_t sample, int bounce);
+    const Scene& scene, const Sampler& sampler, uint32_t pixel, uint32_t sample, int bounce);
 
 // The camera ray of sample `sample` of pixel (x, y), jittered over the pixel and the lens.
 Ray generate_camera_ray(
-    const CameraRays& camera, uint64_t seed, uint32_t pixel, uint32_t sample, int x, int y);
+    const CameraRays& camera, const Sampler& sampler, uint32_t pixel, uint32_t sample, int x, int y);
 
 // Whether a vertex reached by segment `bounce` may scatter: the path may still grow.
 inline bool may_scatter(const Estimator& config, int bounce) {

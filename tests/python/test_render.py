@@ -14,14 +14,17 @@ from conftest import ROOT, SCENES
 SMALL = dict(width=48, height=40, spp=4, seed=7)
 
 
-@pytest.mark.parametrize("engine,strategy", [("wavefront", "mis"), ("megakernel", "mis"),
-                                             ("wavefront", "bsdf")])
-def test_render_equals_the_cli_image_bit_for_bit(cli, cornell, tmp_path, engine, strategy):
+@pytest.mark.parametrize("engine,strategy,sampler", [
+    ("wavefront", "mis", "independent"), ("megakernel", "mis", "independent"),
+    ("wavefront", "bsdf", "independent"), ("wavefront", "mis", "sobol")])
+def test_render_equals_the_cli_image_bit_for_bit(cli, cornell, tmp_path, engine, strategy,
+                                                 sampler):
     out, var = tmp_path / "cli.exr", tmp_path / "cli-var.exr"
     cli("render", SCENES / "cornell.json", "--width", 48, "--height", 40, "--spp", 4, "--seed", 7,
-        "--engine", engine, "--strategy", strategy, "-o", out, "--variance", var)
+        "--engine", engine, "--strategy", strategy, "--sampler", sampler, "-o", out,
+        "--variance", var)
     image, variance = wt.render(cornell, engine=engine, strategy=strategy, variance=True,
-                                **SMALL)
+                                sampler=sampler, **SMALL)
     assert image.dtype == np.float32 and image.shape == (40, 48, 3)
     assert np.array_equal(image, wt.read_image(out))
     assert np.array_equal(variance, wt.read_image(var))
@@ -52,7 +55,8 @@ def test_the_scenes_defaults_are_used(cornell):
 @pytest.mark.parametrize("option,value,name", [
     ("width", 0, "width"), ("spp", -1, "spp"), ("max_depth", 0, "max_depth"),
     ("engine", "gpu", "engine"), ("strategy", "path", "strategy"), ("aov", "uv", "aov"),
-    ("threads", -2, "threads"), ("time_limit", -1.0, "time_limit")])
+    ("threads", -2, "threads"), ("time_limit", -1.0, "time_limit"),
+    ("sampler", "halton", "sampler")])
 def test_bad_options_raise_naming_the_option(cornell, option, value, name):
     with pytest.raises(ValueError, match=name):
         wt.render(cornell, **{**SMALL, option: value})

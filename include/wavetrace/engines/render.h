@@ -8,6 +8,7 @@
 #include <string>
 
 #include "wavetrace/film/film.h"
+#include "wavetrace/sampling/sampler.h"
 #include "wavetrace/shading/estimator.h"
 
 namespace wavetrace {
@@ -57,6 +58,7 @@ struct RenderRequest {
     int spp = 1;
     int first_sample = 0;
     uint64_t seed = 0;
+    SamplerKind sampler = SamplerKind::Independent;
     Estimator estimator;
     Engine engine = Engine::Wavefront;
     WavefrontOptions wavefront;  // read by the wavefront engine only

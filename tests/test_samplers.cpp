@@ -1,0 +1,104 @@
+// The samplers' designed properties (sampling/sampler-inl.h): the Sobol sampler's pairs of
+// dimensions are (0, m, 2)-nets for every power-of-two count of a pixel's samples, its pairs
+// and pixels are decorrelated, and every value is a pure function of its coordinates.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "chi2.h"
+#include "sampling/sampler.h"
+
+using namespace wavetrace;
+
+namespace {
+
+const Sampler kSobol{7, SamplerKind::Sobol};
+
+// The dimension pairs a path draws as 2D points: the camera's and those of bounces 0 and 5.
+std::vector<uint32_t> first_dims_of_pairs() {
+    std::vector<uint32_t> dims = {kDimPixelX, kDimLensU};
+    for (int bounce : {0, 5})
+        for (uint32_t d = 0; d < kBounceDims; d += 2) dims.push_back(bounce_dim(bounce, BounceDim(d)));
+    return dims;
+}
+
+// Whether samples [first, first + 2^m) of `pixel` in dimensions (dim, dim + 1) put exactly
+// one point in every elementary interval [a / 2^k, (a + 1) / 2^k) x [b / 2^(m-k), ...).
+bool is_net(const Sampler& s, uint32_t pixel, uint32_t dim, uint32_t first, int m) {
+    const uint32_t n = 1u << m;
+    for (int k = 0; k <= m; ++k) {
+        std::vector<int> count(n, 0);
+        for (uint32_t i = first; i < first + n; ++i) {
+            const auto a = static_cast<uint32_t>(sample_1d(s, pixel, i, dim) * float(1u << k));
+            const auto b =
+                static_cast<uint32_t>(sample_1d(s, pixel, i, dim + 1) * float(1u << (m - k)));
+            ++count[(a << (m - k)) | b];
+        }
+        for (int c : count)
+            if (c != 1) return false;
+    }
+    return true;
+}
+
+}  // namespace
+
+TEST(Samplers, NamesRoundTrip) {
+    for (SamplerKind s : {SamplerKind::Independent, SamplerKind::Sobol})
+        EXPECT_EQ(parse_sampler(to_string(s)), s);
+    EXPECT_FALSE(parse_sampler("halton").has_value());
+}
+
+// Every pair, in several pixels and seeds, for 1 to 2^10 samples from the first one, and for
+// the later blocks [j 2^m, (j + 1) 2^m) a render split by sample ranges would start at.
+TEST(Samplers, SobolPairsAreNetsForEveryPowerOfTwo) {
+    for (uint64_t seed : {0ull, 7ull, 123456789ull})
+        for (uint32_t pixel : {0u, 1u, 4095u, 2000003u})
+            for (uint32_t dim : first_dims_of_pairs()) {
+                const Sampler s{seed, SamplerKind::Sobol};
+                for (int m = 0; m <= 10; ++m)
+                    ASSERT_TRUE(is_net(s, pixel, dim, 0, m))
+                        << "seed " << seed << " pixel " << pixel << " dim " << dim << " m " << m;
+                for (uint32_t first : {16u, 48u, 1024u})
+                    ASSERT_TRUE(is_net(s, pixel, dim, first, 4)) << "first " << first;
+            }
+}
+
+// Padding: dimensions of different pairs are independent, not stratified together (without
+// the per-pair shuffle, dimension 2k and 2k + 2 would be the same sequence), and so are the
+// same dimension in different pixels. chi^2 of 16 x 16 cells over 4096 points.
+TEST(Samplers, SobolPairsAndPixelsAreDecorrelated) {
+    auto chi2_of = [](auto u, auto v) {
+        std::vector<double> observed(256, 0.0);
+        for (uint32_t i = 0; i < 4096; ++i)
+            observed[static_cast<int>(u(i) * 16) * 16 + static_cast<int>(v(i) * 16)] += 1;
+        double statistic = 0;
+        for (double o : observed) statistic += (o - 16) * (o - 16) / 16;
+        return chi2::gamma_q(255 / 2.0, statistic / 2);
+    };
+    for (uint32_t dim : {bounce_dim(0, kDimLightU), bounce_dim(2, kDimBsdfU)}) {
+        const double p = chi2_of([&](uint32_t i) { return sample_1d(kSobol, 9, i, kDimPixelX); },
+                                 [&](uint32_t i) { return sample_1d(kSobol, 9, i, dim); });
+        EXPECT_GT(p, 1e-3) << "pixel x against dimension " << dim;
+    }
+    // Sample 0 of 4096 pixels, dimension 0 against 1 (a net within a pixel, random across).
+    const double p = chi2_of([&](uint32_t i) { return sample_1d(kSobol, i, 0, kDimPixelX); },
+                             [&](uint32_t i) { return sample_1d(kSobol, i, 0, kDimPixelY); });
+    EXPECT_GT(p, 1e-3) << "first samples of neighbouring pixels";
+}
+
+// Each number depends on its coordinates alone, lies in [0, 1), and a seed changes them all.
+TEST(Samplers, ValuesArePureFunctionsInTheUnitInterval) {
+    for (SamplerKind kind : {SamplerKind::Independent, SamplerKind::Sobol}) {
+        const Sampler a{3, kind}, b{4, kind};
+        int same = 0;
+        for (uint32_t i = 0; i < 2000; ++i) {
+            const float u = sample_1d(a, i % 13, i, i % 40);
+            EXPECT_GE(u, 0.0f);
+            EXPECT_LT(u, 1.0f);
+            EXPECT_EQ(u, sample_1d(a, i % 13, i, i % 40));
+            same += u == sample_1d(b, i % 13, i, i % 40);
+        }
+        EXPECT_LT(same, 5) << to_string(kind);
+    }
+}

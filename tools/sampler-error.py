@@ -1,0 +1,57 @@
+#!/usr/bin/env python3
+"""Relative MSE of each sampler at equal samples per pixel against a converged reference.
+
+usage: tools/sampler-error.py SCENE SPP REFERENCE_SPP [STRATEGY] [--cli PATH] [--size N]
+
+Renders SCENE at N x N (default 64) with REFERENCE_SPP samples (Sobol sampler, seed 999) as
+the reference, then at SPP with each sampler and seeds 0-5, one thread each, and prints the
+mean over seeds of mean((image - reference)^2 / (reference^2 + 0.01)).
+"""
+import argparse
+import os
+import subprocess
+import tempfile
+
+import numpy as np
+
+
+def read_pfm(path):
+    with open(path, "rb") as f:
+        if f.readline().strip() != b"PF":
+            raise ValueError(f"{path}: not a colour PFM")
+        width, height = map(int, f.readline().split())
+        scale = float(f.readline())
+        dtype = "<f4" if scale < 0 else ">f4"
+        pixels = np.frombuffer(f.read(), dtype=dtype).reshape(height, width, 3)
+    return pixels[::-1]
+
+
+def main():
+    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    p = argparse.ArgumentParser()
+    p.add_argument("scene")
+    p.add_argument("spp", type=int)
+    p.add_argument("reference_spp", type=int)
+    p.add_argument("strategy", nargs="?", default="mis")
+    p.add_argument("--cli", default=os.path.join(root, "build", "bin", "wavetrace"))
+    p.add_argument("--size", type=int, default=64)
+    a = p.parse_args()
+    with tempfile.TemporaryDirectory() as tmp:
+        def render(spp, sampler, seed):
+            out = os.path.join(tmp, "image.pfm")
+            subprocess.run([a.cli, "render", a.scene, "--spp", str(spp), "--width", str(a.size),
+                            "--height", str(a.size), "--sampler", sampler, "--seed", str(seed),
+                            "--strategy", a.strategy, "--threads", "1", "-o", out],
+                           check=True, capture_output=True)
+            return read_pfm(out)
+
+        reference = render(a.reference_spp, "sobol", 999)
+        for sampler in ("independent", "sobol"):
+            errors = [np.mean((render(a.spp, sampler, seed) - reference) ** 2 /
+                              (reference ** 2 + 1e-2)) for seed in range(6)]
+            print(f"{os.path.basename(a.scene)} {a.strategy} {a.spp} spp {sampler}: "
+                  f"relative MSE {np.mean(errors):.5f}")
+
+
+if __name__ == "__main__":
+    main()
