@@ -197,35 +197,37 @@ LambertianRows& lambertian_rows() {
     return rows;
 }
 
-void BM_CameraRays(benchmark::State& st, bool lanes) {
+void BM_CameraRays(benchmark::State& st, bool lanes, SamplerKind kind) {
     LambertianRows& r = lambertian_rows();
     const size_t n = r.v.size();
+    const Sampler sampler{1, kind};
     CameraRayBlock block;
     for (auto _ : st) {
         if (lanes) {
-            draw_camera_rays(*r.c.camera, Sampler{1}, 0, r.pixel.data(), r.x.data(), r.y.data(), n, false,
-                             block);
+            draw_camera_rays(*r.c.camera, sampler, 0, r.pixel.data(), r.x.data(), r.y.data(), n,
+                             false, block);
             benchmark::DoNotOptimize(block);
         } else {
             for (size_t k = 0; k < n; ++k)
-                benchmark::DoNotOptimize(
-                    generate_camera_ray(*r.c.camera, Sampler{1}, r.pixel[k], 0, int(r.x[k]), int(r.y[k])));
+                benchmark::DoNotOptimize(generate_camera_ray(*r.c.camera, sampler, r.pixel[k], 0,
+                                                             int(r.x[k]), int(r.y[k])));
         }
     }
     st.SetItemsProcessed(st.iterations() * n);
 }
 
-void BM_VertexSamples(benchmark::State& st, bool lanes) {
+void BM_VertexSamples(benchmark::State& st, bool lanes, SamplerKind kind) {
     LambertianRows& r = lambertian_rows();
     const size_t n = r.v.size();
+    const Sampler sampler{1, kind};
     SampleBlock block;
     for (auto _ : st) {
         if (lanes) {
-            draw_vertex_samples(Sampler{1}, 0, r.pixel.data(), r.bounce.data(), n, false, block);
+            draw_vertex_samples(sampler, 0, r.pixel.data(), r.bounce.data(), n, false, block);
             benchmark::DoNotOptimize(block);
         } else {
             for (size_t k = 0; k < n; ++k)
-                benchmark::DoNotOptimize(vertex_samples(Sampler{1}, r.pixel[k], 0, r.bounce[k]));
+                benchmark::DoNotOptimize(vertex_samples(sampler, r.pixel[k], 0, r.bounce[k]));
         }
     }
     st.SetItemsProcessed(st.iterations() * n);
@@ -352,8 +354,22 @@ WAVETRACE_KERNEL_BENCH(BM_Compact, cornell);
 #define WAVETRACE_LANES_BENCH(fn)                                                         \
     BENCHMARK_CAPTURE(fn, one_lane, false)->Unit(benchmark::kMicrosecond)->UseRealTime(); \
     BENCHMARK_CAPTURE(fn, lanes, true)->Unit(benchmark::kMicrosecond)->UseRealTime()
-WAVETRACE_LANES_BENCH(BM_CameraRays);
-WAVETRACE_LANES_BENCH(BM_VertexSamples);
+// The same for each sampler.
+#define WAVETRACE_SAMPLER_BENCH(fn)                                                      \
+    BENCHMARK_CAPTURE(fn, one_lane, false, SamplerKind::Independent)                     \
+        ->Unit(benchmark::kMicrosecond)                                                  \
+        ->UseRealTime();                                                                 \
+    BENCHMARK_CAPTURE(fn, lanes, true, SamplerKind::Independent)                         \
+        ->Unit(benchmark::kMicrosecond)                                                  \
+        ->UseRealTime();                                                                 \
+    BENCHMARK_CAPTURE(fn, one_lane_sobol, false, SamplerKind::Sobol)                     \
+        ->Unit(benchmark::kMicrosecond)                                                  \
+        ->UseRealTime();                                                                 \
+    BENCHMARK_CAPTURE(fn, lanes_sobol, true, SamplerKind::Sobol)                         \
+        ->Unit(benchmark::kMicrosecond)                                                  \
+        ->UseRealTime()
+WAVETRACE_SAMPLER_BENCH(BM_CameraRays);
+WAVETRACE_SAMPLER_BENCH(BM_VertexSamples);
 WAVETRACE_LANES_BENCH(BM_LambertianSteps);
 WAVETRACE_LANES_BENCH(BM_LambertianLightSamples);
 

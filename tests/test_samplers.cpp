@@ -4,10 +4,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <vector>
 
 #include "chi2.h"
 #include "sampling/sampler.h"
+#include "shading/path_vertex.h"
 
 using namespace wavetrace;
 
@@ -100,5 +102,21 @@ TEST(Samplers, ValuesArePureFunctionsInTheUnitInterval) {
             same += u == sample_1d(b, i % 13, i, i % 40);
         }
         EXPECT_LT(same, 5) << to_string(kind);
+    }
+}
+
+// The engines draw a vertex's dimensions by pairs (SampleDimPair): the same values as one at a
+// time (SampleDim, sample_1d), field by field.
+TEST(Samplers, PairsDrawnTogetherEqualEachDimensionAlone) {
+    for (SamplerKind kind : {SamplerKind::Independent, SamplerKind::Sobol}) {
+        const Sampler s{11, kind};
+        for (uint32_t i = 0; i < 300; ++i) {
+            const uint32_t pixel = i * 7717, sample = i % 37;
+            const int bounce = static_cast<int>(i % 9);
+            const VertexSamples v = vertex_samples(s, pixel, sample, bounce);
+            auto u = [&](BounceDim d) { return sample_1d(s, pixel, sample, bounce_dim(bounce, d)); };
+            const VertexSamples alone = vertex_samples_of(u);
+            ASSERT_EQ(std::memcmp(&v, &alone, sizeof v), 0) << to_string(kind) << " " << i;
+        }
     }
 }

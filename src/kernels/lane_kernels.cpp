@@ -116,8 +116,16 @@ void DrawVertexSamples(const Sampler& sampler,
     for (size_t k = 0; k < n; k += N) {
         const auto state = PathState<L>(sampler, hn::Load(d32, px + k), sample);
         const auto first = hn::PromoteTo(d64, hn::Load(d32, first_dim + k));
-        for (uint32_t d = kDimLightSelect; d < kBounceDims; ++d)
-            hn::Store(SampleDim<L>(state, hn::Add(first, hn::Set(d64, d))), df, out->u[d] + k);
+        // The light choice alone (its pair's medium distance has been used), then by pairs,
+        // which the Sobol sampler draws together.
+        hn::Store(SampleDim<L>(state, hn::Add(first, hn::Set(d64, kDimLightSelect))), df,
+                  out->u[kDimLightSelect] + k);
+        for (uint32_t d = kDimLightU; d < kBounceDims; d += 2) {
+            hn::Vec<decltype(df)> a, b;
+            SampleDimPair<L>(state, hn::Add(first, hn::Set(d64, d)), &a, &b);
+            hn::Store(a, df, out->u[d] + k);
+            hn::Store(b, df, out->u[d + 1] + k);
+        }
         // The next bounce's first dimension is its medium distance.
         static_assert(kDimMediumDistance == 0);
         if (flights)

@@ -85,6 +85,14 @@ struct OneLane {
     static U64 Mul64(U64 a, U64 b) { return a * b; }  // modulo 2^64
     // The product of the low 32 bits of each, modulo 2^32.
     static U64 MulLow32(U64 a, U64 b) { return uint32_t(a) * uint32_t(b); }
+    // Bits 0..31 in reverse order, of a value below 2^32: five swaps of halves.
+    static U64 ReverseBits32(U64 x) {
+        x = ((x >> 1) & 0x55555555) | ((x & 0x55555555) << 1);
+        x = ((x >> 2) & 0x33333333) | ((x & 0x33333333) << 2);
+        x = ((x >> 4) & 0x0f0f0f0f) | ((x & 0x0f0f0f0f) << 4);
+        x = ((x >> 8) & 0x00ff00ff) | ((x & 0x00ff00ff) << 8);
+        return ((x >> 16) & 0x0000ffff) | ((x & 0x0000ffff) << 16);
+    }
     static F SmallToFloat(U64 x) { return static_cast<float>(x); }  // x < 2^24: exact
 };
 
@@ -175,6 +183,28 @@ struct HashLanes : FloatLanes<hn::Rebind<float, D64>> {
         const U64 cross = hn::Add(hn::MulEven(hn::BitCast(d32, a_hi), hn::BitCast(d32, b)),
                                   hn::MulEven(hn::BitCast(d32, a), hn::BitCast(d32, b_hi)));
         return hn::Add(lo, hn::ShiftLeft<32>(cross));
+#endif
+    }
+    // Bits 0..31 in reverse order, of values below 2^32: each nibble reversed by a 16-entry
+    // byte table, the nibbles of each byte swapped, then the four low bytes of each lane
+    // reversed (the high four, zero, stay in place).
+    static HWY_INLINE U64 ReverseBits32(U64 x) {
+#if HWY_TARGET == HWY_SCALAR
+        return hn::Set(D64(), OneLane::ReverseBits32(hn::GetLane(x)));
+#else
+        const hn::Repartition<uint8_t, D64> d8;
+        alignas(16) static constexpr uint8_t kNibbles[16] = {0, 8, 4, 12, 2, 10, 6, 14,
+                                                             1, 9, 5, 13, 3, 11, 7, 15};
+        alignas(16) static constexpr uint8_t kBytes[16] = {3,  2,  1,  0,  4,  5,  6,  7,
+                                                           11, 10, 9,  8,  12, 13, 14, 15};
+        const auto table = hn::LoadDup128(d8, kNibbles);
+        const auto low = hn::And(hn::BitCast(d8, x), hn::Set(d8, 0x0f));
+        const auto high = hn::And(hn::BitCast(d8, hn::ShiftRight<4>(x)), hn::Set(d8, 0x0f));
+        const U64 swapped =
+            hn::Or(hn::ShiftLeft<4>(hn::BitCast(D64(), hn::TableLookupBytes(table, low))),
+                   hn::BitCast(D64(), hn::TableLookupBytes(table, high)));
+        return hn::BitCast(D64(), hn::TableLookupBytes(hn::BitCast(d8, swapped),
+                                                      hn::LoadDup128(d8, kBytes)));
 #endif
     }
     static HWY_INLINE F SmallToFloat(U64 x) {

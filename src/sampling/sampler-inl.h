@@ -9,8 +9,6 @@
 #define WAVETRACE_SAMPLING_SAMPLER_INL_H_
 #endif
 
-#include <type_traits>
-
 #include "math/lanes-inl.h"
 #include "sampling/sampler.h"
 
@@ -58,16 +56,7 @@ HWY_INLINE SampleState<L> PathState(const Sampler& sampler,
 // Bits 0..31 in reverse order (a word's index bits as a binary fraction and back).
 template <class L>
 HWY_INLINE typename L::U64 ReverseBits32(typename L::U64 x) {
-    auto swap = [](typename L::U64 v, uint64_t mask, auto shift) {
-        constexpr int k = decltype(shift)::value;
-        return L::Or64(L::And64(L::template ShiftRight<k>(v), L::Set64(mask)),
-                       L::template ShiftLeft<k>(L::And64(v, L::Set64(mask))));
-    };
-    x = swap(x, 0x55555555, std::integral_constant<int, 1>());
-    x = swap(x, 0x33333333, std::integral_constant<int, 2>());
-    x = swap(x, 0x0f0f0f0f, std::integral_constant<int, 4>());
-    x = swap(x, 0x00ff00ff, std::integral_constant<int, 8>());
-    return swap(x, 0x0000ffff, std::integral_constant<int, 16>());
+    return L::ReverseBits32(x);
 }
 
 // Burley's variant of the Laine-Karras hash: a permutation of 32-bit words in which bit k is
@@ -96,8 +85,40 @@ HWY_INLINE typename L::U64 SobolSecond(typename L::U64 t) {
     return L::Xor(t, L::And64(L::template ShiftRight<16>(t), L::Set64(0x0000ffff)));
 }
 
-// Dimension `dim` of a path: a uniform float in [0, 1) from the top 24 bits of a 32-bit
-// value, so that every value is exactly representable.
+// A 32-bit value as a uniform float in [0, 1): its top 24 bits, so that every value is
+// exactly representable.
+template <class L>
+HWY_INLINE typename L::F ToUnit(typename L::U64 value) {
+    return L::SmallToFloat(L::template ShiftRight<8>(value)) * L::Set(0x1p-24f);
+}
+
+// What dimensions (2k, 2k + 1) of a Sobol path share: the sample's index shuffled by a nested
+// uniform scramble seeded per pixel and pair, and the pair's scrambling seed.
+template <class L>
+struct SobolPairState {
+    typename L::U64 index;
+    typename L::U64 scramble;
+};
+
+template <class L>
+HWY_INLINE SobolPairState<L> SobolPair(const SampleState<L>& state, typename L::U64 pair) {
+    const typename L::U64 h = Mix64<L>(L::Add64(state.key, pair));
+    const typename L::U64 shuffle = L::And64(h, L::Set64(0xffffffffULL));
+    const uint64_t reversed_sample = ReverseBits32<OneLane>(state.sample);
+    return {ReverseBits32<L>(LaineKarras<L>(L::Set64(reversed_sample), shuffle)),
+            L::template ShiftRight<32>(h)};
+}
+
+// The Owen-scrambled fraction of Sobol bits `t` (in index order), as a float.
+template <class L>
+HWY_INLINE typename L::F ScrambledSobol(typename L::U64 t, typename L::U64 scramble) {
+    return ToUnit<L>(ReverseBits32<L>(LaineKarras<L>(t, scramble)));
+}
+
+// The second dimension of a pair is scrambled with a seed of its own.
+constexpr uint64_t kSecondScramble = 0x9e3779b9ULL;
+
+// Dimension `dim` of a path, a uniform float in [0, 1):
 // - Independent: a hash of the path's state and the dimension.
 // - Sobol: dimensions (2k, 2k + 1) are the two dimensions of Sobol's (0, 2)-sequence at the
 //   sample's index shuffled by a nested uniform scramble seeded per pixel and pair (Burley's
@@ -106,24 +127,34 @@ HWY_INLINE typename L::U64 SobolSecond(typename L::U64 t) {
 //   own seed.
 template <class L>
 HWY_INLINE typename L::F SampleDim(const SampleState<L>& state, typename L::U64 dim) {
-    typename L::U64 value;
     if (state.kind == SamplerKind::Sobol) {
+        const SobolPairState<L> p = SobolPair<L>(state, L::template ShiftRight<1>(dim));
         const typename L::U64 odd = L::And64(dim, L::Set64(1));
-        const typename L::U64 h = Mix64<L>(L::Add64(state.key, L::template ShiftRight<1>(dim)));
-        const typename L::U64 shuffle = L::And64(h, L::Set64(0xffffffffULL));
-        const typename L::U64 scramble =
-            L::Xor(L::template ShiftRight<32>(h), L::MulLow32(odd, L::Set64(0x9e3779b9ULL)));
-        const uint64_t reversed_sample = ReverseBits32<OneLane>(state.sample);
-        const typename L::U64 index =
-            ReverseBits32<L>(LaineKarras<L>(L::Set64(reversed_sample), shuffle));
-        const typename L::U64 second = SobolSecond<L>(index);
-        const typename L::U64 t =
-            L::Xor(index, L::And64(L::Xor(second, index), L::Sub64(L::Set64(0), odd)));
-        value = ReverseBits32<L>(LaineKarras<L>(t, scramble));
-    } else {
-        value = L::template ShiftRight<32>(Mix64<L>(L::Add64(state.key, dim)));
+        const typename L::U64 all_if_odd = L::Sub64(L::Set64(0), odd);
+        const typename L::U64 t = L::Xor(
+            p.index, L::And64(L::Xor(SobolSecond<L>(p.index), p.index), all_if_odd));
+        return ScrambledSobol<L>(
+            t, L::Xor(p.scramble, L::And64(L::Set64(kSecondScramble), all_if_odd)));
     }
-    return L::SmallToFloat(L::template ShiftRight<8>(value)) * L::Set(0x1p-24f);
+    return ToUnit<L>(L::template ShiftRight<32>(Mix64<L>(L::Add64(state.key, dim))));
+}
+
+// Dimensions `first` and `first` + 1 (`first` even) at once, what SampleDim gives for each,
+// with what the two share computed once.
+template <class L>
+HWY_INLINE void SampleDimPair(const SampleState<L>& state,
+                              typename L::U64 first,
+                              typename L::F* a,
+                              typename L::F* b) {
+    if (state.kind == SamplerKind::Sobol) {
+        const SobolPairState<L> p = SobolPair<L>(state, L::template ShiftRight<1>(first));
+        *a = ScrambledSobol<L>(p.index, p.scramble);
+        *b = ScrambledSobol<L>(SobolSecond<L>(p.index),
+                               L::Xor(p.scramble, L::Set64(kSecondScramble)));
+        return;
+    }
+    *a = SampleDim<L>(state, first);
+    *b = SampleDim<L>(state, L::Add64(first, L::Set64(1)));
 }
 
 }  // namespace HWY_NAMESPACE

@@ -38,6 +38,9 @@ enum BounceDim : uint32_t {
     kDimRoulette = 11,        // Russian roulette
     kBounceDims = 12,
 };
+static_assert(kCameraDims % 2 == 0 && kBounceDims % 2 == 0 && kDimLightU % 2 == 0,
+              "the pairs the Sobol sampler draws together stay aligned");
+
 constexpr uint32_t bounce_dim(int bounce, BounceDim d) {
     return kCameraDims + static_cast<uint32_t>(bounce) * kBounceDims + d;
 }

@@ -58,15 +58,15 @@ HWY_INLINE void SampledCameraRay(const CameraFrame& c,
                                  V3<typename L::F>* origin,
                                  V3<typename L::F>* dir) {
     using F = typename L::F;
-    auto u = [&](uint32_t dim) { return SampleDim<L>(state, L::Set64(dim)); };
+    F ux, uy;
+    SampleDimPair<L>(state, L::Set64(kDimPixelX), &ux, &uy);
     const PixelFilter& f = c.filter;
     F fx, fy;
     if (f.kind == PixelFilter::Kind::Box && f.radius == 0.5f) {
         // Uniform over the pixel itself, written as it always was (bit for bit).
-        fx = x + u(kDimPixelX);
-        fy = y + u(kDimPixelY);
+        fx = x + ux;
+        fy = y + uy;
     } else {
-        const F ux = u(kDimPixelX), uy = u(kDimPixelY);
         F ox, oy;
         if (f.kind == PixelFilter::Kind::Tent) {
             ox = TentOffset<L>(ux, f.radius);
@@ -81,7 +81,9 @@ HWY_INLINE void SampledCameraRay(const CameraFrame& c,
         fx = x + L::Set(0.5f) + ox;
         fy = y + L::Set(0.5f) + oy;
     }
-    CameraRay<L>(c, fx, fy, u(kDimLensU), u(kDimLensV), origin, dir);
+    F lens_u = L::Set(0.0f), lens_v = L::Set(0.0f);  // unused without a lens
+    if (c.has_lens()) SampleDimPair<L>(state, L::Set64(kDimLensU), &lens_u, &lens_v);
+    CameraRay<L>(c, fx, fy, lens_u, lens_v, origin, dir);
 }
 
 }  // namespace HWY_NAMESPACE

@@ -403,8 +403,13 @@ PathStep continue_path(const Scene& scene,
 
 VertexSamples vertex_samples(const Sampler& sampler, uint32_t pixel, uint32_t sample, int bounce) {
     const auto state = lanes::PathState<OneLane>(sampler, pixel, sample);
-    return vertex_samples_of(
-        [&](BounceDim d) { return lanes::SampleDim<OneLane>(state, bounce_dim(bounce, d)); });
+    // As the wavefront's rows are drawn: the light choice alone, then by pairs.
+    float u[kBounceDims];
+    u[kDimLightSelect] =
+        lanes::SampleDim<OneLane>(state, bounce_dim(bounce, kDimLightSelect));
+    for (uint32_t d = kDimLightU; d < kBounceDims; d += 2)
+        lanes::SampleDimPair<OneLane>(state, bounce_dim(bounce, BounceDim(d)), &u[d], &u[d + 1]);
+    return vertex_samples_of([&](BounceDim d) { return u[d]; });
 }
 
 Ray generate_camera_ray(
