@@ -71,6 +71,7 @@ TEST(MitsubaScenes, SensorFilmSamplerAndIntegratorSetTheRender) {
     EXPECT_EQ(s.render.height, 32);
     EXPECT_EQ(s.render.spp, 7);
     EXPECT_EQ(s.render.max_depth, 5);
+    EXPECT_EQ(s.render.sampler, SamplerKind::Independent);
     EXPECT_NEAR(s.camera.look_from.x, 1.0f, 1e-6f);
     EXPECT_NEAR(s.camera.look_from.z, 3.0f, 1e-6f);
     EXPECT_LT(s.camera.look_at.z, 3.0f);  // looking down -z
@@ -78,6 +79,22 @@ TEST(MitsubaScenes, SensorFilmSamplerAndIntegratorSetTheRender) {
     EXPECT_NEAR(s.camera.vfov, degrees(2 * std::atan(std::tan(30.0 * 3.14159265358979 / 180) / 2)),
                 1e-3);
     EXPECT_TRUE(warnings.empty()) << warnings.front();
+}
+
+// A stratified or low-discrepancy sampler becomes the Sobol sampler, with a warning.
+TEST(MitsubaScenes, LowDiscrepancySamplersDrawSobolPoints) {
+    TempDir dir;
+    auto path = dir.write("a.xml", scene(R"(
+  <sensor type="perspective">
+    <sampler type="ldsampler"><integer name="sample_count" value="16"/></sampler>
+  </sensor>
+  <shape type="sphere"/>)"));
+    Scene s = load_scene(path, collecting());
+    EXPECT_EQ(s.render.sampler, SamplerKind::Sobol);
+    ASSERT_EQ(warnings.size(), 1u);
+    EXPECT_NE(warnings[0].find("sampler \"ldsampler\": wavetrace draws Owen-scrambled Sobol points"),
+              std::string::npos)
+        << warnings[0];
 }
 
 // A sensor whose to_world mirrors (x scaled by -1) sees the world as Mitsuba renders it: our

@@ -74,7 +74,9 @@ Shape "sphere"
     EXPECT_NEAR(s.camera.vfov, 2 * std::atan(tan_v) * 180 / 3.14159265358979, 1e-4);
     // pbrt's image right is camera +x = up x forward: our camera mirrored.
     EXPECT_TRUE(s.camera.mirror);
-    EXPECT_TRUE(warned("a.pbrt:6: warning: Sampler \"halton\""));
+    EXPECT_TRUE(warned("a.pbrt:6: warning: Sampler \"halton\": wavetrace draws Owen-scrambled "
+                       "Sobol points per pixel"));
+    EXPECT_EQ(s.render.sampler, SamplerKind::Sobol);
 }
 
 // pbrt's camera puts camera-space +x on the image's right: a red sphere at +x, seen from the

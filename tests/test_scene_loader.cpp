@@ -273,6 +273,9 @@ TEST(SceneLoader, NegativeAndZeroSizesAreRejected) {
                        R"(, "render": {"width": 32768, "height": 32768}, "objects": []})";
     EXPECT_NE(load_error(dir, huge).find("/render: width x height = 1073741824 pixels exceeds"),
               std::string::npos);
+    EXPECT_EQ(load_error(dir, std::string("{") + kCamera +
+                                  R"(, "render": {"sampler": "halton"}, "objects": []})"),
+              ": /render/sampler: expected \"independent\" or \"sobol\", got \"halton\"");
     std::string bad_medium =
         std::string("{") + kCamera +
         R"(, "media": {"fog": {"density": -0.1, "albedo": 1}}, "objects": []})";

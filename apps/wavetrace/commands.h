@@ -53,7 +53,7 @@ struct RenderOptions {
     std::string engine = "wavefront";
     std::string strategy = "mis";
     std::string heuristic = "power";
-    std::string sampler = "independent";
+    std::optional<std::string> sampler;  // default: the scene's
 };
 
 struct CompareOptions {

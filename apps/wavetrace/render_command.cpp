@@ -52,9 +52,9 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
         ->capture_default_str();
     cmd->add_option("--sampler", o.sampler,
                     "where the random numbers come from: independent (a hash of each "
-                    "coordinate) or sobol (Owen-scrambled Sobol points per pixel)")
-        ->check(CLI::IsMember({"independent", "sobol"}))
-        ->capture_default_str();
+                    "coordinate) or sobol (Owen-scrambled Sobol points per pixel); default: the "
+                    "scene's")
+        ->check(CLI::IsMember({"independent", "sobol"}));
     cmd->add_option("--mis-heuristic", o.heuristic, "MIS weighting heuristic")
         ->check(CLI::IsMember({"balance", "power"}))
         ->capture_default_str();
@@ -282,7 +282,7 @@ RenderRequest color_request(const RenderOptions& o, const Scene& scene, int widt
     request.width = width;
     request.height = height;
     request.seed = o.seed;
-    request.sampler = *parse_sampler(o.sampler);
+    request.sampler = o.sampler ? *parse_sampler(*o.sampler) : scene.render.sampler;
     request.engine = *parse_engine(o.engine);
     request.estimator.strategy = *parse_strategy(o.strategy);
     request.estimator.heuristic =
@@ -385,7 +385,7 @@ Rendered render_to_image(const RenderOptions& o,
         write.metadata.insert(write.metadata.end(),
                               {{"wavetrace:engine", o.engine},
                                {"wavetrace:strategy", o.strategy},
-                               {"wavetrace:sampler", o.sampler},
+                               {"wavetrace:sampler", to_string(request.sampler)},
                                {"wavetrace:mis_heuristic", o.heuristic},
                                {"wavetrace:spp", std::to_string(total)},
                                {"wavetrace:spp_requested", std::to_string(requested)},

@@ -97,7 +97,7 @@ py::tuple render_scene(const std::shared_ptr<PyScene>& s,
                        const py::object& progress,
                        bool variance,
                        PyFilm* film,
-                       const std::string& sampler) {
+                       const std::optional<std::string>& sampler) {
     const Scene& scene = s->scene;
     const int w = checked("width", width, scene.render.width, 1, kMaxImageSide);
     const int h = checked("height", height, scene.render.height, 1, kMaxImageSide);
@@ -131,7 +131,8 @@ py::tuple render_scene(const std::shared_ptr<PyScene>& s,
     request.height = h;
     request.spp = samples;
     request.seed = seed;
-    request.sampler = parsed("sampler", sampler, parse_sampler(sampler));
+    request.sampler =
+        sampler ? parsed("sampler", *sampler, parse_sampler(*sampler)) : scene.render.sampler;
     request.engine = parsed("engine", engine, parse_engine(engine));
     request.estimator.strategy = parsed("strategy", strategy, parse_strategy(strategy));
     if (mis_heuristic != "power" && mis_heuristic != "balance")
@@ -195,7 +196,7 @@ void bind_render(py::module_& m) {
           py::arg("seed"), py::arg("threads"), py::arg("max_depth"), py::arg("sample_offset"),
           py::arg("time_limit"), py::arg("wave_size"), py::arg("schedule"),
           py::arg("sort_by_material"), py::arg("aov"), py::arg("progress"), py::arg("variance"),
-          py::arg("film").none(true), py::arg("sampler"));
+          py::arg("film").none(true), py::arg("sampler").none(true));
 }
 
 }  // namespace wavetrace::python

@@ -246,7 +246,17 @@ void bind_scene(py::module_& m) {
     settings.def_readwrite("width", &RenderSettings::width)
         .def_readwrite("height", &RenderSettings::height)
         .def_readwrite("spp", &RenderSettings::spp)
-        .def_readwrite("max_depth", &RenderSettings::max_depth);
+        .def_readwrite("max_depth", &RenderSettings::max_depth)
+        .def_property(
+            "sampler", [](const RenderSettings& r) { return std::string(to_string(r.sampler)); },
+            [](RenderSettings& r, const std::string& name) {
+                const std::optional<SamplerKind> kind = parse_sampler(name);
+                if (!kind)
+                    throw py::value_error("sampler: expected 'independent' or 'sobol', got '" +
+                                          name + "'");
+                r.sampler = *kind;
+            },
+            "'independent' or 'sobol': where a render's random numbers come from");
 
     py::enum_<MediumBoundaries>(m, "MediumBoundaries")
         .value("Nested", MediumBoundaries::Nested)
@@ -406,6 +416,7 @@ void bind_scene(py::module_& m) {
                  d["height"] = sc.render.height;
                  d["spp"] = sc.render.spp;
                  d["max_depth"] = sc.render.max_depth;
+                 d["sampler"] = to_string(sc.render.sampler);
                  return d;
              },
              "Counts, bounds and render defaults, as `wavetrace info` prints them.")

@@ -218,6 +218,12 @@ class Loader {
         if (auto x = o.optional("height")) r.height = x->integer(1, kMaxImageSide);
         if (auto x = o.optional("spp")) r.spp = x->integer(1, kMaxSpp);
         if (auto x = o.optional("max_depth")) r.max_depth = x->integer(1, kMaxDepth);
+        if (auto x = o.optional("sampler")) {
+            const std::string name = x->string();
+            const std::optional<SamplerKind> kind = parse_sampler(name);
+            if (!kind) x->fail("expected \"independent\" or \"sobol\", got \"" + name + "\"");
+            r.sampler = *kind;
+        }
         o.finish();
         if (static_cast<long long>(r.width) * r.height > kMaxPixels)
             v.fail(

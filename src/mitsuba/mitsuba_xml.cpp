@@ -1236,8 +1236,11 @@ class Translator {
         for (const Element* sampler : p.nested("sampler")) {
             Props s(*sampler, *this);
             const std::string st = sampler->attr_or("type", "");
+            // Independent as it is; the stratified and low-discrepancy ones as our Sobol sampler.
+            out_["render"]["sampler"] = st == "independent" ? "independent" : "sobol";
             if (st != "independent")
-                warn(*sampler, "sampler \"" + st + "\": wavetrace draws independent samples");
+                warn(*sampler, "sampler \"" + st +
+                                   "\": wavetrace draws Owen-scrambled Sobol points per pixel");
             out_["render"]["spp"] = s.integer("sample_count", 4, 1, kMaxSpp);
             s.finish({"seed", "jitter", "scramble_seed"});
         }

@@ -185,3 +185,16 @@ def test_an_uncaught_interrupt_ends_a_script_as_ctrl_c_does(tmp_path):
     result = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
                             timeout=120, cwd=ROOT)
     assert result.returncode == 1 and "RenderInterrupted" in result.stderr
+
+
+def test_the_scenes_sampler_is_the_default(cornell):
+    assert cornell.render.sampler == "independent"
+    sobol = wt.render(cornell, sampler="sobol", **SMALL)
+    assert not np.array_equal(sobol, wt.render(cornell, **SMALL))
+    cornell.render.sampler = "sobol"
+    try:
+        assert np.array_equal(sobol, wt.render(cornell, **SMALL))
+        with pytest.raises(ValueError, match="sampler"):
+            cornell.render.sampler = "halton"
+    finally:
+        cornell.render.sampler = "independent"

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "wavetrace/math/aabb.h"
+#include "wavetrace/sampling/sampler.h"
 #include "wavetrace/math/transform.h"
 #include "wavetrace/scene/background.h"
 #include "wavetrace/scene/camera.h"
@@ -34,6 +35,7 @@ struct RenderSettings {
     int height = 600;
     int spp = 16;
     int max_depth = 50;
+    SamplerKind sampler = SamplerKind::Independent;
 };
 
 // Most media a scene may declare: the wavefront packs medium ids into 15 bits.
