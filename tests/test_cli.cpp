@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "cli_run.h"
+#include "wavetrace/accel/bvh.h"
 #include "wavetrace/image/image.h"
 
 using namespace wavetrace;
@@ -170,4 +171,26 @@ TEST(Cli, WavefrontMemoryDoesNotGrowWithSamples) {
     std::printf("peak memory 3840x2160: 1 spp %.1f MiB, 16 spp %.1f MiB\n", one, sixteen);
     EXPECT_GT(one, 0.0);
     EXPECT_LE(sixteen, 1.10 * one);
+}
+
+// --simd runs every kernel on the named target: each target this CPU runs gives the same
+// image, bit for bit, and records itself in the header; an unknown one is refused.
+TEST(Cli, EverySimdTargetRendersTheSameImage) {
+    TempDir dir;
+    const std::string common = "render " + scene("everything") + " --spp 2 --width 40 --height 30";
+    ASSERT_EQ(run(dir, common + " -o '" + (dir.path() / "best.exr").string() + "'").code, 0);
+    const ImageData best = read_image(dir.path() / "best.exr");
+    for (const std::string& target : simd_targets()) {
+        const auto out = dir.path() / (target + ".exr");
+        CliResult r = run(dir, common + " --simd " + target + " -o '" + out.string() + "'");
+        ASSERT_EQ(r.code, 0) << target << r.err;
+        EXPECT_TRUE(read_image(out).texels == best.texels) << target;
+        auto in = OIIO::ImageInput::open(out.string());
+        ASSERT_TRUE(in);
+        EXPECT_EQ(in->spec().get_string_attribute("wavetrace:simd"), target);
+    }
+    CliResult bad = run(dir, common + " --simd NEON -o '" + (dir.path() / "x.exr").string() + "'");
+    EXPECT_EQ(bad.code, 2);
+    EXPECT_NE(bad.err.find("--simd NEON: not a target this CPU runs"), std::string::npos) << bad.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.path() / "x.exr"));
 }

@@ -55,6 +55,9 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
                     "coordinate) or sobol (Owen-scrambled Sobol points per pixel); default: the "
                     "scene's")
         ->check(CLI::IsMember({"independent", "sobol"}));
+    cmd->add_option("--simd", o.simd,
+                    "run every kernel on this SIMD target (Highway's name, e.g. AVX2; default: "
+                    "the best this CPU runs), to measure what other CPUs get");
     cmd->add_option("--mis-heuristic", o.heuristic, "MIS weighting heuristic")
         ->check(CLI::IsMember({"balance", "power"}))
         ->capture_default_str();
@@ -221,6 +224,11 @@ std::optional<std::string> check_options(const RenderOptions& o, const RenderSet
     if (o.checkpoint_every && !(*o.checkpoint_every > 0 && *o.checkpoint_every < 1e9))
         return fmt::format("--checkpoint-every: expected a positive number of seconds, got {}",
                            *o.checkpoint_every);
+    if (!use_simd_target(o.simd)) {
+        std::string names;
+        for (const std::string& t : simd_targets()) names += (names.empty() ? "" : ", ") + t;
+        return fmt::format("--simd {}: not a target this CPU runs ({})", o.simd, names);
+    }
     if (o.checkpoint_every && o.film.empty() && o.resume.empty())
         return std::string("--checkpoint-every: needs --film FILE (or --resume FILE) to write");
     if ((!o.film.empty() || !o.resume.empty()) && o.aov != "color")
@@ -386,6 +394,7 @@ Rendered render_to_image(const RenderOptions& o,
                               {{"wavetrace:engine", o.engine},
                                {"wavetrace:strategy", o.strategy},
                                {"wavetrace:sampler", to_string(request.sampler)},
+                               {"wavetrace:simd", simd_target()},
                                {"wavetrace:mis_heuristic", o.heuristic},
                                {"wavetrace:spp", std::to_string(total)},
                                {"wavetrace:spp_requested", std::to_string(requested)},

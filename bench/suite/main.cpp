@@ -32,8 +32,19 @@ int main(int argc, char** argv) {
     app.add_option("--scene", o.only, "engines, scaling: only these bench scenes (repeatable)")
         ->check(CLI::IsMember(
             {"cornell", "everything", "bunny", "dragon", "veach-mis", "materials"}));
+    std::string simd;
+    app.add_option("--simd", simd,
+                   "run every kernel on this SIMD target (e.g. AVX2; default: the best this CPU "
+                   "runs)");
     CLI11_PARSE(app, argc, argv);
     o.scenes = scenes;
+    if (!wavetrace::use_simd_target(simd)) {
+        std::string names;
+        for (const std::string& t : wavetrace::simd_targets()) names += " " + t;
+        std::cerr << "--simd " << simd << ": not a target this CPU runs (it runs:" << names
+                  << ")\n";
+        return 2;
+    }
 
     Results r;
     std::string cpu = "unknown";
@@ -48,6 +59,7 @@ int main(int argc, char** argv) {
     r.note("cpu", cpu);
     r.note("hardware_threads", tbb::this_task_arena::max_concurrency());
     r.note("quick", o.quick);
+    r.note("simd", wavetrace::simd_target());
     r.note("wavefront_bytes_per_path", wavetrace::wavefront_bytes_per_path());
     auto start = std::chrono::steady_clock::now();
     for (const std::string& s : sections) {

@@ -7,6 +7,9 @@
 #include <hwy/highway.h>
 
 #include <algorithm>
+#include <cctype>
+#include <string>
+#include <vector>
 
 #include "accel/wide_bvh.h"
 #include "accel/wide_leaf_tests-inl.h"
@@ -212,6 +215,30 @@ std::vector<int64_t> wide_simd_targets() {
 void use_wide_simd_target(int64_t target) {
     hwy::SetSupportedTargetsForTest(target);
     hwy::GetChosenTarget().Update(hwy::SupportedTargets());
+}
+
+std::vector<std::string> simd_targets() {
+    std::vector<std::string> names;
+    for (int64_t t : hwy::SupportedAndGeneratedTargets()) names.push_back(hwy::TargetName(t));
+    return names;
+}
+
+bool use_simd_target(const std::string& name) {
+    auto lower = [](std::string s) {
+        for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        return s;
+    };
+    // The targets the CPU runs, none disabled; then Highway's better targets (the lower bits)
+    // disabled, or the previous choice kept.
+    static int64_t disabled = 0;
+    hwy::DisableTargets(0);
+    int64_t chosen = -1;
+    for (int64_t t : hwy::SupportedAndGeneratedTargets())
+        if (name.empty() ? chosen < 0 : lower(hwy::TargetName(t)) == lower(name)) chosen = t;
+    if (chosen >= 0) disabled = name.empty() ? 0 : chosen - 1;
+    hwy::DisableTargets(disabled);
+    hwy::GetChosenTarget().Update(hwy::SupportedTargets());
+    return chosen >= 0;
 }
 
 }  // namespace wavetrace

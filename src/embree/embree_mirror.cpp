@@ -1,8 +1,10 @@
 #include "embree/embree_mirror.h"
 
 #include <chrono>
+#include <string>
 
 #include "scene/opacity.h"
+#include "wavetrace/accel/bvh.h"
 #include "wavetrace/scene/scene.h"
 
 namespace wavetrace {
@@ -45,10 +47,22 @@ T* buffer(RTCGeometry g, RTCBufferType type, RTCFormat format, size_t stride, si
     return static_cast<T*>(rtcSetNewGeometryBuffer(g, type, 0, format, stride, n));
 }
 
+// Embree's own kernels capped at the SIMD target ours run on (use_simd_target), so that a
+// comparison restricted to e.g. AVX2 holds on both sides; the best target: Embree's default.
+std::string embree_config() {
+    const std::string ours = simd_target();
+    if (ours == simd_targets().front()) return "";
+    if (ours == "AVX3") return "max_isa=avx512";
+    if (ours == "AVX2") return "max_isa=avx2";
+    if (ours == "SSE4") return "max_isa=sse4.2";
+    return "max_isa=sse2";
+}
+
 }  // namespace
 
 EmbreeMirror::EmbreeMirror(const Scene& s, RTCBuildQuality quality, bool robust) {
-    device_ = rtcNewDevice(nullptr);
+    const std::string config = embree_config();
+    device_ = rtcNewDevice(config.empty() ? nullptr : config.c_str());
     auto start = std::chrono::steady_clock::now();
     scene_ = rtcNewScene(device_);
     if (robust) rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);

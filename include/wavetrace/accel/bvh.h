@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <memory>
 #include <span>
+#include <string>
+#include <vector>
 
 #include "wavetrace/math/aabb.h"
 #include "wavetrace/math/ray.h"
@@ -90,5 +92,13 @@ class Bvh {
 
 // The SIMD target the traversal runs on this CPU (Highway's name, e.g. "AVX2", "AVX3").
 const char* simd_target();
+
+// The SIMD targets compiled in that this CPU runs (Highway's names), the best first.
+std::vector<std::string> simd_targets();
+
+// Runs every kernel (traversal, shading, sampling) on the named target of simd_targets() from
+// now on, e.g. "AVX2" to measure what a CPU without AVX-512 gets; "" returns to the best.
+// False, and nothing changed, for a target not among them.
+bool use_simd_target(const std::string& name);
 
 }  // namespace wavetrace
