@@ -410,9 +410,13 @@ Rendered render_to_image(const RenderOptions& o,
         const std::string resumed_note =
             already > 0 ? fmt::format(" ({} resumed, {} rendered)", already, stats.spp_done) : "";
         summary = fmt::format(
-            "{} {} {}x{} {} spp{}{}: {:.2f} s, {:.2f} Mpaths/s, {:.2f} Mrays/s, "
+            "{} {}{} {}x{} {} spp{}{}: {:.2f} s, {:.2f} Mpaths/s, {:.2f} Mrays/s, "
             "{} invalid samples, peak memory {:.1f} MiB",
-            o.engine, o.strategy, width, height, total, stopped, resumed_note, stats.seconds,
+            o.engine, o.strategy,
+            request.sampler == SamplerKind::Independent
+                ? std::string()
+                : " " + std::string(to_string(request.sampler)),
+            width, height, total, stopped, resumed_note, stats.seconds,
             stats.seconds > 0 ? stats.paths / stats.seconds * 1e-6 : 0.0,
             stats.seconds > 0 ? stats.rays / stats.seconds * 1e-6 : 0.0, film.invalid_samples(),
             peak_rss_mib());
