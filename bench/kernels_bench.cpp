@@ -281,6 +281,7 @@ void fill(LambertianRows& r, LightSampleQueue& queue, LightSampleBlock& block) {
         block.lobe[k] = int32_t(LaneLobe::Lambertian);
         block.quad[k] = r.c.lights->quad_emitter_index(light);
         block.sphere[k] = -1;
+        block.environment[k] = 0;
         block.select_prob[k] = light.probability;
     }
 }

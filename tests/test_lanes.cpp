@@ -9,6 +9,7 @@
 
 #include "accel/wide_bvh.h"
 #include "kernels/lane_kernels.h"
+#include "math/lanes-inl.h"
 #include "sampling/pixel_filter-inl.h"
 #include "sampling/sampler.h"
 #include "sampling/warp.h"
@@ -66,11 +67,14 @@ Vertex lane_vertex_at(Point3 p, Dim u, LaneKind kind) {
     return v;
 }
 
-// Lambertian, rough metal and medium vertices around the lights of `scene`, quads and spheres
-// (the vertices outside them): the vector light samples give next_event's shadow rays,
-// unweighted contributions (times beta) and densities bit for bit, packed in row order. Counts in
-// *spheres the rows whose light was a sphere.
-void expect_light_samples_are_next_event(const Scene& scene, size_t* spheres) {
+// Lambertian, rough metal and medium vertices around the lights of `scene`, quads, spheres and
+// an environment map (the vertices outside the spheres): the vector light samples give
+// next_event's shadow rays, unweighted contributions (times beta) and densities bit for bit,
+// packed in row order. Counts in *spheres the rows whose light was a sphere, in *maps those
+// whose light was the environment map.
+void expect_light_samples_are_next_event(const Scene& scene,
+                                         size_t* spheres,
+                                         size_t* maps = nullptr) {
     const LightSet lights(scene);
     const size_t n = 59;
     struct Case {
@@ -93,6 +97,7 @@ void expect_light_samples_are_next_event(const Scene& scene, size_t* spheres) {
     }
     size_t appended = 0, skipped = 0;
     *spheres = 0;
+    size_t environment_rows = 0;
     Estimator config;
     config.strategy = Strategy::Mis;
     for (int64_t target : wide_simd_targets()) {
@@ -110,8 +115,12 @@ void expect_light_samples_are_next_event(const Scene& scene, size_t* spheres) {
             const LightChoice light = lights.select(c.u.light_select);
             const int32_t quad = quad_light_sample_at(c.v, lights, light);
             const int32_t sphere = quad < 0 ? sphere_light_sample_at(c.v, lights, light) : -1;
-            ASSERT_TRUE(quad >= 0 || sphere >= 0);
+            const bool map =
+                quad < 0 && sphere < 0 && environment_light_sample_at(c.v, lights, light);
+            ASSERT_TRUE(quad >= 0 || sphere >= 0 || map);
             *spheres += sphere >= 0;
+            environment_rows += map;
+            block.environment[k] = map ? 1 : 0;
             store_queued_vertex(
                 queue, k,
                 {uint32_t(k), c.v.p, c.v.ng, c.v.frame.n, c.wo, c.v.bsdf.albedo, c.v.bsdf.alpha,
@@ -149,8 +158,32 @@ void expect_light_samples_are_next_event(const Scene& scene, size_t* spheres) {
         EXPECT_EQ(shadows.path[n], 12345u);
     }
     use_wide_simd_target(0);
+    if (maps) *maps = environment_rows;
     EXPECT_GT(appended, 0u);
     EXPECT_GT(skipped, 0u);  // back faces, directions below the surface
+}
+
+// A latitude-longitude or equal-area environment map of w x h texels: a bright spot, a
+// gradient and a black band, scaled per channel, turned by a frame.
+void add_environment(Scene& scene, int w, int h, bool equal_area) {
+    ImageData image;
+    image.path = "environment";
+    image.width = w;
+    image.height = h;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const float spot = (x == w / 3 && y == h / 4) ? 500.0f : 0.0f;
+            const float band = y == h / 2 ? 0.0f : 1.0f;
+            image.texels.push_back(Color(spot + band * (0.1f + float(x) / float(w)),
+                                         band * float(y) / float(h), 0.3f * band));
+        }
+    Background& bg = scene.background;
+    bg.kind = Background::Kind::Environment;
+    bg.image = scene.add_image(std::move(image));
+    bg.radiance = {2.0f, 1.5f, 1.0f};
+    bg.mapping = equal_area ? Background::Mapping::EqualArea : Background::Mapping::LatLong;
+    bg.rotation = 30.0f;
+    bg.frame = Frame{{0, 0, 1}, {1, 0, 0}, {0, 1, 0}};
 }
 
 // Two emitting materials: one-sided and brighter, two-sided and dimmer.
@@ -165,6 +198,31 @@ std::pair<MaterialId, MaterialId> add_emitters(Scene& scene) {
 }
 
 }  // namespace
+
+TEST(Lanes, Atan2AndAcosAreAccurate) {
+    // Against libm in double, around the circle (every octant and its edges) and over [-1, 1].
+    double worst_atan = 0, worst_acos = 0;
+    for (int i = 0; i <= 1 << 14; ++i) {
+        const double angle = 2.0 * M_PI * i / (1 << 14) - M_PI;
+        for (const double r : {1e-3, 1.0, 7e4}) {
+            const float y = float(r * std::sin(angle)), x = float(r * std::cos(angle));
+            const double error =
+                std::abs(lanes::Atan2<OneLane>(y, x) - std::atan2(double(y), double(x)));
+            worst_atan = std::max(worst_atan, std::min(error, 2.0 * M_PI - error));
+        }
+        const float c = std::clamp(float(2.0 * i / (1 << 14) - 1.0), -1.0f, 1.0f);
+        worst_acos =
+            std::max(worst_acos, std::abs(lanes::Acos<OneLane>(c) - std::acos(double(c))));
+    }
+    EXPECT_LT(worst_atan, 4e-7);
+    EXPECT_LT(worst_acos, 4e-7);
+    EXPECT_EQ(lanes::Atan2<OneLane>(0.0f, 0.0f), 0.0f);
+    EXPECT_EQ(lanes::Atan2<OneLane>(0.0f, 1.0f), 0.0f);
+    EXPECT_FLOAT_EQ(lanes::Atan2<OneLane>(1.0f, 0.0f), float(M_PI / 2));
+    EXPECT_FLOAT_EQ(lanes::Atan2<OneLane>(0.0f, -1.0f), float(M_PI));
+    EXPECT_EQ(lanes::Acos<OneLane>(1.0f), 0.0f);
+    EXPECT_FLOAT_EQ(lanes::Acos<OneLane>(-1.0f), float(M_PI));
+}
 
 TEST(Lanes, SinCosOfTheWarpsIsAccurate) {
     // sample_cosine_hemisphere's azimuth comes from the shared polynomial: compare it with
@@ -312,6 +370,63 @@ TEST(Lanes, SphereLightSamplesAreNextEventOnEverySimdTarget) {
     size_t spheres;
     expect_light_samples_are_next_event(scene, &spheres);
     EXPECT_GT(spheres, 0u);
+}
+
+// Under an environment map of either mapping, with a quad light beside it, so that vectors
+// mix both kinds.
+TEST(Lanes, EnvironmentLightSamplesAreNextEventOnEverySimdTarget) {
+    for (const bool equal_area : {false, true}) {
+        SCOPED_TRACE(equal_area ? "equal-area" : "lat-long");
+        Scene scene;
+        const auto [a, b] = add_emitters(scene);
+        scene.add_quad({{-1, 2, -1}, {2, 0, 0}, {0, 0, 2}, a, kNone});
+        add_environment(scene, 24, equal_area ? 24 : 12, equal_area);
+        size_t spheres, maps;
+        expect_light_samples_are_next_event(scene, &spheres, &maps);
+        EXPECT_GT(maps, 0u);
+    }
+}
+
+// Rays leaving the scene in every direction, of several lengths: the vector lookups find
+// resolve_segment's radiance and MIS density bit for bit.
+TEST(Lanes, EscapedRaysAreResolveSegmentsOnEverySimdTarget) {
+    for (const bool equal_area : {false, true}) {
+        SCOPED_TRACE(equal_area ? "equal-area" : "lat-long");
+        Scene scene;
+        add_environment(scene, 24, equal_area ? 24 : 12, equal_area);
+        const LightSet lights(scene);
+        Estimator config;
+        config.strategy = Strategy::Mis;
+        const size_t n = 61;
+        std::vector<Ray> rays;
+        for (uint32_t i = 0; i < n; ++i) {
+            auto u = [&](uint32_t d) { return sample_1d(17, i, 0, d); };
+            Vec3 d = unit(u(0), u(1)) * (0.25f + 4.0f * u(2));
+            if (i == 0) d = {3, 0, 0};  // the map's pole: its frame's t is the world's +x
+            rays.push_back(Ray{{u(3), u(4), u(5)}, d});
+        }
+        for (int64_t target : wide_simd_targets()) {
+            use_wide_simd_target(target);
+            SCOPED_TRACE(wide_simd_target());
+            EscapeBlock b;
+            b.n = n;
+            for (size_t k = 0; k < n; ++k)
+                for (int a = 0; a < 3; ++a) b.dir[a][k] = rays[k].d[a];
+            escape_rays(b, lights, true);
+            for (size_t k = 0; k < n; ++k) {
+                MediumStack media;
+                float flight = 0.0f;
+                const PreviousVertex prev{{0, 0, 0}, 0.5f, false};
+                const SegmentResult seg =
+                    resolve_segment(scene, lights, config, rays[k], Hit{}, media, flight, prev);
+                ASSERT_EQ(seg.event, SegmentEvent::Emission) << "row " << k;
+                EXPECT_TRUE(same_bits(seg.emission, block_row(b.radiance, k))) << "row " << k;
+                EXPECT_TRUE(same_bits(seg.emission_pdf_light, b.pdf_light[k])) << "row " << k;
+                if (k > 0 || equal_area) EXPECT_GT(b.pdf_light[k], 0.0f) << "row " << k;
+            }
+        }
+        use_wide_simd_target(0);
+    }
 }
 
 // Segments through media of two densities and none, hits and misses: the vector free flights

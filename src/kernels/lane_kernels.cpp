@@ -11,6 +11,7 @@
 #include "math/lanes-inl.h"
 #include "sampling/sampler-inl.h"
 #include "scene/camera_ray-inl.h"
+#include "shading/environment_light-inl.h"
 #include "shading/light_sample-inl.h"
 #include "shading/medium_flight-inl.h"
 #include "shading/mis-inl.h"
@@ -292,6 +293,8 @@ HWY_INLINE hn::Vec<D> LoadColumn(D d, const float* column, size_t k, size_t n) {
 size_t SampleLights(LightSampleBlock* b,
                     const QuadEmitterColumns* quads,
                     const SphereEmitterColumns* spheres,
+                    const EnvironmentView* environment,
+                    Distribution2DTables environment_tables,
                     ShadowQueue* shadows,
                     size_t first_shadow) {
     using D = hn::CappedTag<float, kShadeChunk>;
@@ -305,7 +308,7 @@ size_t SampleLights(LightSampleBlock* b,
     const LightSampleQueue& q = *b->queue;
     const size_t at = b->first;
     PadTail<float>({b->select_prob}, n, Padded(n, N));
-    PadTail<int32_t>({b->lobe, b->quad, b->sphere}, n, Padded(n, N));
+    PadTail<int32_t>({b->lobe, b->quad, b->sphere, b->environment}, n, Padded(n, N));
     size_t s = first_shadow;
     for (size_t k = 0; k < n; k += N) {
         auto column = [&](const std::vector<float>& c) {
@@ -322,7 +325,9 @@ size_t SampleLights(LightSampleBlock* b,
         const auto sphere = hn::Load(di, b->sphere + k);
         const auto has_quad = hn::RebindMask(d, hn::Gt(quad, hn::Set(di, -1)));
         const auto has_sphere = hn::RebindMask(d, hn::Gt(sphere, hn::Set(di, -1)));
-        const auto has_light = hn::Or(has_quad, has_sphere);
+        const auto has_environment =
+            hn::RebindMask(d, hn::Ne(hn::Load(di, b->environment + k), hn::Zero(di)));
+        const auto has_light = hn::Or(hn::Or(has_quad, has_sphere), has_environment);
         if (hn::AllFalse(d, has_light)) continue;
         const LobeMasks<D> lobes = LobesAt(d, b->lobe, k);
         const F u1 = column(q.u1), u2 = column(q.u2);
@@ -351,10 +356,17 @@ size_t SampleLights(LightSampleBlock* b,
         if (any_quad)
             point =
                 QuadLightPoint(v.p, QuadLightFrom<L>(*quads, fetcher(quad), select_prob), u1, u2);
-        if (!hn::AllFalse(d, has_sphere)) {
+        const bool any_sphere = !hn::AllFalse(d, has_sphere);
+        if (any_sphere) {
             const LightPoint<L> on_sphere = SphereLightPoint(
                 v.p, SphereLightFrom<L>(*spheres, fetcher(sphere), select_prob), u1, u2);
             point = any_quad ? SelectLightPoint<L>(has_sphere, on_sphere, point) : on_sphere;
+        }
+        if (!hn::AllFalse(d, has_environment)) {
+            const LightPoint<L> on_map = EnvironmentLightPoint<L>(
+                *environment, environment_tables, u1, u2, select_prob);
+            point = any_quad || any_sphere ? SelectLightPoint<L>(has_environment, on_map, point)
+                                           : on_map;
         }
         const VertexLightSample<L> r = SampleTowards(v, point);
         // The rows that append, packed to the queue's next entries in row order (the rows past
@@ -394,6 +406,26 @@ size_t SampleLights(LightSampleBlock* b,
     return s - first_shadow;
 }
 
+void EscapeRays(EscapeBlock* b,
+                const EnvironmentView* environment,
+                Distribution2DTables tables,
+                float select_prob,
+                bool with_pdf) {
+    using D = hn::CappedTag<float, kShadeChunk>;
+    using L = FloatLanes<D>;
+    const D d;
+    const size_t N = hn::Lanes(d);
+    const size_t n = b->n;
+    if (n == 0) return;
+    PadTail3({b->dir}, n, Padded(n, N));
+    for (size_t k = 0; k < n; k += N) {
+        const EscapedRay<L> r =
+            Escape<L>(*environment, tables, Load3(d, b->dir, k), hn::Set(d, select_prob), with_pdf);
+        Store3(d, r.radiance, b->radiance, k);
+        hn::Store(r.pdf_light, d, b->pdf_light + k);
+    }
+}
+
 void MisWeights(MisHeuristic h, const float* pdf_a, const float* pdf_b, size_t n, float* out) {
     using D = hn::CappedTag<float, kShadeChunk>;
     using L = FloatLanes<D>;
@@ -424,6 +456,7 @@ HWY_EXPORT(MediumSegments);
 HWY_EXPORT(ResolveSurfaceHits);
 HWY_EXPORT(StepVertices);
 HWY_EXPORT(SampleLights);
+HWY_EXPORT(EscapeRays);
 HWY_EXPORT(MisWeights);
 
 void draw_camera_rays(const CameraRays& camera,
@@ -465,9 +498,15 @@ size_t sample_lights_in_lanes(LightSampleBlock& b,
                               const LightSet& lights,
                               ShadowQueue& shadows,
                               size_t first_shadow) {
-    return HWY_DYNAMIC_DISPATCH(SampleLights)(&b, &lights.quad_emitter_columns(),
-                                              &lights.sphere_emitter_columns(), &shadows,
-                                              first_shadow);
+    return HWY_DYNAMIC_DISPATCH(SampleLights)(
+        &b, &lights.quad_emitter_columns(), &lights.sphere_emitter_columns(),
+        &lights.environment_view(), lights.environment_tables(), &shadows, first_shadow);
+}
+
+void escape_rays(EscapeBlock& b, const LightSet& lights, bool with_pdf) {
+    HWY_DYNAMIC_DISPATCH(EscapeRays)
+    (&b, &lights.environment_view(), lights.environment_tables(),
+     lights.background_selection_probability(), with_pdf);
 }
 
 void direct_weights(Strategy strategy,

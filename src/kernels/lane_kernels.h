@@ -188,7 +188,8 @@ void resolve_surface_hits(VertexBlock& b);
 void step_vertices(VertexBlock& b);
 
 // Light samples of rows [first, first + n) of the light-sample queue towards a quad light of
-// constant radiance, or a sphere light of constant radiance seen from outside: next_event's
+// constant radiance, a sphere light of constant radiance seen from outside, or the environment
+// map: next_event's
 // sample (shading/light_sample-inl.h), unweighted, bit for bit. The vertices are read from the
 // queue where they are; the block holds what the kernel adds per row.
 struct LightSampleBlock {
@@ -200,6 +201,7 @@ struct LightSampleBlock {
     // its selection probability
     alignas(64) int32_t lobe[kShadeChunk];
     alignas(64) int32_t quad[kShadeChunk], sphere[kShadeChunk];
+    alignas(64) int32_t environment[kShadeChunk];  // 1: the light is the environment map
     alignas(64) float select_prob[kShadeChunk];
 };
 
@@ -210,6 +212,18 @@ size_t sample_lights_in_lanes(LightSampleBlock& b,
                               const LightSet& lights,
                               ShadowQueue& shadows,
                               size_t first_shadow);
+
+// Rays of a chunk that leave the scene under an environment map (SoA, rows k < n): what each
+// finds there, resolve_segment's (shading/environment_light-inl.h's Escape), bit for bit.
+struct EscapeBlock {
+    alignas(64) float dir[3][kShadeChunk];       // in: the ray's direction, of any length
+    alignas(64) float radiance[3][kShadeChunk];  // out: the map's radiance
+    alignas(64) float pdf_light[kShadeChunk];    // out, with_pdf: the light sample's density
+    size_t n = 0;
+};
+
+// Rows k < b.n of b; with_pdf: their pdf_light too (MIS weighs the radiance).
+void escape_rays(EscapeBlock& b, const LightSet& lights, bool with_pdf);
 
 // out[k] = direct_weight(strategy, heuristic, pdf_light[k], pdf_bsdf[k]) for k < n, bit for bit:
 // the MIS weights a vector at a time.

@@ -1,6 +1,7 @@
 // The light_sample kernel: per chunk of its queue, each vertex's light chosen; the samples
-// towards quad lights and towards sphere lights seen from outside taken in SIMD lanes, every
-// other in scalar code (sample_direct); the chunk's shadow rays appended, the lanes' first.
+// towards quad lights, sphere lights seen from outside and the environment map taken in SIMD
+// lanes, every other in scalar code (sample_direct); the chunk's shadow rays appended, the
+// lanes' first.
 #include <algorithm>
 
 #include "kernels/kernels.h"
@@ -52,14 +53,16 @@ size_t light_sample(const WaveInputs& in,
         const size_t chunk_end = std::min(end, c + kShadeChunk);
         block.first = c;
         block.n = chunk_end - c;
-        // Each vertex's light; the SIMD kernel takes the rows whose light is a quad or a sphere
-        // seen from outside, as next_event chooses, scalar code the others.
+        // Each vertex's light; the SIMD kernel takes the rows whose light is a quad, a sphere
+        // seen from outside or the environment map, as next_event chooses, scalar code the
+        // others.
         for (size_t i = c; i < chunk_end; ++i) {
             const size_t row = i - c;
             const LightChoice light = in.lights.select(queue.u_select[i]);
             block.lobe[row] = int32_t(lane_lobe(queue.kind[i]));
             block.select_prob[row] = light.probability;
             block.sphere[row] = -1;
+            block.environment[row] = 0;
             const Normal3 ng = WAVETRACE_XYZ_AT(queue, ng, i);
             block.quad[row] =
                 quad_light_sample_at(ng, queue.kind[i], queue.alpha[i], in.lights, light);
@@ -67,6 +70,10 @@ size_t light_sample(const WaveInputs& in,
             block.sphere[row] = sphere_light_sample_at(
                 WAVETRACE_XYZ_AT(queue, p, i), ng, queue.kind[i], queue.alpha[i], in.lights, light);
             if (block.sphere[row] >= 0) continue;
+            if (environment_light_sample_at(ng, queue.kind[i], queue.alpha[i], in.lights, light)) {
+                block.environment[row] = 1;
+                continue;
+            }
             Vertex v = queued_vertex(in.scene, queue, i);
             v.frame = Frame::from_normal(WAVETRACE_XYZ_AT(queue, ns, i));
             scalar[row] = sample_direct(in.scene, in.lights, v, WAVETRACE_XYZ_AT(queue, wo, i),
@@ -76,7 +83,9 @@ size_t light_sample(const WaveInputs& in,
         s += sample_lights_in_lanes(block, in.lights, shadows, s);
         for (size_t i = c; i < chunk_end; ++i) {
             const size_t row = i - c;
-            if (block.quad[row] >= 0 || block.sphere[row] >= 0 || !scalar[row].valid) continue;
+            if (block.quad[row] >= 0 || block.sphere[row] >= 0 || block.environment[row] != 0 ||
+                !scalar[row].valid)
+                continue;
             const DirectSample& d = scalar[row];
             WT_DCHECK_LT(s, shadows.capacity);
             store_shadow_ray(

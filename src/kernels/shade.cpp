@@ -18,9 +18,10 @@ enum class ShadeRoute : uint8_t {
     Cross,         // a medium boundary: straight on past it
     MediumVertex,  // scatters in a medium on the way to its hit: a lane vertex
     SurfaceHit,    // a hit on a Lambertian or rough metal surface: a lane vertex, from the hit
+    Escape,        // leaves the scene under an environment map: its radiance found in lanes
     Resolve,       // anything else: resolve_segment, in scalar code
 };
-constexpr size_t kRoutes = 5;
+constexpr size_t kRoutes = 6;
 
 // A chunk's entries per route, as rows of the chunk (entry = chunk begin + row), in order.
 class ChunkRoutes {
@@ -115,6 +116,7 @@ struct ShadeOutputs {
 struct Chunk {
     size_t begin = 0, end = 0;
     SampleBlock samples;          // the vertices' uniform numbers
+    EscapeBlock escapes;          // the rays of route Escape
     MediumSegmentBlock segments;  // where the paths scatter in media, drawn in lanes
     ChunkRoutes routes;
     LaneSurface surface[kShadeChunk];  // per SurfaceHit entry, by row of the chunk
@@ -154,7 +156,9 @@ void classify(const WaveInputs& in, const HitQueue& hits, const PathQueue& paths
             }
             const PrimRef prim = hits.prim[i];
             if (!prim.valid())
-                return scene.background.is_black() ? ShadeRoute::End : ShadeRoute::Resolve;
+                return in.lights.has_environment()    ? ShadeRoute::Escape
+                       : scene.background.is_black() ? ShadeRoute::End
+                                                     : ShadeRoute::Resolve;
             const MaterialId m = scene.prim_material(prim);
             if (scene.is_boundary(m)) return ShadeRoute::Cross;
             // Textured meshes stay scalar: their texture coordinates come from the mesh's
@@ -339,6 +343,30 @@ void resolve_in_scalar(const WaveInputs& in, const HitQueue& hits, Chunk& c, Sha
     }
 }
 
+// Route Escape, in lanes: what each ray finds on the environment map, queued as emission for
+// mis_combine to weight (resolve_segment's miss, bit for bit). The paths end.
+void escape_in_lanes(const WaveInputs& in, Chunk& c, ShadeOutputs& out) {
+    const std::span<const uint8_t> rows = c.routes[ShadeRoute::Escape];
+    if (rows.empty()) return;
+    EscapeBlock& b = c.escapes;
+    b.n = rows.size();
+    for (size_t k = 0; k < b.n; ++k)
+        for (int a = 0; a < 3; ++a) b.dir[a][k] = out.rays.dir[c.begin + rows[k]][a];
+    const bool mis = in.estimator.strategy == Strategy::Mis;
+    escape_rays(b, in.lights, mis);
+    for (size_t k = 0; k < b.n; ++k) {
+        const size_t i = c.begin + rows[k];
+        const Color radiance = block_row(b.radiance, k);
+        if (!(max_component(radiance) > 0.0f)) continue;
+        const PreviousVertex prev = previous_vertex(out.paths, i);
+        WT_DCHECK_LT(out.emission_end, out.emissions.capacity);
+        out.emissions.store(
+            out.emission_end++,
+            {static_cast<uint32_t>(i), out.paths.beta[i] * radiance, prev.pdf_bsdf,
+             mis && !prev.counts_fully ? b.pdf_light[k] : 0.0f, uint8_t(prev.counts_fully)});
+    }
+}
+
 // The textured albedo of SurfaceHit rows [0, rows) once their hits are resolved: surface_at's
 // texture coordinates (the sphere's from its outward normal, the quad's the hit's (u, v) or
 // (u, 1 - v)).
@@ -466,6 +494,7 @@ ShadeCounts shade(const WaveInputs& in,
         push_medium_vertices(in, c, out);
         const size_t lane_rows = c.block.n;
         resolve_in_scalar(in, hits, c, out);  // queues its own light samples
+        escape_in_lanes(in, c, out);
 
         resolve_surface_hits(c.block);
         look_up_textures(in.scene, surface_rows, c);

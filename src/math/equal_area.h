@@ -11,6 +11,8 @@ namespace wavetrace {
 // +x and (0.5, 1) is +y. Every region of the square maps to a region of the sphere 4 pi times
 // its area, so a texel of an N x N image subtends 4 pi / N^2 steradians.
 
+// The one-lane instances of math/equal_area-inl.h, which the wavefront runs in SIMD lanes.
+
 // (u, v) in [0, 1]^2 to a unit direction.
 Vec3 equal_area_square_to_sphere(float u, float v);
 // A unit direction to (u, v) in [0, 1]^2; the inverse of the above.

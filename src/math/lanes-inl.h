@@ -67,6 +67,20 @@ struct OneLane {
         return static_cast<float>(static_cast<int32_t>(bits >> 23) - 127);
     }
 
+    // 32-bit integer lanes, for table indices: Trunc of a float in [0, 2^31) toward zero,
+    // Gather of base[i] (i >= 0).
+    using I = int32_t;
+    static I SetI(int32_t x) { return x; }
+    static I AddI(I a, I b) { return a + b; }
+    static I SubI(I a, I b) { return a - b; }
+    static I MulI(I a, I b) { return a * b; }
+    static I MinI(I a, I b) { return b < a ? b : a; }
+    static I SelectI(M m, I yes, I no) { return m ? yes : no; }
+    static I Trunc(F x) { return static_cast<int32_t>(x); }
+    static F ToFloat(I x) { return static_cast<float>(x); }
+    static F Floor(F x) { return std::floor(x); }
+    static F Gather(const float* base, I i) { return base[i]; }
+
     static U64 Set64(uint64_t x) { return x; }
     static U64 Widen(U32 x) { return x; }
     template <int kBits>
@@ -118,6 +132,19 @@ struct FloatLanes {
     static HWY_INLINE M Not(M m) { return hn::Not(m); }
     static HWY_INLINE bool Any(M m) { return !hn::AllFalse(D(), m); }
     static HWY_INLINE M All() { return hn::FirstN(D(), hn::Lanes(D())); }  // every lane set
+    using I = hn::Vec<hn::RebindToSigned<D>>;
+    static HWY_INLINE I SetI(int32_t x) { return hn::Set(hn::RebindToSigned<D>(), x); }
+    static HWY_INLINE I AddI(I a, I b) { return hn::Add(a, b); }
+    static HWY_INLINE I SubI(I a, I b) { return hn::Sub(a, b); }
+    static HWY_INLINE I MulI(I a, I b) { return hn::Mul(a, b); }
+    static HWY_INLINE I MinI(I a, I b) { return hn::Min(a, b); }
+    static HWY_INLINE I SelectI(M m, I yes, I no) {
+        return hn::IfThenElse(hn::RebindMask(hn::RebindToSigned<D>(), m), yes, no);
+    }
+    static HWY_INLINE I Trunc(F x) { return hn::ConvertTo(hn::RebindToSigned<D>(), x); }
+    static HWY_INLINE F ToFloat(I x) { return hn::ConvertTo(D(), x); }
+    static HWY_INLINE F Floor(F x) { return hn::Floor(x); }
+    static HWY_INLINE F Gather(const float* base, I i) { return hn::GatherIndex(D(), base, i); }
     static HWY_INLINE F SplitExponent(F x, F* m) {
         const hn::RebindToSigned<D> di;
         const auto bits = hn::BitCast(di, x);
@@ -296,6 +323,37 @@ HWY_INLINE void SinCos2Pi(typename L::F u, typename L::F* sin_out, typename L::F
     const F sin_r = L::Select(odd, c, s), cos_r = L::Select(odd, s, c);
     *sin_out = L::Select(L::Or(is(2.0f), is(3.0f)), L::Neg(sin_r), sin_r);
     *cos_out = L::Select(L::Or(is(1.0f), is(2.0f)), L::Neg(cos_r), cos_r);
+}
+
+// atan2(y, x) in (-pi, pi]: t = min(|x|, |y|) / max(|x|, |y|) in [0, 1], reduced further to
+// |t'| <= tan(pi/8) by atan t = pi/4 + atan((t - 1) / (t + 1)) above tan(pi/8), then Cephes'
+// atanf polynomial (S. Moshier; relative error below 2e-7), and the octant's symmetries:
+// pi/2 - a where |y| > |x|, pi - a where x < 0, the sign of y. atan2(0, 0) = 0.
+template <class L>
+HWY_INLINE typename L::F Atan2(typename L::F y, typename L::F x) {
+    using F = typename L::F;
+    const F zero = L::Set(0.0f), one = L::Set(1.0f);
+    const F ay = L::Abs(y), ax = L::Abs(x);
+    const F hi = L::Max(ax, ay), lo = L::Min(ax, ay);
+    const F t = L::Select(hi > zero, lo / L::Select(hi > zero, hi, one), zero);
+    const auto upper = t > L::Set(0.41421356237309503f);
+    const F r = L::Select(upper, (t - one) / (t + one), t);
+    const F z = r * r;
+    const F poly =
+        ((L::Set(8.05374449538e-2f) * z - L::Set(1.38776856032e-1f)) * z +
+         L::Set(1.99777106478e-1f)) * z - L::Set(3.33329491539e-1f);
+    F a = L::Select(upper, L::Set(0.78539816339744831f), zero) + (poly * z * r + r);
+    a = L::Select(ay > ax, L::Set(1.5707963267948966f) - a, a);
+    a = L::Select(x < zero, L::Set(3.1415926535897932f) - a, a);
+    return L::CopySign(a, y);
+}
+
+// acos(c) for c in [-1, 1], as atan2(sqrt((1 - c)(1 + c)), c): accurate at both ends, where
+// 1 - c^2 would cancel.
+template <class L>
+HWY_INLINE typename L::F Acos(typename L::F c) {
+    const typename L::F one = L::Set(1.0f);
+    return Atan2<L>(L::Sqrt((one - c) * (one + c)), c);
 }
 
 // Natural logarithm of a positive normal x: x = m 2^e with m in [sqrt(1/2), sqrt(2)), then

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "wavetrace/math/constants.h"
+
 namespace wavetrace {
 
 Distribution1D::Distribution1D(std::span<const float> weights)
@@ -55,26 +57,32 @@ float Distribution1D::pdf_continuous(float x) const {
     return pdf_[i];
 }
 
-Distribution2D::Distribution2D(std::span<const float> weights, int nu, int nv) {
-    std::vector<float> marginal(nv);
-    for (int v = 0; v < nv; ++v) {
-        rows_.emplace_back(weights.subspan(static_cast<size_t>(v) * nu, nu));
-        marginal[v] = rows_.back().total();
+namespace {
+
+// Appends the float running sums 0, w0, w0 + w1, ... of `weights` (summed in double), each at
+// least the float after the one before; returns the double total.
+double append_sums(std::span<const float> weights, std::vector<float>& out) {
+    double sum = 0;
+    float previous = 0.0f;
+    out.push_back(previous);
+    for (const float w : weights) {
+        sum += w;
+        previous = std::max(static_cast<float>(sum), std::nextafter(previous, kInfinity));
+        out.push_back(previous);
     }
-    marginal_ = Distribution1D(marginal);
+    return sum;
 }
 
-void Distribution2D::sample(float u1, float u2, float* u, float* v, float* pdf) const {
-    float pdf_v, pdf_u;
-    size_t row;
-    *v = marginal_.sample_continuous(u2, &pdf_v, &row);
-    *u = rows_[row].sample_continuous(u1, &pdf_u);
-    *pdf = pdf_u * pdf_v;
-}
+}  // namespace
 
-float Distribution2D::pdf(float u, float v) const {
-    size_t row = std::min(rows_.size() - 1, static_cast<size_t>(std::max(0.0f, v) * rows_.size()));
-    return marginal_.pdf_continuous(v) * rows_[row].pdf_continuous(u);
+Distribution2D::Distribution2D(std::span<const float> weights, int nu, int nv)
+    : nu_(nu), nv_(nv) {
+    conditional_.reserve(static_cast<size_t>(nu + 1) * nv);
+    std::vector<float> rows(nv);
+    for (int v = 0; v < nv; ++v)
+        rows[v] = static_cast<float>(
+            append_sums(weights.subspan(static_cast<size_t>(v) * nu, nu), conditional_));
+    append_sums(rows, marginal_);
 }
 
 }  // namespace wavetrace

@@ -33,19 +33,32 @@ class Distribution1D {
     float total_ = 0;
 };
 
-// Density over [0,1)^2 proportional to a grid of weights (row-major, rows = v).
+// The tables of a Distribution2D as sampling/distribution-inl.h reads them: cumulative sums of
+// the weights, the marginal's over rows (nv + 1 entries from 0) and each row's over its nu
+// entries (nv rows of nu + 1, each from 0), unnormalized.
+struct Distribution2DTables {
+    int nu = 0, nv = 0;
+    const float* marginal = nullptr;
+    const float* conditional = nullptr;
+};
+
+// Density over [0,1)^2 proportional to a grid of positive weights (row-major, rows = v),
+// sampled by inverting its CDFs (pbrt-v4 §A.5) in the lane formulas of
+// sampling/distribution-inl.h. The sums are floats, as the lanes search them; each is at least
+// the float after the one before, so every entry keeps a positive width, and the density is
+// that of the widths, which the search samples exactly.
 class Distribution2D {
   public:
     Distribution2D() = default;
     Distribution2D(std::span<const float> weights, int nu, int nv);
-    // Samples (u, v) in [0,1)^2 and returns its density on the unit square.
-    void sample(float u1, float u2, float* u, float* v, float* pdf) const;
-    float pdf(float u, float v) const;
-    bool empty() const { return rows_.empty(); }
+    bool empty() const { return marginal_.empty(); }
+    Distribution2DTables tables() const {
+        return {nu_, nv_, marginal_.data(), conditional_.data()};
+    }
 
   private:
-    std::vector<Distribution1D> rows_;  // conditional p(u | v)
-    Distribution1D marginal_;           // p(v)
+    int nu_ = 0, nv_ = 0;
+    std::vector<float> marginal_, conditional_;
 };
 
 }  // namespace wavetrace

@@ -48,5 +48,16 @@ int32_t sphere_light_sample_at(Point3 p,
 inline int32_t sphere_light_sample_at(const Vertex& v, const LightSet& lights, LightChoice choice) {
     return sphere_light_sample_at(v.p, v.ng, v.bsdf.kind, v.bsdf.alpha, lights, choice);
 }
+// Whether the chosen light is an environment map, sampled at a lane vertex by
+// EnvironmentLightPoint (shading/environment_light-inl.h).
+inline bool environment_light_sample_at(
+    Normal3 ng, MaterialKind kind, float alpha, const LightSet& lights, LightChoice choice) {
+    return is_lane_vertex(ng, kind, alpha) && lights.is_environment(choice);
+}
+inline bool environment_light_sample_at(const Vertex& v,
+                                        const LightSet& lights,
+                                        LightChoice choice) {
+    return environment_light_sample_at(v.ng, v.bsdf.kind, v.bsdf.alpha, lights, choice);
+}
 
 }  // namespace wavetrace

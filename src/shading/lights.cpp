@@ -5,6 +5,7 @@
 
 #include "accel/intersect.h"
 #include "sampling/warp.h"
+#include "shading/environment_light-inl.h"
 #include "shading/sphere_light-inl.h"
 #include "wavetrace/math/frame.h"
 #include "wavetrace/scene/scene.h"
@@ -153,6 +154,7 @@ LightSet::LightSet(const Scene& scene, bool mis_compensation) {
             }
             for (float& v : w) v += static_cast<float>(1e-3 * w_mean) + 1e-12f;
             environment_ = Distribution2D(w, img.width, img.height);
+            environment_view_ = wavetrace::environment_view(scene);
             // The mean luminance over the sphere (the mean of sin(theta) over rows is 2 / pi).
             lum *= static_cast<float>(equal_area ? mean : mean * 2.0 / kPi);
         }
@@ -234,12 +236,15 @@ LightSample LightSet::sample(
             ls.wi = sample_uniform_sphere(u1, u2);
             pdf = uniform_sphere_pdf();
         } else {
-            float u, row, pdf_uv;
-            environment_.sample(u1, u2, &u, &row, &pdf_uv);
-            const float jacobian = environment_jacobian(bg, row);
-            if (jacobian <= 0.0f) return ls;
-            ls.wi = environment_direction(bg, u, row);
-            pdf = pdf_uv / jacobian;
+            const lanes::LightPoint<OneLane> point = lanes::EnvironmentLightPoint<OneLane>(
+                environment_view_, environment_.tables(), u1, u2, select_prob);
+            ls.wi = lanes::to_vec3(point.wi);
+            ls.radiance = lanes::to_vec3(point.radiance);
+            ls.pdf = point.pdf;
+            // A direction of no radiance still counts for the one-sample strategies, which
+            // continue the path along it.
+            ls.valid = ls.pdf > 0.0f && std::isfinite(ls.pdf);
+            return ls;
         }
         ls.radiance = eval_background(scene, ls.wi);
         ls.pdf = pdf * select_prob;
@@ -335,10 +340,8 @@ float LightSet::pdf_background(const Scene& scene, Vec3 wi) const {
     float sel = background_selection_probability();
     const Background& bg = scene.background;
     if (bg.kind == Background::Kind::Constant) return sel * uniform_sphere_pdf();
-    Vec2 uv = environment_uv(bg, wi);
-    const float jacobian = environment_jacobian(bg, uv.y);
-    if (jacobian <= 0.0f) return 0.0f;
-    return sel * environment_.pdf(uv.x, uv.y) / jacobian;
+    return sel *
+           lanes::EnvironmentPdf<OneLane>(environment_view_, environment_.tables(), to_lanes(wi));
 }
 
 float LightSet::pdf_direction(const Scene& scene, Point3 ref, Vec3 wi) const {

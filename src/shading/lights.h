@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "sampling/distribution.h"
+#include "scene/environment_view.h"
 #include "wavetrace/math/constants.h"
 #include "wavetrace/math/vec3.h"
 #include "wavetrace/scene/ids.h"
@@ -92,6 +93,14 @@ class LightSet {
         return choice.index < sphere_of_.size() ? sphere_of_[choice.index] : -1;
     }
     const SphereEmitterColumns& sphere_emitter_columns() const { return sphere_columns_; }
+    // Whether the chosen light is an environment map (sampled by the lane formula
+    // EnvironmentLightPoint, shading/light_sample-inl.h, from these two).
+    bool is_environment(LightChoice choice) const {
+        return has_environment() && choice.index == count_ - 1;
+    }
+    bool has_environment() const { return background_ && !environment_.empty(); }
+    const EnvironmentView& environment_view() const { return environment_view_; }
+    Distribution2DTables environment_tables() const { return environment_.tables(); }
 
     // Samples a point on the chosen light as seen from `ref` with two uniform numbers.
     LightSample sample(
@@ -133,6 +142,7 @@ class LightSet {
     // Over the environment image's texels: luminance (or its excess over the mean, with MIS
     // compensation) times the texel's solid angle.
     Distribution2D environment_;
+    EnvironmentView environment_view_;
 };
 
 // A spot light's falloff for a direction at cos_theta from its axis: 1 within the falloff

@@ -7,6 +7,7 @@
 #include "sampling/sampler.h"
 #include "sampling/warp.h"
 #include "scene/camera_ray-inl.h"
+#include "shading/environment_light-inl.h"
 #include "shading/geometric_side-inl.h"
 #include "shading/lane_routes.h"
 #include "shading/light_sample-inl.h"
@@ -233,7 +234,9 @@ DirectSample next_event(const Scene& scene,
                         LightChoice choice) {
     const int32_t quad = quad_light_sample_at(v, lights, choice);
     const int32_t sphere = quad < 0 ? sphere_light_sample_at(v, lights, choice) : -1;
-    if (quad < 0 && sphere < 0)
+    const bool environment =
+        quad < 0 && sphere < 0 && environment_light_sample_at(v, lights, choice);
+    if (quad < 0 && sphere < 0 && !environment)
         return sample_direct(scene, lights, v, wo, choice, u.light_u, u.light_v);
     using lanes::to_lanes, lanes::to_vec3;
     const lanes::LightSampleVertex<OneLane> lv{to_lanes(v.p),
@@ -250,7 +253,10 @@ DirectSample next_event(const Scene& scene,
     const size_t k = size_t(quad >= 0 ? quad : sphere);
     auto fetch = [&](const std::vector<float>& column) { return column[k]; };
     const lanes::LightPoint<OneLane> point =
-        quad >= 0
+        environment ? lanes::EnvironmentLightPoint<OneLane>(lights.environment_view(),
+                                                            lights.environment_tables(), u.light_u,
+                                                            u.light_v, choice.probability)
+        : quad >= 0
             ? lanes::QuadLightPoint(lv.p,
                                     lanes::QuadLightFrom<OneLane>(lights.quad_emitter_columns(),
                                                                   fetch, choice.probability),
@@ -321,7 +327,18 @@ SegmentResult resolve_segment(const Scene& scene,
                                                 : lights.pdf_background(scene, dir);
     };
     if (!hit.found()) {
-        if (!scene.background.is_black()) found(eval_background(scene, dir), PrimRef{}, kInfinity);
+        if (lights.has_environment()) {  // the formula the wavefront's shade runs in lanes
+            const bool with_pdf = config.strategy == Strategy::Mis && !prev.counts_fully;
+            const lanes::EscapedRay<OneLane> e =
+                lanes::Escape<OneLane>(lights.environment_view(), lights.environment_tables(),
+                                       lanes::to_lanes(ray.d),
+                                       lights.background_selection_probability(), with_pdf);
+            r.event = SegmentEvent::Emission;
+            r.emission = lanes::to_vec3(e.radiance);
+            r.emission_pdf_light = e.pdf_light;
+        } else if (!scene.background.is_black()) {
+            found(eval_background(scene, dir), PrimRef{}, kInfinity);
+        }
         return r;
     }
     SurfaceHit s = surface_at(scene, ray, hit);

@@ -1,0 +1,106 @@
+// Sampling a Distribution2D and its density, written once over lanes: LightSet runs the
+// one-lane instances, the wavefront's kernels the same formulas in SIMD lanes, where each
+// binary search's loads are gathers and many searches' cache misses overlap. Per-target
+// header, see math/lanes-inl.h.
+#if defined(WAVETRACE_SAMPLING_DISTRIBUTION_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef WAVETRACE_SAMPLING_DISTRIBUTION_INL_H_
+#undef WAVETRACE_SAMPLING_DISTRIBUTION_INL_H_
+#else
+#define WAVETRACE_SAMPLING_DISTRIBUTION_INL_H_
+#endif
+
+#include "math/lanes-inl.h"
+#include "sampling/distribution.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace wavetrace {
+namespace HWY_NAMESPACE {
+
+// The density on [0, 1) of entry i of n whose running sums are sums[i] and sums[i + 1], of
+// total sums[n]: n (sums[i + 1] - sums[i]) / sums[n].
+template <class L>
+HWY_INLINE typename L::F EntryDensity(typename L::F before,
+                                      typename L::F after,
+                                      typename L::F total,
+                                      int n) {
+    return (after - before) * L::Set(static_cast<float>(n)) / total;
+}
+
+// A continuous sample in [0, 1) of the piecewise-constant density over n entries whose running
+// sums start at sums[first] (n + 1 of them, from 0): the entry i is the last with
+// sums[i] <= u sums[n], found by a branch-free binary search of ceil(log2 n) steps, the same in
+// every lane; the sample is (i + (u sums[n] - sums[i]) / (sums[i + 1] - sums[i])) / n, below 1.
+// Returns its density, sets *index to first + i.
+template <class L>
+HWY_INLINE typename L::F SampleSums(const float* sums,
+                                    typename L::I first,
+                                    int n,
+                                    typename L::F u,
+                                    typename L::F* x,
+                                    typename L::I* index) {
+    using F = typename L::F;
+    using I = typename L::I;
+    const F total = L::Gather(sums, L::AddI(first, L::SetI(n)));
+    const F target = u * total;
+    I base = first;
+    for (int size = n; size > 1;) {
+        const int half = size / 2;
+        const I mid = L::AddI(base, L::SetI(half));
+        base = L::SelectI(L::Gather(sums, mid) <= target, mid, base);
+        size -= half;
+    }
+    const F before = L::Gather(sums, base), after = L::Gather(sums, L::AddI(base, L::SetI(1)));
+    const F within = (target - before) / (after - before);
+    const F i = L::ToFloat(L::SubI(base, first));
+    *x = L::Min((i + within) / L::Set(static_cast<float>(n)), L::Set(0x1.fffffep-1f));
+    *index = base;
+    return EntryDensity<L>(before, after, total, n);
+}
+
+// A sample (u, v) in [0, 1)^2 of the distribution from the uniform u1, u2: v from the
+// marginal, then u from v's row. Returns the density on the unit square.
+template <class L>
+HWY_INLINE typename L::F SampleDistribution2D(const Distribution2DTables& t,
+                                              typename L::F u1,
+                                              typename L::F u2,
+                                              typename L::F* u,
+                                              typename L::F* v) {
+    typename L::I row, column;
+    const typename L::F pdf_v = SampleSums<L>(t.marginal, L::SetI(0), t.nv, u2, v, &row);
+    const typename L::F pdf_u =
+        SampleSums<L>(t.conditional, L::MulI(row, L::SetI(t.nu + 1)), t.nu, u1, u, &column);
+    return pdf_v * pdf_u;
+}
+
+// The entry of n that x in [0, 1) falls in (0 for x below 0 or not a number).
+template <class L>
+HWY_INLINE typename L::I EntryAt(typename L::F x, int n) {
+    const typename L::F zero = L::Set(0.0f);
+    const typename L::F scaled = L::Select(x > zero, x, zero) * L::Set(static_cast<float>(n));
+    return L::Trunc(L::Min(scaled, L::Set(static_cast<float>(n - 1))));
+}
+
+// The density of the distribution at (u, v).
+template <class L>
+HWY_INLINE typename L::F Distribution2DPdf(const Distribution2DTables& t,
+                                           typename L::F u,
+                                           typename L::F v) {
+    using I = typename L::I;
+    const I one = L::SetI(1);
+    const I row = EntryAt<L>(v, t.nv);
+    const typename L::F pdf_v =
+        EntryDensity<L>(L::Gather(t.marginal, row), L::Gather(t.marginal, L::AddI(row, one)),
+                        L::Set(t.marginal[t.nv]), t.nv);
+    const I first = L::MulI(row, L::SetI(t.nu + 1));
+    const I column = L::AddI(first, EntryAt<L>(u, t.nu));
+    const typename L::F pdf_u = EntryDensity<L>(
+        L::Gather(t.conditional, column), L::Gather(t.conditional, L::AddI(column, one)),
+        L::Gather(t.conditional, L::AddI(first, L::SetI(t.nu))), t.nu);
+    return pdf_v * pdf_u;
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace wavetrace
+HWY_AFTER_NAMESPACE();
+
+#endif  // WAVETRACE_SAMPLING_DISTRIBUTION_INL_H_
