@@ -387,6 +387,43 @@ TEST(Lanes, EnvironmentLightSamplesAreNextEventOnEverySimdTarget) {
     }
 }
 
+// The directions on the map that vertices of other BSDFs take in lanes: LightSet::sample's
+// direction, radiance and density, bit for bit.
+TEST(Lanes, EnvironmentLightPointsAreLightSetSamplesOnEverySimdTarget) {
+    for (const bool equal_area : {false, true}) {
+        SCOPED_TRACE(equal_area ? "equal-area" : "lat-long");
+        Scene scene;
+        add_environment(scene, 24, equal_area ? 24 : 12, equal_area);
+        const LightSet lights(scene);
+        const LightChoice map = lights.select(0.5f);
+        ASSERT_TRUE(lights.is_environment(map));
+        const size_t n = 53;
+        for (int64_t target : wide_simd_targets()) {
+            use_wide_simd_target(target);
+            SCOPED_TRACE(wide_simd_target());
+            EnvironmentPointBlock b;
+            b.n = n;
+            for (size_t k = 0; k < n; ++k) {
+                b.u1[k] = sample_1d(19, uint32_t(k), 0, 0);
+                b.u2[k] = sample_1d(19, uint32_t(k), 0, 1);
+                b.select_prob[k] = map.probability;
+            }
+            environment_light_points(b, lights);
+            for (size_t k = 0; k < n; ++k) {
+                const LightSample ls = lights.sample(scene, {0, 0, 0}, map, b.u1[k], b.u2[k]);
+                const LightSample lanes_ls = environment_light_sample(
+                    block_row(b.wi, k), block_row(b.radiance, k), b.pdf[k]);
+                ASSERT_TRUE(ls.valid) << "row " << k;
+                EXPECT_TRUE(lanes_ls.valid) << "row " << k;
+                EXPECT_TRUE(same_bits(ls.wi, lanes_ls.wi)) << "row " << k;
+                EXPECT_TRUE(same_bits(ls.radiance, lanes_ls.radiance)) << "row " << k;
+                EXPECT_TRUE(same_bits(ls.pdf, lanes_ls.pdf)) << "row " << k;
+            }
+        }
+        use_wide_simd_target(0);
+    }
+}
+
 // Rays leaving the scene in every direction, of several lengths: the vector lookups find
 // resolve_segment's radiance and MIS density bit for bit.
 TEST(Lanes, EscapedRaysAreResolveSegmentsOnEverySimdTarget) {

@@ -406,6 +406,26 @@ size_t SampleLights(LightSampleBlock* b,
     return s - first_shadow;
 }
 
+void EnvironmentLightPoints(EnvironmentPointBlock* b,
+                            const EnvironmentView* environment,
+                            Distribution2DTables tables) {
+    using D = hn::CappedTag<float, kShadeChunk>;
+    using L = FloatLanes<D>;
+    const D d;
+    const size_t N = hn::Lanes(d);
+    const size_t n = b->n;
+    if (n == 0) return;
+    PadTail<float>({b->u1, b->u2, b->select_prob}, n, Padded(n, N));
+    for (size_t k = 0; k < n; k += N) {
+        const LightPoint<L> p =
+            EnvironmentLightPoint<L>(*environment, tables, hn::Load(d, b->u1 + k),
+                                     hn::Load(d, b->u2 + k), hn::Load(d, b->select_prob + k));
+        Store3(d, p.wi, b->wi, k);
+        Store3(d, p.radiance, b->radiance, k);
+        hn::Store(p.pdf, d, b->pdf + k);
+    }
+}
+
 void EscapeRays(EscapeBlock* b,
                 const EnvironmentView* environment,
                 Distribution2DTables tables,
@@ -456,6 +476,7 @@ HWY_EXPORT(MediumSegments);
 HWY_EXPORT(ResolveSurfaceHits);
 HWY_EXPORT(StepVertices);
 HWY_EXPORT(SampleLights);
+HWY_EXPORT(EnvironmentLightPoints);
 HWY_EXPORT(EscapeRays);
 HWY_EXPORT(MisWeights);
 
@@ -501,6 +522,11 @@ size_t sample_lights_in_lanes(LightSampleBlock& b,
     return HWY_DYNAMIC_DISPATCH(SampleLights)(
         &b, &lights.quad_emitter_columns(), &lights.sphere_emitter_columns(),
         &lights.environment_view(), lights.environment_tables(), &shadows, first_shadow);
+}
+
+void environment_light_points(EnvironmentPointBlock& b, const LightSet& lights) {
+    HWY_DYNAMIC_DISPATCH(EnvironmentLightPoints)
+    (&b, &lights.environment_view(), lights.environment_tables());
 }
 
 void escape_rays(EscapeBlock& b, const LightSet& lights, bool with_pdf) {

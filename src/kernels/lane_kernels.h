@@ -213,6 +213,21 @@ size_t sample_lights_in_lanes(LightSampleBlock& b,
                               ShadowQueue& shadows,
                               size_t first_shadow);
 
+// Directions sampled from the environment map for the vertices that are not lane vertices (SoA,
+// rows k < n): EnvironmentLightPoint's, which LightSet::sample takes, bit for bit; their BSDFs
+// are then evaluated in scalar code (direct_sample_from).
+struct EnvironmentPointBlock {
+    alignas(64) float u1[kShadeChunk], u2[kShadeChunk];  // in: the light sample's numbers
+    alignas(64) float select_prob[kShadeChunk];          // in
+    alignas(64) float wi[3][kShadeChunk];                // out
+    alignas(64) float radiance[3][kShadeChunk];          // out
+    alignas(64) float pdf[kShadeChunk];                  // out: selection included
+    size_t n = 0;
+};
+
+// Rows k < b.n of b.
+void environment_light_points(EnvironmentPointBlock& b, const LightSet& lights);
+
 // Rays of a chunk that leave the scene under an environment map (SoA, rows k < n): what each
 // finds there, resolve_segment's (shading/environment_light-inl.h's Escape), bit for bit.
 struct EscapeBlock {

@@ -1,7 +1,7 @@
 // The light_sample kernel: per chunk of its queue, each vertex's light chosen; the samples
 // towards quad lights, sphere lights seen from outside and the environment map taken in SIMD
-// lanes, every other in scalar code (sample_direct); the chunk's shadow rays appended, the
-// lanes' first.
+// lanes at lane vertices, every other in scalar code (sample_direct; a direction on the
+// environment map in lanes there too); the chunk's shadow rays appended, the lanes' first.
 #include <algorithm>
 
 #include "kernels/kernels.h"
@@ -48,6 +48,8 @@ size_t light_sample(const WaveInputs& in,
     block.queue = &queue;
     block.geometric_side_test = in.scene.geometric_side_test;
     DirectSample scalar[kShadeChunk];
+    EnvironmentPointBlock points;
+    uint8_t point_row[kShadeChunk];  // the chunk row of each of points' rows
     size_t s = first_shadow;
     for (size_t c = begin; c < end; c += kShadeChunk) {
         const size_t chunk_end = std::min(end, c + kShadeChunk);
@@ -74,11 +76,32 @@ size_t light_sample(const WaveInputs& in,
                 block.environment[row] = 1;
                 continue;
             }
+            if (in.lights.is_environment(light)) {  // its direction in lanes, below
+                const size_t k = points.n++;
+                point_row[k] = static_cast<uint8_t>(row);
+                points.u1[k] = queue.u1[i];
+                points.u2[k] = queue.u2[i];
+                points.select_prob[k] = light.probability;
+                continue;
+            }
             Vertex v = queued_vertex(in.scene, queue, i);
             v.frame = Frame::from_normal(WAVETRACE_XYZ_AT(queue, ns, i));
             scalar[row] = sample_direct(in.scene, in.lights, v, WAVETRACE_XYZ_AT(queue, wo, i),
                                         light, queue.u1[i], queue.u2[i]);
         }
+        // Directions on the environment map for the other vertices, in lanes; their BSDFs in
+        // scalar code, as sample_direct evaluates them.
+        environment_light_points(points, in.lights);
+        for (size_t k = 0; k < points.n; ++k) {
+            const size_t i = c + point_row[k];
+            Vertex v = queued_vertex(in.scene, queue, i);
+            v.frame = Frame::from_normal(WAVETRACE_XYZ_AT(queue, ns, i));
+            scalar[point_row[k]] = direct_sample_from(
+                v, WAVETRACE_XYZ_AT(queue, wo, i),
+                environment_light_sample(block_row(points.wi, k), block_row(points.radiance, k),
+                                         points.pdf[k]));
+        }
+        points.n = 0;
         // The lanes' shadow rays first, then the scalar ones: a fixed order.
         s += sample_lights_in_lanes(block, in.lights, shadows, s);
         for (size_t i = c; i < chunk_end; ++i) {

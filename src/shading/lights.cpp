@@ -238,13 +238,7 @@ LightSample LightSet::sample(
         } else {
             const lanes::LightPoint<OneLane> point = lanes::EnvironmentLightPoint<OneLane>(
                 environment_view_, environment_.tables(), u1, u2, select_prob);
-            ls.wi = lanes::to_vec3(point.wi);
-            ls.radiance = lanes::to_vec3(point.radiance);
-            ls.pdf = point.pdf;
-            // A direction of no radiance still counts for the one-sample strategies, which
-            // continue the path along it.
-            ls.valid = ls.pdf > 0.0f && std::isfinite(ls.pdf);
-            return ls;
+            return environment_light_sample(to_vec3(point.wi), to_vec3(point.radiance), point.pdf);
         }
         ls.radiance = eval_background(scene, ls.wi);
         ls.pdf = pdf * select_prob;

@@ -58,6 +58,18 @@ struct SphereEmitterColumns {
     std::vector<float> centre[3], radius, radiance[3], two_sided;
 };
 
+// The LightSample of a direction sampled from the environment map (EnvironmentLightPoint's wi,
+// radiance and density, selection included): valid wherever the density is finite and positive,
+// radiance or not, since the one-sample strategies continue the path along it.
+inline LightSample environment_light_sample(Vec3 wi, Color radiance, float pdf) {
+    LightSample ls;
+    ls.wi = wi;
+    ls.radiance = radiance;
+    ls.pdf = pdf;
+    ls.valid = pdf > 0.0f && pdf < kInfinity;
+    return ls;
+}
+
 struct LightChoice {
     size_t index = 0;
     float probability = 0.0f;

@@ -129,8 +129,11 @@ DirectSample sample_direct(const Scene& scene,
                            LightChoice light,
                            float u1,
                            float u2) {
+    return direct_sample_from(v, wo, lights.sample(scene, v.p, light, u1, u2));
+}
+
+DirectSample direct_sample_from(const Vertex& v, Vec3 wo, const LightSample& ls) {
     DirectSample d;
-    LightSample ls = lights.sample(scene, v.p, light, u1, u2);
     if (!ls.valid || max_component(ls.radiance) <= 0.0f) return d;
     Color f = eval_world(v, wo, ls.wi, &d.pdf_bsdf);
     if (max_component(f) <= 0.0f) return d;

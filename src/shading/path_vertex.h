@@ -106,6 +106,8 @@ DirectSample sample_direct(const Scene& scene,
                            LightChoice light,
                            float u1,
                            float u2);
+// The same for the light sample ls taken from v's point (LightSet::sample's).
+DirectSample direct_sample_from(const Vertex& v, Vec3 wo, const LightSample& ls);
 
 // --- continuation -------------------------------------------------------------------------
 struct Continuation {
