@@ -76,7 +76,12 @@ void bench_engines(const Options& o, Results& r) {
                          {"bunny", 320, 320, 16},
                          {"dragon", 320, 320, 16},
                          {"veach-mis", 384, 288, 16},
-                         {"materials", 320, 160, 16}};
+                         {"materials", 320, 160, 16},
+                         {"dragon-envmap", 320, 240, 16},
+                         {"cornell-glass", 320, 320, 16},
+                         {"cornell-mirror", 320, 320, 16},
+                         {"cornell-smoke", 320, 320, 16},
+                         {"cornell-mcguire", 320, 320, 16}};
     const int reps = o.repetitions();
     const int all = tbb::this_task_arena::max_concurrency();
     std::vector<int> thread_counts = {1};

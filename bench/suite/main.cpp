@@ -31,7 +31,8 @@ int main(int argc, char** argv) {
         ->check(CLI::PositiveNumber);
     app.add_option("--scene", o.only, "engines, scaling: only these bench scenes (repeatable)")
         ->check(CLI::IsMember(
-            {"cornell", "everything", "bunny", "dragon", "veach-mis", "materials"}));
+            {"cornell", "everything", "bunny", "dragon", "veach-mis", "materials", "dragon-envmap",
+             "cornell-glass", "cornell-mirror", "cornell-smoke", "cornell-mcguire"}));
     std::string simd;
     app.add_option("--simd", simd,
                    "run every kernel on this SIMD target (e.g. AVX2; default: the best this CPU "
