@@ -279,7 +279,7 @@ void fill(LambertianRows& r, LightSampleQueue& queue, LightSampleBlock& block) {
              v.bsdf.metallic, v.bsdf.kind, kNone, r.beta[k], r.u[k].light_select, r.u[k].light_u, r.u[k].light_v});
         const LightChoice light = r.c.lights->select(r.u[k].light_select);
         block.lobe[k] = int32_t(LaneLobe::Lambertian);
-        block.quad[k] = r.c.lights->quad_emitter_index(light);
+        block.planar[k] = r.c.lights->planar_emitter_index(light);
         block.sphere[k] = -1;
         block.environment[k] = 0;
         block.select_prob[k] = light.probability;

@@ -67,8 +67,8 @@ Vertex lane_vertex_at(Point3 p, Dim u, LaneKind kind) {
     return v;
 }
 
-// Lambertian, rough metal and medium vertices around the lights of `scene`, quads, spheres and
-// an environment map (the vertices outside the spheres): the vector light samples give
+// Lambertian, rough metal and medium vertices around the lights of `scene`, quads, triangles,
+// spheres and an environment map (the vertices outside the spheres): the vector light samples give
 // next_event's shadow rays, unweighted contributions (times beta) and densities bit for bit,
 // packed in row order. Counts in *spheres the rows whose light was a sphere, in *maps those
 // whose light was the environment map.
@@ -113,11 +113,11 @@ void expect_light_samples_are_next_event(const Scene& scene,
             const Case& c = cases[k];
             ASSERT_TRUE(samples_lights(config, c.v, lights));
             const LightChoice light = lights.select(c.u.light_select);
-            const int32_t quad = quad_light_sample_at(c.v, lights, light);
-            const int32_t sphere = quad < 0 ? sphere_light_sample_at(c.v, lights, light) : -1;
+            const int32_t planar = planar_light_sample_at(c.v, lights, light);
+            const int32_t sphere = planar < 0 ? sphere_light_sample_at(c.v, lights, light) : -1;
             const bool map =
-                quad < 0 && sphere < 0 && environment_light_sample_at(c.v, lights, light);
-            ASSERT_TRUE(quad >= 0 || sphere >= 0 || map);
+                planar < 0 && sphere < 0 && environment_light_sample_at(c.v, lights, light);
+            ASSERT_TRUE(planar >= 0 || sphere >= 0 || map);
             *spheres += sphere >= 0;
             environment_rows += map;
             block.environment[k] = map ? 1 : 0;
@@ -126,7 +126,7 @@ void expect_light_samples_are_next_event(const Scene& scene,
                 {uint32_t(k), c.v.p, c.v.ng, c.v.frame.n, c.wo, c.v.bsdf.albedo, c.v.bsdf.alpha,
                  c.v.bsdf.metallic, c.v.bsdf.kind, kNone, c.beta, c.u.light_select, c.u.light_u, c.u.light_v});
             block.lobe[k] = int32_t(lane_lobe(c.v.bsdf.kind));
-            block.quad[k] = quad;
+            block.planar[k] = planar;
             block.sphere[k] = sphere;
             block.select_prob[k] = light.probability;
         }
@@ -357,6 +357,25 @@ TEST(Lanes, QuadLightSamplesAreNextEventOnEverySimdTarget) {
     size_t spheres;
     expect_light_samples_are_next_event(scene, &spheres);
     EXPECT_EQ(spheres, 0u);  // every row's light is a quad
+}
+
+// Around two triangle lights of a mesh (one-sided) and of another (two-sided) beside a quad
+// light, so that vectors mix both shapes.
+TEST(Lanes, TriangleLightSamplesAreNextEventOnEverySimdTarget) {
+    Scene scene;
+    const auto [a, b] = add_emitters(scene);
+    Mesh one_sided, two_sided;
+    one_sided.material = a;
+    two_sided.material = b;
+    ASSERT_EQ(scene.add_mesh(one_sided, {{-1, 2, -1}, {1, 2, -1}, {0, 2.5f, 1.5f}}, {}, {},
+                             {0, 1, 2}),
+              0u);
+    ASSERT_EQ(scene.add_mesh(two_sided, {{3, -1, -1}, {3, 1, -1}, {3.5f, 0, 2}}, {}, {}, {0, 1, 2}),
+              0u);
+    scene.add_quad({{-1, -4, -1}, {2, 0, 0}, {0, 0, 2}, a, kNone});
+    size_t spheres;
+    expect_light_samples_are_next_event(scene, &spheres);
+    EXPECT_EQ(spheres, 0u);  // every row's light is planar
 }
 
 // Around two sphere lights (one one-sided, one two-sided) and a quad light, so that vectors mix

@@ -33,8 +33,9 @@ RenderRequest config(Strategy st, int w, int h, int spp, uint64_t seed = 11) {
 // Every shipped scene, every strategy and sampler, 4 spp: per pixel within 1e-4 relative (or
 // 1e-6 absolute) in at least 99.9% of pixel channels, image means within 1e-5 relative.
 TEST(Wavefront, EqualsTheMegakernel) {
-    for (const char* name : {"cornell", "cornell-glass", "cornell-mirror", "cornell-smoke",
-                             "everything", "bunny", "dragon", "veach-mis", "materials"}) {
+    for (const char* name :
+         {"cornell", "cornell-glass", "cornell-mirror", "cornell-smoke", "cornell-mcguire",
+          "everything", "bunny", "dragon", "dragon-envmap", "veach-mis", "materials"}) {
         Scene scene = load_scene(scene_path(name));
         Bvh bvh = Bvh::build(scene);
         for (SamplerKind kind : {SamplerKind::Independent, SamplerKind::Sobol})

@@ -291,7 +291,7 @@ HWY_INLINE hn::Vec<D> LoadColumn(D d, const float* column, size_t k, size_t n) {
 }
 
 size_t SampleLights(LightSampleBlock* b,
-                    const QuadEmitterColumns* quads,
+                    const PlanarEmitterColumns* planars,
                     const SphereEmitterColumns* spheres,
                     const EnvironmentView* environment,
                     Distribution2DTables environment_tables,
@@ -308,7 +308,7 @@ size_t SampleLights(LightSampleBlock* b,
     const LightSampleQueue& q = *b->queue;
     const size_t at = b->first;
     PadTail<float>({b->select_prob}, n, Padded(n, N));
-    PadTail<int32_t>({b->lobe, b->quad, b->sphere, b->environment}, n, Padded(n, N));
+    PadTail<int32_t>({b->lobe, b->planar, b->sphere, b->environment}, n, Padded(n, N));
     size_t s = first_shadow;
     for (size_t k = 0; k < n; k += N) {
         auto column = [&](const std::vector<float>& c) {
@@ -318,16 +318,16 @@ size_t SampleLights(LightSampleBlock* b,
                            const std::vector<float>& z) {
             return V3<F>{column(x), column(y), column(z)};
         };
-        // Each row's own quad or sphere light: gathered from the columns, or broadcast when the
+        // Each row's own planar or sphere light: gathered from the columns, or broadcast when the
         // rows share one light (a scene with one light, or a chunk whose samples picked the
         // same), which saves the gathers.
-        const auto quad = hn::Load(di, b->quad + k);
+        const auto planar = hn::Load(di, b->planar + k);
         const auto sphere = hn::Load(di, b->sphere + k);
-        const auto has_quad = hn::RebindMask(d, hn::Gt(quad, hn::Set(di, -1)));
+        const auto has_planar = hn::RebindMask(d, hn::Gt(planar, hn::Set(di, -1)));
         const auto has_sphere = hn::RebindMask(d, hn::Gt(sphere, hn::Set(di, -1)));
         const auto has_environment =
             hn::RebindMask(d, hn::Ne(hn::Load(di, b->environment + k), hn::Zero(di)));
-        const auto has_light = hn::Or(hn::Or(has_quad, has_sphere), has_environment);
+        const auto has_light = hn::Or(hn::Or(has_planar, has_sphere), has_environment);
         if (hn::AllFalse(d, has_light)) continue;
         const LobeMasks<D> lobes = LobesAt(d, b->lobe, k);
         const F u1 = column(q.u1), u2 = column(q.u2);
@@ -352,20 +352,20 @@ size_t SampleLights(LightSampleBlock* b,
         };
         const F select_prob = hn::Load(d, b->select_prob + k);
         LightPoint<L> point;
-        const bool any_quad = !hn::AllFalse(d, has_quad);
-        if (any_quad)
+        const bool any_planar = !hn::AllFalse(d, has_planar);
+        if (any_planar)
             point =
-                QuadLightPoint(v.p, QuadLightFrom<L>(*quads, fetcher(quad), select_prob), u1, u2);
+                PlanarLightPoint(v.p, PlanarLightFrom<L>(*planars, fetcher(planar), select_prob), u1, u2);
         const bool any_sphere = !hn::AllFalse(d, has_sphere);
         if (any_sphere) {
             const LightPoint<L> on_sphere = SphereLightPoint(
                 v.p, SphereLightFrom<L>(*spheres, fetcher(sphere), select_prob), u1, u2);
-            point = any_quad ? SelectLightPoint<L>(has_sphere, on_sphere, point) : on_sphere;
+            point = any_planar ? SelectLightPoint<L>(has_sphere, on_sphere, point) : on_sphere;
         }
         if (!hn::AllFalse(d, has_environment)) {
             const LightPoint<L> on_map = EnvironmentLightPoint<L>(
                 *environment, environment_tables, u1, u2, select_prob);
-            point = any_quad || any_sphere ? SelectLightPoint<L>(has_environment, on_map, point)
+            point = any_planar || any_sphere ? SelectLightPoint<L>(has_environment, on_map, point)
                                            : on_map;
         }
         const VertexLightSample<L> r = SampleTowards(v, point);
@@ -520,7 +520,7 @@ size_t sample_lights_in_lanes(LightSampleBlock& b,
                               ShadowQueue& shadows,
                               size_t first_shadow) {
     return HWY_DYNAMIC_DISPATCH(SampleLights)(
-        &b, &lights.quad_emitter_columns(), &lights.sphere_emitter_columns(),
+        &b, &lights.planar_emitter_columns(), &lights.sphere_emitter_columns(),
         &lights.environment_view(), lights.environment_tables(), &shadows, first_shadow);
 }
 

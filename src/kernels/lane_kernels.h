@@ -2,7 +2,7 @@
 // (scene/camera_ray-inl.h), the uniform numbers of each vertex (sampling/sampler-inl.h), the
 // points and normals of surface hits (shading/surface_point-inl.h), the continuation
 // (shading/surface_step-inl.h) of Lambertian, rough metal and isotropic-phase vertices, and
-// their light samples towards quad and sphere lights (shading/light_sample-inl.h). The formulas are
+// their light samples towards quad, triangle, sphere and environment lights (shading/light_sample-inl.h). The formulas are
 // the ones the megakernel runs in one lane; these run them a vector at a time, on the best target
 // the CPU has (Highway's dynamic dispatch), with the same bits.
 #pragma once
@@ -187,8 +187,8 @@ void resolve_surface_hits(VertexBlock& b);
 // bit.
 void step_vertices(VertexBlock& b);
 
-// Light samples of rows [first, first + n) of the light-sample queue towards a quad light of
-// constant radiance, a sphere light of constant radiance seen from outside, or the environment
+// Light samples of rows [first, first + n) of the light-sample queue towards a quad or triangle
+// light of constant radiance, a sphere light of constant radiance seen from outside, or the environment
 // map: next_event's
 // sample (shading/light_sample-inl.h), unweighted, bit for bit. The vertices are read from the
 // queue where they are; the block holds what the kernel adds per row.
@@ -196,11 +196,11 @@ struct LightSampleBlock {
     const LightSampleQueue* queue = nullptr;
     size_t first = 0, n = 0;
     bool geometric_side_test = true;  // Scene::geometric_side_test, for every row
-    // the vertex's lobe (LaneLobe); the light, as its index among the LightSet's quad emitters
+    // the vertex's lobe (LaneLobe); the light, as its index among the LightSet's planar emitters
     // or its sphere emitters (both -1: the row's light is another kind, not sampled here), and
     // its selection probability
     alignas(64) int32_t lobe[kShadeChunk];
-    alignas(64) int32_t quad[kShadeChunk], sphere[kShadeChunk];
+    alignas(64) int32_t planar[kShadeChunk], sphere[kShadeChunk];
     alignas(64) int32_t environment[kShadeChunk];  // 1: the light is the environment map
     alignas(64) float select_prob[kShadeChunk];
 };

@@ -1,5 +1,5 @@
 // The light_sample kernel: per chunk of its queue, each vertex's light chosen; the samples
-// towards quad lights, sphere lights seen from outside and the environment map taken in SIMD
+// towards quad and triangle lights, sphere lights seen from outside and the environment map taken in SIMD
 // lanes at lane vertices, every other in scalar code (sample_direct; a direction on the
 // environment map in lanes there too); the chunk's shadow rays appended, the lanes' first.
 #include <algorithm>
@@ -55,7 +55,7 @@ size_t light_sample(const WaveInputs& in,
         const size_t chunk_end = std::min(end, c + kShadeChunk);
         block.first = c;
         block.n = chunk_end - c;
-        // Each vertex's light; the SIMD kernel takes the rows whose light is a quad, a sphere
+        // Each vertex's light; the SIMD kernel takes the rows whose light is a quad or a triangle, a sphere
         // seen from outside or the environment map, as next_event chooses, scalar code the
         // others.
         for (size_t i = c; i < chunk_end; ++i) {
@@ -66,9 +66,9 @@ size_t light_sample(const WaveInputs& in,
             block.sphere[row] = -1;
             block.environment[row] = 0;
             const Normal3 ng = WAVETRACE_XYZ_AT(queue, ng, i);
-            block.quad[row] =
-                quad_light_sample_at(ng, queue.kind[i], queue.alpha[i], in.lights, light);
-            if (block.quad[row] >= 0) continue;
+            block.planar[row] =
+                planar_light_sample_at(ng, queue.kind[i], queue.alpha[i], in.lights, light);
+            if (block.planar[row] >= 0) continue;
             block.sphere[row] = sphere_light_sample_at(
                 WAVETRACE_XYZ_AT(queue, p, i), ng, queue.kind[i], queue.alpha[i], in.lights, light);
             if (block.sphere[row] >= 0) continue;
@@ -106,7 +106,7 @@ size_t light_sample(const WaveInputs& in,
         s += sample_lights_in_lanes(block, in.lights, shadows, s);
         for (size_t i = c; i < chunk_end; ++i) {
             const size_t row = i - c;
-            if (block.quad[row] >= 0 || block.sphere[row] >= 0 || block.environment[row] != 0 ||
+            if (block.planar[row] >= 0 || block.sphere[row] >= 0 || block.environment[row] != 0 ||
                 !scalar[row].valid)
                 continue;
             const DirectSample& d = scalar[row];

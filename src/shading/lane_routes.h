@@ -30,12 +30,12 @@ inline bool is_lane_vertex(const Vertex& v) {
 // The light next_event samples at v in SIMD lanes (shading/light_sample-inl.h), as its index
 // among the LightSet's quad emitters, or -1: at a lane vertex (is_lane_vertex) that
 // samples_lights(), a chosen quad of constant radiance.
-inline int32_t quad_light_sample_at(
+inline int32_t planar_light_sample_at(
     Normal3 ng, MaterialKind kind, float alpha, const LightSet& lights, LightChoice choice) {
-    return is_lane_vertex(ng, kind, alpha) ? lights.quad_emitter_index(choice) : -1;
+    return is_lane_vertex(ng, kind, alpha) ? lights.planar_emitter_index(choice) : -1;
 }
-inline int32_t quad_light_sample_at(const Vertex& v, const LightSet& lights, LightChoice choice) {
-    return quad_light_sample_at(v.ng, v.bsdf.kind, v.bsdf.alpha, lights, choice);
+inline int32_t planar_light_sample_at(const Vertex& v, const LightSet& lights, LightChoice choice) {
+    return planar_light_sample_at(v.ng, v.bsdf.kind, v.bsdf.alpha, lights, choice);
 }
 // The same for a chosen sphere of constant radiance with the vertex at p outside it
 // (shading/sphere_light-inl.h), as its index among the LightSet's sphere emitters, or -1.

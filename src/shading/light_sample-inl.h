@@ -25,14 +25,18 @@ HWY_BEFORE_NAMESPACE();
 namespace wavetrace {
 namespace HWY_NAMESPACE {
 
-// A quad light of LightSet::quad_emitter_columns(), in lanes (each lane's own light).
+// A quad or triangle light of LightSet::planar_emitter_columns(), in lanes (each lane's own
+// light).
 template <class L>
-struct QuadLightLanes {
-    V3<typename L::F> q, u, v;  // corner and edges: points q + s u + t v, s, t in [0, 1)
-    V3<typename L::F> n;        // unit normal, cross(u, v) normalized: the front side
+struct PlanarLightLanes {
+    // corner and edges: the points q + s u + t v, s and t in [0, 1) (a quad) or s, t >= 0 and
+    // s + t <= 1 (a triangle)
+    V3<typename L::F> q, u, v;
+    V3<typename L::F> n;  // unit normal, cross(u, v) normalized: the front side
     typename L::F area;
     V3<typename L::F> radiance;  // emitted from the front (and the back if two-sided)
     typename L::M two_sided;
+    typename L::M triangle;
     typename L::F select_prob;  // of picking this light
 };
 
@@ -45,7 +49,7 @@ HWY_INLINE V3<typename L::F> Fetch3(Fetch fetch, const std::vector<float>* colum
 // Each lane's light read from the columns: fetch(column) gives a column's value in each lane
 // (one entry in scalar code; a gather or a broadcast over vectors).
 template <class L, class Fetch>
-HWY_INLINE QuadLightLanes<L> QuadLightFrom(const QuadEmitterColumns& c,
+HWY_INLINE PlanarLightLanes<L> PlanarLightFrom(const PlanarEmitterColumns& c,
                                            Fetch fetch,
                                            typename L::F select_prob) {
     return {Fetch3<L>(fetch, c.q),
@@ -55,6 +59,7 @@ HWY_INLINE QuadLightLanes<L> QuadLightFrom(const QuadEmitterColumns& c,
             fetch(c.area),
             Fetch3<L>(fetch, c.radiance),
             fetch(c.two_sided) > L::Set(0.0f),
+            fetch(c.triangle) > L::Set(0.0f),
             select_prob};
 }
 
@@ -106,17 +111,24 @@ HWY_INLINE LightPoint<L> SelectLightPoint(typename L::M m,
             Select3<L>(m, a.radiance, b.radiance)};
 }
 
-// The quad light's point, uniform by area: p_w = r^2 / (|cos theta_l| A), times the selection
-// probability.
+// The light's point, uniform by area: p_w = r^2 / (|cos theta_l| A), times the selection
+// probability. On a triangle, (s, t) = (sqrt(u1) (1 - u2), sqrt(u1) u2), as
+// sample_uniform_triangle (sampling/warp.h) warps the square.
 template <class L>
-HWY_INLINE LightPoint<L> QuadLightPoint(V3<typename L::F> ref,
-                                        const QuadLightLanes<L>& e,
+HWY_INLINE LightPoint<L> PlanarLightPoint(V3<typename L::F> ref,
+                                        const PlanarLightLanes<L>& e,
                                         typename L::F u1,
                                         typename L::F u2) {
     using F = typename L::F;
     const F zero = L::Set(0.0f), one = L::Set(1.0f);
     LightPoint<L> r;
-    const V3<F> x = e.q + e.u * u1 + e.v * u2;
+    F s = u1, t = u2;
+    if (L::Any(e.triangle)) {
+        const F root = L::Sqrt(u1);
+        s = L::Select(e.triangle, root * (one - u2), s);
+        t = L::Select(e.triangle, root * u2, t);
+    }
+    const V3<F> x = e.q + e.u * s + e.v * t;
     const V3<F> d = x - ref;
     const F dist2 = Dot(d, d);
     r.dist = L::Sqrt(dist2);

@@ -71,21 +71,36 @@ LightSet::LightSet(const Scene& scene, bool mis_compensation) {
         const Texture& e = scene.textures[m.emission];
         float lum = e.kind == TextureKind::Solid ? luminance(e.color) : 1.0f;
         power.push_back(scene.prim_area(prim) * kPi * lum * (m.two_sided ? 2.0f : 1.0f));
-        quad_of_.push_back(-1);
-        if (prim.kind() == PrimKind::Quad && e.kind == TextureKind::Solid) {
-            const Quad& q = scene.quads[prim.index()];
-            QuadEmitterColumns& c = quad_columns_;
-            quad_of_.back() = static_cast<int32_t>(c.area.size());
-            const Normal3 n = normalize(cross(q.u, q.v));
+        planar_of_.push_back(-1);
+        const bool triangle = prim.kind() == PrimKind::Triangle;
+        if ((prim.kind() == PrimKind::Quad || triangle) && e.kind == TextureKind::Solid) {
+            // A quad's corner and edges, or a triangle's first vertex and the edges from it.
+            Point3 q;
+            Vec3 u, v;
+            if (triangle) {
+                const Triangle& t = scene.triangles[prim.index()];
+                q = scene.positions[t.v[0]];
+                u = scene.positions[t.v[1]] - q;
+                v = scene.positions[t.v[2]] - q;
+            } else {
+                const Quad& quad = scene.quads[prim.index()];
+                q = quad.q;
+                u = quad.u;
+                v = quad.v;
+            }
+            PlanarEmitterColumns& c = planar_columns_;
+            planar_of_.back() = static_cast<int32_t>(c.area.size());
+            const Normal3 n = normalize(cross(u, v));
             for (int a = 0; a < 3; ++a) {
-                c.q[a].push_back(q.q[a]);
-                c.u[a].push_back(q.u[a]);
-                c.v[a].push_back(q.v[a]);
+                c.q[a].push_back(q[a]);
+                c.u[a].push_back(u[a]);
+                c.v[a].push_back(v[a]);
                 c.n[a].push_back(n[a]);
                 c.radiance[a].push_back(e.color[a]);
             }
             c.area.push_back(scene.prim_area(prim));
             c.two_sided.push_back(m.two_sided ? 1.0f : 0.0f);
+            c.triangle.push_back(triangle ? 1.0f : 0.0f);
         }
         sphere_of_.push_back(-1);
         if (prim.kind() == PrimKind::Sphere && e.kind == TextureKind::Solid) {

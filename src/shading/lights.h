@@ -43,12 +43,13 @@ struct LightSample {
     bool valid = false;
 };
 
-// The quad lights of constant radiance (the case next-event estimation at Lambertian vertices
-// samples in SIMD lanes, src/shading/light_sample-inl.h) as columns, entry k for quad emitter
-// k (quad_emitter_index()): corner q, edges u and v, the front normal n = normalize(cross(u,
-// v)), the area, the radiance, and two_sided (1 or 0).
-struct QuadEmitterColumns {
-    std::vector<float> q[3], u[3], v[3], n[3], radiance[3], area, two_sided;
+// The quad and triangle lights of constant radiance (the case next-event estimation at lane
+// vertices samples in SIMD lanes, src/shading/light_sample-inl.h) as columns, entry k for
+// planar emitter k (planar_emitter_index()): corner q, edges u and v (a triangle's p0, p1 - p0
+// and p2 - p0), the front normal n = normalize(cross(u, v)), the
+// area, the radiance, two_sided and triangle (1 or 0).
+struct PlanarEmitterColumns {
+    std::vector<float> q[3], u[3], v[3], n[3], radiance[3], area, two_sided, triangle;
 };
 
 // The sphere lights of constant radiance (sampled in SIMD lanes from outside the sphere,
@@ -94,12 +95,12 @@ class LightSet {
     LightChoice select(float u_select) const {
         return count_ == 1 ? LightChoice{0, only_probability_} : select_in_table(u_select);
     }
-    // The chosen light's index among the quad emitters if it is a quad of constant radiance,
-    // else -1.
-    int32_t quad_emitter_index(LightChoice choice) const {
-        return choice.index < quad_of_.size() ? quad_of_[choice.index] : -1;
+    // The chosen light's index among the planar emitters if it is a quad or a triangle of
+    // constant radiance, else -1.
+    int32_t planar_emitter_index(LightChoice choice) const {
+        return choice.index < planar_of_.size() ? planar_of_[choice.index] : -1;
     }
-    const QuadEmitterColumns& quad_emitter_columns() const { return quad_columns_; }
+    const PlanarEmitterColumns& planar_emitter_columns() const { return planar_columns_; }
     // The same for spheres of constant radiance.
     int32_t sphere_emitter_index(LightChoice choice) const {
         return choice.index < sphere_of_.size() ? sphere_of_[choice.index] : -1;
@@ -136,8 +137,8 @@ class LightSet {
         const Scene& scene, Point3 ref, PrimRef prim, Vec3 wi, float dist) const;
 
     std::vector<PrimRef> emitters_;  // light i < emitters_.size()
-    std::vector<int32_t> quad_of_;   // light i: index into quad_columns_, or -1
-    QuadEmitterColumns quad_columns_;
+    std::vector<int32_t> planar_of_;   // light i: index into planar_columns_, or -1
+    PlanarEmitterColumns planar_columns_;
     std::vector<int32_t> sphere_of_;  // light i: index into sphere_columns_, or -1
     SphereEmitterColumns sphere_columns_;
     std::unordered_map<uint32_t, uint32_t> index_;  // PrimRef bits -> light index

@@ -235,11 +235,11 @@ DirectSample next_event(const Scene& scene,
                         Vec3 wo,
                         const VertexSamples& u,
                         LightChoice choice) {
-    const int32_t quad = quad_light_sample_at(v, lights, choice);
-    const int32_t sphere = quad < 0 ? sphere_light_sample_at(v, lights, choice) : -1;
+    const int32_t planar = planar_light_sample_at(v, lights, choice);
+    const int32_t sphere = planar < 0 ? sphere_light_sample_at(v, lights, choice) : -1;
     const bool environment =
-        quad < 0 && sphere < 0 && environment_light_sample_at(v, lights, choice);
-    if (quad < 0 && sphere < 0 && !environment)
+        planar < 0 && sphere < 0 && environment_light_sample_at(v, lights, choice);
+    if (planar < 0 && sphere < 0 && !environment)
         return sample_direct(scene, lights, v, wo, choice, u.light_u, u.light_v);
     using lanes::to_lanes, lanes::to_vec3;
     const lanes::LightSampleVertex<OneLane> lv{to_lanes(v.p),
@@ -253,15 +253,15 @@ DirectSample next_event(const Scene& scene,
                                                u.light_u,
                                                u.light_v,
                                                v.geometric_side_test};
-    const size_t k = size_t(quad >= 0 ? quad : sphere);
+    const size_t k = size_t(planar >= 0 ? planar : sphere);
     auto fetch = [&](const std::vector<float>& column) { return column[k]; };
     const lanes::LightPoint<OneLane> point =
         environment ? lanes::EnvironmentLightPoint<OneLane>(lights.environment_view(),
                                                             lights.environment_tables(), u.light_u,
                                                             u.light_v, choice.probability)
-        : quad >= 0
-            ? lanes::QuadLightPoint(lv.p,
-                                    lanes::QuadLightFrom<OneLane>(lights.quad_emitter_columns(),
+        : planar >= 0
+            ? lanes::PlanarLightPoint(lv.p,
+                                    lanes::PlanarLightFrom<OneLane>(lights.planar_emitter_columns(),
                                                                   fetch, choice.probability),
                                     u.light_u, u.light_v)
             : lanes::SphereLightPoint(
