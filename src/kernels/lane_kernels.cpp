@@ -354,8 +354,8 @@ size_t SampleLights(LightSampleBlock* b,
         LightPoint<L> point;
         const bool any_planar = !hn::AllFalse(d, has_planar);
         if (any_planar)
-            point =
-                PlanarLightPoint(v.p, PlanarLightFrom<L>(*planars, fetcher(planar), select_prob), u1, u2);
+            point = PlanarLightPoint(
+                v.p, PlanarLightFrom<L>(*planars, fetcher(planar), select_prob), u1, u2);
         const bool any_sphere = !hn::AllFalse(d, has_sphere);
         if (any_sphere) {
             const LightPoint<L> on_sphere = SphereLightPoint(

@@ -1,10 +1,12 @@
 // The wavefront's kernels that run in SIMD lanes, over a chunk of a queue: camera rays
 // (scene/camera_ray-inl.h), the uniform numbers of each vertex (sampling/sampler-inl.h), the
 // points and normals of surface hits (shading/surface_point-inl.h), the continuation
-// (shading/surface_step-inl.h) of Lambertian, rough metal and isotropic-phase vertices, and
-// their light samples towards quad, triangle, sphere and environment lights (shading/light_sample-inl.h). The formulas are
-// the ones the megakernel runs in one lane; these run them a vector at a time, on the best target
-// the CPU has (Highway's dynamic dispatch), with the same bits.
+// (shading/surface_step-inl.h) of Lambertian, rough metal and isotropic-phase vertices, their
+// light samples towards quad, triangle, sphere and environment lights
+// (shading/light_sample-inl.h, shading/environment_light-inl.h), and the environment's radiance
+// for rays that leave the scene. The formulas are the ones the megakernel runs in one lane;
+// these run them a vector at a time, on the best target the CPU has (Highway's dynamic
+// dispatch), with the same bits.
 #pragma once
 
 #include <cstddef>
@@ -188,10 +190,10 @@ void resolve_surface_hits(VertexBlock& b);
 void step_vertices(VertexBlock& b);
 
 // Light samples of rows [first, first + n) of the light-sample queue towards a quad or triangle
-// light of constant radiance, a sphere light of constant radiance seen from outside, or the environment
-// map: next_event's
-// sample (shading/light_sample-inl.h), unweighted, bit for bit. The vertices are read from the
-// queue where they are; the block holds what the kernel adds per row.
+// light of constant radiance, a sphere light of constant radiance seen from outside, or the
+// environment map: next_event's sample (shading/light_sample-inl.h), unweighted, bit for bit.
+// The vertices are read from the queue where they are; the block holds what the kernel adds per
+// row.
 struct LightSampleBlock {
     const LightSampleQueue* queue = nullptr;
     size_t first = 0, n = 0;

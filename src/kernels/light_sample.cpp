@@ -1,7 +1,8 @@
 // The light_sample kernel: per chunk of its queue, each vertex's light chosen; the samples
-// towards quad and triangle lights, sphere lights seen from outside and the environment map taken in SIMD
-// lanes at lane vertices, every other in scalar code (sample_direct; a direction on the
-// environment map in lanes there too); the chunk's shadow rays appended, the lanes' first.
+// towards quad and triangle lights, sphere lights seen from outside and the environment map
+// taken in SIMD lanes at lane vertices, every other in scalar code (sample_direct; a direction
+// on the environment map in lanes there too); the chunk's shadow rays appended, the lanes'
+// first.
 #include <algorithm>
 
 #include "kernels/kernels.h"
@@ -55,9 +56,9 @@ size_t light_sample(const WaveInputs& in,
         const size_t chunk_end = std::min(end, c + kShadeChunk);
         block.first = c;
         block.n = chunk_end - c;
-        // Each vertex's light; the SIMD kernel takes the rows whose light is a quad or a triangle, a sphere
-        // seen from outside or the environment map, as next_event chooses, scalar code the
-        // others.
+        // Each vertex's light; the SIMD kernel takes the rows whose light is a quad, a triangle,
+        // a sphere seen from outside or the environment map, as next_event chooses, scalar code
+        // the others.
         for (size_t i = c; i < chunk_end; ++i) {
             const size_t row = i - c;
             const LightChoice light = in.lights.select(queue.u_select[i]);

@@ -17,8 +17,8 @@ namespace wavetrace {
 // these vertices' steps in SIMD lanes, continue_path the same formula in one lane.
 bool takes_lane_step(const Estimator& config, const Vertex& v, const LightSet& lights);
 // A Lambertian or rough metal surface, or a medium's isotropic phase function: the vertices the
-// lane formulas of next-event estimation towards quad and sphere lights and of the continuation
-// take.
+// lane formulas of next-event estimation towards quad, triangle, sphere and environment lights
+// and of the continuation take.
 inline bool is_lane_vertex(Normal3 ng, MaterialKind kind, float alpha) {
     if (ng.x == 0 && ng.y == 0 && ng.z == 0) return kind == MaterialKind::Isotropic;  // a medium
     return kind == MaterialKind::Lambertian || (kind == MaterialKind::Metal && alpha > 0.0f);
@@ -28,8 +28,8 @@ inline bool is_lane_vertex(const Vertex& v) {
 }
 
 // The light next_event samples at v in SIMD lanes (shading/light_sample-inl.h), as its index
-// among the LightSet's quad emitters, or -1: at a lane vertex (is_lane_vertex) that
-// samples_lights(), a chosen quad of constant radiance.
+// among the LightSet's planar emitters, or -1: at a lane vertex (is_lane_vertex) that
+// samples_lights(), a chosen quad or triangle of constant radiance.
 inline int32_t planar_light_sample_at(
     Normal3 ng, MaterialKind kind, float alpha, const LightSet& lights, LightChoice choice) {
     return is_lane_vertex(ng, kind, alpha) ? lights.planar_emitter_index(choice) : -1;

@@ -1,6 +1,7 @@
 // A light sample at a Lambertian or a rough metal surface vertex, or a vertex in a medium of
-// isotropic phase function, towards a quad light of constant radiance (the light point, uniform
-// by area, and its solid-angle density) or a point sphere_light-inl.h found: the BSDF value and
+// isotropic phase function, towards a quad or triangle light of constant radiance (the light
+// point, uniform by area, and its solid-angle density) or a point sphere_light-inl.h or
+// environment_light-inl.h found: the BSDF value and
 // density and the shadow ray; what next_event computes for such a vertex and light, written
 // once over lanes. Unweighted: the MIS weight is the caller's (the megakernel's loop, the
 // wavefront's mis_combine). The megakernel runs it with OneLane inside next_event; the
