@@ -478,7 +478,9 @@ TEST(Lanes, EscapedRaysAreResolveSegmentsOnEverySimdTarget) {
                 ASSERT_EQ(seg.event, SegmentEvent::Emission) << "row " << k;
                 EXPECT_TRUE(same_bits(seg.emission, block_row(b.radiance, k))) << "row " << k;
                 EXPECT_TRUE(same_bits(seg.emission_pdf_light, b.pdf_light[k])) << "row " << k;
-                if (k > 0 || equal_area) EXPECT_GT(b.pdf_light[k], 0.0f) << "row " << k;
+                if (k > 0 || equal_area) {  // row 0 is a lat-long map's pole
+                    EXPECT_GT(b.pdf_light[k], 0.0f) << "row " << k;
+                }
             }
         }
         use_wide_simd_target(0);
