@@ -54,11 +54,13 @@ double projected_roughness2(const MicrofacetDistribution& d, Vec3 w) {
 // The slopes of a visible normal of the unit-roughness Beckmann distribution seen from a
 // direction of cosine cos_theta with the normal and azimuth 0. The visible slopes have density
 // proportional to (cot theta - x) exp(-x^2 - y^2) for x < cot theta (Heitz & d'Eon 2014,
-// §4): y is a normal deviate, and x inverts the CDF, which with b = erf(x) is
-//   C(b) = (1 + b + tan theta exp(-x^2) / sqrt(pi)) / (1 + erf(cot theta) + tan theta
+// §4): y is a normal deviate, and x inverts the CDF
+//   C(x) = (1 + erf(x) + tan theta exp(-x^2) / sqrt(pi)) / (1 + erf(cot theta) + tan theta
 //          exp(-cot^2 theta) / sqrt(pi)),
-// increasing in b with dC/db proportional to 1 - x tan theta; solved by Newton's method on b,
-// kept inside a bisection bracket.
+// increasing for x < cot theta with C'(x) proportional to exp(-x^2) (1 - x tan theta); solved
+// by Newton's method on x itself (one erf and one exp a step; on b = erf(x) each step would
+// need an erfinv), kept inside a bisection bracket, from x = erfinv(b) with b what C would be
+// without its tan theta terms.
 void beckmann_visible_slopes(double cos_theta, double u1, double u2, double* x, double* y) {
     *y = erfinv(2.0 * u2 - 1.0);
     const double sin_theta = std::sqrt(std::max(0.0, 1.0 - cos_theta * cos_theta));
@@ -67,20 +69,23 @@ void beckmann_visible_slopes(double cos_theta, double u1, double u2, double* x, 
         return;
     }
     const double tan_theta = sin_theta / cos_theta, cot_theta = cos_theta / sin_theta;
-    double lo = -1.0, hi = std::erf(cot_theta);
+    const double erf_cot = std::erf(cot_theta);
     const double norm =
-        1.0 / (1.0 + hi + tan_theta * std::exp(-cot_theta * cot_theta) * kInvSqrtPi);
-    double b = lo + (hi - lo) * u1;
+        1.0 / (1.0 + erf_cot + tan_theta * std::exp(-cot_theta * cot_theta) * kInvSqrtPi);
+    // C(-9) < 1e-36: below any u1 a float holds but 0.
+    double lo = -9.0, hi = cot_theta;
+    double t = std::clamp(erfinv(-1.0 + (1.0 + erf_cot) * u1), lo, hi);
     for (int i = 0; i < 64; ++i) {
-        const double xb = erfinv(b);
-        const double value = norm * (1.0 + b + tan_theta * std::exp(-xb * xb) * kInvSqrtPi) - u1;
+        const double g = std::exp(-t * t);
+        const double value = norm * (1.0 + std::erf(t) + tan_theta * g * kInvSqrtPi) - u1;
         if (std::fabs(value) < 1e-12) break;
-        (value > 0.0 ? hi : lo) = b;
-        const double step = b - value / (norm * (1.0 - xb * tan_theta));
-        b = step > lo && step < hi ? step : 0.5 * (lo + hi);
-        if (hi - lo < 1e-15) break;
+        (value > 0.0 ? hi : lo) = t;
+        const double slope = norm * 2.0 * kInvSqrtPi * g * (1.0 - t * tan_theta);
+        const double step = t - value / slope;
+        t = step > lo && step < hi ? step : 0.5 * (lo + hi);
+        if (hi - lo < 1e-15 * std::max(1.0, std::fabs(t))) break;
     }
-    *x = erfinv(b);
+    *x = t;
 }
 
 }  // namespace
