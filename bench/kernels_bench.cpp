@@ -48,7 +48,8 @@ struct Captured {
         camera = std::make_unique<CameraRays>(scene.camera, config.width, config.height);
         in = std::make_unique<WaveInputs>(WaveInputs{scene, *lights, config.estimator, Sampler{config.seed},
                                                      config.width, config.height, *camera,
-                                                     media_at(scene, bvh, scene.camera.look_from)});
+                                                     media_at(scene, bvh, scene.camera.look_from),
+                                                     shadows_walk(scene)});
         n = kWave;
         q.resize(n);
         generate(*in, 0, 0, 0, n, q.paths, q.rays);
@@ -256,7 +257,8 @@ void BM_LambertianSteps(benchmark::State& st, bool lanes) {
             for (size_t k = 0; k < n; ++k) {
                 MediumStack media;
                 benchmark::DoNotOptimize(continue_path(r.c.scene, *r.c.lights, r.c.config.estimator,
-                                                       r.v[k], r.wo[k], 4, r.beta[k], media,
+                                                       r.v[k], r.wo[k], PreviousVertex{}, 4,
+                                                       r.beta[k], media,
                                                        r.u[k].continuation, r.u[k].roulette));
             }
         }

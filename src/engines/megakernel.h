@@ -33,15 +33,18 @@ struct PathContext {
     Sampler sampler;
     uint32_t pixel;
     uint32_t sample;
+    bool shadows_walk;  // shadows_walk(scene)
     uint64_t rays = 0;
 };
 
 // Radiance arriving along `ray` (the book's ray_color). `bounce` numbers the vertex the ray
-// will reach: 0 for camera rays. `beta` is the path throughput so far, for Russian roulette.
+// will reach (0 for camera rays), `depth` is that vertex's depth (path_vertex.h: thin sheets
+// passed do not count). `beta` is the path throughput so far, for Russian roulette.
 template <Intersector Tracer>
 Color ray_color(PathContext<Tracer>& ctx,
                 Ray ray,
                 int bounce,
+                int depth,
                 MediumStack media,
                 const PreviousVertex& prev,
                 Color beta) {
@@ -69,8 +72,8 @@ Color ray_color(PathContext<Tracer>& ctx,
             case SegmentEvent::Scatter:
                 break;
         }
-        if (!may_scatter(cfg, bounce)) return emission;
         const Vertex& v = seg.vertex;
+        if (!may_continue(cfg, v, depth)) return emission;
         VertexSamples u = vertex_samples(ctx.sampler, ctx.pixel, ctx.sample, bounce);
 
         // Next-event estimation: a shadow ray to a light sample, weighted for the strategy.
@@ -79,15 +82,17 @@ Color ray_color(PathContext<Tracer>& ctx,
             const float w = direct_weight(cfg.strategy, cfg.heuristic, d.pdf_light, d.pdf_bsdf);
             if (w > 0.0f)
                 radiance +=
-                    d.value * (w * transmittance(ctx.scene, ctx.bvh, d.shadow, media, &ctx.rays));
+                    d.value * (w * transmittance(ctx.scene, ctx.bvh, d.shadow, media,
+                                                 ctx.shadows_walk, &ctx.rays));
         }
 
         // The continuation, recursively.
-        PathStep step = continue_path(ctx.scene, ctx.lights, cfg, v, seg.wo, bounce, beta, media,
+        PathStep step = continue_path(ctx.scene, ctx.lights, cfg, v, seg.wo, prev, depth, beta, media,
                                       u.continuation, u.roulette);
-        if (!step.alive) return radiance;
-        return radiance + step.weight * ray_color(ctx, step.next, bounce + 1, media, step.prev,
-                                                  beta * step.weight);
+        const int next_depth = wavetrace::next_depth(bounce, depth, step);
+        if (!step.alive || next_depth >= cfg.max_depth) return radiance;
+        return radiance + step.weight * ray_color(ctx, step.next, bounce + 1, next_depth, media,
+                                                  step.prev, beta * step.weight);
     }
     return {};
 }
@@ -105,6 +110,7 @@ RenderStats megakernel(const Scene& scene,
     LightSet lights(scene, request.estimator.strategy == Strategy::Mis);
     CameraRays camera(scene.camera, request.width, request.height);
     const MediumStack camera_media = media_at(scene, bvh, scene.camera.look_from);
+    const bool shadows_walk = wavetrace::shadows_walk(scene);
     const int width = request.width, height = request.height;
     const int tiles_x = (width + kTile - 1) / kTile;
     const int tiles_y = (height + kTile - 1) / kTile;
@@ -124,11 +130,11 @@ RenderStats megakernel(const Scene& scene,
                         const uint32_t pixel = static_cast<uint32_t>(y) * width + x;
                         for (uint32_t sample = first; sample < first + uint32_t(count); ++sample) {
                             megakernel_detail::PathContext<Tracer> ctx{
-                                scene, bvh, lights, request.estimator, Sampler{request.seed, request.sampler}, pixel, sample};
+                                scene, bvh, lights, request.estimator, Sampler{request.seed, request.sampler}, pixel, sample, shadows_walk};
                             Ray ray =
                                 generate_camera_ray(camera, Sampler{request.seed, request.sampler}, pixel, sample, x, y);
                             Color c = megakernel_detail::ray_color(
-                                ctx, ray, 0, camera_media, PreviousVertex{ray.o}, Color(1.0f));
+                                ctx, ray, 0, 0, camera_media, PreviousVertex{ray.o}, Color(1.0f));
                             film.add(static_cast<int>(pixel), c);
                             tile_rays += ctx.rays;
                         }

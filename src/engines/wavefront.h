@@ -218,7 +218,8 @@ RenderStats wavefront(const Scene& scene,
                         request.width,
                         request.height,
                         camera,
-                        media_at(scene, bvh, scene.camera.look_from)};
+                        media_at(scene, bvh, scene.camera.look_from),
+                        shadows_walk(scene)};
     const size_t pixels = static_cast<size_t>(request.width) * request.height;
     // The threads this render may use: the arena's, or fewer under a tbb::global_control limit
     // (--threads). The image depends on neither, so the waves may follow them.

@@ -77,6 +77,7 @@ void generate(const WaveInputs& in,
                           {camera.d[0][k], camera.d[1][k], camera.d[2][k]}};
             paths.pixel[i] = pixel[k];
             paths.bounce[i] = 0;
+            paths.depth[i] = 0;
             paths.crossings[i] = 0;
             paths.beta[i] = Color(1.0f);
             paths.radiance[i] = Color(0.0f);

@@ -37,7 +37,7 @@ uint64_t intersect_shadow(const Tracer& tracer,
                           size_t end,
                           std::span<float> transmittance,
                           const HitQueue* origins = nullptr) {
-    if (in.scene.media.empty()) {  // a blocker or not: no medium stack to read
+    if (!in.shadows_walk) {  // a blocker or not: no medium stack to read
         if constexpr (StreamIntersector<Tracer> && PacketIntersector<Tracer>) {
             constexpr size_t kPacket = 8;
             Ray batch[kRayBatch];
@@ -67,9 +67,10 @@ uint64_t intersect_shadow(const Tracer& tracer,
         }
         return end - begin;
     }
-    // Through media: the occlusion test that says what it stopped at, 64 rays to a call (at
-    // the first bounce, eight that leave one primitive as a packet first: one it finds
-    // unblocked meets no boundary either); only rays stopped by a medium boundary walk on.
+    // Through media and the surfaces shadow rays pass: the occlusion test that says what it
+    // stopped at, 64 rays to a call (at the first bounce, eight that leave one primitive as a
+    // packet first: one it finds unblocked meets no boundary either); only rays stopped by a
+    // surface they pass walk on.
     uint64_t rays = 0;
     if constexpr (StreamIntersector<Tracer> && PacketIntersector<Tracer> &&
                   AnyHitIntersector<Tracer>) {
@@ -110,7 +111,8 @@ uint64_t intersect_shadow(const Tracer& tracer,
     }
     for (size_t i = begin; i < end; ++i)
         transmittance[i] = wavetrace::transmittance(in.scene, tracer, shadow_ray_at(shadows, i),
-                                                    paths.media[shadows.path[i]].unpack(), &rays);
+                                                    paths.media[shadows.path[i]].unpack(), true,
+                                                    &rays);
     return rays;
 }
 

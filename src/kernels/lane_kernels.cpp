@@ -16,7 +16,7 @@
 #include "shading/medium_flight-inl.h"
 #include "shading/mis-inl.h"
 #include "shading/sphere_light-inl.h"
-#include "shading/surface_point-inl.h"
+#include "scene/surface_point-inl.h"
 #include "shading/surface_step-inl.h"
 #include "util/check.h"
 

@@ -1,6 +1,6 @@
 // The wavefront's kernels that run in SIMD lanes, over a chunk of a queue: camera rays
 // (scene/camera_ray-inl.h), the uniform numbers of each vertex (sampling/sampler-inl.h), the
-// points and normals of surface hits (shading/surface_point-inl.h), the continuation
+// points and normals of surface hits (scene/surface_point-inl.h), the continuation
 // (shading/surface_step-inl.h) of Lambertian, rough metal and isotropic-phase vertices, their
 // light samples towards quad, triangle, sphere and environment lights
 // (shading/light_sample-inl.h, shading/environment_light-inl.h), and the environment's radiance

@@ -146,12 +146,12 @@ void classify(const WaveInputs& in, const HitQueue& hits, const PathQueue& paths
     c.routes.clear();
     for (size_t i = c.begin; i < c.end; ++i) {
         const size_t row = i - c.begin;
-        const int bounce = paths.bounce[i];
+        const int depth = paths.depth[i];
         auto route = [&]() {
             if (!scene.media.empty()) {
                 if (!lanes) return ShadeRoute::Resolve;
                 if (c.segments.scatters[row] != 0.0f)
-                    return may_scatter(in.estimator, bounce) ? ShadeRoute::MediumVertex
+                    return may_scatter(in.estimator, depth) ? ShadeRoute::MediumVertex
                                                              : ShadeRoute::End;
             }
             const PrimRef prim = hits.prim[i];
@@ -167,17 +167,18 @@ void classify(const WaveInputs& in, const HitQueue& hits, const PathQueue& paths
                 (c.surface[row].textured && prim.kind() == PrimKind::Triangle))
                 return ShadeRoute::Resolve;
             // A vertex past the last bounce: resolve_segment would find no emission there.
-            return may_scatter(in.estimator, bounce) ? ShadeRoute::SurfaceHit : ShadeRoute::End;
+            return may_scatter(in.estimator, depth) ? ShadeRoute::SurfaceHit : ShadeRoute::End;
         };
         c.routes.add(route(), row);
     }
 }
 
-// Entry i goes on from its scattering vertex: throughput, the record for weighting emission the
-// next segment finds, the next ray and the optical depth it may travel in media. Vertices that
-// sample lights never transmit, so the entry's media stay what its shadow ray (which reads its
-// path's media) needs.
+// Entry i goes on from its scattering vertex to one of depth `depth`: throughput, the record for
+// weighting emission the next segment finds, the next ray and the optical depth it may travel
+// in media. Vertices that sample lights never transmit, so the entry's media stay what its
+// shadow ray (which reads its path's media) needs.
 void advance(size_t i,
+             int depth,
              Color weight,
              const PreviousVertex& prev,
              const Ray& next,
@@ -186,6 +187,7 @@ void advance(size_t i,
     out.paths.beta[i] = out.paths.beta[i] * weight;
     set_previous_vertex(out.paths, i, prev);
     out.paths.bounce[i] = static_cast<uint16_t>(out.paths.bounce[i] + 1);
+    out.paths.depth[i] = static_cast<uint16_t>(depth);
     out.paths.flight[i] = flight;
     out.paths.crossings[i] = 0;
     set_ray(out.rays, i, next);
@@ -234,9 +236,9 @@ void cross_boundaries(const WaveInputs& in, const HitQueue& hits, Chunk& c, Shad
 
 // The continuation samples of a lane row of wave entry i.
 void set_lane_step(
-    const WaveInputs& in, const Chunk& c, size_t row, size_t i, int bounce, VertexBlock& block) {
+    const WaveInputs& in, const Chunk& c, size_t row, size_t i, int depth, VertexBlock& block) {
     const VertexSamples u = c.samples.at(i - c.begin);
-    block.set_step(row, u.continuation, u.roulette, bounce + 1 >= in.estimator.rr_depth);
+    block.set_step(row, u.continuation, u.roulette, depth + 1 >= in.estimator.rr_depth);
 }
 
 // Route MediumVertex: the point where the path scatters, a row of the block.
@@ -248,7 +250,7 @@ void push_medium_vertices(const WaveInputs& in, Chunk& c, const ShadeOutputs& ou
         const Vertex v = medium_vertex(in.scene, out.paths.media[i].current(),
                                        scattering_point(ray, c.segments.dist[row], dir_length));
         const size_t k = c.block.push(i, v, -(ray.d / dir_length), out.paths.beta[i]);
-        set_lane_step(in, c, k, i, out.paths.bounce[i], c.block);
+        set_lane_step(in, c, k, i, out.paths.depth[i], c.block);
     }
 }
 
@@ -293,7 +295,7 @@ void push_surface_hits(const WaveInputs& in,
         }
         c.textured[k] = c.surface[row].textured ? c.surface[row].material : kNone;
         c.sphere[k] = prim.kind() == PrimKind::Sphere ? prim.index() : kNone;
-        set_lane_step(in, c, k, i, out.paths.bounce[i], c.block);
+        set_lane_step(in, c, k, i, out.paths.depth[i], c.block);
     }
 }
 
@@ -324,22 +326,23 @@ void resolve_in_scalar(const WaveInputs& in, const HitQueue& hits, Chunk& c, Sha
         }
         if (seg.event != SegmentEvent::Scatter) continue;
 
-        const int bounce = out.paths.bounce[i];
-        if (!may_scatter(cfg, bounce)) continue;
+        const int bounce = out.paths.bounce[i], depth = out.paths.depth[i];
         const Vertex& v = seg.vertex;
+        if (!may_continue(cfg, v, depth)) continue;
         const VertexSamples u = c.samples.at(row);
         if (samples_lights(cfg, v, in.lights))
             append_light_sample(i, v.p, v.ng, v.frame.n, seg.wo, v.bsdf, v.material, beta, u, out);
         if (takes_lane_step(cfg, v, in.lights)) {
             const size_t k = c.block.push(i, v, seg.wo, beta);
-            c.block.set_step(k, u.continuation, u.roulette, bounce + 1 >= cfg.rr_depth);
+            c.block.set_step(k, u.continuation, u.roulette, depth + 1 >= cfg.rr_depth);
             continue;
         }
-        const PathStep step = continue_path(in.scene, in.lights, cfg, v, seg.wo, bounce, beta,
+        const PathStep step = continue_path(in.scene, in.lights, cfg, v, seg.wo, prev, depth, beta,
                                             media, u.continuation, u.roulette);
-        if (!step.alive) continue;
+        const int next_depth = wavetrace::next_depth(bounce, depth, step);
+        if (!step.alive || next_depth >= cfg.max_depth) continue;
         out.paths.media[i] = PackedMedia::pack(media);
-        advance(i, step.weight, step.prev, step.next, c.samples.next_flight[row], out);
+        advance(i, next_depth, step.weight, step.prev, step.next, c.samples.next_flight[row], out);
     }
 }
 
@@ -429,7 +432,8 @@ void write_back_steps(const WaveInputs& in, const Chunk& c, ShadeOutputs& out) {
     const bool counts_fully = in.lights.empty();  // lane vertices sample lights if any
     for (size_t k = 0; k < b.n; ++k)
         if (b.alive[k] != 0)
-            advance(b.entry[k], block_row(b.weight, k), {block_row(b.p, k), b.pdf[k], counts_fully},
+            advance(b.entry[k], out.paths.depth[b.entry[k]] + 1, block_row(b.weight, k),
+                    {block_row(b.p, k), b.pdf[k], counts_fully},
                     Ray{block_row(b.origin, k), block_row(b.wi, k)},
                     c.samples.next_flight[b.entry[k] - c.begin], out);
 }

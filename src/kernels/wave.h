@@ -30,6 +30,7 @@ struct WaveInputs {
     int width, height;  // of the image
     const CameraRays& camera;
     MediumStack camera_media;
+    bool shadows_walk = true;  // shadows_walk(scene): shadow rays need more than an occlusion test
 };
 
 // Entries [begin, end) of a queue.

@@ -15,6 +15,7 @@ namespace wavetrace {
 #define WAVETRACE_PATH_FIELDS(F)                                                          \
     F(uint32_t, pixel, "film pixel index")                                                \
     F(uint16_t, bounce, "index of the vertex the current ray will reach (0: camera ray)") \
+    F(uint16_t, depth, "that vertex's depth: bounce less the thin sheets passed")         \
     F(uint8_t, crossings, "medium boundaries crossed by the current segment")             \
     F(uint8_t, counts_fully, "previous vertex: camera, or could not sample lights")       \
     F(Color, beta, "path throughput")                                                     \

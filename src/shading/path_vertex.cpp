@@ -3,12 +3,13 @@
 #include <algorithm>
 #include <cmath>
 
+#include "bsdfs/thin_dielectric.h"
 #include "sampling/sampler-inl.h"
 #include "sampling/sampler.h"
 #include "sampling/warp.h"
 #include "scene/camera_ray-inl.h"
 #include "shading/environment_light-inl.h"
-#include "shading/geometric_side-inl.h"
+#include "bsdfs/geometric_side-inl.h"
 #include "shading/lane_routes.h"
 #include "shading/light_sample-inl.h"
 #include "shading/medium_flight-inl.h"
@@ -297,6 +298,12 @@ bool scatters_in_medium(const Scene& scene,
     return lanes::ScattersInMedium<OneLane>(seg, scene.media[m].density, &flight, s);
 }
 
+float sheet_transmittance(const Scene& scene, const SurfaceHit& s, Vec3 dir) {
+    const Vertex v = surface_vertex(scene, s);
+    const float cos_i = std::fabs(dot(dir, v.frame.n));
+    return cos_i > 0.0f ? 1.0f - thin_dielectric_reflectance(cos_i, v.bsdf.eta) : 0.0f;
+}
+
 Ray cross_boundary(const Scene& scene, const SurfaceHit& s, Vec3 dir, MediumStack& media) {
     media.cross(s.interior, s.front_face, scene.medium_boundaries);
     return Ray{s.p + origin_offset(s.p) * dir, dir};
@@ -377,7 +384,8 @@ PathStep continue_path(const Scene& scene,
                        const Estimator& config,
                        const Vertex& v,
                        Vec3 wo,
-                       int bounce,
+                       const PreviousVertex& prev,
+                       int depth,
                        Color beta,
                        MediumStack& media,
                        const ContinuationSamples& u,
@@ -395,7 +403,7 @@ PathStep continue_path(const Scene& scene,
                                             u.bsdf_u1,
                                             u.bsdf_u2,
                                             u_roulette,
-                                            bounce + 1 >= config.rr_depth,
+                                            depth + 1 >= config.rr_depth,
                                             v.geometric_side_test};
         const lanes::StepResult<OneLane> r =
             v.bsdf.kind == MaterialKind::Metal       ? lanes::MetalStep(lv)
@@ -411,11 +419,13 @@ PathStep continue_path(const Scene& scene,
     Continuation c = sample_continuation(config.strategy, scene, lights, v, wo, u);
     if (!c.valid) return step;
     const lanes::Roulette<OneLane> rr = lanes::RussianRoulette<OneLane>(
-        lanes::to_lanes(beta * c.weight), u_roulette, bounce + 1 >= config.rr_depth);
+        lanes::to_lanes(beta * c.weight), u_roulette, depth + 1 >= config.rr_depth);
     if (!rr.survives) return step;
     step.weight = c.weight * rr.scale;
     if (c.transmitted) media.cross(v.interior, dot(c.wi, v.ng) < 0.0f, scene.medium_boundaries);
-    step.prev = {v.p, c.pdf_bsdf, c.delta || !can_sample_lights(v, lights)};
+    step.passed_sheet = c.transmitted && v.bsdf.kind == MaterialKind::ThinDielectric;
+    step.prev = step.passed_sheet ? prev
+                                  : PreviousVertex{v.p, c.pdf_bsdf, c.delta || !can_sample_lights(v, lights)};
     step.next = Ray{offset_origin(v, c.wi), c.wi};
     step.alive = true;
     return step;

@@ -194,6 +194,11 @@ bool scatters_in_medium(const Scene& scene,
                         float& flight,
                         float* s);
 
+// The fraction of light a thin sheet lets straight through at s along unit direction dir:
+// 1 - R' (thin_dielectric.h) at the vertex's shading normal, the probability with which a
+// path passes it there.
+float sheet_transmittance(const Scene& scene, const SurfaceHit& s, Vec3 dir);
+
 // A segment of unit direction dir reaches s, a medium boundary (an Interface surface): the path
 // crosses into or out of its interior (`media`) and goes straight on, from just past it.
 Ray cross_boundary(const Scene& scene, const SurfaceHit& s, Vec3 dir, MediumStack& media);
@@ -213,8 +218,13 @@ SegmentResult resolve_segment(const Scene& scene,
 // The continuation of a path at a scattering vertex, Russian roulette included: the next ray,
 // the factor for the path throughput, the record for weighting emission the next segment
 // finds, and the media after a transmission. `alive` is false when the path ends here.
+// `depth` is the vertex's (see next_depth), which decides where roulette starts; `prev`, the
+// record the segment that reached v came with, which a path passing a thin sheet keeps: the
+// emission it finds beyond is weighted as seen from the vertex before the sheet, whose light
+// samples pass the sheet too (trace.h, shadows_pass).
 struct PathStep {
     bool alive = false;
+    bool passed_sheet = false;  // went straight through a thin sheet: a null event
     Ray next;
     Color weight{0.0f};
     PreviousVertex prev;
@@ -224,11 +234,37 @@ PathStep continue_path(const Scene& scene,
                        const Estimator& config,
                        const Vertex& v,
                        Vec3 wo,
-                       int bounce,
+                       const PreviousVertex& prev,
+                       int depth,
                        Color beta,
                        MediumStack& media,
                        const ContinuationSamples& u,
                        float u_roulette);
+
+// --- path depth -----------------------------------------------------------------------------
+// A path's vertices are numbered twice. The vertex index (`bounce`, 0 for the camera ray's)
+// picks each vertex's sample dimensions. The depth counts what max_depth and roulette count:
+// every vertex but the thin sheets the path passed straight through, which Mitsuba 3 treats as
+// null events (its thindielectric's transmission is a Null lobe, and its volpath counts only
+// non-null events), so that a window or a sheet around a medium does not shorten the paths
+// that cross it.
+// Sheets one path may pass uncounted (a guard against a stack of coincident sheets); past this
+// each counts as a vertex.
+inline constexpr int kMaxSheetPasses = 64;
+// Whether a vertex reached at depth `depth` may scatter: the path may still grow.
+inline bool may_scatter(const Estimator& config, int depth) {
+    return depth + 1 < config.max_depth;
+}
+// Whether a path may go on from v, reached at depth `depth`: a thin sheet may always be passed,
+// whatever the depth; anything else scatters only where may_scatter says so.
+inline bool may_continue(const Estimator& config, const Vertex& v, int depth) {
+    return may_scatter(config, depth) || v.bsdf.kind == MaterialKind::ThinDielectric;
+}
+// The depth of the vertex that `step`, taken at vertex `bounce` of depth `depth`, leads to; the
+// path ends there unless it is below config.max_depth.
+inline int next_depth(int bounce, int depth, const PathStep& step) {
+    return step.passed_sheet && bounce - depth < kMaxSheetPasses ? depth : depth + 1;
+}
 // The uniform numbers of vertex `bounce` of path (pixel, sample), from the dimension layout
 // of sampling/sampler.h: what both engines draw, so that they trace the same paths.
 struct VertexSamples {
@@ -276,10 +312,6 @@ float segment_flight(
 Ray generate_camera_ray(
     const CameraRays& camera, const Sampler& sampler, uint32_t pixel, uint32_t sample, int x, int y);
 
-// Whether a vertex reached by segment `bounce` may scatter: the path may still grow.
-inline bool may_scatter(const Estimator& config, int bounce) {
-    return bounce + 1 < config.max_depth;
-}
 
 // --- media ----------------------------------------------------------------------------------
 // Free-flight distance (world units) in a homogeneous medium of extinction `density`,

@@ -16,7 +16,7 @@
 #include "math/lanes-inl.h"
 #include "shading/light_sample-inl.h"
 #include "shading/lights.h"
-#include "shading/surface_point-inl.h"
+#include "scene/surface_point-inl.h"
 #include "wavetrace/math/constants.h"
 
 HWY_BEFORE_NAMESPACE();

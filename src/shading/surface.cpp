@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "scene/hit_geometry.h"
-#include "shading/surface_point-inl.h"
+#include "scene/surface_point-inl.h"
 #include "wavetrace/math/constants.h"
 #include "wavetrace/scene/scene.h"
 #include "wavetrace/scene/texture.h"

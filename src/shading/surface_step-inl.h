@@ -15,7 +15,7 @@
 #include "math/lanes-inl.h"
 #include "sampling/warp-inl.h"
 #include "bsdfs/diffuse-inl.h"
-#include "shading/geometric_side-inl.h"
+#include "bsdfs/geometric_side-inl.h"
 #include "bsdfs/ggx-inl.h"
 #include "wavetrace/math/constants.h"
 

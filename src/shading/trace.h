@@ -20,20 +20,40 @@ inline float medium_transmittance(float density, float length) {
     return std::isinf(length) ? 0.0f : std::exp(-density * length);
 }
 
+// Whether a shadow ray passes surfaces of material m: medium boundaries, and thin sheets, which
+// let 1 - R' through (sheet_transmittance). Passing a sheet is a null event for paths
+// (path_vertex.h, next_depth); a shadow ray passes it too, as Mitsuba 3's volpath passes its
+// thindielectric's Null lobe, so that light reaches a room through its window by next-event
+// estimation, and a medium inside a sheet is lit by it.
+inline bool shadows_pass(const Scene& scene, MaterialId m) {
+    return m < scene.materials.size() && (scene.materials[m].kind == MaterialKind::Interface ||
+                                          scene.materials[m].kind == MaterialKind::ThinDielectric);
+}
+
+// Whether shadow rays need more than an occlusion test (transmittance below): the scene has
+// media or surfaces they pass. It reads every material: ask it once per render.
+inline bool shadows_walk(const Scene& scene) {
+    if (!scene.media.empty()) return true;
+    for (MaterialId m = 0; m < scene.materials.size(); ++m)
+        if (shadows_pass(scene, m)) return true;
+    return false;
+}
+
 // transmittance (below) once an occlusion test has said what it stopped at (`any`, none if
-// nothing): 0 for a surface, that of the one medium crossed for nothing at all, or -1 for a medium
-// boundary, where only the closest-hit walk can tell.
+// nothing): 0 for a surface, that of the one medium crossed for nothing at all, or -1 for a
+// surface it passes, where only the closest-hit walk can tell.
 inline float transmittance_after_any_hit(const Scene& scene,
                                          const Ray& ray,
                                          const MediumStack& media,
                                          const Hit& any) {
-    if (any.found()) return scene.is_boundary(scene.prim_material(any.prim)) ? -1.0f : 0.0f;
+    if (any.found()) return shadows_pass(scene, scene.prim_material(any.prim)) ? -1.0f : 0.0f;
     const MediumId m = media.current();
     if (m == kNone) return 1.0f;
     return medium_transmittance(scene.media[m].density, (ray.tmax - ray.tmin) * length(ray.d));
 }
 
-// transmittance (below) by walking from closest hit to closest hit, stepping over boundaries.
+// transmittance (below) by walking from closest hit to closest hit, stepping over the surfaces
+// it passes.
 template <Intersector Tracer>
 float transmittance_walk(
     const Scene& scene, const Tracer& bvh, Ray ray, MediumStack media, uint64_t* rays) {
@@ -47,9 +67,15 @@ float transmittance_walk(
             tr *= medium_transmittance(scene.media[m].density, (end - ray.tmin) * length(ray.d));
         if (tr == 0.0f) return 0.0f;
         if (!hit.found()) return tr;
-        // A surface blocks it; only a boundary needs the point, to step over it.
-        if (!scene.is_boundary(scene.prim_material(hit.prim))) return 0.0f;
+        // A surface blocks it; only one it passes needs the point, to step over it.
+        const MaterialId material = scene.prim_material(hit.prim);
+        if (!shadows_pass(scene, material)) return 0.0f;
         SurfaceHit s = surface_at(scene, ray, hit);
+        if (scene.materials[material].kind == MaterialKind::ThinDielectric) {
+            tr *= sheet_transmittance(scene, s, normalize(ray.d));
+            if (tr == 0.0f) return 0.0f;
+        }
+        // Into or out of its interior, as a path passing it goes (continue_path, cross_boundary).
         media.cross(s.interior, s.front_face, scene.medium_boundaries);
         ray.tmin = hit.t;
         // Step over the boundary: restart just past it along the same line.
@@ -61,18 +87,23 @@ float transmittance_walk(
 }
 
 // Fraction of light that gets through along a shadow ray: 0 if a surface blocks it, else the
-// product of exp(-density * length) over the media it crosses (boundaries without a surface
-// let it through). `media` is the stack at the ray's origin. Counts the rays it traces.
+// product of exp(-density * length) over the media it crosses and of 1 - R' over the thin
+// sheets it passes (boundaries without a surface let it through). `media` is the stack at the
+// ray's origin; `walks`, shadows_walk(scene). Counts the rays it traces.
 template <Intersector Tracer>
-float transmittance(
-    const Scene& scene, const Tracer& bvh, Ray ray, MediumStack media, uint64_t* rays) {
-    if (scene.media.empty()) {
+float transmittance(const Scene& scene,
+                    const Tracer& bvh,
+                    Ray ray,
+                    MediumStack media,
+                    bool walks,
+                    uint64_t* rays) {
+    if (!walks) {
         ++*rays;
         return bvh.occluded(ray) ? 0.0f : 1.0f;
     }
     // Most shadow rays are blocked by a surface or cross no boundary at all: an occlusion test
     // that says what it stopped at (where the intersector has one) settles both without the
-    // closest-hit walk, which only a ray that meets a boundary first needs.
+    // closest-hit walk, which only a ray that meets a surface it passes first needs.
     if constexpr (AnyHitIntersector<Tracer>) {
         ++*rays;
         if (const float tr = transmittance_after_any_hit(scene, ray, media, bvh.any_hit(ray));
@@ -98,7 +129,9 @@ MediumStack media_at(const Scene& scene, const Tracer& bvh, Point3 p) {
         if (!hit.found()) break;
         SurfaceHit s = surface_at(scene, ray, hit);
         const MaterialKind kind = scene.materials[s.material].kind;
-        if (kind == MaterialKind::Interface || kind == MaterialKind::Dielectric) {
+        // A thin sheet bounds a medium only where it has one inside (a window pane does not).
+        if (kind == MaterialKind::Interface || kind == MaterialKind::Dielectric ||
+            (kind == MaterialKind::ThinDielectric && s.interior != kNone)) {
             if (s.front_face) {
                 ++n_entered;
             } else if (n_entered > 0) {

@@ -1,11 +1,11 @@
 // The geometric-side test every reflection at a surface passes, written once over lanes for
 // eval_world (shading/path_vertex.cpp), the light samples (light_sample-inl.h) and the
 // continuations (surface_step-inl.h). Per-target header, see math/lanes-inl.h.
-#if defined(WAVETRACE_SHADING_GEOMETRIC_SIDE_INL_H_) == defined(HWY_TARGET_TOGGLE)
-#ifdef WAVETRACE_SHADING_GEOMETRIC_SIDE_INL_H_
-#undef WAVETRACE_SHADING_GEOMETRIC_SIDE_INL_H_
+#if defined(WAVETRACE_BSDFS_GEOMETRIC_SIDE_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef WAVETRACE_BSDFS_GEOMETRIC_SIDE_INL_H_
+#undef WAVETRACE_BSDFS_GEOMETRIC_SIDE_INL_H_
 #else
-#define WAVETRACE_SHADING_GEOMETRIC_SIDE_INL_H_
+#define WAVETRACE_BSDFS_GEOMETRIC_SIDE_INL_H_
 #endif
 
 #include "math/lanes-inl.h"
@@ -29,4 +29,4 @@ HWY_INLINE typename L::M CrossesGeometricSurface(V3<typename L::F> wo,
 }  // namespace wavetrace
 HWY_AFTER_NAMESPACE();
 
-#endif  // WAVETRACE_SHADING_GEOMETRIC_SIDE_INL_H_
+#endif  // WAVETRACE_BSDFS_GEOMETRIC_SIDE_INL_H_

@@ -3,11 +3,11 @@
 // surface_at runs the one-lane instance for both engines; the wavefront's shade kernel runs it
 // over the Lambertian and metal hits of a chunk (kernels/lane_kernels.cpp), so that
 // their vertices never go through the scalar code. Per-target header, see math/lanes-inl.h.
-#if defined(WAVETRACE_SHADING_SURFACE_POINT_INL_H_) == defined(HWY_TARGET_TOGGLE)
-#ifdef WAVETRACE_SHADING_SURFACE_POINT_INL_H_
-#undef WAVETRACE_SHADING_SURFACE_POINT_INL_H_
+#if defined(WAVETRACE_SCENE_SURFACE_POINT_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef WAVETRACE_SCENE_SURFACE_POINT_INL_H_
+#undef WAVETRACE_SCENE_SURFACE_POINT_INL_H_
 #else
-#define WAVETRACE_SHADING_SURFACE_POINT_INL_H_
+#define WAVETRACE_SCENE_SURFACE_POINT_INL_H_
 #endif
 
 #include "math/lanes-inl.h"
@@ -74,4 +74,4 @@ HWY_INLINE SurfacePoint<L> TrianglePoint(const V3<typename L::F> (&p)[3],
 }  // namespace wavetrace
 HWY_AFTER_NAMESPACE();
 
-#endif  // WAVETRACE_SHADING_SURFACE_POINT_INL_H_
+#endif  // WAVETRACE_SCENE_SURFACE_POINT_INL_H_
