@@ -258,7 +258,7 @@ void BM_LambertianSteps(benchmark::State& st, bool lanes) {
                 MediumStack media;
                 benchmark::DoNotOptimize(continue_path(r.c.scene, *r.c.lights, r.c.config.estimator,
                                                        r.v[k], r.wo[k], PreviousVertex{}, 4,
-                                                       r.beta[k], media,
+                                                       r.beta[k], 1.0f, media,
                                                        r.u[k].continuation, r.u[k].roulette));
             }
         }

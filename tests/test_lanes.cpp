@@ -329,7 +329,7 @@ TEST(Lanes, LaneStepsAreContinuePathOnEverySimdTarget) {
         for (size_t k = 0; k < n; ++k) {
             const Case& c = cases[k];
             MediumStack media;
-            const PathStep one = continue_path(scene, lights, config, c.v, c.wo, PreviousVertex{}, c.bounce, c.beta,
+            const PathStep one = continue_path(scene, lights, config, c.v, c.wo, PreviousVertex{}, c.bounce, c.beta, 1.0f,
                                                media, c.u, c.u_rr);
             ASSERT_EQ(one.alive, block.alive[k] != 0) << "row " << k;
             if (!one.alive) {

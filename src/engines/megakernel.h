@@ -39,7 +39,8 @@ struct PathContext {
 
 // Radiance arriving along `ray` (the book's ray_color). `bounce` numbers the vertex the ray
 // will reach (0 for camera rays), `depth` is that vertex's depth (path_vertex.h: thin sheets
-// passed do not count). `beta` is the path throughput so far, for Russian roulette.
+// passed do not count). `beta` is the path throughput so far and `eta_scale` the path's
+// (path_vertex.h), for Russian roulette.
 template <Intersector Tracer>
 Color ray_color(PathContext<Tracer>& ctx,
                 Ray ray,
@@ -47,7 +48,8 @@ Color ray_color(PathContext<Tracer>& ctx,
                 int depth,
                 MediumStack media,
                 const PreviousVertex& prev,
-                Color beta) {
+                Color beta,
+                float eta_scale) {
     const Estimator& cfg = ctx.estimator;
     float flight = segment_flight(ctx.scene, ctx.sampler, ctx.pixel, ctx.sample, bounce);
     for (int crossing = 0; crossing < kMaxBoundaryCrossings; ++crossing) {
@@ -87,12 +89,12 @@ Color ray_color(PathContext<Tracer>& ctx,
         }
 
         // The continuation, recursively.
-        PathStep step = continue_path(ctx.scene, ctx.lights, cfg, v, seg.wo, prev, depth, beta, media,
-                                      u.continuation, u.roulette);
+        PathStep step = continue_path(ctx.scene, ctx.lights, cfg, v, seg.wo, prev, depth, beta,
+                                      eta_scale, media, u.continuation, u.roulette);
         const int next_depth = wavetrace::next_depth(bounce, depth, step);
         if (!step.alive || next_depth >= cfg.max_depth) return radiance;
         return radiance + step.weight * ray_color(ctx, step.next, bounce + 1, next_depth, media,
-                                                  step.prev, beta * step.weight);
+                                                  step.prev, beta * step.weight, step.eta_scale);
     }
     return {};
 }
@@ -134,7 +136,8 @@ RenderStats megakernel(const Scene& scene,
                             Ray ray =
                                 generate_camera_ray(camera, Sampler{request.seed, request.sampler}, pixel, sample, x, y);
                             Color c = megakernel_detail::ray_color(
-                                ctx, ray, 0, 0, camera_media, PreviousVertex{ray.o}, Color(1.0f));
+                                ctx, ray, 0, 0, camera_media, PreviousVertex{ray.o}, Color(1.0f),
+                                1.0f);
                             film.add(static_cast<int>(pixel), c);
                             tile_rays += ctx.rays;
                         }

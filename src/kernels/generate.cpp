@@ -80,6 +80,7 @@ void generate(const WaveInputs& in,
             paths.depth[i] = 0;
             paths.crossings[i] = 0;
             paths.beta[i] = Color(1.0f);
+            paths.eta_scale[i] = 1.0f;
             paths.radiance[i] = Color(0.0f);
             set_previous_vertex(paths, i, PreviousVertex{ray.o});
             paths.media[i] = media;

@@ -239,7 +239,7 @@ void StepVertices(VertexBlock* b) {
     if (b->n == 0) return;
     const size_t padded = Padded(b->n, N);
     PadTail3({b->p, b->ng, b->ns, b->wo, b->albedo, b->beta}, b->n, padded);
-    PadTail<float>({b->u1, b->u2, b->u_rr, b->alpha}, b->n, padded);
+    PadTail<float>({b->u1, b->u2, b->u_rr, b->alpha, b->eta_scale}, b->n, padded);
     PadTail<int32_t>({b->lobe, b->roulette}, b->n, padded);
     for (size_t k = 0; k < b->n; k += N) {
         const StepVertex<L> v{
@@ -254,6 +254,7 @@ void StepVertices(VertexBlock* b) {
             hn::Load(d, b->u2 + k),
             hn::Load(d, b->u_rr + k),
             hn::RebindMask(d, hn::Ne(hn::Load(di, b->roulette + k), hn::Zero(di))),
+            hn::Load(d, b->eta_scale + k),
             b->geometric_side_test};
         // Each lane's lobe: vectors of one lobe run one step, mixed ones each of theirs.
         const LobeMasks<D> lobes = LobesAt(d, b->lobe, k);

@@ -136,6 +136,7 @@ struct VertexBlock {
     // in: the continuation's direction and roulette samples, and whether roulette applies
     alignas(64) float u1[kShadeChunk], u2[kShadeChunk], u_rr[kShadeChunk];
     alignas(64) int32_t roulette[kShadeChunk];
+    alignas(64) float eta_scale[kShadeChunk];  // the path's (path_vertex.h), for roulette
     uint32_t entry[kShadeChunk];  // the wave entry of each row
     size_t n = 0;
     bool geometric_side_test = true;  // Scene::geometric_side_test, for every row
@@ -169,8 +170,14 @@ struct VertexBlock {
                              const Normal3* n,
                              const BsdfParams& bsdf,
                              Color beta);
-    // Row `row`'s continuation samples; roulette: whether Russian roulette applies.
-    void set_step(size_t row, const ContinuationSamples& u, float u_roulette, bool applies) {
+    // Row `row`'s continuation samples; roulette: whether Russian roulette applies, on the
+    // throughput times the path's eta scale.
+    void set_step(size_t row,
+                  const ContinuationSamples& u,
+                  float u_roulette,
+                  bool applies,
+                  float path_eta_scale = 1.0f) {
+        eta_scale[row] = path_eta_scale;
         u1[row] = u.bsdf_u1;
         u2[row] = u.bsdf_u2;
         u_rr[row] = u_roulette;

@@ -179,6 +179,7 @@ void classify(const WaveInputs& in, const HitQueue& hits, const PathQueue& paths
 // shadow ray (which reads its path's media) needs.
 void advance(size_t i,
              int depth,
+             float eta_scale,
              Color weight,
              const PreviousVertex& prev,
              const Ray& next,
@@ -188,6 +189,7 @@ void advance(size_t i,
     set_previous_vertex(out.paths, i, prev);
     out.paths.bounce[i] = static_cast<uint16_t>(out.paths.bounce[i] + 1);
     out.paths.depth[i] = static_cast<uint16_t>(depth);
+    out.paths.eta_scale[i] = eta_scale;
     out.paths.flight[i] = flight;
     out.paths.crossings[i] = 0;
     set_ray(out.rays, i, next);
@@ -235,10 +237,16 @@ void cross_boundaries(const WaveInputs& in, const HitQueue& hits, Chunk& c, Shad
 }
 
 // The continuation samples of a lane row of wave entry i.
-void set_lane_step(
-    const WaveInputs& in, const Chunk& c, size_t row, size_t i, int depth, VertexBlock& block) {
+void set_lane_step(const WaveInputs& in,
+                   const Chunk& c,
+                   const PathQueue& paths,
+                   size_t row,
+                   size_t i,
+                   VertexBlock& block) {
+    const int depth = paths.depth[i];
     const VertexSamples u = c.samples.at(i - c.begin);
-    block.set_step(row, u.continuation, u.roulette, depth + 1 >= in.estimator.rr_depth);
+    block.set_step(row, u.continuation, u.roulette, depth + 1 >= in.estimator.rr_depth,
+                   paths.eta_scale[i]);
 }
 
 // Route MediumVertex: the point where the path scatters, a row of the block.
@@ -250,7 +258,7 @@ void push_medium_vertices(const WaveInputs& in, Chunk& c, const ShadeOutputs& ou
         const Vertex v = medium_vertex(in.scene, out.paths.media[i].current(),
                                        scattering_point(ray, c.segments.dist[row], dir_length));
         const size_t k = c.block.push(i, v, -(ray.d / dir_length), out.paths.beta[i]);
-        set_lane_step(in, c, k, i, out.paths.depth[i], c.block);
+        set_lane_step(in, c, out.paths, k, i, c.block);
     }
 }
 
@@ -295,7 +303,7 @@ void push_surface_hits(const WaveInputs& in,
         }
         c.textured[k] = c.surface[row].textured ? c.surface[row].material : kNone;
         c.sphere[k] = prim.kind() == PrimKind::Sphere ? prim.index() : kNone;
-        set_lane_step(in, c, k, i, out.paths.depth[i], c.block);
+        set_lane_step(in, c, out.paths, k, i, c.block);
     }
 }
 
@@ -334,15 +342,18 @@ void resolve_in_scalar(const WaveInputs& in, const HitQueue& hits, Chunk& c, Sha
             append_light_sample(i, v.p, v.ng, v.frame.n, seg.wo, v.bsdf, v.material, beta, u, out);
         if (takes_lane_step(cfg, v, in.lights)) {
             const size_t k = c.block.push(i, v, seg.wo, beta);
-            c.block.set_step(k, u.continuation, u.roulette, depth + 1 >= cfg.rr_depth);
+            c.block.set_step(k, u.continuation, u.roulette, depth + 1 >= cfg.rr_depth,
+                             out.paths.eta_scale[i]);
             continue;
         }
         const PathStep step = continue_path(in.scene, in.lights, cfg, v, seg.wo, prev, depth, beta,
-                                            media, u.continuation, u.roulette);
+                                            out.paths.eta_scale[i], media, u.continuation,
+                                            u.roulette);
         const int next_depth = wavetrace::next_depth(bounce, depth, step);
         if (!step.alive || next_depth >= cfg.max_depth) continue;
         out.paths.media[i] = PackedMedia::pack(media);
-        advance(i, next_depth, step.weight, step.prev, step.next, c.samples.next_flight[row], out);
+        advance(i, next_depth, step.eta_scale, step.weight, step.prev, step.next,
+                c.samples.next_flight[row], out);
     }
 }
 
@@ -432,7 +443,8 @@ void write_back_steps(const WaveInputs& in, const Chunk& c, ShadeOutputs& out) {
     const bool counts_fully = in.lights.empty();  // lane vertices sample lights if any
     for (size_t k = 0; k < b.n; ++k)
         if (b.alive[k] != 0)
-            advance(b.entry[k], out.paths.depth[b.entry[k]] + 1, block_row(b.weight, k),
+            advance(b.entry[k], out.paths.depth[b.entry[k]] + 1, out.paths.eta_scale[b.entry[k]],
+                    block_row(b.weight, k),
                     {block_row(b.p, k), b.pdf[k], counts_fully},
                     Ray{block_row(b.origin, k), block_row(b.wi, k)},
                     c.samples.next_flight[b.entry[k] - c.begin], out);

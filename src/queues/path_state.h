@@ -19,6 +19,7 @@ namespace wavetrace {
     F(uint8_t, crossings, "medium boundaries crossed by the current segment")             \
     F(uint8_t, counts_fully, "previous vertex: camera, or could not sample lights")       \
     F(Color, beta, "path throughput")                                                     \
+    F(float, eta_scale, "product of eta^2 over the path's refractions (for roulette)")    \
     F(Color, radiance, "radiance gathered so far")                                        \
     F(Point3, prev_p, "previous vertex: position (MIS density of emission found)")        \
     F(float, prev_pdf, "previous vertex: BSDF density of the current ray's direction")    \

@@ -387,6 +387,7 @@ PathStep continue_path(const Scene& scene,
                        const PreviousVertex& prev,
                        int depth,
                        Color beta,
+                       float eta_scale,
                        MediumStack& media,
                        const ContinuationSamples& u,
                        float u_roulette) {
@@ -404,6 +405,7 @@ PathStep continue_path(const Scene& scene,
                                             u.bsdf_u2,
                                             u_roulette,
                                             depth + 1 >= config.rr_depth,
+                                            eta_scale,
                                             v.geometric_side_test};
         const lanes::StepResult<OneLane> r =
             v.bsdf.kind == MaterialKind::Metal       ? lanes::MetalStep(lv)
@@ -413,13 +415,21 @@ PathStep continue_path(const Scene& scene,
         step.weight = to_vec3(r.weight);
         step.prev = {v.p, r.pdf, lights.empty()};
         step.next = Ray{to_vec3(r.origin), to_vec3(r.wi)};
+        step.eta_scale = eta_scale;
         step.alive = true;
         return step;
     }
     Continuation c = sample_continuation(config.strategy, scene, lights, v, wo, u);
     if (!c.valid) return step;
+    step.eta_scale = eta_scale;
+    if (c.transmitted && v.bsdf.kind == MaterialKind::Dielectric) {
+        // The relative index the refraction crossed: into the material from its front.
+        const float eta = dot(wo, v.frame.n) > 0.0f ? v.bsdf.eta : 1.0f / v.bsdf.eta;
+        step.eta_scale *= eta * eta;
+    }
     const lanes::Roulette<OneLane> rr = lanes::RussianRoulette<OneLane>(
-        lanes::to_lanes(beta * c.weight), u_roulette, depth + 1 >= config.rr_depth);
+        lanes::to_lanes(beta * c.weight * step.eta_scale), u_roulette,
+        depth + 1 >= config.rr_depth);
     if (!rr.survives) return step;
     step.weight = c.weight * rr.scale;
     if (c.transmitted) media.cross(v.interior, dot(c.wi, v.ng) < 0.0f, scene.medium_boundaries);

@@ -222,12 +222,19 @@ SegmentResult resolve_segment(const Scene& scene,
 // record the segment that reached v came with, which a path passing a thin sheet keeps: the
 // emission it finds beyond is weighted as seen from the vertex before the sheet, whose light
 // samples pass the sheet too (trace.h, shadows_pass).
+//
+// `eta_scale` is the path's eta scale: the product of eta^2 over its refractions so far. A
+// refraction puts 1 / eta^2 into the throughput (radiance is compressed entering a denser
+// medium, Veach 1997, §5.2), which leaving the medium undoes; roulette decides on the
+// throughput times the eta scale, so that it does not end paths inside glass for a factor that
+// leaving it would take back (pbrt-v4's etaScale, Mitsuba 3's eta^2 in its roulette).
 struct PathStep {
     bool alive = false;
     bool passed_sheet = false;  // went straight through a thin sheet: a null event
     Ray next;
     Color weight{0.0f};
     PreviousVertex prev;
+    float eta_scale = 1.0f;  // the path's after this step
 };
 PathStep continue_path(const Scene& scene,
                        const LightSet& lights,
@@ -237,6 +244,7 @@ PathStep continue_path(const Scene& scene,
                        const PreviousVertex& prev,
                        int depth,
                        Color beta,
+                       float eta_scale,
                        MediumStack& media,
                        const ContinuationSamples& u,
                        float u_roulette);
