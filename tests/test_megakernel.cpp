@@ -447,6 +447,7 @@ TEST(Megakernel, OneSidedSurfacesAreBlackFromBehind) {
         const Film f1 = render(one, Strategy::Mis, 8, 8, 4),
                    f2 = render(two, Strategy::Mis, 8, 8, 4);
         RenderRequest c;
+        c.sampler = SamplerKind::Independent;  // as render() above
         c.width = c.height = 8;
         c.spp = 4;
         c.seed = 1;
@@ -498,6 +499,7 @@ TEST(Megakernel, ThinSheetsPassedDoNotCountTowardsMaxDepth) {
                 e.mean, e.se, expected);
     EXPECT_NEAR(e.mean, expected, 4 * e.se);
     RenderRequest c;
+    c.sampler = SamplerKind::Independent;  // as render() above
     c.width = c.height = 4;
     c.spp = spp;
     c.seed = 1;

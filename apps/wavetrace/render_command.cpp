@@ -413,7 +413,7 @@ Rendered render_to_image(const RenderOptions& o,
             "{} {}{} {}x{} {} spp{}{}: {:.2f} s, {:.2f} Mpaths/s, {:.2f} Mrays/s, "
             "{} invalid samples, peak memory {:.1f} MiB",
             o.engine, o.strategy,
-            request.sampler == SamplerKind::Independent
+            request.sampler == RenderRequest{}.sampler
                 ? std::string()
                 : " " + std::string(to_string(request.sampler)),
             width, height, total, stopped, resumed_note, stats.seconds,

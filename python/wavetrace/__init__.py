@@ -128,8 +128,8 @@ def render(scene: Scene, spp: Optional[int] = None, width: Optional[int] = None,
     - seed, sample_offset: the samples are [sample_offset, sample_offset + spp) of each pixel's
       sequence from this seed; parts of one render merge with Film.merge.
     - sampler: "independent" (a hash of each coordinate) or "sobol" (Owen-scrambled Sobol
-      points per pixel), by default the scene's (scene.render.sampler); the samples are a pure
-      function of (seed, pixel, sample, dimension) either way.
+      points per pixel), by default the scene's (scene.render.sampler, "sobol" unless set);
+      the samples are a pure function of (seed, pixel, sample, dimension) either way.
     - threads: worker threads (0: all). time_limit: seconds after which no pass starts.
     - aov: "color" (light transport), or "albedo", "normal", "depth" from primary rays (raw
       values: normals in [-1, 1], depth inf where nothing is hit).

@@ -37,7 +37,8 @@ std::string film_settings(uint64_t scene_fingerprint, const RenderRequest& reque
            "\nengine=" + to_string(request.engine) + "\nstrategy=" + to_string(e.strategy) +
            "\nmis_heuristic=" + (e.heuristic == MisHeuristic::Balance ? "balance" : "power") +
            "\nmax_depth=" + std::to_string(e.max_depth) + "\n" +
-           // Only when not the default, so that films written before samplers existed resume.
+           // Only for a sampler other than independent: a film without the line is the
+           // independent sampler's, as every film written before samplers existed is.
            (request.sampler == SamplerKind::Independent
                 ? std::string()
                 : "sampler=" + std::string(to_string(request.sampler)) + "\n");

@@ -188,13 +188,13 @@ def test_an_uncaught_interrupt_ends_a_script_as_ctrl_c_does(tmp_path):
 
 
 def test_the_scenes_sampler_is_the_default(cornell):
-    assert cornell.render.sampler == "independent"
-    sobol = wt.render(cornell, sampler="sobol", **SMALL)
-    assert not np.array_equal(sobol, wt.render(cornell, **SMALL))
-    cornell.render.sampler = "sobol"
+    assert cornell.render.sampler == "sobol"
+    independent = wt.render(cornell, sampler="independent", **SMALL)
+    assert not np.array_equal(independent, wt.render(cornell, **SMALL))
+    cornell.render.sampler = "independent"
     try:
-        assert np.array_equal(sobol, wt.render(cornell, **SMALL))
+        assert np.array_equal(independent, wt.render(cornell, **SMALL))
         with pytest.raises(ValueError, match="sampler"):
             cornell.render.sampler = "halton"
     finally:
-        cornell.render.sampler = "independent"
+        cornell.render.sampler = "sobol"

@@ -58,7 +58,7 @@ struct RenderRequest {
     int spp = 1;
     int first_sample = 0;
     uint64_t seed = 0;
-    SamplerKind sampler = SamplerKind::Independent;
+    SamplerKind sampler = SamplerKind::Sobol;
     Estimator estimator;
     Engine engine = Engine::Wavefront;
     WavefrontOptions wavefront;  // read by the wavefront engine only

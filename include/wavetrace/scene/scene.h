@@ -35,7 +35,7 @@ struct RenderSettings {
     int height = 600;
     int spp = 16;
     int max_depth = 50;
-    SamplerKind sampler = SamplerKind::Independent;
+    SamplerKind sampler = SamplerKind::Sobol;
 };
 
 // Most media a scene may declare: the wavefront packs medium ids into 15 bits.
