@@ -100,6 +100,7 @@ void bench_engines(const Options& o, Results& r) {
             cfg.height = o.quick ? 16 : c.h;
             cfg.spp = o.quick ? 1 : c.spp;
             cfg.seed = 1;
+            cfg.sampler = o.sampler;
             cfg.estimator.max_depth = scene.render.max_depth;
             std::vector<double> ratio, mk_paths, wf_paths, mk_rays, wf_rays, mke_paths, wfe_paths,
                 mk_vs_embree, wf_vs_embree, wf_vs_mke, st_paths, st_vs_mk, st_vs_wf;
@@ -193,6 +194,7 @@ void bench_waves(const Options& o, Results& r) {
         cfg.height = o.quick ? 16 : 1024;
         cfg.spp = o.quick ? 1 : 2;
         cfg.seed = 1;
+        cfg.sampler = o.sampler;
         cfg.estimator.max_depth = scene.render.max_depth;
         for (size_t size : sizes) {
             const size_t effective = wavefront_wave_size(size_t(cfg.width) * size_t(cfg.height),

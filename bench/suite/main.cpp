@@ -33,12 +33,20 @@ int main(int argc, char** argv) {
         ->check(CLI::IsMember(
             {"cornell", "everything", "bunny", "dragon", "veach-mis", "materials", "dragon-envmap",
              "cornell-glass", "cornell-mirror", "cornell-smoke", "cornell-mcguire"}));
+    std::string sampler;
+    app.add_option("--sampler", sampler,
+                   "engines, waves, scaling: the sampler the renders draw from (default: the "
+                   "library's)")
+        ->check(CLI::IsMember({"independent", "sobol"}));
     std::string simd;
     app.add_option("--simd", simd,
                    "run every kernel on this SIMD target (e.g. AVX2; default: the best this CPU "
                    "runs)");
     CLI11_PARSE(app, argc, argv);
     o.scenes = scenes;
+    if (!sampler.empty())
+        o.sampler = sampler == "sobol" ? wavetrace::SamplerKind::Sobol
+                                       : wavetrace::SamplerKind::Independent;
     if (!wavetrace::use_simd_target(simd)) {
         std::string names;
         for (const std::string& t : wavetrace::simd_targets()) names += " " + t;
@@ -61,6 +69,7 @@ int main(int argc, char** argv) {
     r.note("hardware_threads", tbb::this_task_arena::max_concurrency());
     r.note("quick", o.quick);
     r.note("simd", wavetrace::simd_target());
+    r.note("sampler", wavetrace::to_string(o.sampler));
     r.note("wavefront_bytes_per_path", wavetrace::wavefront_bytes_per_path());
     auto start = std::chrono::steady_clock::now();
     for (const std::string& s : sections) {

@@ -144,6 +144,7 @@ void bench_scaling(const Options& o, Results& r) {
         cfg.width = o.quick ? 16 : 320;
         cfg.height = o.quick ? 16 : 320;
         cfg.seed = 1;
+        cfg.sampler = o.sampler;
         cfg.estimator.max_depth = scene.render.max_depth;
         const auto megakernel = [&](const RenderRequest& c, RenderStats* s) {
             *s = render_once(scene, bvh, c, Engine::Megakernel);

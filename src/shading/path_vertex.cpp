@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "bsdfs/thin_dielectric.h"
+#include "sampling/bounce_dims.h"
 #include "sampling/sampler-inl.h"
 #include "sampling/sampler.h"
 #include "sampling/warp.h"
@@ -442,13 +443,9 @@ PathStep continue_path(const Scene& scene,
 }
 
 VertexSamples vertex_samples(const Sampler& sampler, uint32_t pixel, uint32_t sample, int bounce) {
-    const auto state = lanes::PathState<OneLane>(sampler, pixel, sample);
-    // As the wavefront's rows are drawn: the light choice alone, then by pairs.
+    // The vertex's pairs side by side in lanes: what the wavefront's rows draw, bit for bit.
     float u[kBounceDims];
-    u[kDimLightSelect] =
-        lanes::SampleDim<OneLane>(state, bounce_dim(bounce, kDimLightSelect));
-    for (uint32_t d = kDimLightU; d < kBounceDims; d += 2)
-        lanes::SampleDimPair<OneLane>(state, bounce_dim(bounce, BounceDim(d)), &u[d], &u[d + 1]);
+    draw_bounce_dims(sampler, pixel, sample, bounce, u);
     return vertex_samples_of([&](BounceDim d) { return u[d]; });
 }
 

@@ -1,0 +1,17 @@
+// All of one vertex's sample dimensions at once, for the megakernel, which draws them path by
+// path: the vertex's dimension pairs side by side in SIMD lanes (runtime dispatch), each lane
+// computing what sampling/sampler-inl.h's one-lane instance gives for its pair, bit for bit.
+// (The wavefront draws the same numbers a row of paths at a time, draw_vertex_samples.)
+#pragma once
+
+#include <cstdint>
+
+#include "sampling/sampler.h"
+
+namespace wavetrace {
+
+// u[d] = dimension bounce_dim(bounce, d) of path (pixel, sample), for d < kBounceDims.
+void draw_bounce_dims(
+    const Sampler& sampler, uint32_t pixel, uint32_t sample, int bounce, float u[kBounceDims]);
+
+}  // namespace wavetrace
