@@ -208,3 +208,33 @@ TEST(ImageIo, ExrHeaderClaimsBeyondTheFileAreRefused) {
         }
     }
 }
+
+// A header of one row and millions of columns: OpenEXR sizes its line buffers by the row (for
+// up to 256 rows) and OpenImageIO converts through 256 rows, whatever the height, so such a
+// row is refused before either reads (a fuzzer's 1 KB input asked for 7.6 GB this way). An
+// OpenEXR header is checked from its channel list and data window, other formats from
+// OpenImageIO's header.
+TEST(ImageIo, RowsLongerThanTheLimitAreRefused) {
+    TempDir dir;
+    const std::pair<std::string, std::string> cases[] = {
+        {"wide.exr", "the header claims rows of 100000 pixels x 12 bytes, more than the limit of "
+                     "1048576 bytes a row"},
+        {"wide.pfm", "rows of 100000 pixels x 3 channels take 1200000 bytes, more than the limit "
+                     "of 1048576"},
+    };
+    for (const auto& [file, message] : cases) {
+        const auto wide = dir.path() / file;
+        write_image(wide, Image(100000, 1));
+        try {
+            read_image(wide);
+            ADD_FAILURE() << file;
+        } catch (const ImageError& e) {
+            const std::string m = e.what();
+            EXPECT_NE(m.find(wide.string() + ": " + message), std::string::npos) << m;
+        }
+        // As wide as the limit allows reads.
+        const auto fits = dir.path() / ("fits-" + file);
+        write_image(fits, Image(int(kMaxImageRowBytes / 12), 1));
+        EXPECT_EQ(read_image(fits).width, int(kMaxImageRowBytes / 12)) << file;
+    }
+}

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cstring>
+#include <vector>
 
 #include "wavetrace/image/image.h"
 
@@ -65,11 +66,39 @@ void check_exr(uint64_t size, const ReadAt& read_at, const std::string& name) {
         at += out.size() + 1;
         return true;
     };
+    // A channel list's bytes a pixel: each channel a NUL-terminated name, a 4-byte pixel type
+    // (0 uint, 1 half, 2 float) and 12 bytes of flags and sampling; an empty name ends it.
+    auto chlist_bytes = [&](uint64_t from, uint64_t length) {
+        std::vector<unsigned char> list(static_cast<size_t>(std::min<uint64_t>(length, 1 << 16)));
+        if (!read_at(from, list.size(), list.data())) return uint64_t(0);
+        uint64_t bytes = 0;
+        for (size_t i = 0; i < list.size() && list[i] != 0;) {
+            const void* end = std::memchr(&list[i], 0, list.size() - i);
+            if (!end) break;
+            i = size_t(static_cast<const unsigned char*>(end) - list.data()) + 1;
+            if (i + 16 > list.size()) break;
+            bytes += little_endian_32(&list[i]) == 1 ? 2 : 4;
+            i += 16;
+        }
+        return bytes;
+    };
     for (;;) {  // each part's header
         std::string attribute, type;
-        for (;;) {  // each attribute
+        int64_t width = 0;         // of the data window
+        uint64_t pixel_bytes = 0;  // the channels' sizes (2 for half, 4 for float and uint)
+        for (;;) {                 // each attribute
             if (!read_string(attribute)) return;
-            if (attribute.empty()) break;
+            if (attribute.empty()) {
+                // OpenEXR sizes its line buffers by the row, for up to 256 rows (DWAB), and
+                // OpenImageIO converts through 256 rows, whatever the image's height.
+                const uint64_t row_bytes = uint64_t(std::max<int64_t>(width, 0)) * pixel_bytes;
+                if (row_bytes > kMaxImageRowBytes)
+                    throw ImageError(name + ": the header claims rows of " + std::to_string(width) +
+                                     " pixels x " + std::to_string(pixel_bytes) +
+                                     " bytes, more than the limit of " +
+                                     std::to_string(kMaxImageRowBytes) + " bytes a row");
+                break;
+            }
             const uint64_t attribute_at = at - attribute.size() - 1;
             unsigned char length[4];
             if (!read_string(type) || !read_at(at, 4, length)) return;
@@ -81,16 +110,16 @@ void check_exr(uint64_t size, const ReadAt& read_at, const std::string& name) {
                                  std::to_string(attribute_at) + " claims " +
                                  std::to_string(claimed) + " bytes; the file has " +
                                  std::to_string(size - at) + " after it");
+            if (attribute == "channels" && type == "chlist")
+                pixel_bytes = chlist_bytes(at, uint64_t(claimed));
             unsigned char box[16];
             if (attribute == "dataWindow" && type == "box2i" && claimed == 16 &&
                 read_at(at, 16, box)) {
-                const int64_t width =
-                    int64_t(little_endian_32(box + 8)) - little_endian_32(box) + 1;
+                width = int64_t(little_endian_32(box + 8)) - little_endian_32(box) + 1;
                 const int64_t height =
                     int64_t(little_endian_32(box + 12)) - little_endian_32(box + 4) + 1;
-                const std::string claim = name + ": the header claims " +
-                                          std::to_string(width) + " x " +
-                                          std::to_string(height) + " pixels, ";
+                const std::string claim = name + ": the header claims " + std::to_string(width) +
+                                          " x " + std::to_string(height) + " pixels, ";
                 const uint64_t texels = uint64_t(width) * uint64_t(height);
                 if (width > 0 && height > 0 && texels > kMaxImageTexels)
                     throw ImageError(claim + "more than the limit of " +

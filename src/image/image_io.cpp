@@ -167,6 +167,12 @@ ImageData read_opened(OIIO::ImageInput& in,
                          std::to_string(spec.height) + " pixels, more than a " +
                          in.format_name() + " file of " + std::to_string(file_bytes) +
                          " bytes can hold");
+    const uint64_t row_bytes = uint64_t(spec.width) * uint64_t(spec.pixel_bytes(true));
+    if (row_bytes > kMaxImageRowBytes)
+        throw ImageError(name + ": rows of " + std::to_string(spec.width) + " pixels x " +
+                         std::to_string(spec.nchannels) + " channels take " +
+                         std::to_string(row_bytes) + " bytes, more than the limit of " +
+                         std::to_string(kMaxImageRowBytes));
     if (spec.depth > 1) throw ImageError(name + ": volume images (depth > 1) are not read");
     // Only the channels used: RGB and alpha (the second of two, the fourth of four or more).
     const int channels = std::min(spec.nchannels, 4);

@@ -56,6 +56,12 @@ void write_image(const std::filesystem::path& path,
 // 2^26, e.g. 8192 x 8192, which take 768 MiB as linear RGB floats.
 inline constexpr uint64_t kMaxImageTexels = uint64_t(1) << 26;
 
+// The longest row read_image() accepts, in the file's own channels and types: 1 MiB, e.g.
+// 65536 RGBA texels of 32-bit floats. OpenImageIO converts through a buffer of 256 rows
+// whatever the image's height, so a one-row header with millions of columns would otherwise
+// allocate gigabytes.
+inline constexpr uint64_t kMaxImageRowBytes = uint64_t(1) << 20;
+
 // What read_image takes from a file's channels.
 enum class ImageChannels {
     Linear,  // linear RGB: 8- and 16-bit integer files are taken as sRGB-encoded and decoded
