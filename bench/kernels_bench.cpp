@@ -61,7 +61,7 @@ struct Captured {
                       shaded.light_samples, 0, shaded.emissions, 0);
         shadows =
             light_sample(*in, shaded.light_samples, 0, found.light_samples, shaded.shadows, 0);
-        intersect_shadow(bvh, *in, shaded.shadows, shaded.paths, 0, shadows, shaded.transmittance);
+        intersect_shadow(bvh, *in, shaded.shadows, 0, shadows, shaded.transmittance);
     }
 };
 
@@ -132,7 +132,7 @@ void BM_IntersectShadow(benchmark::State& st, const char* name) {
     WaveQueues q = c.shaded;
     for (auto _ : st)
         benchmark::DoNotOptimize(
-            intersect_shadow(c.bvh, *c.in, q.shadows, q.paths, 0, c.shadows, q.transmittance));
+            intersect_shadow(c.bvh, *c.in, q.shadows, 0, c.shadows, q.transmittance));
     st.SetItemsProcessed(st.iterations() * c.shadows);
 }
 

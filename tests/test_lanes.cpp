@@ -495,8 +495,8 @@ TEST(Lanes, MediumSegmentsAreScattersInMediumOnEverySimdTarget) {
     phase.kind = MaterialKind::Isotropic;
     phase.albedo = scene.add_solid({0.5f, 0.5f, 0.5f});
     const MaterialId phase_id = scene.add_material(phase);
-    scene.media.push_back({"thick", 0.3f, phase_id});
-    scene.media.push_back({"thin", 0.01f, phase_id});
+    scene.media.push_back({"thick", Color(0.3f), phase_id});
+    scene.media.push_back({"thin", Color(0.01f), phase_id});
     const size_t n = 59;
     struct Case {
         Ray ray;
@@ -524,7 +524,7 @@ TEST(Lanes, MediumSegmentsAreScattersInMediumOnEverySimdTarget) {
             for (int a = 0; a < 3; ++a) b.dir[a][k] = c.ray.d[a];
             b.t[k] = c.hit.found() ? c.hit.t : kInfinity;
             b.medium[k] = c.medium != kNone ? 1.0f : 0.0f;
-            b.density[k] = c.medium != kNone ? scene.media[c.medium].density : 0.0f;
+            b.density[k] = c.medium != kNone ? scene.media[c.medium].sigma_t.x : 0.0f;
             b.flight[k] = c.flight;
         }
         medium_segments(b, n);
@@ -532,8 +532,10 @@ TEST(Lanes, MediumSegmentsAreScattersInMediumOnEverySimdTarget) {
             const Case& c = cases[k];
             const float dir_length = length(c.ray.d);
             float flight = c.flight, dist = 0.0f;
-            const bool scatters =
-                scatters_in_medium(scene, c.medium, c.ray, c.hit, dir_length, flight, &dist);
+            Color weight;
+            const bool scatters = scatters_in_medium(scene, c.medium, c.ray, c.hit, dir_length,
+                                                     flight, &dist, &weight);
+            ASSERT_EQ(weight, Color(1.0f)) << "grey media need no weight";
             ASSERT_TRUE(same_bits(b.dir_length[k], dir_length)) << "row " << k;
             ASSERT_EQ(b.scatters[k] != 0.0f, scatters) << "row " << k;
             if (scatters) {

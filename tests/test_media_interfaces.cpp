@@ -133,7 +133,7 @@ TEST(MediaInterfaces, InterfaceBoundariesAreMitsubasRule) {
         const Bvh bvh = Bvh::build(s);
         uint64_t rays = 0;
         const Ray ray{{-3, 0, 0}, {1, 0, 0}, 0.0f, 8.0f};
-        const float tr = transmittance(s, bvh, ray, MediumStack{}, shadows_walk(s), &rays);
+        const float tr = transmittance(s, bvh, ray, MediumStack{}, shadows_walk(s), &rays).x;
         // Boundaries are moved outwards by a hair (the margin): a tolerance of 1e-4.
         const float inside = std::string(rule) == "nested" ? 3.0f : 2.0f;
         EXPECT_NEAR(tr, std::exp(-0.5f * inside), 1e-4f) << rule;

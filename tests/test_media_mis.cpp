@@ -71,14 +71,16 @@ TEST(Media, TransmittanceIsAnalyticThroughNestedBoundaries) {
     MediumStack media = media_at(s, bvh, {0, 0, 0});
     ASSERT_EQ(media.size, 2);
     EXPECT_EQ(media.current(), 1u);  // smoke, innermost
-    float t = transmittance(s, bvh, Ray{{0, 0, 0}, {0, 1, 0}, 0, 15}, media, true, &rays);
-    EXPECT_NEAR(t, std::exp(-0.5f * 1 - 0.1f * 9), 1e-4f);
+    Color t = transmittance(s, bvh, Ray{{0, 0, 0}, {0, 1, 0}, 0, 15}, media, true, &rays);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(t[c], std::exp(-0.5f * 1 - 0.1f * 9), 1e-4f);
     // Along +x the wall at x = 20 blocks.
-    EXPECT_EQ(transmittance(s, bvh, Ray{{0, 0, 0}, {1, 0, 0}, 0, 25}, media, true, &rays), 0.0f);
+    EXPECT_EQ(transmittance(s, bvh, Ray{{0, 0, 0}, {1, 0, 0}, 0, 25}, media, true, &rays),
+              Color(0.0f));
     // From outside everything, across both boxes: 18 units of fog, 2 of smoke.
     MediumStack outside = media_at(s, bvh, {0, 0, -30});
     EXPECT_EQ(outside.size, 0);
-    float across = transmittance(s, bvh, Ray{{0, 0.5f, -30}, {0, 0, 1}, 0, 60}, outside, true, &rays);
+    float across =
+        transmittance(s, bvh, Ray{{0, 0.5f, -30}, {0, 0, 1}, 0, 60}, outside, true, &rays).x;
     EXPECT_NEAR(across, std::exp(-0.1f * 18 - 0.5f * 2), 1e-4f);
 }
 
@@ -99,13 +101,16 @@ TEST(Media, UnboundedShadowRaysAbsorbUnlessTheMediumIsEmpty) {
         Bvh bvh = Bvh::build(s);
         uint64_t rays = 0;
         const Ray escape{{0, 0, 0}, {0, 1, 0}, 0, kInfinity};
-        const float expected = density > 0 ? 0.0f : 1.0f;
+        const Color expected(density > 0 ? 0.0f : 1.0f);
         EXPECT_EQ(transmittance(s, bvh, escape, media, true, &rays), expected) << density;
         EXPECT_EQ(transmittance_walk(s, bvh, escape, media, &rays), expected) << density;
         // A bounded one: exp(-density * 4) either way.
-        EXPECT_FLOAT_EQ(transmittance(s, bvh, Ray{{0, 0, 0}, {0, 2, 0}, 0, 2}, media, true, &rays),
-                        std::exp(-density * 4));
+        EXPECT_FLOAT_EQ(
+            transmittance(s, bvh, Ray{{0, 0, 0}, {0, 2, 0}, 0, 2}, media, true, &rays).y,
+            std::exp(-density * 4));
         float flight = 1.0f, dist = 0;
-        EXPECT_EQ(scatters_in_medium(s, m, escape, Hit{}, 1.0f, flight, &dist), density > 0);
+        Color weight;
+        EXPECT_EQ(scatters_in_medium(s, m, escape, Hit{}, 1.0f, flight, &dist, &weight),
+                  density > 0);
     }
 }

@@ -345,13 +345,16 @@ TEST(MitsubaScenes, MediaFillShapesThatNameThemInterior) {
     // Mitsuba's participating_media tests declare a medium once and refer to it by name.
     auto path = dir.write("a.xml", scene(R"(
   <medium id="fog" type="homogeneous"><float name="scale" value="0.5"/>
-    <rgb name="sigma_t" value="2, 2, 2"/><rgb name="albedo" value="0.9, 0.7, 0.9"/></medium>
+    <rgb name="sigma_t" value="2, 1, 4"/><rgb name="albedo" value="0.9, 0.7, 0.9"/></medium>
   <shape type="sphere"><bsdf type="dielectric"/><ref id="fog" name="interior"/></shape>
   <shape type="sphere"><point name="center" x="3" y="0" z="0"/>
     <bsdf type="null"/><ref id="fog" name="interior"/></shape>)"));
     Scene s = load_scene(path, collecting());
     ASSERT_EQ(s.media.size(), 1u);  // one medium, named twice
-    EXPECT_NEAR(s.media[0].density, 1.0f, 1e-6f);  // sigma_t x scale
+    // sigma_t x scale, per channel
+    EXPECT_NEAR(s.media[0].sigma_t.x, 1.0f, 1e-6f);
+    EXPECT_NEAR(s.media[0].sigma_t.y, 0.5f, 1e-6f);
+    EXPECT_NEAR(s.media[0].sigma_t.z, 2.0f, 1e-6f);
     ASSERT_EQ(s.spheres.size(), 2u);
     EXPECT_EQ(s.prim_interior(PrimRef::make(PrimKind::Sphere, 0)), 0u);
     EXPECT_EQ(s.prim_interior(PrimRef::make(PrimKind::Sphere, 1)), 0u);

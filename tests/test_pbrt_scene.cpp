@@ -384,7 +384,7 @@ TEST(PbrtScenes, MediaFillShapesWithTheInterfaceMaterial) {
 Camera "perspective"
 WorldBegin
 MakeNamedMedium "fog" "string type" "homogeneous"
-  "rgb sigma_a" [0.1 0.1 0.1] "rgb sigma_s" [0.9 0.9 0.9] "float scale" 2
+  "rgb sigma_a" [0.1 0.3 0.1] "rgb sigma_s" [0.9 0.9 0.9] "float scale" 2
 AttributeBegin
   MediumInterface "fog" ""
   Material "interface"
@@ -394,7 +394,9 @@ AttributeEnd
 )");
     Scene s = load_scene(path, collecting());
     ASSERT_EQ(s.media.size(), 1u);
-    EXPECT_NEAR(s.media[0].density, 2.0f, 1e-6f);
+    // (sigma_a + sigma_s) x scale, per channel
+    EXPECT_NEAR(s.media[0].sigma_t.x, 2.0f, 1e-6f);
+    EXPECT_NEAR(s.media[0].sigma_t.y, 2.4f, 1e-6f);
     ASSERT_EQ(s.spheres.size(), 1u);
     EXPECT_EQ(s.spheres[0].interior, MediumId{0});
     EXPECT_TRUE(s.is_boundary(s.spheres[0].material));

@@ -281,6 +281,15 @@ TEST(SceneLoader, NegativeAndZeroSizesAreRejected) {
         R"(, "media": {"fog": {"density": -0.1, "albedo": 1}}, "objects": []})";
     EXPECT_EQ(load_error(dir, bad_medium),
               ": /media/fog/density: expected a positive number, got -0.1");
+    // One density per channel: none negative, one positive.
+    auto medium_of = [&](const char* density) {
+        return std::string("{") + kCamera + R"(, "media": {"fog": {"density": )" + density +
+               R"(, "albedo": 1}}, "objects": []})";
+    };
+    EXPECT_EQ(load_error(dir, medium_of("[0.1, -1, 0.1]")),
+              ": /media/fog/density/1: expected a non-negative number, got -1");
+    EXPECT_EQ(load_error(dir, medium_of("[0, 0, 0]")),
+              ": /media/fog/density: a medium's density must be > 0 in some channel");
     std::string bad_albedo =
         std::string("{") + kCamera +
         R"(, "materials": {"m": {"type": "lambertian", "albedo": [1, -1, 1]}}, "objects": []})";

@@ -320,13 +320,16 @@ void bind_scene(py::module_& m) {
              },
              py::arg("material"), "Adds a material; returns its id.")
         .def("add_medium",
-             [](S& s, const std::string& name, float density, TextureId albedo) {
+             [](S& s, const std::string& name, const py::object& density, TextureId albedo) {
+                 const Color sigma_t = py::isinstance<py::sequence>(density)
+                                           ? density.cast<Vec3>()
+                                           : Color(density.cast<float>());
                  s.begin_change();
-                 return s.scene.add_medium(name, density, albedo);
+                 return s.scene.add_medium(name, sigma_t, albedo);
              },
              py::arg("name"), py::arg("density"), py::arg("albedo"),
-             "Adds a homogeneous medium (extinction `density` per unit, scattering albedo "
-             "texture); returns its id.")
+             "Adds a homogeneous medium (extinction `density` per unit, a number or one per "
+             "channel (r, g, b); scattering albedo texture); returns its id.")
         .def("interface_material",
              [](S& s) {
                  s.begin_change();

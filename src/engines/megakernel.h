@@ -52,16 +52,18 @@ Color ray_color(PathContext<Tracer>& ctx,
                 float eta_scale) {
     const Estimator& cfg = ctx.estimator;
     float flight = segment_flight(ctx.scene, ctx.sampler, ctx.pixel, ctx.sample, bounce);
+    Color flight_weight(1.0f);  // the segments' weights (chromatic media), from the ray's start
     for (int crossing = 0; crossing < kMaxBoundaryCrossings; ++crossing) {
         ++ctx.rays;
         Hit hit = ctx.bvh.intersect(ray);
         SegmentResult seg =
             resolve_segment(ctx.scene, ctx.lights, cfg, ray, hit, media, flight, prev);
+        flight_weight = flight_weight * seg.weight;
         // Emission found, weighted for the strategy (zero but on an emitter or in the
         // background, or at an emitter that also reflects).
         const Color emission =
             max_component(seg.emission) > 0.0f
-                ? seg.emission * emission_weight(cfg, prev, seg.emission_pdf_light)
+                ? flight_weight * seg.emission * emission_weight(cfg, prev, seg.emission_pdf_light)
                 : Color(0.0f);
         switch (seg.event) {
             case SegmentEvent::Cross:
@@ -77,6 +79,7 @@ Color ray_color(PathContext<Tracer>& ctx,
         const Vertex& v = seg.vertex;
         if (!may_continue(cfg, v, depth)) return emission;
         VertexSamples u = vertex_samples(ctx.sampler, ctx.pixel, ctx.sample, bounce);
+        beta = beta * flight_weight;
 
         // Next-event estimation: a shadow ray to a light sample, weighted for the strategy.
         Color radiance = emission;
@@ -84,8 +87,11 @@ Color ray_color(PathContext<Tracer>& ctx,
             const float w = direct_weight(cfg.strategy, cfg.heuristic, d.pdf_light, d.pdf_bsdf);
             if (w > 0.0f)
                 radiance +=
-                    d.value * (w * transmittance(ctx.scene, ctx.bvh, d.shadow, media,
-                                                 ctx.shadows_walk, &ctx.rays));
+                    flight_weight * d.value *
+                    (w * transmittance(ctx.scene, ctx.bvh, d.shadow,
+                                       shadow_media(ctx.scene, media, v.interior, v.ng, seg.wo,
+                                                    d.shadow.d),
+                                       ctx.shadows_walk, &ctx.rays));
         }
 
         // The continuation, recursively.
@@ -93,8 +99,9 @@ Color ray_color(PathContext<Tracer>& ctx,
                                       eta_scale, media, u.continuation, u.roulette);
         const int next_depth = wavetrace::next_depth(bounce, depth, step);
         if (!step.alive || next_depth >= cfg.max_depth) return radiance;
-        return radiance + step.weight * ray_color(ctx, step.next, bounce + 1, next_depth, media,
-                                                  step.prev, beta * step.weight, step.eta_scale);
+        const Color weight = flight_weight * step.weight;
+        return radiance + weight * ray_color(ctx, step.next, bounce + 1, next_depth, media,
+                                             step.prev, beta * step.weight, step.eta_scale);
     }
     return {};
 }

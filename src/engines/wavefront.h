@@ -76,7 +76,7 @@ uint64_t run_wave(const WaveInputs& in,
         const size_t shadows =
             light_sample(in, q.light_samples, 0, found.light_samples, q.shadows, 0);
         WT_DCHECK_LE(shadows, n);  // at most one shadow ray per path per bounce
-        rays += intersect_shadow(bvh, in, q.shadows, q.paths, 0, shadows, q.transmittance,
+        rays += intersect_shadow(bvh, in, q.shadows, 0, shadows, q.transmittance,
                                  camera_rays ? &q.hits : nullptr);
         mis_combine(in.estimator, q.emissions, {0, found.emissions}, q.shadows, q.transmittance,
                     {0, shadows}, q.paths);
@@ -165,7 +165,7 @@ uint64_t run_wave_in_stages(const WaveInputs& in,
         });
         each_chunk(n, [&](size_t c, size_t b, size_t) {
             chunk[c].shadow_rays =
-                intersect_shadow(bvh, in, q.shadows, q.paths, b, b + chunk[c].shadows,
+                intersect_shadow(bvh, in, q.shadows, b, b + chunk[c].shadows,
                                  q.transmittance, camera_rays ? &q.hits : nullptr);
         });
         each_chunk(n, [&](size_t c, size_t b, size_t) {

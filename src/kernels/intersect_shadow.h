@@ -22,7 +22,7 @@ inline bool leave_one_primitive(const HitQueue& origins,
     return true;
 }
 
-// Transmittance along shadows[i] (0 if blocked), in the media of its path; returns the rays
+// Transmittance along shadows[i] (0 if blocked), in its media; returns the rays
 // traced. `origins`, where given: the hits the rays leave from, those of the camera rays, in
 // pixel tiles. Eight consecutive rays that leave one primitive (a tile on one wall) are then
 // traced as a packet where the intersector has them: coherent enough that the packet pays. Rays
@@ -32,10 +32,9 @@ template <Intersector Tracer>
 uint64_t intersect_shadow(const Tracer& tracer,
                           const WaveInputs& in,
                           const ShadowQueue& shadows,
-                          const PathQueue& paths,
                           size_t begin,
                           size_t end,
-                          std::span<float> transmittance,
+                          std::span<Color> transmittance,
                           const HitQueue* origins = nullptr) {
     if (!in.shadows_walk) {  // a blocker or not: no medium stack to read
         if constexpr (StreamIntersector<Tracer> && PacketIntersector<Tracer>) {
@@ -59,11 +58,11 @@ uint64_t intersect_shadow(const Tracer& tracer,
                             tracer.occluded_each(group, out);
                     }
                 }
-                for (size_t k = 0; k < m; ++k) transmittance[b + k] = blocked[k] ? 0.0f : 1.0f;
+                for (size_t k = 0; k < m; ++k) transmittance[b + k] = Color(blocked[k] ? 0.0f : 1.0f);
             }
         } else {
             for (size_t i = begin; i < end; ++i)
-                transmittance[i] = tracer.occluded(shadow_ray_at(shadows, i)) ? 0.0f : 1.0f;
+                transmittance[i] = Color(tracer.occluded(shadow_ray_at(shadows, i)) ? 0.0f : 1.0f);
         }
         return end - begin;
     }
@@ -100,18 +99,19 @@ uint64_t intersect_shadow(const Tracer& tracer,
             size_t j = 0;
             for (size_t k = 0; k < m; ++k) {
                 const size_t i = b + k;
-                const MediumStack media = paths.media[shadows.path[i]].unpack();
+                const MediumStack media = shadows.media[i].unpack();
                 const Hit found = blocked[k] ? any[j++] : Hit{};
-                const float tr = transmittance_after_any_hit(in.scene, batch[k], media, found);
+                const std::optional<Color> tr =
+                    transmittance_after_any_hit(in.scene, batch[k], media, found);
                 transmittance[i] =
-                    tr >= 0.0f ? tr : transmittance_walk(in.scene, tracer, batch[k], media, &rays);
+                    tr ? *tr : transmittance_walk(in.scene, tracer, batch[k], media, &rays);
             }
         }
         return rays;
     }
     for (size_t i = begin; i < end; ++i)
         transmittance[i] = wavetrace::transmittance(in.scene, tracer, shadow_ray_at(shadows, i),
-                                                    paths.media[shadows.path[i]].unpack(), true,
+                                                    shadows.media[i].unpack(), true,
                                                     &rays);
     return rays;
 }

@@ -107,7 +107,7 @@ void mis_combine(const Estimator& estimator,
                  const EmissionQueue& emissions,
                  EntryRange found,
                  const ShadowQueue& shadows,
-                 std::span<const float> transmittance,
+                 std::span<const Color> transmittance,
                  EntryRange shadowed,
                  PathQueue& paths);
 

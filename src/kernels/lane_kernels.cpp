@@ -13,7 +13,7 @@
 #include "scene/camera_ray-inl.h"
 #include "shading/environment_light-inl.h"
 #include "shading/light_sample-inl.h"
-#include "shading/medium_flight-inl.h"
+#include "media/medium_flight-inl.h"
 #include "shading/mis-inl.h"
 #include "shading/sphere_light-inl.h"
 #include "scene/surface_point-inl.h"
@@ -391,6 +391,8 @@ size_t SampleLights(LightSampleBlock* b,
             for (size_t j = 0; j < kRows; ++j) hn::StoreU(out[j], d, rows[j] + s);
             std::copy(q.path.begin() + at + k, q.path.begin() + at + k + N,
                       shadows->path.begin() + s);
+            std::copy(q.media.begin() + at + k, q.media.begin() + at + k + N,
+                      shadows->media.begin() + s);
         } else {  // row by row, from the vectors stored aside
             HWY_ALIGN float lanes[kRows][kShadeChunk];
             HWY_ALIGN int32_t appends[kShadeChunk];
@@ -399,6 +401,7 @@ size_t SampleLights(LightSampleBlock* b,
             for (size_t l = 0, to = s; l < N; ++l) {
                 if (appends[l] == 0) continue;
                 for (size_t j = 0; j < kRows; ++j) rows[j][to] = lanes[j][l];
+                shadows->media[to] = q.media[at + k + l];
                 shadows->path[to++] = q.path[at + k + l];
             }
         }

@@ -112,10 +112,14 @@ size_t light_sample(const WaveInputs& in,
                 continue;
             const DirectSample& d = scalar[row];
             WT_DCHECK_LT(s, shadows.capacity);
+            const PackedMedia media = PackedMedia::pack(
+                shadow_media(in.scene, queue.media[i].unpack(), queue.interior[i],
+                             WAVETRACE_XYZ_AT(queue, ng, i), WAVETRACE_XYZ_AT(queue, wo, i),
+                             d.shadow.d));
             store_shadow_ray(
                 shadows, s++,
                 {d.shadow.o, d.shadow.d, d.shadow.tmax, WAVETRACE_XYZ_AT(queue, beta, i) * d.value,
-                 d.pdf_light, d.pdf_bsdf, queue.path[i]});
+                 d.pdf_light, d.pdf_bsdf, queue.path[i], media});
         }
     }
     return s - first_shadow;

@@ -15,7 +15,7 @@ void mis_combine(const Estimator& estimator,
                  const EmissionQueue& emissions,
                  EntryRange found,
                  const ShadowQueue& shadows,
-                 std::span<const float> transmittance,
+                 std::span<const Color> transmittance,
                  EntryRange shadowed,
                  PathQueue& paths) {
     WT_DCHECK_LE(found.end, emissions.capacity);

@@ -127,9 +127,12 @@ struct Chunk {
 };
 
 // Whether the lanes resolve the chunk's medium segments and lane vertices: a strategy whose
-// continuation there is the lane step (not the one-sample light/mixture choice).
+// continuation there is the lane step (not the one-sample light/mixture choice), in grey media
+// (chromatic ones weight their flights: resolve_segment's chromatic_flight).
 bool resolves_in_lanes(const WaveInputs& in) {
     const Strategy s = in.estimator.strategy;
+    for (const Medium& m : in.scene.media)
+        if (m.chromatic()) return false;
     return (s != Strategy::Light && s != Strategy::Mixture) || in.lights.empty();
 }
 
@@ -215,12 +218,14 @@ void append_light_sample(size_t path,
                          MaterialId material,
                          Color beta,
                          const VertexSamples& u,
+                         PackedMedia media,
+                         MediumId interior,
                          ShadeOutputs& out) {
     WT_DCHECK_LT(out.light_sample_end, out.light_samples.capacity);
     store_queued_vertex(out.light_samples, out.light_sample_end++,
                         {static_cast<uint32_t>(path), p, ng, ns, wo, bsdf.albedo, bsdf.alpha,
                          bsdf.metallic, bsdf.kind, material, beta, u.light_select, u.light_u,
-                         u.light_v});
+                         u.light_v, media, interior});
 }
 
 // Route Cross: the ray goes on past the boundary, with the optical depth left after the segment.
@@ -319,6 +324,7 @@ void resolve_in_scalar(const WaveInputs& in, const HitQueue& hits, Chunk& c, Sha
         const PreviousVertex prev = previous_vertex(out.paths, i);
         const SegmentResult seg = resolve_segment(in.scene, in.lights, cfg, ray_at(out.rays, i),
                                                   hit_at(hits, i), media, flight, prev);
+        out.paths.beta[i] = out.paths.beta[i] * seg.weight;
         if (seg.event == SegmentEvent::Cross) {
             cross(i, media, flight, seg.next, out);
             continue;
@@ -339,7 +345,8 @@ void resolve_in_scalar(const WaveInputs& in, const HitQueue& hits, Chunk& c, Sha
         if (!may_continue(cfg, v, depth)) continue;
         const VertexSamples u = c.samples.at(row);
         if (samples_lights(cfg, v, in.lights))
-            append_light_sample(i, v.p, v.ng, v.frame.n, seg.wo, v.bsdf, v.material, beta, u, out);
+            append_light_sample(i, v.p, v.ng, v.frame.n, seg.wo, v.bsdf, v.material, beta, u,
+                                PackedMedia::pack(media), v.interior, out);
         if (takes_lane_step(cfg, v, in.lights)) {
             const size_t k = c.block.push(i, v, seg.wo, beta);
             c.block.set_step(k, u.continuation, u.roulette, depth + 1 >= cfg.rr_depth,
@@ -427,6 +434,8 @@ void queue_lane_light_samples(size_t first, size_t last, const Chunk& c, ShadeOu
     for (size_t k = first; k < last; ++k) {
         const size_t j = at + (k - first);
         q.path[j] = b.entry[k];
+        q.media[j] = out.paths.media[b.entry[k]];  // lane vertices never transmit
+        q.interior[j] = kNone;
         q.kind[j] = material_kind(LaneLobe(b.lobe[k]));
         q.material[j] = kNone;
         const VertexSamples u = c.samples.at(b.entry[k] - c.begin);
@@ -463,7 +472,7 @@ void trace_media(const WaveInputs& in,
         const MediumId m = paths.media[i].current();
         s.t[k] = hits.prim[i].valid() ? hits.t[i] : kInfinity;
         s.medium[k] = m != kNone ? 1.0f : 0.0f;
-        s.density[k] = m != kNone ? in.scene.media[m].density : 0.0f;
+        s.density[k] = m != kNone ? in.scene.media[m].sigma_t.x : 0.0f;  // grey (resolves_in_lanes)
         s.flight[k] = paths.flight[i];
     }
     medium_segments(s, c.end - c.begin);

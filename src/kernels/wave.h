@@ -47,7 +47,7 @@ struct WaveQueues {
     LightSampleQueue light_samples;
     ShadowQueue shadows;
     EmissionQueue emissions;
-    std::vector<float> transmittance;  // per shadow entry, from intersect_shadow
+    std::vector<Color> transmittance;  // per shadow entry, from intersect_shadow
     std::vector<uint8_t> keep;         // per entry: 1 if the path goes on after shading
     std::vector<uint8_t> key;          // per entry: sort_by_material's scratch
 
@@ -56,7 +56,7 @@ struct WaveQueues {
     static constexpr size_t bytes_per_path() {
         return PathQueue::kBytesPerEntry + RayQueue::kBytesPerEntry + HitQueue::kBytesPerEntry +
                LightSampleQueue::kBytesPerEntry + ShadowQueue::kBytesPerEntry +
-               EmissionQueue::kBytesPerEntry + sizeof(float) + 2 * sizeof(uint8_t);
+               EmissionQueue::kBytesPerEntry + sizeof(Color) + 2 * sizeof(uint8_t);
     }
 };
 

@@ -713,10 +713,13 @@ class Loader {
             if (scene_.media.size() >= kMaxMedia)
                 all.required(name).fail("more than " + std::to_string(kMaxMedia) + " media");
             Object o(all.required(name));
-            float density = o.required("density").positive();
+            // One extinction for all channels, or one per channel (none negative, one > 0).
+            const Value d = o.required("density");
+            const Color sigma_t = d.is_number() ? Color(d.positive()) : d.color();
+            if (!(max_component(sigma_t) > 0.0f)) d.fail("a medium's density must be > 0 in some channel");
             TextureId albedo = read_texture(o.required("albedo"), Range::Reflectance);
             o.finish();
-            media_[name] = scene_.add_medium(name, density, albedo);
+            media_[name] = scene_.add_medium(name, sigma_t, albedo);
         }
         all.finish();
     }

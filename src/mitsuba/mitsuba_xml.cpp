@@ -1091,18 +1091,12 @@ class Translator {
             const double scale = p.number("scale", 1.0);
             const Element* st = p.get("sigma_t");
             json sigma_t = st ? color(*st, false, false) : json(1.0);
-            double density = 0;
+            json density;  // sigma_t x scale, per channel where it has channels
             if (sigma_t.is_array()) {
-                const double lo = std::min({sigma_t[0].get<double>(), sigma_t[1].get<double>(),
-                                            sigma_t[2].get<double>()});
-                const double hi = std::max({sigma_t[0].get<double>(), sigma_t[1].get<double>(),
-                                            sigma_t[2].get<double>()});
-                density = (sigma_t[0].get<double>() + sigma_t[1].get<double>() +
-                           sigma_t[2].get<double>()) / 3;
-                if (hi > lo * (1 + 1e-6))
-                    warn(*st, "homogeneous: sigma_t differs per channel; their mean is used");
+                density = json::array();
+                for (int c = 0; c < 3; ++c) density.push_back(sigma_t[c].get<double>() * scale);
             } else if (sigma_t.is_number()) {
-                density = sigma_t.get<double>();
+                density = sigma_t.get<double>() * scale;
             } else {
                 fail(*st, "homogeneous: sigma_t must be a number or an rgb");
             }
@@ -1112,7 +1106,7 @@ class Translator {
                                      "\": wavetrace's media scatter isotropically");
             std::string name = "medium at " + fs::path(e.place).filename().string();
             while (media_.contains(name)) name += "'";
-            media_[name] = {{"density", density * scale},
+            media_[name] = {{"density", density},
                             {"albedo", color_property(p, "albedo", 0.75, true)}};
             p.finish({"sample_emitters", "has_spectral_extinction"});
             it = media_names_.emplace(&e, name).first;

@@ -1227,10 +1227,11 @@ class Translator {
         const Color ss = rgb("sigma_s", Color(2.55f, 3.21f, 3.77f));
         const double scale = p.number("scale", 1);
         const Color st = sa + ss;
-        const double density = (st.x + st.y + st.z) / 3 * scale;
-        if (!(density > 0)) fail(place, "medium \"" + name + "\": its extinction is zero");
-        if (std::max({st.x, st.y, st.z}) > std::min({st.x, st.y, st.z}) * (1 + 1e-6))
-            warn(place, "medium \"" + name + "\": the extinction differs per channel; the mean is used");
+        if (!(std::max({st.x, st.y, st.z}) * scale > 0))
+            fail(place, "medium \"" + name + "\": its extinction is zero");
+        const json density = st.x == st.y && st.y == st.z
+                                 ? json(st.x * scale)
+                                 : json::array({st.x * scale, st.y * scale, st.z * scale});
         if (p.number("g", 0) != 0) warn(place, "medium: g is not supported; scattering is isotropic");
         if (p.get("Le")) warn(place, "medium: emission (Le) is not supported; ignored");
         auto ratio = [](float s, float t) { return t > 0 ? std::min(s / t, 1.0f) : 0.0f; };

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 
+#include "queues/packed_media.h"
 #include "queues/soa.h"
 #include "wavetrace/math/vec3.h"
 #include "wavetrace/scene/material.h"
@@ -29,7 +30,9 @@ namespace wavetrace {
     WAVETRACE_XYZ_FIELD(F, beta, "path throughput arriving at the vertex")              \
     F(float, u_select, "uniform number that picks the light")                           \
     F(float, u1, "uniform numbers of the point on the light")                           \
-    F(float, u2, "")
+    F(float, u2, "")                                                                    \
+    F(PackedMedia, media, "the path's media at the vertex, on wo's side")               \
+    F(MediumId, interior, "the surface's interior medium (shadow_media)")
 
 WAVETRACE_SOA(LightSampleQueue, WAVETRACE_LIGHT_SAMPLE_FIELDS);
 
@@ -46,13 +49,15 @@ struct QueuedVertex {
     MaterialId material;
     Color beta;
     float u_select, u1, u2;
+    PackedMedia media;
+    MediumId interior;
 };
 
 inline void store_queued_vertex(LightSampleQueue& q, size_t i, const QueuedVertex& v) {
     q.store(i, {v.path,     v.p.x,      v.p.y,   v.p.z,  v.ng.x,     v.ng.y,   v.ng.z,
                 v.ns.x,     v.ns.y,     v.ns.z,  v.wo.x, v.wo.y,     v.wo.z,   v.albedo.x,
                 v.albedo.y, v.albedo.z, v.alpha, v.metallic, v.kind, v.material, v.beta.x,
-                v.beta.y,   v.beta.z,   v.u_select, v.u1, v.u2});
+                v.beta.y,   v.beta.z,   v.u_select, v.u1, v.u2, v.media, v.interior});
 }
 
 }  // namespace wavetrace

@@ -5,7 +5,7 @@
 
 #include <cstdint>
 
-#include "shading/medium_stack.h"
+#include "media/medium_stack.h"
 #include "wavetrace/scene/scene.h"
 
 namespace wavetrace {

@@ -3,15 +3,16 @@
 
 #include <cstdint>
 
+#include "queues/packed_media.h"
 #include "queues/soa.h"
 #include "wavetrace/math/ray.h"
 #include "wavetrace/math/vec3.h"
 
 namespace wavetrace {
 
-// Shadow rays start at t = 0; their media are those of their path (a vertex that samples
-// lights never transmits, so the continuation leaves the path's media as they were). The
-// vectors are rows, which light_sample's SIMD kernel writes a vector at a time.
+// Shadow rays start at t = 0, in their own media (shadow_media: a rough dielectric's light
+// sample may leave through the other side of the surface, whichever side its path goes on
+// to). The vectors are rows, which light_sample's SIMD kernel writes a vector at a time.
 #define WAVETRACE_SHADOW_FIELDS(F)                                                            \
     WAVETRACE_XYZ_FIELD(F, origin, "shadow ray origin, offset off the surface")               \
     WAVETRACE_XYZ_FIELD(F, dir, "unit direction to the light sample")                         \
@@ -19,7 +20,8 @@ namespace wavetrace {
     WAVETRACE_XYZ_FIELD(F, contribution, "beta f |cos| Le / p_light: unweighted, unoccluded") \
     F(float, pdf_light, "density of the light sample's direction")                            \
     F(float, pdf_bsdf, "density with which the BSDF would have sampled it")                   \
-    F(uint32_t, path, "entry of the path (and ray) queue it belongs to")
+    F(uint32_t, path, "entry of the path (and ray) queue it belongs to")                      \
+    F(PackedMedia, media, "the media the ray starts in")
 
 WAVETRACE_SOA(ShadowQueue, WAVETRACE_SHADOW_FIELDS);
 
@@ -35,12 +37,13 @@ struct ShadowRay {
     Color contribution;
     float pdf_light, pdf_bsdf;
     uint32_t path;
+    PackedMedia media;
 };
 
 inline void store_shadow_ray(ShadowQueue& q, size_t i, const ShadowRay& r) {
     q.store(
         i, {r.origin.x, r.origin.y, r.origin.z, r.dir.x, r.dir.y, r.dir.z, r.tmax, r.contribution.x,
-            r.contribution.y, r.contribution.z, r.pdf_light, r.pdf_bsdf, r.path});
+            r.contribution.y, r.contribution.z, r.pdf_light, r.pdf_bsdf, r.path, r.media});
 }
 
 }  // namespace wavetrace

@@ -74,14 +74,14 @@ MaterialId Scene::add_material(Material material) {
     return static_cast<MaterialId>(materials.size() - 1);
 }
 
-MediumId Scene::add_medium(std::string medium_name, float density, TextureId albedo) {
+MediumId Scene::add_medium(std::string medium_name, Color sigma_t, TextureId albedo) {
     if (media.size() >= kMaxMedia)
         throw std::length_error("a scene holds at most " + std::to_string(kMaxMedia) + " media");
     Material phase;
     phase.name = medium_name + ".phase";
     phase.kind = MaterialKind::Isotropic;
     phase.albedo = albedo;
-    media.push_back({std::move(medium_name), density, add_material(std::move(phase))});
+    media.push_back({std::move(medium_name), sigma_t, add_material(std::move(phase))});
     return static_cast<MediumId>(media.size() - 1);
 }
 

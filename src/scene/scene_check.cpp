@@ -72,8 +72,9 @@ void check_scene(const Scene& scene) {
         const Medium& m = scene.media[i];
         if (m.phase >= materials || scene.materials[m.phase].kind != MaterialKind::Isotropic)
             fail("medium", i, "its phase must be an isotropic material of the scene");
-        if (!(m.density >= 0) || !std::isfinite(m.density))
-            fail("medium", i, "density must be a non-negative number");
+        for (int c = 0; c < 3; ++c)
+            if (!(m.sigma_t[c] >= 0) || !std::isfinite(m.sigma_t[c]))
+                fail("medium", i, "sigma_t must be non-negative numbers");
     }
     auto check_refs = [&](const char* what, size_t i, MaterialId material, MediumId interior) {
         if (material >= materials) fail(what, i, "names no material of the scene");

@@ -13,7 +13,7 @@
 #include "bsdfs/geometric_side-inl.h"
 #include "shading/lane_routes.h"
 #include "shading/light_sample-inl.h"
-#include "shading/medium_flight-inl.h"
+#include "media/medium_flight-inl.h"
 #include "shading/mis-inl.h"
 #include "shading/normal_maps.h"
 #include "shading/sphere_light-inl.h"
@@ -197,6 +197,9 @@ Continuation sample_continuation(Strategy strategy,
     if (!(pdf > 0.0f) || max_component(f) <= 0.0f) return c;
     c.weight = f / pdf;
     c.pdf_bsdf = pdf_b;
+    // Whichever technique chose it, a direction through the surface is a transmission: the
+    // path changes media (a light sampled from inside rough glass).
+    c.transmitted = v.on_surface() && dot(wo, v.ng) * dot(c.wi, v.ng) < 0.0f;
     c.valid = true;
     return c;
 }
@@ -293,10 +296,32 @@ bool scatters_in_medium(const Scene& scene,
                         const Hit& hit,
                         float dir_length,
                         float& flight,
-                        float* s) {
+                        float* s,
+                        Color* weight) {
+    *weight = Color(1.0f);
     if (m == kNone) return false;
     const float seg = hit.found() ? (hit.t - ray.tmin) * dir_length : kInfinity;
-    return lanes::ScattersInMedium<OneLane>(seg, scene.media[m].density, &flight, s);
+    const Medium& medium = scene.media[m];
+    if (medium.chromatic()) {
+        const ChromaticFlight f = chromatic_flight(medium.sigma_t, seg, flight);
+        *s = f.dist;
+        *weight = f.weight;
+        return f.scatters;
+    }
+    return lanes::ScattersInMedium<OneLane>(seg, medium.sigma_t.x, &flight, s);
+}
+
+
+MediumStack shadow_media(const Scene& scene,
+                         MediumStack media,
+                         MediumId interior,
+                         Normal3 ng,
+                         Vec3 wo,
+                         Vec3 wi) {
+    const float side_o = dot(wo, ng), side_i = dot(wi, ng);
+    if ((side_o < 0.0f && side_i > 0.0f) || (side_o > 0.0f && side_i < 0.0f))
+        media.cross(interior, side_i < 0.0f, scene.medium_boundaries);
+    return media;
 }
 
 float sheet_transmittance(const Scene& scene, const SurfaceHit& s, Vec3 dir) {
@@ -322,7 +347,7 @@ SegmentResult resolve_segment(const Scene& scene,
     const float dir_length = length(ray.d);
     const Vec3 dir = ray.d / dir_length;
     const MediumId m = media.current();
-    if (float s; scatters_in_medium(scene, m, ray, hit, dir_length, flight, &s)) {
+    if (float s; scatters_in_medium(scene, m, ray, hit, dir_length, flight, &s, &r.weight)) {
         r.event = SegmentEvent::Scatter;
         r.vertex = medium_vertex(scene, m, scattering_point(ray, s, dir_length));
         r.wo = -dir;
@@ -465,8 +490,5 @@ float segment_flight(
         lanes::SampleDim<OneLane>(state, bounce_dim(bounce, kDimMediumDistance)));
 }
 
-float sample_free_flight(float density, float u) {
-    return lanes::OpticalDepth<OneLane>(u) / density;
-}
 
 }  // namespace wavetrace

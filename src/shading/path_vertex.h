@@ -9,7 +9,8 @@
 #include "bsdfs/bsdf.h"
 #include "sampling/sampler.h"
 #include "shading/lights.h"
-#include "shading/medium_stack.h"
+#include "media/free_flight.h"
+#include "media/medium_stack.h"
 #include "shading/mis.h"
 #include "wavetrace/accel/bvh.h"
 #include "wavetrace/math/frame.h"
@@ -180,19 +181,37 @@ struct SegmentResult {
     // MIS weight needs it (emission_weight; else 0).
     float emission_pdf_light = 0.0f;
     Ray next;  // Cross: the continuing ray
+    // The free flight's weight over this segment, which multiplies all the path finds from
+    // here on (the emission above included): 1 but in chromatic media (chromatic_flight).
+    Color weight{1.0f};
 };
 
 // The medium part of a segment in medium m (kNone: none) towards its closest hit, for a ray of
 // direction length dir_length: true when the path scatters in the medium first, at world
 // distance *s from the origin; else the optical depth the segment crosses is spent from
-// `flight` (the rest carries over past the boundary: free flights are memoryless).
+// `flight` (the rest carries over past the boundary: free flights are memoryless). *weight is
+// the flight's weight for the path throughput: 1 in grey media, whose sampling density is
+// the transmittance's own; chromatic_flight's in chromatic media.
 bool scatters_in_medium(const Scene& scene,
                         MediumId m,
                         const Ray& ray,
                         const Hit& hit,
                         float dir_length,
                         float& flight,
-                        float* s);
+                        float* s,
+                        Color* weight);
+
+
+// The media a light sample's shadow ray from vertex v (direction wi) starts in, the path
+// having arrived along wo in `media`: those across v's surface where wi leaves through its
+// other side (a rough dielectric's transmission; crossing as continue_path crosses), else the
+// path's. In a medium (ng zero) the path's.
+MediumStack shadow_media(const Scene& scene,
+                         MediumStack media,
+                         MediumId interior,
+                         Normal3 ng,
+                         Vec3 wo,
+                         Vec3 wi);
 
 // The fraction of light a thin sheet lets straight through at s along unit direction dir:
 // 1 - R' (thin_dielectric.h) at the vertex's shading normal, the probability with which a
@@ -320,10 +339,5 @@ float segment_flight(
 Ray generate_camera_ray(
     const CameraRays& camera, const Sampler& sampler, uint32_t pixel, uint32_t sample, int x, int y);
 
-
-// --- media ----------------------------------------------------------------------------------
-// Free-flight distance (world units) in a homogeneous medium of extinction `density`,
-// sampled proportional to density * exp(-density * s): -ln(1 - u) / density.
-float sample_free_flight(float density, float u);
 
 }  // namespace wavetrace

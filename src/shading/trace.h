@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cmath>
+#include <optional>
 
 #include "accel/intersector.h"
 #include "shading/path_vertex.h"
@@ -10,15 +11,6 @@
 #include "wavetrace/shading/surface.h"
 
 namespace wavetrace {
-
-// Beer-Lambert transmittance exp(-density * length) through one homogeneous medium. An
-// unbounded segment (length infinity) in a medium that extinguishes anything absorbs
-// everything; one of density 0 lets everything through (exp(-0 * inf) would be NaN), as the
-// free-flight sampling does, which never scatters there.
-inline float medium_transmittance(float density, float length) {
-    if (!(density > 0.0f)) return 1.0f;
-    return std::isinf(length) ? 0.0f : std::exp(-density * length);
-}
 
 // Whether a shadow ray passes surfaces of material m: medium boundaries, and thin sheets, which
 // let 1 - R' through (sheet_transmittance). Passing a sheet is a null event for paths
@@ -40,40 +32,43 @@ inline bool shadows_walk(const Scene& scene) {
 }
 
 // transmittance (below) once an occlusion test has said what it stopped at (`any`, none if
-// nothing): 0 for a surface, that of the one medium crossed for nothing at all, or -1 for a
+// nothing): 0 for a surface, that of the one medium crossed for nothing at all, or none for a
 // surface it passes, where only the closest-hit walk can tell.
-inline float transmittance_after_any_hit(const Scene& scene,
-                                         const Ray& ray,
-                                         const MediumStack& media,
-                                         const Hit& any) {
-    if (any.found()) return shadows_pass(scene, scene.prim_material(any.prim)) ? -1.0f : 0.0f;
+inline std::optional<Color> transmittance_after_any_hit(const Scene& scene,
+                                                        const Ray& ray,
+                                                        const MediumStack& media,
+                                                        const Hit& any) {
+    if (any.found()) {
+        if (shadows_pass(scene, scene.prim_material(any.prim))) return std::nullopt;
+        return Color(0.0f);
+    }
     const MediumId m = media.current();
-    if (m == kNone) return 1.0f;
-    return medium_transmittance(scene.media[m].density, (ray.tmax - ray.tmin) * length(ray.d));
+    if (m == kNone) return Color(1.0f);
+    return medium_transmittance(scene.media[m].sigma_t, (ray.tmax - ray.tmin) * length(ray.d));
 }
 
 // transmittance (below) by walking from closest hit to closest hit, stepping over the surfaces
 // it passes.
 template <Intersector Tracer>
-float transmittance_walk(
+Color transmittance_walk(
     const Scene& scene, const Tracer& bvh, Ray ray, MediumStack media, uint64_t* rays) {
-    float tr = 1.0f;
+    Color tr(1.0f);
     for (int crossing = 0; crossing < kMaxBoundaryCrossings; ++crossing) {
         ++*rays;
         Hit hit = bvh.intersect(ray);
         float end = hit.found() ? hit.t : ray.tmax;
         MediumId m = media.current();
         if (m != kNone)
-            tr *= medium_transmittance(scene.media[m].density, (end - ray.tmin) * length(ray.d));
-        if (tr == 0.0f) return 0.0f;
+            tr = tr * medium_transmittance(scene.media[m].sigma_t, (end - ray.tmin) * length(ray.d));
+        if (max_component(tr) == 0.0f) return Color(0.0f);
         if (!hit.found()) return tr;
         // A surface blocks it; only one it passes needs the point, to step over it.
         const MaterialId material = scene.prim_material(hit.prim);
-        if (!shadows_pass(scene, material)) return 0.0f;
+        if (!shadows_pass(scene, material)) return Color(0.0f);
         SurfaceHit s = surface_at(scene, ray, hit);
         if (scene.materials[material].kind == MaterialKind::ThinDielectric) {
-            tr *= sheet_transmittance(scene, s, normalize(ray.d));
-            if (tr == 0.0f) return 0.0f;
+            tr = tr * sheet_transmittance(scene, s, normalize(ray.d));
+            if (max_component(tr) == 0.0f) return Color(0.0f);
         }
         // Into or out of its interior, as a path passing it goes (continue_path, cross_boundary).
         media.cross(s.interior, s.front_face, scene.medium_boundaries);
@@ -83,15 +78,15 @@ float transmittance_walk(
         ray.tmax = std::isinf(ray.tmax) ? ray.tmax : ray.tmax - hit.t;
         ray.tmin = 0.0f;
     }
-    return 0.0f;
+    return Color(0.0f);
 }
 
-// Fraction of light that gets through along a shadow ray: 0 if a surface blocks it, else the
-// product of exp(-density * length) over the media it crosses and of 1 - R' over the thin
+// Fraction of light that gets through along a shadow ray, per channel: 0 if a surface blocks
+// it, else the product of exp(-sigma_t * length) over the media it crosses and of 1 - R' over the thin
 // sheets it passes (boundaries without a surface let it through). `media` is the stack at the
 // ray's origin; `walks`, shadows_walk(scene). Counts the rays it traces.
 template <Intersector Tracer>
-float transmittance(const Scene& scene,
+Color transmittance(const Scene& scene,
                     const Tracer& bvh,
                     Ray ray,
                     MediumStack media,
@@ -99,16 +94,16 @@ float transmittance(const Scene& scene,
                     uint64_t* rays) {
     if (!walks) {
         ++*rays;
-        return bvh.occluded(ray) ? 0.0f : 1.0f;
+        return Color(bvh.occluded(ray) ? 0.0f : 1.0f);
     }
     // Most shadow rays are blocked by a surface or cross no boundary at all: an occlusion test
     // that says what it stopped at (where the intersector has one) settles both without the
     // closest-hit walk, which only a ray that meets a surface it passes first needs.
     if constexpr (AnyHitIntersector<Tracer>) {
         ++*rays;
-        if (const float tr = transmittance_after_any_hit(scene, ray, media, bvh.any_hit(ray));
-            tr >= 0.0f)
-            return tr;
+        if (const std::optional<Color> tr =
+                transmittance_after_any_hit(scene, ray, media, bvh.any_hit(ray)))
+            return *tr;
     }
     return transmittance_walk(scene, bvh, ray, media, rays);
 }

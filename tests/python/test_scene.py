@@ -148,3 +148,24 @@ def test_sphere_mappings_and_flipped_quads_are_fields():
     assert s.geometric_side_test
     s.geometric_side_test = False
     assert not s.geometric_side_test
+
+
+def test_a_medium_of_per_channel_density_renders_as_in_json(tmp_path):
+    path = tmp_path / "tinted.json"
+    path.write_text(json.dumps({
+        "camera": {"look_from": [0, 0, -4], "look_at": [0, 0, 0], "vfov": 40},
+        "background": [1, 1, 1],
+        "media": {"tinted": {"density": [0.3, 2.0, 0.6], "albedo": [0.8, 0.8, 0.8]}},
+        "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "interior": "tinted"}]}))
+    from_json = wt.load_scene(path)
+    s = wt.Scene()
+    s.camera = wt.Camera(look_from=(0, 0, -4), look_at=(0, 0, 0), up=(0, 1, 0), vfov=40)
+    s.background = wt.Background(radiance=(1, 1, 1))
+    m = s.add_medium("tinted", (0.3, 2.0, 0.6), s.add_solid((0.8, 0.8, 0.8)))
+    s.add_sphere(wt.Sphere(center=(0, 0, 0), radius=1, material=s.interface_material(),
+                           interior=m))
+    a = wt.render(s, width=16, height=16, spp=4)
+    assert np.array_equal(a, wt.render(from_json, width=16, height=16, spp=4))
+    # Through the sphere's middle green, the densest, is the darkest.
+    r, g, b = a[8, 8]
+    assert g < b < r

@@ -3,14 +3,16 @@
 #include <cstdint>
 #include <string>
 
+#include "wavetrace/math/vec3.h"
 #include "wavetrace/scene/ids.h"
 
 namespace wavetrace {
 
 // Homogeneous medium filling the inside of one or more closed convex boundary shapes
-// (constant_medium in Ray Tracing: The Next Week). Extinction coefficient sigma_t = density, the
-// same in every channel; scattering follows `phase` (an Isotropic material whose albedo is the
-// single-scattering albedo sigma_s / sigma_t).
+// (constant_medium in Ray Tracing: The Next Week, with an extinction per channel as Mitsuba 3's
+// and pbrt-v4's homogeneous media): extinction coefficients sigma_t per world unit; scattering
+// follows `phase` (an Isotropic material whose albedo is the single-scattering albedo
+// sigma_s / sigma_t).
 // How crossing a medium boundary changes the medium a path is in.
 enum class MediumBoundaries : uint8_t {
     // Boundaries nest: entering a shape puts the path in its interior medium, leaving it puts
@@ -25,8 +27,12 @@ enum class MediumBoundaries : uint8_t {
 
 struct Medium {
     std::string name;
-    float density = 0.0f;  // per world unit
+    Color sigma_t{0.0f};  // extinction per world unit, each channel >= 0
     MaterialId phase = kNone;
+
+    // Whether the channels' extinctions differ: free flights then pick a channel to sample
+    // (path_vertex.h) and carry a weight; grey media sample sigma_t exactly, with none.
+    bool chromatic() const { return sigma_t.x != sigma_t.y || sigma_t.y != sigma_t.z; }
 };
 
 }  // namespace wavetrace

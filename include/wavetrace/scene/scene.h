@@ -73,8 +73,12 @@ struct Scene {
     TextureId add_solid(Color color);
     ImageId add_image(ImageData image);
     MaterialId add_material(Material material);
-    // A medium of the given density whose phase function has the given albedo texture.
-    MediumId add_medium(std::string medium_name, float density, TextureId albedo);
+    // A medium of extinction sigma_t per world unit (one density for all channels, or one per
+    // channel) whose phase function has the given albedo texture.
+    MediumId add_medium(std::string medium_name, Color sigma_t, TextureId albedo);
+    MediumId add_medium(std::string medium_name, float density, TextureId albedo) {
+        return add_medium(std::move(medium_name), Color(density), albedo);
+    }
     // The pass-through material of medium boundaries (created on first use).
     MaterialId interface_material();
 

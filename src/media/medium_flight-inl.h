@@ -3,11 +3,11 @@
 // engines' resolve_segment) runs the one-lane instance; the wavefront's shade kernel runs it
 // over the segments of a chunk (kernels/lane_kernels.cpp). Per-target header, see
 // math/lanes-inl.h.
-#if defined(WAVETRACE_SHADING_MEDIUM_FLIGHT_INL_H_) == defined(HWY_TARGET_TOGGLE)
-#ifdef WAVETRACE_SHADING_MEDIUM_FLIGHT_INL_H_
-#undef WAVETRACE_SHADING_MEDIUM_FLIGHT_INL_H_
+#if defined(WAVETRACE_MEDIA_MEDIUM_FLIGHT_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef WAVETRACE_MEDIA_MEDIUM_FLIGHT_INL_H_
+#undef WAVETRACE_MEDIA_MEDIUM_FLIGHT_INL_H_
 #else
-#define WAVETRACE_SHADING_MEDIUM_FLIGHT_INL_H_
+#define WAVETRACE_MEDIA_MEDIUM_FLIGHT_INL_H_
 #endif
 
 #include "math/lanes-inl.h"
@@ -36,4 +36,4 @@ HWY_INLINE typename L::M ScattersInMedium(typename L::F seg,
 }  // namespace wavetrace
 HWY_AFTER_NAMESPACE();
 
-#endif  // WAVETRACE_SHADING_MEDIUM_FLIGHT_INL_H_
+#endif  // WAVETRACE_MEDIA_MEDIUM_FLIGHT_INL_H_
