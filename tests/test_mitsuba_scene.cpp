@@ -172,6 +172,35 @@ TEST(MitsubaScenes, ShapesTransformsAndMaterialsTranslate) {
 // +z, on a cylinder (phi / 2 pi, the fraction of its axis); then `to_uv`; then an image's texel in column u W
 // and row v H from the top, a checkerboard's color0 where u and v (mod 1) lie on the same side
 // of 0.5. The image's texel (i, j) holds i + 10 j; each point is a texel centre.
+// A bitmap's filter_type and wrap_mode become the texture's filter and wrap, without a
+// warning; a filter Mitsuba has and we do not is one.
+TEST(MitsubaScenes, BitmapFiltersAndWrapModesAreKept) {
+    TempDir dir;
+    write_image(dir.path() / "t.exr", ramp_image(4, 4));
+    auto bitmap = [](const char* filter, const char* wrap) {
+        return std::string(R"(<shape type="rectangle"><bsdf type="diffuse">
+      <texture name="reflectance" type="bitmap"><string name="filename" value="t.exr"/>
+      <string name="filter_type" value=")") + filter + R"("/><string name="wrap_mode" value=")" +
+               wrap + R"("/></texture></bsdf></shape>)";
+    };
+    auto path = dir.write("a.xml", scene("<sensor type=\"perspective\"/>" +
+                                         bitmap("nearest", "mirror") + bitmap("bilinear", "clamp") +
+                                         bitmap("bilinear", "repeat")));
+    Scene s = load_scene(path, collecting());
+    for (const std::string& w : warnings) ADD_FAILURE() << w;
+    std::vector<std::pair<TextureFilter, TextureWrap>> images;
+    for (const Texture& t : s.textures)
+        if (t.kind == TextureKind::Image) images.emplace_back(t.filter, t.wrap);
+    const std::vector<std::pair<TextureFilter, TextureWrap>> expected = {
+        {TextureFilter::Nearest, TextureWrap::Mirror},
+        {TextureFilter::Bilinear, TextureWrap::Clamp},
+        {TextureFilter::Bilinear, TextureWrap::Repeat}};
+    EXPECT_EQ(images, expected);
+    path = dir.write("b.xml", scene(bitmap("lanczos", "repeat")));
+    load_scene(path, collecting());
+    EXPECT_TRUE(warned("filter_type \"lanczos\" is not supported; bilinear is used"));
+}
+
 TEST(MitsubaScenes, TexturesSitWhereMitsubaPutsThem) {
     TempDir dir;
     const Image img = ramp_image(4, 4);

@@ -320,6 +320,34 @@ TEST(PbrtScenes, InfiniteLightImagesAreEqualAreaMapsInTheLightsFrame) {
     EXPECT_NE(e.find("wide.exr' is 8 x 4"), std::string::npos) << e;
 }
 
+// An imagemap's filter "point" is the nearest texel and its wrap "clamp" ours; pbrt-v4's
+// mip-mapped filters are bilinear here, with a warning.
+TEST(PbrtScenes, ImagemapFiltersAndWrapsAreKept) {
+    TempDir dir;
+    write_image(dir.path() / "t.exr", ramp_image(4, 4));
+    auto path = dir.write("a.pbrt", R"(Camera "perspective"
+WorldBegin
+Texture "a" "spectrum" "imagemap" "string filename" "t.exr" "string filter" "point"
+  "string wrap" "clamp"
+Texture "b" "spectrum" "imagemap" "string filename" "t.exr" "string filter" "ewa"
+Material "diffuse" "texture reflectance" "a"
+Shape "sphere"
+Material "diffuse" "texture reflectance" "b"
+Shape "sphere"
+)");
+    Scene s = load_scene(path, collecting());
+    std::vector<std::pair<TextureFilter, TextureWrap>> images;
+    for (const Texture& t : s.textures)
+        if (t.kind == TextureKind::Image) images.emplace_back(t.filter, t.wrap);
+    const std::vector<std::pair<TextureFilter, TextureWrap>> expected = {
+        {TextureFilter::Nearest, TextureWrap::Clamp}, {TextureFilter::Bilinear, TextureWrap::Repeat}};
+    EXPECT_EQ(images, expected);
+    ASSERT_EQ(warnings.size(), 1u);
+    EXPECT_NE(warnings[0].find("filter \"ewa\" is not supported; bilinear is used"),
+              std::string::npos)
+        << warnings[0];
+}
+
 // A sphere's texture coordinates are pbrt-v4's, in the frame of its CTM: u = phi / 2 pi about
 // its +z from +x, v = 1 - theta / pi; pbrt-v4's image textures read row (1 - v) H from the top.
 // Here `Rotate 90 1 0 0` turns its +z to world -y; texel (i, j) holds i + 10 j.

@@ -9,6 +9,7 @@
 #include "temp_dir.h"
 #include "test_paths.h"
 #include "wavetrace/accel/bvh.h"
+#include "wavetrace/image/image.h"
 #include "wavetrace/loaders/load_scene.h"
 #include "wavetrace/scene/scene.h"
 #include "wavetrace/shading/surface.h"
@@ -295,6 +296,10 @@ TEST(SceneLoader, NegativeAndZeroSizesAreRejected) {
         R"(, "materials": {"m": {"type": "lambertian", "albedo": [1, -1, 1]}}, "objects": []})";
     EXPECT_EQ(load_error(dir, bad_albedo),
               ": /materials/m/albedo/1: expected a non-negative number, got -1");
+    write_image(dir.path() / "t.exr", Image(2, 2));
+    EXPECT_EQ(load_error(dir, std::string("{") + kCamera + R"(, "materials": {"m": {"type":
+ "lambertian", "albedo": {"type": "image", "file": "t.exr", "wrap": "tile"}}}, "objects": []})"),
+              ": /materials/m/albedo/wrap: expected \"repeat\", \"mirror\" or \"clamp\", got \"tile\"");
 }
 
 // Disks and cylinders: tessellated where and as they are asked for, and read strictly.

@@ -94,13 +94,48 @@ TEST(Texture, ImageIsBilinearAndWraps) {
     img.width = 2;
     img.height = 1;
     img.texels = {Color(0.0f), Color(1.0f)};
+    auto at = [&](float u) {
+        return img.lookup(u, 0.5f, TextureFilter::Bilinear, TextureWrap::Repeat).x;
+    };
     // Texel centres at u = 0.25 and 0.75; halfway between them is the mean.
-    EXPECT_FLOAT_EQ(img.bilinear(0.25f, 0.5f).x, 0.0f);
-    EXPECT_FLOAT_EQ(img.bilinear(0.75f, 0.5f).x, 1.0f);
-    EXPECT_FLOAT_EQ(img.bilinear(0.5f, 0.5f).x, 0.5f);
+    EXPECT_FLOAT_EQ(at(0.25f), 0.0f);
+    EXPECT_FLOAT_EQ(at(0.75f), 1.0f);
+    EXPECT_FLOAT_EQ(at(0.5f), 0.5f);
     // u = 0 lies halfway between the last and the first texel (wrapping).
-    EXPECT_FLOAT_EQ(img.bilinear(0.0f, 0.5f).x, 0.5f);
-    EXPECT_FLOAT_EQ(img.bilinear(1.25f, 0.5f).x, 0.0f);
+    EXPECT_FLOAT_EQ(at(0.0f), 0.5f);
+    EXPECT_FLOAT_EQ(at(1.25f), 0.0f);
+}
+
+// A row of four texels 0, 1, 2, 3 looked up in each filter and wrap mode, inside and outside
+// [0, 1], as Mitsuba's bitmap and pbrt-v4's imagemap define them: wraps act on texel indices.
+TEST(Texture, FiltersAndWrapModesActOnTexels) {
+    ImageData img;
+    img.width = 4;
+    img.height = 1;
+    img.texels = {Color(0.0f), Color(1.0f), Color(2.0f), Color(3.0f)};
+    auto at = [&](float u, TextureFilter f, TextureWrap w) { return img.lookup(u, 0.5f, f, w).x; };
+    using F = TextureFilter;
+    using W = TextureWrap;
+    // Nearest: the texel u falls in; outside, texel -1 is 3 (repeat), 0 (mirror, clamp).
+    EXPECT_EQ(at(0.3f, F::Nearest, W::Repeat), 1.0f);
+    EXPECT_EQ(at(-0.1f, F::Nearest, W::Repeat), 3.0f);
+    EXPECT_EQ(at(-0.1f, F::Nearest, W::Mirror), 0.0f);
+    EXPECT_EQ(at(-0.1f, F::Nearest, W::Clamp), 0.0f);
+    // Texels 4..7 past the right edge mirror to 3, 2, 1, 0; clamped, all are 3.
+    EXPECT_EQ(at(1.3f, F::Nearest, W::Mirror), 2.0f);
+    EXPECT_EQ(at(1.9f, F::Nearest, W::Mirror), 0.0f);
+    EXPECT_EQ(at(2.1f, F::Nearest, W::Mirror), 0.0f);  // the next period starts unmirrored
+    EXPECT_EQ(at(1.9f, F::Nearest, W::Clamp), 3.0f);
+    EXPECT_EQ(at(1e9f, F::Nearest, W::Clamp), 3.0f);
+    // Bilinear at the left edge, halfway between texel -1 and texel 0.
+    EXPECT_FLOAT_EQ(at(0.0f, F::Bilinear, W::Repeat), 1.5f);
+    EXPECT_FLOAT_EQ(at(0.0f, F::Bilinear, W::Mirror), 0.0f);
+    EXPECT_FLOAT_EQ(at(0.0f, F::Bilinear, W::Clamp), 0.0f);
+    // Past the right edge: between texels 4 and 5 (at u = 1.25): 2.5 mirrored, 3 clamped.
+    EXPECT_FLOAT_EQ(at(1.25f, F::Bilinear, W::Mirror), 2.5f);
+    EXPECT_FLOAT_EQ(at(1.25f, F::Bilinear, W::Clamp), 3.0f);
+    // Inside, away from the edges, every wrap agrees.
+    for (W w : {W::Repeat, W::Mirror, W::Clamp}) EXPECT_FLOAT_EQ(at(0.5f, F::Bilinear, w), 1.5f);
 }
 
 TEST(Texture, NoiseIsDeterministicBoundedAndVaries) {

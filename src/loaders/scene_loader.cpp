@@ -424,6 +424,19 @@ class Loader {
             t.image = scene_.add_image(read_image_at(o.required("file"), raw));
             if (auto x = o.optional("uv_transform")) read_uv_transform(*x, t);
             if (auto x = o.optional("factor")) t.factor = colour(*x);
+            if (auto x = o.optional("filter")) {
+                const std::string f = x->string();
+                if (f == "bilinear") t.filter = TextureFilter::Bilinear;
+                else if (f == "nearest") t.filter = TextureFilter::Nearest;
+                else x->fail("expected \"bilinear\" or \"nearest\", got \"" + f + "\"");
+            }
+            if (auto x = o.optional("wrap")) {
+                const std::string w = x->string();
+                if (w == "repeat") t.wrap = TextureWrap::Repeat;
+                else if (w == "mirror") t.wrap = TextureWrap::Mirror;
+                else if (w == "clamp") t.wrap = TextureWrap::Clamp;
+                else x->fail("expected \"repeat\", \"mirror\" or \"clamp\", got \"" + w + "\"");
+            }
         } else {
             type_value.fail("unknown texture type \"" + type +
                             "\" (expected solid, checker, uv_checker, noise or image)");

@@ -727,10 +727,15 @@ class Translator {
             t = {{"type", "image"}, {"file", file(e, f)}};
             if (p.boolean("raw", false)) t["raw"] = true;
             const std::string filter = p.string("filter_type", "bilinear");
-            if (filter != "bilinear")
-                warn(e, "bitmap: filter_type \"" + filter + "\": wavetrace filters bilinearly");
+            if (filter == "nearest")
+                t["filter"] = "nearest";
+            else if (filter != "bilinear")
+                warn(e, "bitmap: filter_type \"" + filter + "\" is not supported; bilinear is used");
             const std::string wrap = p.string("wrap_mode", "repeat");
-            if (wrap != "repeat") warn(e, "bitmap: wrap_mode \"" + wrap + "\": wavetrace repeats");
+            if (wrap == "mirror" || wrap == "clamp")
+                t["wrap"] = wrap;
+            else if (wrap != "repeat")
+                warn(e, "bitmap: wrap_mode \"" + wrap + "\" is not supported; repeat is used");
         } else if (type == "checkerboard") {
             const Element* c0 = p.get("color0");
             const Element* c1 = p.get("color1");

@@ -824,8 +824,16 @@ class Translator {
             if (scale != 1) t["factor"] = scale;
             if (p.boolean("invert", false)) warn(place, "Texture: invert is not supported; ignored");
             const std::string wrap = p.string("wrap", "repeat");
-            if (wrap != "repeat") warn(place, "Texture: wrap \"" + wrap + "\" is not supported; repeat is used");
-            p.finish(pwarn(), {"filter", "maxanisotropy"});
+            if (wrap == "clamp") t["wrap"] = "clamp";
+            else if (wrap != "repeat")
+                warn(place, "Texture: wrap \"" + wrap + "\" is not supported; repeat is used");
+            // pbrt-v4's filters: point (the texel), bilinear, and the mip-mapped trilinear and
+            // EWA, which at a texel's footprint or less are bilinear.
+            const std::string filter = p.string("filter", "bilinear");
+            if (filter == "point") t["filter"] = "nearest";
+            else if (filter != "bilinear")
+                warn(place, "Texture: filter \"" + filter + "\" is not supported; bilinear is used");
+            p.finish(pwarn(), {"maxanisotropy"});
         } else if (type == "checkerboard") {
             const int dimension = p.integer("dimension", 2, 2, 3);
             json even = texture_value(p, "tex1", 1.0, is_float);

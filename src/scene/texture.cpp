@@ -10,18 +10,49 @@
 
 namespace wavetrace {
 
-Color ImageData::bilinear(float u, float v, bool wrap_v) const {
-    // Texel centres sit at half-integer coordinates.
-    v = wrap_v ? v - std::floor(v) : std::clamp(v, 0.0f, 1.0f);
-    float x = (u - std::floor(u)) * static_cast<float>(width) - 0.5f;
-    float y =
-        std::clamp((1.0f - v) * static_cast<float>(height) - 0.5f, wrap_v ? -0.5f : 0.0f,
-                   wrap_v ? static_cast<float>(height) - 0.5f : static_cast<float>(height - 1));
-    float fx = std::floor(x), fy = std::floor(y);
-    float tx = x - fx, ty = y - fy;
-    auto wrap = [](int i, int n) { return ((i % n) + n) % n; };
-    int x0 = wrap(static_cast<int>(fx), width), x1 = wrap(static_cast<int>(fx) + 1, width);
-    int y0 = wrap(static_cast<int>(fy), height), y1 = wrap(static_cast<int>(fy) + 1, height);
+namespace {
+
+// Texel index i of a row or column of n, wrapped.
+int wrap_index(int64_t i, int n, TextureWrap wrap) {
+    switch (wrap) {
+        case TextureWrap::Clamp:
+            return static_cast<int>(std::clamp<int64_t>(i, 0, n - 1));
+        case TextureWrap::Mirror: {
+            const int64_t m = ((i % (2 * int64_t(n))) + 2 * int64_t(n)) % (2 * int64_t(n));
+            return static_cast<int>(m < n ? m : 2 * int64_t(n) - 1 - m);
+        }
+        case TextureWrap::Repeat:
+        default:
+            return static_cast<int>(((i % n) + n) % n);
+    }
+}
+
+}  // namespace
+
+Color ImageData::lookup(float u, float v, TextureFilter filter, TextureWrap wrap) const {
+    // Far outside the image only the wrap matters, and float coordinates there are too coarse
+    // to tell texels apart: kept within 2^24 texel widths, which int64 holds.
+    const float lim = 0x1p24f;
+    if (filter == TextureFilter::Nearest) {
+        const float x = std::clamp(u * float(width), -lim, lim);
+        const float y = std::clamp((1.0f - v) * float(height), -lim, lim);
+        return texel(wrap_index(int64_t(std::floor(x)), width, wrap),
+                     wrap_index(int64_t(std::floor(y)), height, wrap));
+    }
+    float x, y;
+    if (wrap == TextureWrap::Repeat) {  // into the first period first, as floats
+        v = v - std::floor(v);
+        x = (u - std::floor(u)) * static_cast<float>(width) - 0.5f;
+        y = std::clamp((1.0f - v) * static_cast<float>(height) - 0.5f, -0.5f,
+                       static_cast<float>(height) - 0.5f);
+    } else {
+        x = std::clamp(u * float(width) - 0.5f, -lim, lim);
+        y = std::clamp((1.0f - v) * float(height) - 0.5f, -lim, lim);
+    }
+    const float fx = std::floor(x), fy = std::floor(y);
+    const float tx = x - fx, ty = y - fy;
+    const int x0 = wrap_index(int64_t(fx), width, wrap), x1 = wrap_index(int64_t(fx) + 1, width, wrap);
+    const int y0 = wrap_index(int64_t(fy), height, wrap), y1 = wrap_index(int64_t(fy) + 1, height, wrap);
     return (1 - ty) * ((1 - tx) * texel(x0, y0) + tx * texel(x1, y0)) +
            ty * ((1 - tx) * texel(x0, y1) + tx * texel(x1, y1));
 }
@@ -145,7 +176,8 @@ Color eval_texture(const Scene& scene, TextureId id, Vec2 uv, Point3 p) {
                        (0.5f * (1.0f + std::sin(t.scale * p.z + 10.0f * perlin_turbulence(p))));
             case TextureKind::Image: {
                 const Vec2 st = t.map_uv(uv);
-                const Color c = t.factor * scene.images[t.image].bilinear(st.x, st.y);
+                const Color c =
+                    t.factor * scene.images[t.image].lookup(st.x, st.y, t.filter, t.wrap);
                 if (t.cutoff >= 0.0f) return Color(c.x >= t.cutoff ? 1.0f : 0.0f);
                 return c;
             }
