@@ -89,8 +89,9 @@ Color ray_color(PathContext<Tracer>& ctx,
                 radiance +=
                     flight_weight * d.value *
                     (w * transmittance(ctx.scene, ctx.bvh, d.shadow,
-                                       shadow_media(ctx.scene, media, v.interior, v.ng, seg.wo,
-                                                    d.shadow.d),
+                                       ctx.shadows_walk ? shadow_media(ctx.scene, media, v.interior,
+                                                                       v.ng, seg.wo, d.shadow.d)
+                                                        : media,
                                        ctx.shadows_walk, &ctx.rays));
         }
 

@@ -18,8 +18,10 @@ inline float medium_transmittance(float density, float length) {
     if (!(density > 0.0f)) return 1.0f;
     return std::isinf(length) ? 0.0f : std::exp(-density * length);
 }
-// Per channel, for extinctions sigma_t.
+// Per channel, for extinctions sigma_t (one exponential for a grey medium).
 inline Color medium_transmittance(Color sigma_t, float length) {
+    if (sigma_t.x == sigma_t.y && sigma_t.y == sigma_t.z)
+        return Color(medium_transmittance(sigma_t.x, length));
     return {medium_transmittance(sigma_t.x, length), medium_transmittance(sigma_t.y, length),
             medium_transmittance(sigma_t.z, length)};
 }

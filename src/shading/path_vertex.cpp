@@ -311,19 +311,6 @@ bool scatters_in_medium(const Scene& scene,
     return lanes::ScattersInMedium<OneLane>(seg, medium.sigma_t.x, &flight, s);
 }
 
-
-MediumStack shadow_media(const Scene& scene,
-                         MediumStack media,
-                         MediumId interior,
-                         Normal3 ng,
-                         Vec3 wo,
-                         Vec3 wi) {
-    const float side_o = dot(wo, ng), side_i = dot(wi, ng);
-    if ((side_o < 0.0f && side_i > 0.0f) || (side_o > 0.0f && side_i < 0.0f))
-        media.cross(interior, side_i < 0.0f, scene.medium_boundaries);
-    return media;
-}
-
 float sheet_transmittance(const Scene& scene, const SurfaceHit& s, Vec3 dir) {
     const Vertex v = surface_vertex(scene, s);
     const float cos_i = std::fabs(dot(dir, v.frame.n));
@@ -489,6 +476,5 @@ float segment_flight(
     return lanes::OpticalDepth<OneLane>(
         lanes::SampleDim<OneLane>(state, bounce_dim(bounce, kDimMediumDistance)));
 }
-
 
 }  // namespace wavetrace

@@ -7,16 +7,17 @@
 #include <cstdint>
 
 #include "bsdfs/bsdf.h"
-#include "sampling/sampler.h"
-#include "shading/lights.h"
 #include "media/free_flight.h"
 #include "media/medium_stack.h"
+#include "sampling/sampler.h"
+#include "shading/lights.h"
 #include "shading/mis.h"
 #include "wavetrace/accel/bvh.h"
 #include "wavetrace/math/frame.h"
 #include "wavetrace/math/ray.h"
 #include "wavetrace/scene/camera.h"
 #include "wavetrace/scene/material.h"
+#include "wavetrace/scene/scene.h"
 #include "wavetrace/shading/estimator.h"
 #include "wavetrace/shading/surface.h"
 
@@ -206,12 +207,17 @@ bool scatters_in_medium(const Scene& scene,
 // having arrived along wo in `media`: those across v's surface where wi leaves through its
 // other side (a rough dielectric's transmission; crossing as continue_path crosses), else the
 // path's. In a medium (ng zero) the path's.
-MediumStack shadow_media(const Scene& scene,
-                         MediumStack media,
-                         MediumId interior,
-                         Normal3 ng,
-                         Vec3 wo,
-                         Vec3 wi);
+inline MediumStack shadow_media(const Scene& scene,
+                                MediumStack media,
+                                MediumId interior,
+                                Normal3 ng,
+                                Vec3 wo,
+                                Vec3 wi) {
+    const float side_o = dot(wo, ng), side_i = dot(wi, ng);
+    if ((side_o < 0.0f && side_i > 0.0f) || (side_o > 0.0f && side_i < 0.0f))
+        media.cross(interior, side_i < 0.0f, scene.medium_boundaries);
+    return media;
+}
 
 // The fraction of light a thin sheet lets straight through at s along unit direction dir:
 // 1 - R' (thin_dielectric.h) at the vertex's shading normal, the probability with which a
