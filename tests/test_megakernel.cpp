@@ -410,6 +410,55 @@ TEST(Megakernel, SpotAndDirectionalLightsMatchTheirClosedForms) {
     }
 }
 
+// A spot projects its texture upright as seen from the light (Light::texture): straight above
+// the origin's neighbourhood, aimed down with `up` = +z (so right = -x), its 2 x 2 image lands
+// on the plane texel by texel. The light moved to (sx, 2, sz) with a 45-degree cutoff sees the
+// origin at (u, v) = (1/2 + sx / 4, 1/2 - sz / 4): the centre of the texel in column (sx + 1)
+// / 2, row (sz + 1) / 2 from the top. Both engines give the inverse-square closed form times
+// that texel.
+TEST(Megakernel, SpotsProjectTheirTextureUpright) {
+    const float rho = 0.6f, intensity = 9.0f;
+    auto texel = [](int col, int row) {
+        return Color(0.2f + 0.6f * col, 0.3f + 0.5f * row, 0.9f - 0.4f * col - 0.3f * row);
+    };
+    for (int sx : {-1, 1})
+        for (int sz : {-1, 1}) {
+            Scene s = plane_seen_at_origin(rho);
+            ImageData img;
+            img.width = img.height = 2;
+            for (int row = 0; row < 2; ++row)
+                for (int col = 0; col < 2; ++col) img.texels.push_back(texel(col, row));
+            Texture t;
+            t.kind = TextureKind::Image;
+            t.image = s.add_image(img);
+            Light spot;
+            spot.kind = Light::Kind::Spot;
+            spot.position = {float(sx), 2, float(sz)};
+            spot.direction = {0, -1, 0};
+            spot.up = {0, 0, 1};
+            spot.intensity = Color(intensity);
+            spot.cutoff_degrees = spot.falloff_start_degrees = 45;
+            spot.texture = s.add_texture(t);
+            s.lights.push_back(spot);
+            const Color tex = texel((sx + 1) / 2, (sz + 1) / 2);
+            const double d2 = 6, cos_surface = 2 / std::sqrt(6.0);
+            RenderRequest c;
+            c.width = c.height = 1;
+            c.spp = 16;
+            c.seed = 3;
+            c.estimator.max_depth = 2;
+            c.estimator.strategy = Strategy::Nee;
+            const Color mk = megakernel_film(s, Bvh::build(s), c).mean().at(0, 0);
+            const Color wf = wavefront_film(s, Bvh::build(s), c).mean().at(0, 0);
+            for (int ch = 0; ch < 3; ++ch) {
+                const double expected =
+                    rho / 3.14159265358979 * intensity * tex[ch] * cos_surface / d2;
+                EXPECT_NEAR(mk[ch], expected, 1e-3 * expected) << sx << " " << sz << " " << ch;
+                EXPECT_NEAR(wf[ch], expected, 1e-3 * expected) << sx << " " << sz << " " << ch;
+            }
+        }
+}
+
 // Next-event estimation passes thin sheets: a plane under a point light seen through a sheet
 // parallel to it gets the inverse-square closed form times the sheet's transmittance T' = 1 -
 // R' at the incidence of the light, R' = 2R / (1 + R) (the sheet's inner reflections summed),

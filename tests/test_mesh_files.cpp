@@ -244,6 +244,55 @@ TEST(MeshFiles, GltfMaterialsMapToMetallicRoughness) {
 
 // A .glb holds its JSON in its first chunk: the emissive strength is read from there, and a
 // container whose chunk overruns the file, or a negative strength, is refused with a reason.
+// A glTF texture's sampler: wrapS and wrapT each its own wrap, magFilter NEAREST the nearest
+// texel; a texture without a sampler repeats and is filtered bilinearly (glTF's default wrap).
+TEST(MeshFiles, GltfSamplersSetEachTexturesWrapAndFilter) {
+    TempDir dir;
+    Image base(2, 2);
+    for (int y = 0; y < 2; ++y)
+        for (int x = 0; x < 2; ++x) base.at(x, y) = Color(1.0f);
+    write_image(dir.path() / "base.png", base);
+    dir.write("one.gltf", R"({
+      "asset": {"version": "2.0"},
+      "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+      "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "material": 0}]}],
+      "materials": [{"name": "sampled",
+         "pbrMetallicRoughness": {"baseColorTexture": {"index": 0},
+                                  "metallicRoughnessTexture": {"index": 1}},
+         "emissiveTexture": {"index": 2}, "emissiveFactor": [1, 1, 1]}],
+      "samplers": [{"wrapS": 33071, "wrapT": 33648, "magFilter": 9728},
+                   {"wrapS": 33648, "wrapT": 10497, "magFilter": 9729}],
+      "textures": [{"source": 0, "sampler": 0}, {"source": 0, "sampler": 1}, {"source": 0}],
+      "images": [{"uri": "base.png"}],
+      "buffers": [{"byteLength": 60,
+        "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAAAAAAAAAAAAIA/AAAAAAAAAAAAAIA/"}],
+      "bufferViews": [{"buffer": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 24}],
+      "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                     "min": [0, 0, 0], "max": [1, 1, 0]},
+                    {"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC2"}]
+    })");
+    auto p = dir.write("s.json", R"({"camera": {"look_from": [0, 0, -5], "look_at": [0, 0, 0]},
+        "objects": [{"type": "mesh", "file": "one.gltf", "materials": "file"}]})");
+    Scene s = load_scene(p);
+    ASSERT_EQ(s.meshes.size(), 1u);
+    const Material& m = s.materials[s.meshes[0].material];
+    ASSERT_NE(m.albedo, kNone);
+    ASSERT_NE(m.metallic_roughness, kNone);
+    ASSERT_NE(m.emission, kNone);
+    const Texture& clamped = s.textures[m.albedo];
+    EXPECT_EQ(clamped.wrap_u, TextureWrap::Clamp);
+    EXPECT_EQ(clamped.wrap_v, TextureWrap::Mirror);
+    EXPECT_EQ(clamped.filter, TextureFilter::Nearest);
+    const Texture& mirrored = s.textures[m.metallic_roughness];
+    EXPECT_EQ(mirrored.wrap_u, TextureWrap::Mirror);
+    EXPECT_EQ(mirrored.wrap_v, TextureWrap::Repeat);
+    EXPECT_EQ(mirrored.filter, TextureFilter::Bilinear);
+    const Texture& plain = s.textures[m.emission];
+    EXPECT_EQ(plain.wrap_u, TextureWrap::Repeat);
+    EXPECT_EQ(plain.wrap_v, TextureWrap::Repeat);
+    EXPECT_EQ(plain.filter, TextureFilter::Bilinear);
+}
+
 TEST(MeshFiles, GlbEmissiveStrengthAndBrokenContainers) {
     TempDir dir;
     // The positions of one triangle, as the BIN chunk of a .glb or base64 in a .gltf.

@@ -190,7 +190,10 @@ TEST(MitsubaScenes, BitmapFiltersAndWrapModesAreKept) {
     for (const std::string& w : warnings) ADD_FAILURE() << w;
     std::vector<std::pair<TextureFilter, TextureWrap>> images;
     for (const Texture& t : s.textures)
-        if (t.kind == TextureKind::Image) images.emplace_back(t.filter, t.wrap);
+        if (t.kind == TextureKind::Image) {
+            images.emplace_back(t.filter, t.wrap_u);
+            EXPECT_EQ(t.wrap_v, t.wrap_u);
+        }
     const std::vector<std::pair<TextureFilter, TextureWrap>> expected = {
         {TextureFilter::Nearest, TextureWrap::Mirror},
         {TextureFilter::Bilinear, TextureWrap::Clamp},
@@ -322,6 +325,25 @@ TEST(MitsubaScenes, DisksAndCylindersBecomeMeshesFacingTheirWay) {
     EXPECT_EQ(s.materials[s.meshes[0].material].kind, MaterialKind::DiffuseLight);
 }
 
+// A spot's projected texture: Mitsuba's local +x is our right, its image rows run down from
+// local -y, so our up is -y in the world (here the lookat's up, +z, turned over).
+TEST(MitsubaScenes, SpotsKeepTheTextureTheyProject) {
+    TempDir dir;
+    write_image(dir.path() / "slide.exr", ramp_image(2, 2));
+    auto path = dir.write("a.xml", scene(R"(<sensor type="perspective"/>
+  <emitter type="spot"><transform name="to_world"><lookat origin="0,5,0" target="0,0,0" up="0,0,1"/></transform>
+    <texture name="texture" type="bitmap"><string name="filename" value="slide.exr"/></texture>
+    <rgb name="intensity" value="2"/></emitter>)"));
+    Scene s = load_scene(path, collecting());
+    EXPECT_TRUE(warnings.empty()) << warnings.front();
+    ASSERT_EQ(s.lights.size(), 1u);
+    const Light& l = s.lights[0];
+    ASSERT_NE(l.texture, kNone);
+    EXPECT_EQ(s.textures[l.texture].kind, TextureKind::Image);
+    EXPECT_NEAR(l.up.z, -1.0f, 1e-6f);
+    EXPECT_NEAR(l.direction.y, -1.0f, 1e-6f);
+}
+
 TEST(MitsubaScenes, EmittersBecomeLightsAndBackgrounds) {
     TempDir dir;
     auto path = dir.write("a.xml", scene(R"(
@@ -339,6 +361,7 @@ TEST(MitsubaScenes, EmittersBecomeLightsAndBackgrounds) {
     EXPECT_NEAR(s.lights[1].direction.y, -1.0f, 1e-6f);
     EXPECT_NEAR(s.lights[1].cutoff_degrees, 30.0f, 1e-5f);
     EXPECT_NEAR(s.lights[1].falloff_start_degrees, 22.5f, 1e-5f);  // beam_width: 3/4 cutoff
+    EXPECT_EQ(s.lights[1].texture, kNone);
     // A flat spectrum of 1 seen by sRGB: not quite white (sRGB's white is D65).
     const Color flat = spectrum_to_rgb({{400, 1}, {700, 1}}, false);
     EXPECT_EQ(s.background.kind, Background::Kind::Constant);

@@ -338,7 +338,10 @@ Shape "sphere"
     Scene s = load_scene(path, collecting());
     std::vector<std::pair<TextureFilter, TextureWrap>> images;
     for (const Texture& t : s.textures)
-        if (t.kind == TextureKind::Image) images.emplace_back(t.filter, t.wrap);
+        if (t.kind == TextureKind::Image) {
+            images.emplace_back(t.filter, t.wrap_u);
+            EXPECT_EQ(t.wrap_v, t.wrap_u);
+        }
     const std::vector<std::pair<TextureFilter, TextureWrap>> expected = {
         {TextureFilter::Nearest, TextureWrap::Clamp}, {TextureFilter::Bilinear, TextureWrap::Repeat}};
     EXPECT_EQ(images, expected);

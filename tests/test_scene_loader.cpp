@@ -644,6 +644,18 @@ TEST(SceneLoader, LightsAreValidated) {
                 R"([{"type": "spot", "position": [0, 3, 0], "look_at": [0, 0, 0], "intensity": 5, "cutoff": 30, "falloff_start": 40}])")),
         ": /lights/0/falloff_start: expected a number in [0.0, 30.0], got 40");
     EXPECT_EQ(
+        load_error(
+            dir,
+            with(
+                R"([{"type": "spot", "position": [0, 3, 0], "look_at": [0, 0, 0], "intensity": 5, "up": [1, 0, 0]}])")),
+        ": /lights/0/up: up orients a projected texture: give one");
+    EXPECT_EQ(
+        load_error(
+            dir,
+            with(
+                R"([{"type": "spot", "position": [0, 3, 0], "look_at": [0, 0, 0], "intensity": 5, "texture": {"type": "checker", "scale": 1, "even": 1, "odd": 0}, "up": [0, 2, 0]}])")),
+        ": /lights/0/up: up must not lie along the axis");
+    EXPECT_EQ(
         load_error(dir,
                    with(R"([{"type": "directional", "direction": [0, 0, 0], "irradiance": 1}])"))
             .substr(0, 32),

@@ -95,7 +95,7 @@ TEST(Texture, ImageIsBilinearAndWraps) {
     img.height = 1;
     img.texels = {Color(0.0f), Color(1.0f)};
     auto at = [&](float u) {
-        return img.lookup(u, 0.5f, TextureFilter::Bilinear, TextureWrap::Repeat).x;
+        return img.lookup(u, 0.5f, TextureFilter::Bilinear, TextureWrap::Repeat, TextureWrap::Repeat).x;
     };
     // Texel centres at u = 0.25 and 0.75; halfway between them is the mean.
     EXPECT_FLOAT_EQ(at(0.25f), 0.0f);
@@ -113,7 +113,9 @@ TEST(Texture, FiltersAndWrapModesActOnTexels) {
     img.width = 4;
     img.height = 1;
     img.texels = {Color(0.0f), Color(1.0f), Color(2.0f), Color(3.0f)};
-    auto at = [&](float u, TextureFilter f, TextureWrap w) { return img.lookup(u, 0.5f, f, w).x; };
+    auto at = [&](float u, TextureFilter f, TextureWrap w) {
+        return img.lookup(u, 0.5f, f, w, TextureWrap::Repeat).x;
+    };
     using F = TextureFilter;
     using W = TextureWrap;
     // Nearest: the texel u falls in; outside, texel -1 is 3 (repeat), 0 (mirror, clamp).
@@ -136,6 +138,27 @@ TEST(Texture, FiltersAndWrapModesActOnTexels) {
     EXPECT_FLOAT_EQ(at(1.25f, F::Bilinear, W::Clamp), 3.0f);
     // Inside, away from the edges, every wrap agrees.
     for (W w : {W::Repeat, W::Mirror, W::Clamp}) EXPECT_FLOAT_EQ(at(0.5f, F::Bilinear, w), 1.5f);
+}
+
+// The two axes wrap each by its own mode (glTF's wrapS and wrapT): a 2 x 2 image whose columns
+// hold 0 and 1 and whose rows add 0 (top) and 10 (bottom), looked up past both edges.
+TEST(Texture, EachAxisWrapsByItsOwnMode) {
+    ImageData img;
+    img.width = img.height = 2;
+    img.texels = {Color(0.0f), Color(1.0f), Color(10.0f), Color(11.0f)};
+    using W = TextureWrap;
+    auto at = [&](float u, float v, W wu, W wv) {
+        return img.lookup(u, v, TextureFilter::Nearest, wu, wv).x;
+    };
+    // u = 1.25 is column 2: clamped to 1, repeated to 0. v = -0.25 is row 2 from the top:
+    // clamped to the bottom row (1), mirrored to it too, repeated to the top row (0).
+    EXPECT_EQ(at(1.25f, -0.25f, W::Clamp, W::Repeat), 1.0f);
+    EXPECT_EQ(at(1.25f, -0.25f, W::Repeat, W::Clamp), 10.0f);
+    EXPECT_EQ(at(1.25f, -0.25f, W::Clamp, W::Mirror), 11.0f);
+    EXPECT_EQ(at(1.25f, -0.25f, W::Repeat, W::Repeat), 0.0f);
+    // Bilinear too: halfway between columns 1 and 2 at u = 1, rows in range.
+    EXPECT_FLOAT_EQ(img.lookup(1.0f, 0.75f, TextureFilter::Bilinear, W::Clamp, W::Repeat).x, 1.0f);
+    EXPECT_FLOAT_EQ(img.lookup(1.0f, 0.75f, TextureFilter::Bilinear, W::Repeat, W::Clamp).x, 0.5f);
 }
 
 TEST(Texture, NoiseIsDeterministicBoundedAndVaries) {

@@ -93,6 +93,13 @@ void bind_scene(py::module_& m) {
         .value("UvChecker", TextureKind::UvChecker)
         .value("Noise", TextureKind::Noise)
         .value("Image", TextureKind::Image);
+    py::enum_<TextureFilter>(m, "TextureFilter")
+        .value("Bilinear", TextureFilter::Bilinear)
+        .value("Nearest", TextureFilter::Nearest);
+    py::enum_<TextureWrap>(m, "TextureWrap")
+        .value("Repeat", TextureWrap::Repeat)
+        .value("Mirror", TextureWrap::Mirror)
+        .value("Clamp", TextureWrap::Clamp);
     py::class_<Texture> texture(m, "Texture", "A texture record; which fields matter depends on kind.");
     keyword_init(texture);
     texture.def_readwrite("kind", &Texture::kind)
@@ -102,7 +109,10 @@ void bind_scene(py::module_& m) {
         .def_readwrite("odd", &Texture::odd)
         .def_readwrite("image", &Texture::image)
         .def_readwrite("factor", &Texture::factor)
-        .def_readwrite("cutoff", &Texture::cutoff);
+        .def_readwrite("cutoff", &Texture::cutoff)
+        .def_readwrite("filter", &Texture::filter)
+        .def_readwrite("wrap_u", &Texture::wrap_u)
+        .def_readwrite("wrap_v", &Texture::wrap_v);
 
     py::enum_<MaterialKind>(m, "MaterialKind")
         .value("Lambertian", MaterialKind::Lambertian)
@@ -182,7 +192,10 @@ void bind_scene(py::module_& m) {
         .def_readwrite("intensity", &Light::intensity)
         .def_readwrite("cutoff_degrees", &Light::cutoff_degrees)
         .def_readwrite("falloff_start_degrees", &Light::falloff_start_degrees)
-        .def_readwrite("falloff", &Light::falloff);
+        .def_readwrite("falloff", &Light::falloff)
+        .def_readwrite("texture", &Light::texture,
+                       "spot: the id of a texture it projects (NONE: none)")
+        .def_readwrite("up", &Light::up, "spot with a texture: the image's top, unit, across the axis");
 
     py::class_<PixelFilter> filter(m, "PixelFilter");
     py::enum_<PixelFilter::Kind>(filter, "Kind")

@@ -20,15 +20,15 @@ import numpy as np
 from ._wavetrace import (
     NONE, Background, Bvh, Camera, Film, FilmError, ImageError, Light, Material, MaterialKind,
     MediumBoundaries, Microfacet, PixelFilter, Quad, RenderSettings, Scene, SceneError, Sphere,
-    SphereMapping, Texture, TextureKind, Transform, __version__, compare, load_scene, read_image, simd_target,
-    write_image)
+    SphereMapping, Texture, TextureFilter, TextureKind, TextureWrap, Transform, __version__, compare,
+    load_scene, read_image, simd_target, write_image)
 from . import _wavetrace
 
 __all__ = [
     "NONE", "Background", "Bvh", "Camera", "Film", "FilmError", "Hits", "ImageError", "Light",
     "Material", "MaterialKind", "MediumBoundaries", "Microfacet", "PixelFilter", "Quad",
     "RenderInterrupted", "RenderSettings", "Scene", "SceneError", "Sphere", "SphereMapping",
-    "Texture", "TextureKind", "Transform", "compare", "load_scene", "read_image", "render",
+    "Texture", "TextureFilter", "TextureKind", "TextureWrap", "Transform", "compare", "load_scene", "read_image", "render",
     "simd_target", "write_image",
 ]
 

@@ -64,6 +64,27 @@ std::string texture_path(const aiMaterial& m, aiTextureType type, unsigned index
     return {};
 }
 
+// A texture's glTF sampler as Assimp 5.2's glTF 2.0 reader stores it beside the texture:
+// wrapS and wrapT as aiTextureMapMode, magFilter as glTF's enum (9728 NEAREST, 9729 LINEAR),
+// absent where the file gives none (glTF's defaults: REPEAT; the filter is ours to choose).
+FileMaterial::Sampler texture_sampler(const aiMaterial& m, aiTextureType type, unsigned index) {
+    FileMaterial::Sampler s;
+    auto wrap = [](int mode) {
+        switch (mode) {
+            case aiTextureMapMode_Clamp: return TextureWrap::Clamp;
+            case aiTextureMapMode_Mirror: return TextureWrap::Mirror;
+            default: return TextureWrap::Repeat;
+        }
+    };
+    int mode = 0;
+    if (m.Get(AI_MATKEY_MAPPINGMODE_U(type, index), mode) == AI_SUCCESS) s.wrap_u = wrap(mode);
+    if (m.Get(AI_MATKEY_MAPPINGMODE_V(type, index), mode) == AI_SUCCESS) s.wrap_v = wrap(mode);
+    int mag = 0;
+    if (m.Get(AI_MATKEY_GLTF_MAPPINGFILTER_MAG(type, index), mag) == AI_SUCCESS && mag == 9728)
+        s.filter = TextureFilter::Nearest;
+    return s;
+}
+
 // glTF's metallic-roughness material as Assimp 5.2's glTF 2.0 reader stores it: the base colour
 // factor under $clr.base, the metallicRoughness texture as texture type UNKNOWN, the extensions'
 // factors under their keys, the ior (KHR_materials_ior) as the refractive index.
@@ -86,11 +107,19 @@ void read_gltf_material(const aiMaterial& m, FileMaterial& out) {
     int two_sided = 0;
     if (m.Get(AI_MATKEY_TWOSIDED, two_sided) == AI_SUCCESS) out.double_sided = two_sided != 0;
     out.map_kd = texture_path(m, aiTextureType_BASE_COLOR);
-    if (out.map_kd.empty()) out.map_kd = texture_path(m, aiTextureType_DIFFUSE);
+    out.kd_sampler = texture_sampler(m, aiTextureType_BASE_COLOR, 0);
+    if (out.map_kd.empty()) {
+        out.map_kd = texture_path(m, aiTextureType_DIFFUSE);
+        out.kd_sampler = texture_sampler(m, aiTextureType_DIFFUSE, 0);
+    }
     out.map_metallic_roughness =
         texture_path(m, AI_MATKEY_GLTF_PBRMETALLICROUGHNESS_METALLICROUGHNESS_TEXTURE);
+    out.metallic_roughness_sampler =
+        texture_sampler(m, AI_MATKEY_GLTF_PBRMETALLICROUGHNESS_METALLICROUGHNESS_TEXTURE);
     out.map_normal = texture_path(m, aiTextureType_NORMALS);
+    out.normal_sampler = texture_sampler(m, aiTextureType_NORMALS, 0);
     out.map_emissive = texture_path(m, aiTextureType_EMISSIVE);
+    out.emissive_sampler = texture_sampler(m, aiTextureType_EMISSIVE, 0);
     const std::pair<aiTextureType, const char*> others[] = {
         {aiTextureType_AMBIENT_OCCLUSION, "occlusionTexture"},
         {aiTextureType_LIGHTMAP, "occlusionTexture"},

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "wavetrace/math/vec3.h"
+#include "wavetrace/scene/texture.h"
 
 namespace wavetrace {
 
@@ -28,6 +29,13 @@ struct FileMaterial {
     float metallic = 1.0f, roughness = 1.0f, transmission = 0.0f, clearcoat = 0.0f,
           clearcoat_roughness = 0.0f;
     std::string map_metallic_roughness, map_normal, map_emissive;
+    // Each texture's glTF sampler: wrapS, wrapT, and magFilter (no mip maps here: minFilter
+    // has nothing to choose between).
+    struct Sampler {
+        TextureWrap wrap_u = TextureWrap::Repeat, wrap_v = TextureWrap::Repeat;
+        TextureFilter filter = TextureFilter::Bilinear;
+    };
+    Sampler kd_sampler, metallic_roughness_sampler, normal_sampler, emissive_sampler;
     std::string alpha_mode = "OPAQUE";
     float base_alpha = 1.0f, alpha_cutoff = 0.5f;  // baseColorFactor's alpha; MASK's cutoff
     bool double_sided = false;

@@ -430,12 +430,21 @@ class Loader {
                 else if (f == "nearest") t.filter = TextureFilter::Nearest;
                 else x->fail("expected \"bilinear\" or \"nearest\", got \"" + f + "\"");
             }
-            if (auto x = o.optional("wrap")) {
-                const std::string w = x->string();
-                if (w == "repeat") t.wrap = TextureWrap::Repeat;
-                else if (w == "mirror") t.wrap = TextureWrap::Mirror;
-                else if (w == "clamp") t.wrap = TextureWrap::Clamp;
-                else x->fail("expected \"repeat\", \"mirror\" or \"clamp\", got \"" + w + "\"");
+            if (auto x = o.optional("wrap")) {  // one mode, or [along u, along v]
+                auto mode = [](const Value& m) {
+                    const std::string w = m.string();
+                    if (w == "repeat") return TextureWrap::Repeat;
+                    if (w == "mirror") return TextureWrap::Mirror;
+                    if (w == "clamp") return TextureWrap::Clamp;
+                    m.fail("expected \"repeat\", \"mirror\" or \"clamp\", got \"" + w + "\"");
+                };
+                if (x->is_array()) {
+                    if (x->size() != 2) x->fail("expected a wrap mode or two, [along u, along v]");
+                    t.wrap_u = mode((*x)[0]);
+                    t.wrap_v = mode((*x)[1]);
+                } else {
+                    t.wrap_u = t.wrap_v = mode(*x);
+                }
             }
         } else {
             type_value.fail("unknown texture type \"" + type +
@@ -636,6 +645,18 @@ class Loader {
                         light.falloff = Light::Falloff::Smoothstep;
                     else
                         x->fail("unknown falloff \"" + f + "\" (expected linear or smoothstep)");
+                }
+                if (auto x = o.optional("texture")) light.texture = read_texture(*x, Range::Radiance);
+                if (auto x = o.optional("up")) {
+                    if (light.texture == kNone) x->fail("up orients a projected texture: give one");
+                    const Vec3 up = x->nonzero_vec3();
+                    const Vec3 across = up - dot(up, light.direction) * light.direction;
+                    if (!(length(across) > 1e-3f * length(up))) x->fail("up must not lie along the axis");
+                    light.up = normalize(across);
+                } else if (light.texture != kNone) {
+                    // +y, or +z for an axis along y: what a camera's default up would be
+                    const Vec3 up = std::abs(light.direction.y) < 0.999f ? Vec3(0, 1, 0) : Vec3(0, 0, 1);
+                    light.up = normalize(up - dot(up, light.direction) * light.direction);
                 }
             } else if (type == "directional") {
                 light.kind = Light::Kind::Directional;
@@ -939,8 +960,8 @@ class Loader {
             where.fail(who + ": ior " + std::to_string(fm.ni) + " is not in (0, 100)");
         std::vector<std::string> ignored = fm.other_maps;
         // A texture beside the file, or embedded in it.
-        auto texture = [&](const std::string& rel, const char* key, ImageChannels channels,
-                           Color factor) -> TextureId {
+        auto load = [&](const std::string& rel, const char* key, ImageChannels channels,
+                        Color factor) -> TextureId {
             if (rel.empty()) return kNone;
             if (rel[0] != '*')
                 return file_texture(mesh_path, rel, key, channels, factor, where, who);
@@ -960,22 +981,36 @@ class Loader {
             }
             return scene_.add_texture(t);
         };
+        // ... looked up as its sampler says.
+        auto texture = [&](const std::string& rel, const char* key, ImageChannels channels,
+                           Color factor, const FileMaterial::Sampler& sampler) -> TextureId {
+            const TextureId id = load(rel, key, channels, factor);
+            if (id != kNone) {
+                Texture& t = scene_.textures[id];
+                t.wrap_u = sampler.wrap_u;
+                t.wrap_v = sampler.wrap_v;
+                t.filter = sampler.filter;
+            }
+            return id;
+        };
         Material m;
         m.name = fm.name;
         m.kind = MaterialKind::MetallicRoughness;
         const Color base = min(fm.kd, Color(1.0f));
-        m.albedo = texture(fm.map_kd, "baseColorTexture", ImageChannels::Linear, base);
+        m.albedo = texture(fm.map_kd, "baseColorTexture", ImageChannels::Linear, base, fm.kd_sampler);
         if (m.albedo == kNone) m.albedo = scene_.add_solid(base);
         m.metallic = unit(fm.metallic, "metallicFactor");
         m.roughness = unit(fm.roughness, "roughnessFactor");
         m.metallic_roughness = texture(fm.map_metallic_roughness, "metallicRoughnessTexture",
-                                       ImageChannels::Raw, Color(1.0f));
+                                       ImageChannels::Raw, Color(1.0f), fm.metallic_roughness_sampler);
         m.ior = fm.ni;
         m.transmission = unit(fm.transmission, "transmissionFactor");
         m.clearcoat = unit(fm.clearcoat, "clearcoatFactor");
         m.clearcoat_roughness = unit(fm.clearcoat_roughness, "clearcoatRoughnessFactor");
-        m.normal_map = texture(fm.map_normal, "normalTexture", ImageChannels::Raw, Color(1.0f));
-        m.emission = texture(fm.map_emissive, "emissiveTexture", ImageChannels::Linear, fm.ke);
+        m.normal_map = texture(fm.map_normal, "normalTexture", ImageChannels::Raw, Color(1.0f),
+                               fm.normal_sampler);
+        m.emission = texture(fm.map_emissive, "emissiveTexture", ImageChannels::Linear, fm.ke,
+                             fm.emissive_sampler);
         if (m.emission == kNone && max_component(fm.ke) > 0.0f) m.emission = scene_.add_solid(fm.ke);
         m.two_sided = fm.double_sided;  // a double-sided surface emits from both sides
         // Alpha: the base colour's alpha (its factor's times its texture's), as coverage. MASK
@@ -986,7 +1021,8 @@ class Loader {
             const float cutoff = fm.alpha_mode == "MASK" ? fm.alpha_cutoff : -1.0f;
             if (fm.alpha_mode == "MASK" && !(cutoff >= 0.0f && cutoff <= 1e6f))
                 where.fail(who + ": alphaCutoff must be a non-negative number");
-            m.opacity = texture(fm.map_kd, "baseColorTexture", ImageChannels::Alpha, Color(alpha));
+            m.opacity = texture(fm.map_kd, "baseColorTexture", ImageChannels::Alpha, Color(alpha),
+                                fm.kd_sampler);
             if (m.opacity != kNone)
                 scene_.textures[m.opacity].cutoff = cutoff;
             else if (cutoff >= 0.0f)

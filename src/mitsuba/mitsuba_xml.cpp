@@ -1141,6 +1141,14 @@ class Translator {
                                {"intensity", color_property(p, "intensity",
                                                             to_json_color(kD65Rgb), false, true)},
                                {"cutoff", cutoff}, {"falloff_start", std::min(beam, cutoff)}});
+            if (const Element* t = p.get("texture")) {
+                // Mitsuba looks the texture up at (1/2 + x / (2 z tan cutoff), 1/2 + y / (...))
+                // of the light's local direction, v_M down the image from its top row: our
+                // (u, 1 - v) with right = +x, so up = -y (Light::texture).
+                lights_.back()["texture"] = color(*t, false, true);
+                const V3 y = to_world.vector(0, 1, 0);
+                lights_.back()["up"] = to_json(V3{-y[0], -y[1], -y[2]});
+            }
         } else if (type == "directional") {
             const Element* d = p.get("direction");
             const V3 direction = d ? xyz(*d, 0.0) : to_world.vector(0, 0, 1);

@@ -116,6 +116,13 @@ void check_scene(const Scene& scene) {
         if (!finite(l.position) || !finite(l.intensity) || !finite(l.direction) ||
             length(l.direction) == 0)
             fail("light", i, "needs a finite position, intensity and non-zero direction");
+        if (l.texture != kNone) {
+            if (l.kind != Light::Kind::Spot) fail("light", i, "only a spot projects a texture");
+            if (l.texture >= textures) fail("light", i, "its texture names no texture");
+            if (!finite(l.up) || std::abs(length(l.up) - 1) > 1e-4f ||
+                std::abs(dot(l.up, l.direction)) > 1e-4f * length(l.direction))
+                fail("light", i, "a projected texture needs a unit up orthogonal to the axis");
+        }
     }
     const Background& bg = scene.background;
     if (!finite(bg.radiance)) throw SceneError("scene: the background radiance is not finite");

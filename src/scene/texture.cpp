@@ -29,30 +29,32 @@ int wrap_index(int64_t i, int n, TextureWrap wrap) {
 
 }  // namespace
 
-Color ImageData::lookup(float u, float v, TextureFilter filter, TextureWrap wrap) const {
+Color ImageData::lookup(float u, float v, TextureFilter filter, TextureWrap wrap_u,
+                        TextureWrap wrap_v) const {
     // Far outside the image only the wrap matters, and float coordinates there are too coarse
     // to tell texels apart: kept within 2^24 texel widths, which int64 holds.
     const float lim = 0x1p24f;
     if (filter == TextureFilter::Nearest) {
         const float x = std::clamp(u * float(width), -lim, lim);
         const float y = std::clamp((1.0f - v) * float(height), -lim, lim);
-        return texel(wrap_index(int64_t(std::floor(x)), width, wrap),
-                     wrap_index(int64_t(std::floor(y)), height, wrap));
+        return texel(wrap_index(int64_t(std::floor(x)), width, wrap_u),
+                     wrap_index(int64_t(std::floor(y)), height, wrap_v));
     }
-    float x, y;
-    if (wrap == TextureWrap::Repeat) {  // into the first period first, as floats
-        v = v - std::floor(v);
-        x = (u - std::floor(u)) * static_cast<float>(width) - 0.5f;
-        y = std::clamp((1.0f - v) * static_cast<float>(height) - 0.5f, -0.5f,
-                       static_cast<float>(height) - 0.5f);
-    } else {
-        x = std::clamp(u * float(width) - 0.5f, -lim, lim);
-        y = std::clamp((1.0f - v) * float(height) - 0.5f, -lim, lim);
-    }
+    // A repeated axis goes into the first period first, as floats.
+    const float x = wrap_u == TextureWrap::Repeat
+                        ? (u - std::floor(u)) * static_cast<float>(width) - 0.5f
+                        : std::clamp(u * float(width) - 0.5f, -lim, lim);
+    const float y = wrap_v == TextureWrap::Repeat
+                        ? std::clamp((1.0f - (v - std::floor(v))) * static_cast<float>(height) -
+                                         0.5f,
+                                     -0.5f, static_cast<float>(height) - 0.5f)
+                        : std::clamp((1.0f - v) * float(height) - 0.5f, -lim, lim);
     const float fx = std::floor(x), fy = std::floor(y);
     const float tx = x - fx, ty = y - fy;
-    const int x0 = wrap_index(int64_t(fx), width, wrap), x1 = wrap_index(int64_t(fx) + 1, width, wrap);
-    const int y0 = wrap_index(int64_t(fy), height, wrap), y1 = wrap_index(int64_t(fy) + 1, height, wrap);
+    const int x0 = wrap_index(int64_t(fx), width, wrap_u);
+    const int x1 = wrap_index(int64_t(fx) + 1, width, wrap_u);
+    const int y0 = wrap_index(int64_t(fy), height, wrap_v);
+    const int y1 = wrap_index(int64_t(fy) + 1, height, wrap_v);
     return (1 - ty) * ((1 - tx) * texel(x0, y0) + tx * texel(x1, y0)) +
            ty * ((1 - tx) * texel(x0, y1) + tx * texel(x1, y1));
 }
@@ -177,7 +179,8 @@ Color eval_texture(const Scene& scene, TextureId id, Vec2 uv, Point3 p) {
             case TextureKind::Image: {
                 const Vec2 st = t.map_uv(uv);
                 const Color c =
-                    t.factor * scene.images[t.image].lookup(st.x, st.y, t.filter, t.wrap);
+                    t.factor * scene.images[t.image].lookup(st.x, st.y, t.filter, t.wrap_u,
+                                                                  t.wrap_v);
                 if (t.cutoff >= 0.0f) return Color(c.x >= t.cutoff ? 1.0f : 0.0f);
                 return c;
             }

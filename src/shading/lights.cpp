@@ -44,6 +44,11 @@ float spot_falloff(const Light& l, float cos_theta) {
            (radians(l.cutoff_degrees) - radians(l.falloff_start_degrees));
 }
 
+Vec2 spot_texture_uv(const Light& l, Vec3 d) {
+    const float scale = 0.5f / (dot(d, l.direction) * std::tan(radians(l.cutoff_degrees)));
+    return {0.5f + dot(d, cross(l.direction, l.up)) * scale, 0.5f + dot(d, l.up) * scale};
+}
+
 float delta_light_power(const Light& l, float scene_radius) {
     const float lum = luminance(l.intensity);
     switch (l.kind) {
@@ -239,7 +244,12 @@ LightSample LightSet::sample(
         ls.dist = std::sqrt(dist2);
         ls.wi = d / ls.dist;
         ls.radiance = l.intensity / dist2;
-        if (l.kind == Light::Kind::Spot) ls.radiance *= spot_falloff(l, dot(-ls.wi, l.direction));
+        if (l.kind == Light::Kind::Spot) {
+            const float falloff = spot_falloff(l, dot(-ls.wi, l.direction));
+            ls.radiance *= falloff;
+            if (l.texture != kNone && falloff > 0.0f)
+                ls.radiance *= eval_texture(scene, l.texture, spot_texture_uv(l, -ls.wi), l.position);
+        }
         ls.valid = std::isfinite(ls.dist) && ls.pdf > 0.0f;
         return ls;
     }

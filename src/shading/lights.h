@@ -163,6 +163,9 @@ class LightSet {
 // cosine (pbrt-v4), as l.falloff says.
 struct Light;
 float spot_falloff(const Light& l, float cos_theta);
+// Where a spot's projected texture is looked up for light leaving it along unit d, inside its
+// cutoff cone (the convention of Light::texture).
+Vec2 spot_texture_uv(const Light& l, Vec3 d);
 // The power light selection gives a light that is not a shape: a point 4 pi I, a spot
 // 2 pi I ((1 - cos start) + (cos start - cos cutoff) / 2), a directional light the irradiance
 // over a disk of the scene's radius, pi r^2 E (luminances).

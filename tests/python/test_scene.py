@@ -169,3 +169,40 @@ def test_a_medium_of_per_channel_density_renders_as_in_json(tmp_path):
     # Through the sphere's middle green, the densest, is the darkest.
     r, g, b = a[8, 8]
     assert g < b < r
+
+
+def test_a_spot_projecting_a_texture_renders_as_in_json(tmp_path):
+    # A 2 x 2 slide (pfm rows bottom first on disk; wavetrace's images are row 0 at the top)
+    # projected by a spot onto a floor, built both ways with the texture's wraps set.
+    slide = np.array([[[1, 0.2, 0.2], [0.2, 1, 0.2]], [[0.2, 0.2, 1], [1, 1, 0.2]]],
+                     dtype=np.float32)
+    wt.write_image(str(tmp_path / "slide.pfm"), slide)
+    path = tmp_path / "spot.json"
+    path.write_text(json.dumps({
+        "camera": {"look_from": [0, 3, -3], "look_at": [0, 0, 0], "vfov": 60},
+        "materials": {"floor": {"type": "lambertian", "albedo": 0.8}},
+        "objects": [{"type": "quad", "q": [-3, 0, -3], "u": [0, 0, 6], "v": [6, 0, 0],
+                     "material": "floor"}],
+        "lights": [{"type": "spot", "position": [0, 2, 0], "look_at": [0, 0, 0],
+                    "intensity": 10, "cutoff": 40,
+                    "texture": {"type": "image", "file": "slide.pfm", "filter": "nearest",
+                                "wrap": ["clamp", "mirror"]},
+                    "up": [0, 0, 1]}]}))
+    from_json = wt.load_scene(path)
+    s = wt.Scene()
+    s.camera = wt.Camera(look_from=(0, 3, -3), look_at=(0, 0, 0), up=(0, 1, 0), vfov=60)
+    floor = s.add_material(wt.Material(kind=wt.MaterialKind.Lambertian,
+                                       albedo=s.add_solid((0.8, 0.8, 0.8))))
+    s.add_quad(wt.Quad(q=(-3, 0, -3), u=(0, 0, 6), v=(6, 0, 0), material=floor))
+    tex = s.add_texture(wt.Texture(kind=wt.TextureKind.Image,
+                                   image=s.add_image(wt.read_image(str(tmp_path / "slide.pfm"))),
+                                   filter=wt.TextureFilter.Nearest, wrap_u=wt.TextureWrap.Clamp,
+                                   wrap_v=wt.TextureWrap.Mirror))
+    s.add_light(wt.Light(kind=wt.Light.Kind.Spot, position=(0, 2, 0), direction=(0, -1, 0),
+                         intensity=(10, 10, 10), cutoff_degrees=40, falloff_start_degrees=30,
+                         texture=tex, up=(0, 0, 1)))
+    settings = dict(width=16, height=16, spp=4, strategy="nee", max_depth=2)
+    a = wt.render(s, **settings)
+    assert np.array_equal(a, wt.render(from_json, **settings))
+    # The slide's four colours land in four quadrants of the lit floor.
+    assert len({tuple(np.round(a[y, x] / a[y, x].max(), 2)) for y in (6, 9) for x in (6, 9)}) == 4

@@ -3,6 +3,7 @@
 #include <cstdint>
 
 #include "wavetrace/math/vec3.h"
+#include "wavetrace/scene/ids.h"
 
 namespace wavetrace {
 
@@ -29,6 +30,13 @@ struct Light {
     float cutoff_degrees = 20.0f;         // spot: the half-angle beyond which it is dark
     float falloff_start_degrees = 15.0f;  // spot: the half-angle within which it is full
     Falloff falloff = Falloff::Linear;
+    // spot: a texture it projects, like a slide projector (kNone: none). Its intensity towards
+    // direction d is multiplied by the texture at
+    //   (u, v) = (1/2 + (d . right) / (2 (d . axis) tan cutoff), 1/2 + (d . up) / (2 (d . axis) tan cutoff)),
+    // right = axis x up: seen from the light looking along its axis, the image stands upright
+    // with `up` towards its top and spans the square that the cutoff cone is inscribed in.
+    TextureId texture = kNone;
+    Vec3 up{0.0f, 1.0f, 0.0f};  // spot with a texture: unit, orthogonal to `direction`
 
     // A point light of `intensity` at `position`.
     static Light point(Point3 position, Color intensity) {

@@ -14,7 +14,7 @@ enum class TextureKind : uint8_t {
     Checker,    // 3-D checkerboard of two sub-textures, cells of size `scale` (RTNW §4.3)
     UvChecker,  // checkerboard over the (u, v) plane, cells of side `scale` in uv units
     Noise,      // Perlin turbulence "marble": 0.5 (1 + sin(scale z + 10 turb(p))) (RTNW §5)
-    Image,      // an image mapped by the surface's (u, v): `filter`, `wrap`
+    Image,      // an image mapped by the surface's (u, v): `filter`, `wrap_u`, `wrap_v`
 };
 
 // How an image texture is looked up between texels: interpolated between the four nearest
@@ -23,7 +23,7 @@ enum class TextureKind : uint8_t {
 enum class TextureFilter : uint8_t { Bilinear, Nearest };
 // What an image texture holds outside [0, 1]^2, applied to texel indices: the image repeated,
 // mirrored at every edge (period two images), or its edge texels extended (Mitsuba's
-// wrap_mode, pbrt-v4's wrap, glTF's MIRRORED_REPEAT and CLAMP_TO_EDGE).
+// wrap_mode, pbrt-v4's wrap, glTF's wrapS and wrapT: REPEAT, MIRRORED_REPEAT, CLAMP_TO_EDGE).
 enum class TextureWrap : uint8_t { Repeat, Mirror, Clamp };
 
 // A texture is a plain record; which fields matter depends on `kind`.
@@ -35,7 +35,8 @@ struct Texture {
     TextureId odd = kNone;   // Checker: the texture of odd cells
     ImageId image = kNone;   // Image: index into Scene::images
     TextureFilter filter = TextureFilter::Bilinear;  // Image
-    TextureWrap wrap = TextureWrap::Repeat;          // Image
+    TextureWrap wrap_u = TextureWrap::Repeat;        // Image: along u
+    TextureWrap wrap_v = TextureWrap::Repeat;        // Image: along v
     Color factor{1.0f};      // Image: multiplied into the texels (glTF's colour factors)
     float cutoff = -1.0f;    // Image: if >= 0, the value becomes 1 where its first channel
                              // reaches the cutoff and 0 elsewhere (glTF's alphaMode MASK)
@@ -59,7 +60,7 @@ struct ImageData {
     Color texel(int x, int y) const { return texels[static_cast<size_t>(y) * width + x]; }
     // The image at (u, v), u running left to right and v bottom to top (OpenGL convention):
     // texel centres sit at half-integer coordinates of (u W, (1 - v) H).
-    Color lookup(float u, float v, TextureFilter filter, TextureWrap wrap) const;
+    Color lookup(float u, float v, TextureFilter filter, TextureWrap wrap_u, TextureWrap wrap_v) const;
 };
 
 struct Scene;
