@@ -15,7 +15,7 @@ namespace wavetrace {
 namespace {
 
 // The vertex of queue entry i, as next_event sees it, but for its frame (which only
-// sample_direct needs).
+// sample_direct needs: rotated_frame of the entry's ns and frame_angle, as shade's vertex had).
 Vertex queued_vertex(const Scene& scene, const LightSampleQueue& q, size_t i) {
     Vertex v;
     v.p = WAVETRACE_XYZ_AT(q, p, i);
@@ -86,7 +86,7 @@ size_t light_sample(const WaveInputs& in,
                 continue;
             }
             Vertex v = queued_vertex(in.scene, queue, i);
-            v.frame = Frame::from_normal(WAVETRACE_XYZ_AT(queue, ns, i));
+            v.frame = rotated_frame(WAVETRACE_XYZ_AT(queue, ns, i), queue.frame_angle[i]);
             scalar[row] = sample_direct(in.scene, in.lights, v, WAVETRACE_XYZ_AT(queue, wo, i),
                                         light, queue.u1[i], queue.u2[i]);
         }
@@ -96,7 +96,7 @@ size_t light_sample(const WaveInputs& in,
         for (size_t k = 0; k < points.n; ++k) {
             const size_t i = c + point_row[k];
             Vertex v = queued_vertex(in.scene, queue, i);
-            v.frame = Frame::from_normal(WAVETRACE_XYZ_AT(queue, ns, i));
+            v.frame = rotated_frame(WAVETRACE_XYZ_AT(queue, ns, i), queue.frame_angle[i]);
             scalar[point_row[k]] = direct_sample_from(
                 v, WAVETRACE_XYZ_AT(queue, wo, i),
                 environment_light_sample(block_row(points.wi, k), block_row(points.radiance, k),

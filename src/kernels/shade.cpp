@@ -213,6 +213,7 @@ void append_light_sample(size_t path,
                          Point3 p,
                          Normal3 ng,
                          Normal3 ns,
+                         float frame_angle,
                          Vec3 wo,
                          const BsdfParams& bsdf,
                          MaterialId material,
@@ -223,7 +224,8 @@ void append_light_sample(size_t path,
                          ShadeOutputs& out) {
     WT_DCHECK_LT(out.light_sample_end, out.light_samples.capacity);
     store_queued_vertex(out.light_samples, out.light_sample_end++,
-                        {static_cast<uint32_t>(path), p, ng, ns, wo, bsdf.albedo, bsdf.alpha,
+                        {static_cast<uint32_t>(path), p, ng, ns, frame_angle, wo, bsdf.albedo,
+                         bsdf.alpha,
                          bsdf.metallic, bsdf.kind, material, beta, u.light_select, u.light_u,
                          u.light_v, media, interior});
 }
@@ -345,7 +347,8 @@ void resolve_in_scalar(const WaveInputs& in, const HitQueue& hits, Chunk& c, Sha
         if (!may_continue(cfg, v, depth)) continue;
         const VertexSamples u = c.samples.at(row);
         if (samples_lights(cfg, v, in.lights))
-            append_light_sample(i, v.p, v.ng, v.frame.n, seg.wo, v.bsdf, v.material, beta, u,
+            append_light_sample(i, v.p, v.ng, v.frame.n, v.frame_angle, seg.wo, v.bsdf, v.material,
+                                beta, u,
                                 PackedMedia::pack(media), v.interior, out);
         if (takes_lane_step(cfg, v, in.lights)) {
             const size_t k = c.block.push(i, v, seg.wo, beta);
@@ -436,6 +439,7 @@ void queue_lane_light_samples(size_t first, size_t last, const Chunk& c, ShadeOu
         q.path[j] = b.entry[k];
         q.media[j] = out.paths.media[b.entry[k]];  // lane vertices never transmit
         q.interior[j] = kNone;
+        q.frame_angle[j] = 0.0f;  // lane BSDFs are isotropic
         q.kind[j] = material_kind(LaneLobe(b.lobe[k]));
         q.material[j] = kNone;
         const VertexSamples u = c.samples.at(b.entry[k] - c.begin);

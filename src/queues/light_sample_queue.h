@@ -21,6 +21,7 @@ namespace wavetrace {
     WAVETRACE_XYZ_FIELD(F, p, "vertex position")                                        \
     WAVETRACE_XYZ_FIELD(F, ng, "geometric normal, outward; zero in a medium")           \
     WAVETRACE_XYZ_FIELD(F, ns, "shading normal, the frame's z")                         \
+    F(float, frame_angle, "anisotropic BSDFs: the frame's turn about ns (Vertex)")      \
     WAVETRACE_XYZ_FIELD(F, wo, "unit direction back along the ray that arrived")        \
     WAVETRACE_XYZ_FIELD(F, albedo, "the BSDF's albedo at the vertex")                   \
     F(float, alpha, "rough metal, metallic-roughness: GGX alpha")                       \
@@ -41,6 +42,7 @@ struct QueuedVertex {
     uint32_t path;
     Point3 p;
     Normal3 ng, ns;
+    float frame_angle;
     Vec3 wo;
     Color albedo;
     float alpha;
@@ -54,10 +56,11 @@ struct QueuedVertex {
 };
 
 inline void store_queued_vertex(LightSampleQueue& q, size_t i, const QueuedVertex& v) {
-    q.store(i, {v.path,     v.p.x,      v.p.y,   v.p.z,  v.ng.x,     v.ng.y,   v.ng.z,
-                v.ns.x,     v.ns.y,     v.ns.z,  v.wo.x, v.wo.y,     v.wo.z,   v.albedo.x,
-                v.albedo.y, v.albedo.z, v.alpha, v.metallic, v.kind, v.material, v.beta.x,
-                v.beta.y,   v.beta.z,   v.u_select, v.u1, v.u2, v.media, v.interior});
+    q.store(i, {v.path,     v.p.x,      v.p.y,      v.p.z,      v.ng.x,     v.ng.y,
+                v.ng.z,     v.ns.x,     v.ns.y,     v.ns.z,     v.frame_angle, v.wo.x,
+                v.wo.y,     v.wo.z,     v.albedo.x, v.albedo.y, v.albedo.z, v.alpha,
+                v.metallic, v.kind,     v.material, v.beta.x,   v.beta.y,   v.beta.z,
+                v.u_select, v.u1,       v.u2,       v.media,    v.interior});
 }
 
 }  // namespace wavetrace

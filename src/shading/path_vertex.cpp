@@ -47,8 +47,9 @@ Vertex surface_vertex(const Scene& scene, const SurfaceHit& hit) {
         // to the shading normal (Mitsuba 3's shading frame), where it has a direction.
         const Vec3 s = hit.dpdu - dot(n, hit.dpdu) * n;
         if (length_squared(s) > 1e-20f * length_squared(hit.dpdu) && length_squared(s) > 0.0f) {
-            const Vec3 su = normalize(s);
-            v.frame = {su, cross(n, su), n};
+            const Frame base = Frame::from_normal(n);
+            v.frame_angle = std::atan2(dot(s, base.t), dot(s, base.s));
+            v.frame = rotated_frame(n, v.frame_angle);
         }
     }
     v.interior = hit.interior;

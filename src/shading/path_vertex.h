@@ -4,6 +4,7 @@
 // the organisation of the work around them differs.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 
 #include "bsdfs/bsdf.h"
@@ -29,6 +30,7 @@ struct Scene;
 struct Vertex {
     Point3 p;
     Frame frame;       // local z = shading normal (surfaces) or any axis (media)
+    float frame_angle = 0.0f;  // anisotropic BSDFs: frame is rotated_frame(n, frame_angle)
     Normal3 ng{0.0f};  // geometric normal, outward; zero inside a medium
     BsdfParams bsdf;
     MediumId interior = kNone;    // the surface's inside medium, for transmission
@@ -36,6 +38,16 @@ struct Vertex {
     bool geometric_side_test = true;  // Scene::geometric_side_test, at a surface
     bool on_surface() const { return ng.x != 0 || ng.y != 0 || ng.z != 0; }
 };
+
+// The frame about n whose s is turned by `angle` from Frame::from_normal(n)'s towards its t:
+// how a vertex of an anisotropic BSDF holds the tangent its roughness runs along, one number
+// from which the light_sample kernel rebuilds the frame bit for bit.
+inline Frame rotated_frame(Normal3 n, float angle) {
+    const Frame f = Frame::from_normal(n);
+    if (angle == 0.0f) return f;
+    const float c = std::cos(angle), s = std::sin(angle);
+    return {c * f.s + s * f.t, c * f.t - s * f.s, n};
+}
 
 Vertex surface_vertex(const Scene& scene, const SurfaceHit& hit);
 // The BSDF of a surface of material m and albedo `albedo` (its albedo texture's value there).
