@@ -90,8 +90,10 @@ inline Result test(const std::function<std::optional<Vec3>(uint32_t)>& sample,
     // Expected counts: n times the density integrated over each cell, by the midpoint rule in
     // (cos theta, phi), where the area element is exactly d(cos) d(phi). Cells where the
     // density is not constant, and their neighbours (the edge of a light's solid angle may
-    // clip a cell between the coarse grid's points), are integrated on a grid sixteen times
-    // finer, so that discontinuities do not bias the expectation.
+    // clip a cell between the coarse grid's points), are integrated on a grid eight times
+    // finer, so that discontinuities do not bias the expectation: a boundary across a cell
+    // cuts about 64 of its 4,096 points, moving the cell's integral by under 1%, which is a
+    // fifth of the Poisson noise of a cell expecting 400 samples.
     const double dz = 2.0 / cos_bins, dphi = 2 * kPi / phi_bins;
     auto integrate = [&](int i, int j, int sub, bool* varies) {
         double sum = 0, lo = INFINITY, hi = -INFINITY;
@@ -124,7 +126,7 @@ inline Result test(const std::function<std::optional<Vec3>(uint32_t)>& sample,
                     int ii = i + di, jj = (j + dj + phi_bins) % phi_bins;
                     if (ii >= 0 && ii < cos_bins && varies[ii * phi_bins + jj]) refine = true;
                 }
-            if (refine) expected[i * phi_bins + j] = integrate(i, j, 128, nullptr);
+            if (refine) expected[i * phi_bins + j] = integrate(i, j, 64, nullptr);
         }
     // Pool low-expectation cells (Mitsuba: into one cell), then Pearson's statistic.
     std::vector<int> order(expected.size());
