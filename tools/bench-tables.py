@@ -94,7 +94,7 @@ def scaling(results):
                      f(r["efficiency"]), f(r["independent_own_speedup"]),
                      f(r["arithmetic_speedup"]), f(r["wavefront_over_megakernel"])])
     table(["scene", "engine", "threads", "Mpaths/s", "speed-up", "efficiency",
-           "renders alone: own rates", "arithmetic", "wavefront / megakernel"], body)
+           "renders alone: own rates", "arithmetic", "over the megakernel"], body)
 
 
 def waves(results):

@@ -7,10 +7,11 @@
 #
 # It writes to $OUT: machine.txt (CPU, cores, SMT siblings, caches), scaling/ and engines/
 # (the suite's CSV and JSON) and their logs. `everything` is left out: its earth texture needs
-# OpenImageIO, which the bundle does not carry. On 2026-11-28 the scaling section needed more
-# than 330 s for the four scenes (cut during veach-mis; ~110 s a scene) and the engines section
-# ~90 s: give the run a timeout_s of about 570 (a start took ~40 s of the device time), or set
-# SCALING_SECONDS / ENGINES_SECONDS.
+# OpenImageIO, which the bundle does not carry. The scaling section renders three engines per
+# count (the megakernel, the wavefront's resident and stage schedules) plus the renders alone;
+# at three repetitions it takes about 85 s a scene on that machine, the engines section ~90 s:
+# give the run a timeout_s of about 570 (a start took ~40 s of the device time), or set
+# SCALING_SECONDS / ENGINES_SECONDS / SCALING_REPETITIONS.
 set -uo pipefail
 out=${OUT:?OUT must name the folder the results go to}
 mkdir -p /tmp/wt && tar -xJf .device/bundle.tar.xz -C /tmp/wt
@@ -23,9 +24,10 @@ mkdir -p /tmp/wt && tar -xJf .device/bundle.tar.xz -C /tmp/wt
     free -g
 } >"$out/machine.txt" 2>&1
 scenes=(--scene cornell --scene bunny --scene dragon --scene veach-mis)
-timeout "${SCALING_SECONDS:-450}" /tmp/wt/run.sh wavetrace_bench --sections scaling \
-    --max-threads 16 --repetitions 5 --scenes scenes "${scenes[@]}" --out "$out/scaling" 2>&1 |
+timeout "${SCALING_SECONDS:-400}" /tmp/wt/run.sh wavetrace_bench --sections scaling \
+    --max-threads 16 --repetitions "${SCALING_REPETITIONS:-3}" --scenes scenes "${scenes[@]}" \
+    --out "$out/scaling" 2>&1 |
     tee "$out/scaling.log"
-timeout "${ENGINES_SECONDS:-100}" /tmp/wt/run.sh wavetrace_bench --sections engines \
+timeout "${ENGINES_SECONDS:-120}" /tmp/wt/run.sh wavetrace_bench --sections engines \
     --repetitions 3 --scenes scenes "${scenes[@]}" --out "$out/engines" 2>&1 |
     tee "$out/engines.log"

@@ -1,6 +1,9 @@
-// Both engines on 1 .. N threads over the five bench scenes: throughput speed-up over one
-// thread, parallel efficiency, and the wavefront/megakernel ratio at each thread count (the
-// issue's 16-thread check: efficiency ≥ 90% and the ratio kept). The sample count grows with the
+// Both engines on 1 .. N threads over the five bench scenes, the wavefront in both its schedules
+// (resident: each thread carries its own wave through every kernel; stage: each kernel one
+// parallel loop over all waves): throughput speed-up over one thread, parallel efficiency, and
+// the ratio over the megakernel at each thread count (the `stage` rows' ratio is the stage
+// schedule's; their renders-alone columns are the resident wavefront's, whose one-thread
+// renders are the same kernels). The sample count grows with the
 // threads (16 spp per two threads) so that every render lasts about as long: a render of a
 // fixed size would shrink to a tenth of a second at 16 threads, where starting and draining
 // the threads weigh on the figure.
@@ -152,35 +155,42 @@ void bench_scaling(const Options& o, Results& r) {
         const auto wavefront = [&](const RenderRequest& c, RenderStats* s) {
             *s = render_once(scene, bvh, c, Engine::Wavefront);
         };
-        double base_mk = 0, base_wf = 0;  // Mpaths/s at one thread
+        double base_mk = 0, base_wf = 0, base_st = 0;  // Mpaths/s at one thread
         for (size_t c = 0; c < counts.size(); ++c) {
             const int t = counts[c];
             tbb::global_control limit(tbb::global_control::max_allowed_parallelism, t);
             cfg.spp = o.quick ? 1 : 16 * ((t + 1) / 2);
             RenderRequest each = cfg;
             each.spp = std::max(1, cfg.spp / t);
-            // Interleaved (A B A B ...), medians, to damp the noise of a shared machine.
-            std::vector<double> mk, wf, ratio;
+            RenderRequest staged = cfg;
+            staged.wavefront.schedule = Schedule::Stage;
+            // Interleaved (A B C A B C ...), medians, to damp the noise of a shared machine.
+            std::vector<double> mk, wf, st, ratio, st_ratio;
             std::vector<Independent> mk_alone, wf_alone;
             for (int rep = 0; rep < o.repetitions(); ++rep) {
-                RenderStats a, b;
+                RenderStats a, b, c;
                 megakernel(cfg, &a);
                 wavefront(cfg, &b);
+                wavefront(staged, &c);
                 mk.push_back(a.paths / a.seconds * 1e-6);
                 wf.push_back(b.paths / b.seconds * 1e-6);
+                st.push_back(c.paths / c.seconds * 1e-6);
                 ratio.push_back(a.seconds / b.seconds);
+                st_ratio.push_back(a.seconds / c.seconds);
                 if (t > 1) {
                     mk_alone.push_back(independent_mpaths(t, each, megakernel));
                     wf_alone.push_back(independent_mpaths(t, each, wavefront));
                 }
             }
             const double mk_p = spread(mk).median, wf_p = spread(wf).median;
-            const double q = spread(ratio).median;
+            const double st_p = spread(st).median;
+            const double q = spread(ratio).median, st_q = spread(st_ratio).median;
             if (t == 1) {
                 base_mk = mk_p;
                 base_wf = wf_p;
+                base_st = st_p;
             }
-            const double mk_up = mk_p / base_mk, wf_up = wf_p / base_wf;
+            const double mk_up = mk_p / base_mk, wf_up = wf_p / base_wf, st_up = st_p / base_st;
             const double mk_split = speedup_of(mk_alone, &Independent::until_last, base_mk);
             const double wf_split = speedup_of(wf_alone, &Independent::until_last, base_wf);
             const double mk_busy = speedup_of(mk_alone, &Independent::own_rates, base_mk);
@@ -189,12 +199,15 @@ void bench_scaling(const Options& o, Results& r) {
                               mk_up / mk_split, mk_busy, arithmetic[c]});
             r.row("scaling", {name, "wavefront", t, cfg.spp, wf_p, wf_up, wf_up / t, q, wf_split,
                               wf_up / wf_split, wf_busy, arithmetic[c]});
+            r.row("scaling", {name, "stage", t, cfg.spp, st_p, st_up, st_up / t, st_q, wf_split,
+                              st_up / wf_split, wf_busy, arithmetic[c]});
             std::printf(
-                "scaling %-10s %2d threads %3d spp: speed-up megakernel %5.2fx, wavefront %5.2fx "
-                "(efficiency %.2f, %.2f); %d renders alone at once %5.2fx, %5.2fx "
-                "(their own rates %5.2fx, %5.2fx); wavefront/megakernel %.2f\n",
-                name, t, cfg.spp, mk_up, wf_up, mk_up / t, wf_up / t, t, mk_split, wf_split,
-                mk_busy, wf_busy, q);
+                "scaling %-10s %2d threads %3d spp: speed-up megakernel %5.2fx, wavefront %5.2fx, "
+                "stage %5.2fx (efficiency %.2f, %.2f, %.2f); %d renders alone at once %5.2fx, "
+                "%5.2fx (their own rates %5.2fx, %5.2fx); over the megakernel: wavefront %.2f, "
+                "stage %.2f\n",
+                name, t, cfg.spp, mk_up, wf_up, st_up, mk_up / t, wf_up / t, st_up / t, t,
+                mk_split, wf_split, mk_busy, wf_busy, q, st_q);
             std::fflush(stdout);
         }
     }
