@@ -388,11 +388,12 @@ TEST(Kernels, PackedMediaRoundTrip) {
 }
 
 // The queues' bytes per path in flight, from the declarations (docs/architecture.md counts
-// them): 106 for the path, its ray and its hit, 117 for a light sample, 60 for a shadow ray, 25
+// them): 106 for the path, its ray and its hit, 121 for a light sample, 60 for a shadow ray, 25
 // for emission found, 14 of per-entry scratch. A budget, so that a field added is a decision
 // (the last: the turn of an anisotropic BSDF's frame about the shading normal, without which
-// the light sample evaluated it in another frame than the megakernel).
-TEST(Kernels, QueuesTakeAtMost322BytesPerPath) {
-    EXPECT_LE(wavefront_bytes_per_path(), 322u);
+// the light sample evaluated it in another frame than the megakernel, and the roughness
+// across dp/du, which a texture may vary).
+TEST(Kernels, QueuesTakeAtMost326BytesPerPath) {
+    EXPECT_LE(wavefront_bytes_per_path(), 326u);
     EXPECT_EQ(wavefront_bytes_per_path(), WaveQueues::bytes_per_path());
 }

@@ -459,6 +459,35 @@ TEST(Megakernel, SpotsProjectTheirTextureUpright) {
         }
 }
 
+// A conductor's roughness from textures is the roughness: solid textures of alpha_u and
+// alpha_v render the image of the numbers, bit for bit, isotropic and anisotropic.
+TEST(Megakernel, TexturedRoughnessIsTheRoughness) {
+    for (const auto [au, av] : {std::pair{0.3f, 0.3f}, std::pair{0.08f, 0.5f}}) {
+        Image images[2];
+        for (int textured = 0; textured < 2; ++textured) {
+            Scene s = plane_seen_at_origin(0.6f);
+            Material metal;
+            metal.kind = MaterialKind::Conductor;
+            metal.albedo = s.add_solid(Color(1.0f));
+            metal.eta = {0.2f, 0.4f, 1.4f};
+            metal.k = {3.5f, 2.4f, 1.8f};
+            metal.alpha_u = au;
+            metal.alpha_v = av;
+            if (textured) {
+                metal.alpha_u = metal.alpha_v = 1.0f;  // only "rough": the textures say how
+                metal.alpha_u_texture = s.add_solid(Color(au));
+                metal.alpha_v_texture = s.add_solid(Color(av));
+            }
+            s.add_sphere({{0, 0.6f, 0}, 0.5f, s.add_material(metal), kNone});
+            s.lights.push_back(Light::point({1, 3, -1}, Color(10.0f)));
+            s.background.radiance = Color(0.3f);
+            s.camera.vfov = 30;
+            images[textured] = render(s, Strategy::Mis, 24, 24, 4, 3, 4).mean();
+        }
+        EXPECT_TRUE(images[0].pixels == images[1].pixels) << au << " " << av;
+    }
+}
+
 // Next-event estimation passes thin sheets: a plane under a point light seen through a sheet
 // parallel to it gets the inverse-square closed form times the sheet's transmittance T' = 1 -
 // R' at the incidence of the light, R' = 2R / (1 + R) (the sheet's inner reflections summed),

@@ -198,7 +198,8 @@ TEST(ShadingNormals, AnisotropicRoughnessFollowsDpDu) {
     EXPECT_EQ(s.materials[0].alpha_u, 0.3f);
     EXPECT_EQ(s.materials[0].alpha_v, 0.05f);
     const Ray ray{{-0.5f, 0.5f, 3}, {0, 0, -1}};
-    const SurfaceHit hit = surface_at(s, ray, Hit{3.0f, PrimRef::make(PrimKind::Quad, 0), 0.25f, 0.5f});
+    const Hit hit_of_ray{3.0f, PrimRef::make(PrimKind::Quad, 0), 0.25f, 0.5f};
+    const SurfaceHit hit = surface_at(s, ray, hit_of_ray);
     const Vertex v = surface_vertex(s, hit);
     EXPECT_NEAR(v.frame.s.y, 1.0f, 1e-6f);
     EXPECT_NEAR(v.frame.n.z, 1.0f, 1e-6f);
@@ -210,4 +211,16 @@ TEST(ShadingNormals, AnisotropicRoughnessFollowsDpDu) {
         } catch (const SceneError&) {
         }
     }
+    // alpha_u from a uv checker: the vertex reads it at the hit's (u, v); the frame still
+    // follows dp/du.
+    const Scene t = load_scene(scene(R"("alpha_u": {"type": "uv_checker", "scale": 0.5,
+        "even": 0.02, "odd": 0.7}, "alpha_v": 0.05)"));
+    ASSERT_NE(t.materials[0].alpha_u_texture, kNone);
+    EXPECT_EQ(t.materials[0].alpha_v_texture, kNone);
+    const Vertex tv = surface_vertex(t, surface_at(t, ray, hit_of_ray));
+    const float cell = eval_texture(t, t.materials[0].alpha_u_texture, hit.uv, hit.p).x;
+    EXPECT_TRUE(cell == 0.02f || cell == 0.7f) << cell;
+    EXPECT_EQ(tv.bsdf.alpha, cell);
+    EXPECT_EQ(tv.bsdf.alpha_v, 0.05f);
+    EXPECT_NEAR(tv.frame.s.y, 1.0f, 1e-6f);
 }

@@ -146,6 +146,8 @@ void bind_scene(py::module_& m) {
         .def_readwrite("distribution", &Material::distribution)
         .def_readwrite("alpha_u", &Material::alpha_u)
         .def_readwrite("alpha_v", &Material::alpha_v)
+        .def_readwrite("alpha_u_texture", &Material::alpha_u_texture)
+        .def_readwrite("alpha_v_texture", &Material::alpha_v_texture)
         .def_readwrite("specular", &Material::specular)
         .def_readwrite("nonlinear", &Material::nonlinear)
         .def_readwrite("metallic", &Material::metallic)

@@ -24,10 +24,10 @@ Vertex queued_vertex(const Scene& scene, const LightSampleQueue& q, size_t i) {
     v.material = q.material[i];
     if (v.material != kNone) {
         v.bsdf = material_bsdf(scene.materials[v.material], WAVETRACE_XYZ_AT(q, albedo, i));
-        if (v.bsdf.kind == MaterialKind::MetallicRoughness) {  // as its textures made them
-            v.bsdf.alpha = v.bsdf.alpha_v = q.alpha[i];
-            v.bsdf.metallic = q.metallic[i];
-        }
+        // As the vertex's textures made them.
+        v.bsdf.alpha = q.alpha[i];
+        v.bsdf.alpha_v = q.alpha_v[i];
+        if (v.bsdf.kind == MaterialKind::MetallicRoughness) v.bsdf.metallic = q.metallic[i];
         return v;
     }
     v.bsdf.kind = q.kind[i];

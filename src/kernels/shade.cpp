@@ -225,7 +225,7 @@ void append_light_sample(size_t path,
     WT_DCHECK_LT(out.light_sample_end, out.light_samples.capacity);
     store_queued_vertex(out.light_samples, out.light_sample_end++,
                         {static_cast<uint32_t>(path), p, ng, ns, frame_angle, wo, bsdf.albedo,
-                         bsdf.alpha,
+                         bsdf.alpha, bsdf.alpha_v,
                          bsdf.metallic, bsdf.kind, material, beta, u.light_select, u.light_u,
                          u.light_v, media, interior});
 }
@@ -434,6 +434,7 @@ void queue_lane_light_samples(size_t first, size_t last, const Chunk& c, ShadeOu
     rows(b.albedo, q.albedo_x, q.albedo_y, q.albedo_z);
     rows(b.beta, q.beta_x, q.beta_y, q.beta_z);
     row(b.alpha, q.alpha.data() + at);
+    row(b.alpha, q.alpha_v.data() + at);  // lane BSDFs are isotropic
     for (size_t k = first; k < last; ++k) {
         const size_t j = at + (k - first);
         q.path[j] = b.entry[k];

@@ -486,8 +486,16 @@ class Loader {
     }
 
     // A microfacet roughness alpha (0: smooth) and its distribution.
-    void read_roughness(Object& o, Material& m) {
-        if (auto x = o.optional("alpha")) m.alpha_u = m.alpha_v = x->in_range(0.0f, 1.0f);
+    // `textured`: alpha may be a texture (conductors).
+    void read_roughness(Object& o, Material& m, bool textured = false) {
+        if (auto x = o.optional("alpha")) {
+            if (textured && x->is_object()) {
+                m.alpha_u_texture = m.alpha_v_texture = read_texture(*x, Range::Reflectance);
+                m.alpha_u = m.alpha_v = 1.0f;  // rough; the texture says how
+            } else {
+                m.alpha_u = m.alpha_v = x->in_range(0.0f, 1.0f);
+            }
+        }
         if (auto x = o.optional("distribution")) {
             const std::string d = x->string();
             if (d == "ggx")
@@ -559,15 +567,23 @@ class Loader {
                 (k ? *k : *eta)
                     .fail("eta and k are both 0 in channel " + std::to_string(c) +
                           ": a conductor needs eta > 0 or k > 0");
-        read_roughness(o, m);
+        read_roughness(o, m, true);
         // Anisotropic: alpha_u along the surface's dp/du, alpha_v across it (Mitsuba 3's and
-        // pbrt-v4's uroughness / vroughness).
+        // pbrt-v4's uroughness / vroughness); each a number or a texture.
         if (auto u = o.optional("alpha_u")) {
             Value v = o.required("alpha_v");
             if (o.optional("alpha"))
                 u->fail("give \"alpha\" or \"alpha_u\" and \"alpha_v\", not both");
-            m.alpha_u = u->in_range(0.0f, 1.0f);
-            m.alpha_v = v.in_range(0.0f, 1.0f);
+            auto read = [&](const Value& x, float* alpha, TextureId* texture) {
+                if (x.is_object()) {
+                    *texture = read_texture(x, Range::Reflectance);
+                    *alpha = 1.0f;  // rough; the texture says how
+                } else {
+                    *alpha = x.in_range(0.0f, 1.0f);
+                }
+            };
+            read(*u, &m.alpha_u, &m.alpha_u_texture);
+            read(v, &m.alpha_v, &m.alpha_v_texture);
             if ((m.alpha_u == 0.0f) != (m.alpha_v == 0.0f))
                 v.fail("alpha_u and alpha_v are both 0 (smooth) or both > 0");
         }

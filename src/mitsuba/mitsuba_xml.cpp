@@ -780,11 +780,30 @@ class Translator {
 
     // ---- materials ----
 
-    // `anisotropic`: the material takes alpha_u and alpha_v (conductors); others their mean.
+    // `anisotropic`: the material takes alpha_u and alpha_v, numbers or textures (conductors);
+    // others their mean, numbers.
     void roughness(Props& p, json& m, const Element& e, const char* default_distribution,
                    bool anisotropic = false) {
         const std::string d = p.string("distribution", default_distribution);
         if (d != "ggx" && d != "beckmann") fail(e, "distribution \"" + d + "\" (expected ggx or beckmann)");
+        auto textured = [&](const char* name) {
+            const Element* c = p.get(name);
+            return c && c->tag == "texture" ? c : nullptr;
+        };
+        if (anisotropic && (textured("alpha") || textured("alpha_u") || textured("alpha_v"))) {
+            m["distribution"] = d;
+            auto value = [&](const char* name) -> json {
+                if (const Element* t = textured(name)) return texture(*t);
+                return p.number(name, 0.1);
+            };
+            if (p.get("alpha_u") || p.get("alpha_v")) {
+                m["alpha_u"] = value("alpha_u");
+                m["alpha_v"] = value("alpha_v");
+            } else {
+                m["alpha"] = value("alpha");
+            }
+            return;
+        }
         double alpha = p.number("alpha", 0.1);
         if (p.get("alpha_u") || p.get("alpha_v")) {
             const double au = p.number("alpha_u", 0.1), av = p.number("alpha_v", 0.1);

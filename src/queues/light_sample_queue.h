@@ -14,8 +14,8 @@ namespace wavetrace {
 
 // A Lambertian or rough metal vertex, or a medium's isotropic phase function, is described by
 // its albedo and roughness (the light_sample kernel's lanes read them); any other BSDF by its
-// material besides (a conductor's index of refraction comes from there), and a metallic-
-// roughness one by its roughness and metallic at the vertex too (a texture may vary them).
+// material besides (a conductor's index of refraction comes from there), with its roughness
+// and a metallic-roughness one's metallic at the vertex (textures may vary them).
 #define WAVETRACE_LIGHT_SAMPLE_FIELDS(F)                                                \
     F(uint32_t, path, "entry of the path queue it belongs to")                          \
     WAVETRACE_XYZ_FIELD(F, p, "vertex position")                                        \
@@ -24,7 +24,8 @@ namespace wavetrace {
     F(float, frame_angle, "anisotropic BSDFs: the frame's turn about ns (Vertex)")      \
     WAVETRACE_XYZ_FIELD(F, wo, "unit direction back along the ray that arrived")        \
     WAVETRACE_XYZ_FIELD(F, albedo, "the BSDF's albedo at the vertex")                   \
-    F(float, alpha, "rough metal, metallic-roughness: GGX alpha")                       \
+    F(float, alpha, "the BSDF's roughness (alpha_u) at the vertex")                      \
+    F(float, alpha_v, "... across dp/du (textures may vary both)")                       \
     F(float, metallic, "metallic-roughness: metallic (a texture may vary both)")         \
     F(MaterialKind, kind, "the BSDF's kind")                                            \
     F(MaterialId, material, "the material, or kNone where kind, albedo, alpha say all") \
@@ -45,7 +46,7 @@ struct QueuedVertex {
     float frame_angle;
     Vec3 wo;
     Color albedo;
-    float alpha;
+    float alpha, alpha_v;
     float metallic;
     MaterialKind kind;
     MaterialId material;
@@ -59,7 +60,7 @@ inline void store_queued_vertex(LightSampleQueue& q, size_t i, const QueuedVerte
     q.store(i, {v.path,     v.p.x,      v.p.y,      v.p.z,      v.ng.x,     v.ng.y,
                 v.ng.z,     v.ns.x,     v.ns.y,     v.ns.z,     v.frame_angle, v.wo.x,
                 v.wo.y,     v.wo.z,     v.albedo.x, v.albedo.y, v.albedo.z, v.alpha,
-                v.metallic, v.kind,     v.material, v.beta.x,   v.beta.y,   v.beta.z,
+                v.alpha_v,  v.metallic, v.kind,     v.material, v.beta.x,   v.beta.y,   v.beta.z,
                 v.u_select, v.u1,       v.u2,       v.media,    v.interior});
 }
 

@@ -64,6 +64,8 @@ void check_scene(const Scene& scene) {
         check_texture(i, m.opacity, "opacity", false);
         check_texture(i, m.normal_map, "normal_map", false);
         check_texture(i, m.bump_map, "bump_map", false);
+        check_texture(i, m.alpha_u_texture, "alpha_u_texture", false);
+        check_texture(i, m.alpha_v_texture, "alpha_v_texture", false);
         if (!(m.ior > 0) || !std::isfinite(m.ior)) fail("material", i, "ior must be positive");
         if (!(m.alpha_u >= 0 && m.alpha_v >= 0 && m.alpha_u <= 64 && m.alpha_v <= 64))
             fail("material", i, "alpha_u and alpha_v must be in [0, 64]");

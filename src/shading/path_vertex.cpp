@@ -41,17 +41,6 @@ Vertex surface_vertex(const Scene& scene, const SurfaceHit& hit) {
     v.ng = hit.ng;
     const Material& m = scene.materials[hit.material];
     const Normal3 n = m.has_normal_maps() ? mapped_normal(scene, m, hit) : hit.ns;
-    v.frame = frame_from_normal(n);
-    if (m.alpha_u != m.alpha_v) {
-        // An anisotropic roughness runs along dp/du: the frame's s is dp/du made perpendicular
-        // to the shading normal (Mitsuba 3's shading frame), where it has a direction.
-        const Vec3 s = hit.dpdu - dot(n, hit.dpdu) * n;
-        if (length_squared(s) > 1e-20f * length_squared(hit.dpdu) && length_squared(s) > 0.0f) {
-            const Frame base = Frame::from_normal(n);
-            v.frame_angle = std::atan2(dot(s, base.t), dot(s, base.s));
-            v.frame = rotated_frame(n, v.frame_angle);
-        }
-    }
     v.interior = hit.interior;
     v.material = hit.material;
     v.geometric_side_test = scene.geometric_side_test;
@@ -63,6 +52,22 @@ Vertex surface_vertex(const Scene& scene, const SurfaceHit& hit) {
         const float roughness = m.roughness * std::clamp(t.y, 0.0f, 1.0f);
         v.bsdf.alpha = v.bsdf.alpha_v = roughness * roughness;
         v.bsdf.metallic = m.metallic * std::clamp(t.z, 0.0f, 1.0f);
+    }
+    auto textured_alpha = [&](TextureId t) {
+        return std::clamp(eval_texture(scene, t, hit.uv, hit.p).x, 1e-4f, 1.0f);
+    };
+    if (m.alpha_u_texture != kNone) v.bsdf.alpha = textured_alpha(m.alpha_u_texture);
+    if (m.alpha_v_texture != kNone) v.bsdf.alpha_v = textured_alpha(m.alpha_v_texture);
+    v.frame = frame_from_normal(n);
+    if (m.anisotropic() && v.bsdf.alpha != v.bsdf.alpha_v) {
+        // An anisotropic roughness runs along dp/du: the frame's s is dp/du made perpendicular
+        // to the shading normal (Mitsuba 3's shading frame), where it has a direction.
+        const Vec3 s = hit.dpdu - dot(n, hit.dpdu) * n;
+        if (length_squared(s) > 1e-20f * length_squared(hit.dpdu) && length_squared(s) > 0.0f) {
+            const Frame base = Frame::from_normal(n);
+            v.frame_angle = std::atan2(dot(s, base.t), dot(s, base.s));
+            v.frame = rotated_frame(n, v.frame_angle);
+        }
     }
     // A one-sided surface seen from behind reflects nothing: its albedo (a conductor's
     // reflectance) is 0 there.

@@ -33,6 +33,10 @@ struct Material {
     Color eta{0.0f}, k{0.0f};
     Microfacet distribution = Microfacet::Ggx;
     float alpha_u = 0.0f, alpha_v = 0.0f;
+    // Conductor: alpha_u and alpha_v from textures instead (kNone: the numbers above), the first
+    // channel at the hit clamped to [1e-4, 1] (Mitsuba's roughconductor alpha textures). Where
+    // one is set its number above only says "rough" (> 0).
+    TextureId alpha_u_texture = kNone, alpha_v_texture = kNone;
     // Plastic (Mitsuba 3's plastic and roughplastic): the coating's specular reflectance, and
     // whether the base's inner bounces are nonlinear in its reflectance.
     Color specular{1.0f};
@@ -60,9 +64,13 @@ struct Material {
     TextureId bump_map = kNone;
     float bump_scale = 1.0f;
     bool has_normal_maps() const { return normal_map != kNone || bump_map != kNone; }
+    // Whether its roughness may differ along dp/du (alpha_u) and across it (alpha_v).
+    bool anisotropic() const {
+        return alpha_u != alpha_v || alpha_u_texture != alpha_v_texture;
+    }
     // Whether its shading frame must follow the surface's dp/du: normal and bump maps, and an
-    // anisotropic roughness (alpha_u along dp/du, alpha_v across it).
-    bool needs_tangents() const { return has_normal_maps() || alpha_u != alpha_v; }
+    // anisotropic roughness.
+    bool needs_tangents() const { return has_normal_maps() || anisotropic(); }
 
     bool is_emissive() const { return emission != kNone; }
 };
