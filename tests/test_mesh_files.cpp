@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <string>
 
 #include "temp_dir.h"
 #include "wavetrace/image/image.h"
@@ -85,6 +86,15 @@ std::vector<std::array<float, 9>> triangles_of(const TempDir& dir, const std::st
     std::sort(out.begin(), out.end());
     return out;
 }
+
+// The data of a glTF file's one triangle with uvs, its buffer inline (base64 of three float3
+// positions and three float2 uvs): the keys after a file's materials and images.
+const std::string kTexturedTriangle = R"("buffers": [{"byteLength": 60,
+        "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAAAAAAAAAAAAIA/AAAAAAAAAAAAAIA/"}],
+      "bufferViews": [{"buffer": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 24}],
+      "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                     "min": [0, 0, 0], "max": [1, 1, 0]},
+                    {"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC2"}])";
 
 }  // namespace
 
@@ -169,13 +179,7 @@ TEST(MeshFiles, GltfMaterialsMapToMetallicRoughness) {
       "images": [{"uri": "base.png"}, {"uri": "mr.png"},
                  {"uri": "data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAIAAAACCAIAAAD91JpzAAAAEElEQVR4nGNoaPgPRAwQCgA19gf9SShDzAAAAABJRU5ErkJggg=="},
                  {"uri": "data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAIAAAABCAYAAAD0In+KAAAAD0lEQVR4nGM4YWT0H4gZABHoA1ggLQeIAAAAAElFTkSuQmCC"}],
-      "buffers": [{"byteLength": 60,
-        "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAAAAAAAAAAAAIA/AAAAAAAAAAAAAIA/"}],
-      "bufferViews": [{"buffer": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 24}],
-      "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
-                     "min": [0, 0, 0], "max": [1, 1, 0]},
-                    {"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC2"}]
-    })");
+      )" + kTexturedTriangle + "}");
     auto p = dir.write("s.json", R"({"camera": {"look_from": [0, 0, -5], "look_at": [0, 0, 0]},
         "objects": [{"type": "mesh", "file": "two.gltf", "materials": "file"}]})");
     static std::vector<std::string> warnings;
@@ -264,13 +268,7 @@ TEST(MeshFiles, GltfSamplersSetEachTexturesWrapAndFilter) {
                    {"wrapS": 33648, "wrapT": 10497, "magFilter": 9729}],
       "textures": [{"source": 0, "sampler": 0}, {"source": 0, "sampler": 1}, {"source": 0}],
       "images": [{"uri": "base.png"}],
-      "buffers": [{"byteLength": 60,
-        "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAAAAAAAAAAAAIA/AAAAAAAAAAAAAIA/"}],
-      "bufferViews": [{"buffer": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 24}],
-      "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
-                     "min": [0, 0, 0], "max": [1, 1, 0]},
-                    {"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC2"}]
-    })");
+      )" + kTexturedTriangle + "}");
     auto p = dir.write("s.json", R"({"camera": {"look_from": [0, 0, -5], "look_at": [0, 0, 0]},
         "objects": [{"type": "mesh", "file": "one.gltf", "materials": "file"}]})");
     Scene s = load_scene(p);

@@ -486,15 +486,22 @@ class Loader {
     }
 
     // A microfacet roughness alpha (0: smooth) and its distribution.
-    // `textured`: alpha may be a texture (conductors).
+    // A roughness: a number in [0, 1], or where `textured` (conductors) a texture, its number
+    // then 1 (rough; the texture says how).
+    void read_alpha(const Value& x, bool textured, float* alpha, TextureId* texture) {
+        if (textured && x.is_object()) {
+            *texture = read_texture(x, Range::Reflectance);
+            *alpha = 1.0f;
+        } else {
+            *alpha = x.in_range(0.0f, 1.0f);
+        }
+    }
+
     void read_roughness(Object& o, Material& m, bool textured = false) {
         if (auto x = o.optional("alpha")) {
-            if (textured && x->is_object()) {
-                m.alpha_u_texture = m.alpha_v_texture = read_texture(*x, Range::Reflectance);
-                m.alpha_u = m.alpha_v = 1.0f;  // rough; the texture says how
-            } else {
-                m.alpha_u = m.alpha_v = x->in_range(0.0f, 1.0f);
-            }
+            read_alpha(*x, textured, &m.alpha_u, &m.alpha_u_texture);
+            m.alpha_v = m.alpha_u;
+            m.alpha_v_texture = m.alpha_u_texture;
         }
         if (auto x = o.optional("distribution")) {
             const std::string d = x->string();
@@ -574,16 +581,8 @@ class Loader {
             Value v = o.required("alpha_v");
             if (o.optional("alpha"))
                 u->fail("give \"alpha\" or \"alpha_u\" and \"alpha_v\", not both");
-            auto read = [&](const Value& x, float* alpha, TextureId* texture) {
-                if (x.is_object()) {
-                    *texture = read_texture(x, Range::Reflectance);
-                    *alpha = 1.0f;  // rough; the texture says how
-                } else {
-                    *alpha = x.in_range(0.0f, 1.0f);
-                }
-            };
-            read(*u, &m.alpha_u, &m.alpha_u_texture);
-            read(v, &m.alpha_v, &m.alpha_v_texture);
+            read_alpha(*u, true, &m.alpha_u, &m.alpha_u_texture);
+            read_alpha(v, true, &m.alpha_v, &m.alpha_v_texture);
             if ((m.alpha_u == 0.0f) != (m.alpha_v == 0.0f))
                 v.fail("alpha_u and alpha_v are both 0 (smooth) or both > 0");
         }
