@@ -149,11 +149,11 @@ TEST(Cli, OutputDoesNotDependOnThreadCountOrSortingByMaterial) {
     for (size_t i = 0; i < ia.texels.size(); ++i) ASSERT_EQ(ia.texels[i], ib.texels[i]) << i;
 }
 
-// The wavefront's memory does not grow with the sample count: a 3840 x 2160 render at 16 spp
+// The wavefront's memory does not grow with the sample count: a 3840 x 2160 render at 4 spp
 // peaks within 10% of the same render at 1 spp (the film, the same in both, dominates; the
 // queues are sized by the wave, not by the image or the samples). Measured by each process's
 // getrusage peak, as the CLI reports it. The scene is the Cornell box with one segment per
-// path, to keep 133 M paths affordable.
+// path, to keep 33 M paths affordable.
 TEST(Cli, WavefrontMemoryDoesNotGrowWithSamples) {
     TempDir dir;
     auto peak = [&](int spp) {
@@ -167,10 +167,11 @@ TEST(Cli, WavefrontMemoryDoesNotGrowWithSamples) {
         EXPECT_NE(at, std::string::npos) << r.err;
         return at == std::string::npos ? 0.0 : std::stod(r.err.substr(at + 12));
     };
-    double one = peak(1), sixteen = peak(16);
-    std::printf("peak memory 3840x2160: 1 spp %.1f MiB, 16 spp %.1f MiB\n", one, sixteen);
+    // A buffer per sample would show at 4 spp as three more images' worth (~100 MiB each).
+    double one = peak(1), four = peak(4);
+    std::printf("peak memory 3840x2160: 1 spp %.1f MiB, 4 spp %.1f MiB\n", one, four);
     EXPECT_GT(one, 0.0);
-    EXPECT_LE(sixteen, 1.10 * one);
+    EXPECT_LE(four, 1.10 * one);
 }
 
 // --simd runs every kernel on the named target: each target this CPU runs gives the same

@@ -462,7 +462,7 @@ TEST(Megakernel, SpotsProjectTheirTextureUpright) {
 // A conductor's roughness from textures is the roughness: solid textures of alpha_u and
 // alpha_v render the image of the numbers, bit for bit, isotropic and anisotropic.
 TEST(Megakernel, TexturedRoughnessIsTheRoughness) {
-    for (const auto [au, av] : {std::pair{0.3f, 0.3f}, std::pair{0.08f, 0.5f}}) {
+    for (const auto& [au, av] : {std::pair{0.3f, 0.3f}, std::pair{0.08f, 0.5f}}) {
         Image images[2];
         for (int textured = 0; textured < 2; ++textured) {
             Scene s = plane_seen_at_origin(0.6f);
