@@ -57,6 +57,22 @@ plot dir."/bvh.csv" using (column(3) == 1 && strcol(2) eq "primary" ? column(10)
      "" using (column(3) == 1 && strcol(2) eq "primary" ? column(9) : 1/0) title "Embree rtcIntersect16", \
      "" using (column(3) == 1 && strcol(2) eq "primary" ? column(5) : 1/0) title "ours, single rays"
 
+# Single rays against scene size (the dragon grown from 10^4 to 10^7 triangles), one thread.
+set output dir."/scene-size.svg"
+set style data linespoints
+set logscale x 10
+set xtics auto
+set title "Single rays against scene size, one thread: ours vs Embree"
+set xlabel "triangles"
+set ylabel "Mrays/s"
+plot for [b in "primary diffuse shadow"] dir."/scene_size.csv" \
+         using (column(3) == 1 && strcol(2) eq b ? column(1) : 1/0):5 title "ours, ".b, \
+     for [b in "primary diffuse shadow"] dir."/scene_size.csv" \
+         using (column(3) == 1 && strcol(2) eq b ? column(1) : 1/0):6 title "Embree, ".b dt 2
+unset logscale x
+unset xlabel
+set style data histograms
+
 # Thread scaling.
 set output dir."/scaling.svg"
 set style data linespoints

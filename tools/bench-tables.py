@@ -87,6 +87,41 @@ def bvh(results):
             f(r["embree_high_ms"], 3)] for r in rows(results, "bvh_build")])
 
 
+def scene_size(results):
+    by = {}
+    for r in rows(results, "scene_size"):
+        by.setdefault((int(r["triangles"]), r["batch"]), {})[r["threads"]] = r
+    body = []
+    for (n, batch), t in sorted(by.items(), key=lambda kv: kv[0][0]):
+        line = [f"{n:,}", batch]
+        for threads in sorted(t, key=int):
+            r = t[threads]
+            line += [f(r["ours_mrays"], 1), f(r["embree_mrays"], 1),
+                     f"**{f(r['ours_over_embree'])}**"]
+        if batch == "primary":
+            r = t["1"]
+            line += [f(r["ours_packet_mrays"], 1), f(r["embree_packet16_mrays"], 1),
+                     f"**{f(r['ours_packet_over_embree_packet16'])}**"]
+        body.append(line)
+    table(["triangles", "batch", "ours, 1 thread (Mrays/s)", "Embree, 1 thread", "ours / Embree",
+           "ours, all threads", "Embree, all threads", "ours / Embree",
+           "ours, packets, 1 thread", "Embree 16-wide", "ours / Embree 16"], body)
+    table(["triangles", "ours build (ms)", "Embree medium (ms)", "Embree high (ms)",
+           "ours / Embree high", "ours (B/triangle)", "ours, traversal only", "Embree medium",
+           "Embree high", "peak memory (MiB)"],
+          [[f"{int(r['triangles']):,}", f(r["ours_ms"], 1), f(r["embree_medium_ms"], 1),
+            f(r["embree_high_ms"], 1), f"**{f(r['ours_over_embree_high'])}**",
+            f(r["ours_bytes_per_triangle"], 1), f(r["ours_traversal_bytes_per_triangle"], 1),
+            f(r["embree_medium_bytes_per_triangle"], 1), f(r["embree_high_bytes_per_triangle"], 1),
+            f(r["peak_rss_mib"], 0)] for r in rows(results, "scene_size_build")])
+    table(["triangles", "threads", "megakernel (Mpaths/s)", "wavefront", "wavefront / megakernel",
+           "megakernel on Embree", "wavefront on Embree", "megakernel: ours / Embree"],
+          [[f"{int(r['triangles']):,}", r["threads"], f(r["megakernel_mpaths"], 3),
+            f(r["wavefront_mpaths"], 3), f"**{f(r['wavefront_over_megakernel'])}**",
+            f(r["megakernel_embree_mpaths"], 3), f(r["wavefront_embree_mpaths"], 3),
+            f"**{f(r['megakernel_ours_over_embree'])}**"] for r in rows(results, "scene_size_render")])
+
+
 def scaling(results):
     body = []
     for r in rows(results, "scaling"):
@@ -136,7 +171,8 @@ def kernels(results):
 
 def main():
     results = sys.argv[1] if len(sys.argv) > 1 else "results"
-    for title, section in [("engines", engines), ("schedules", schedules), ("bvh", bvh), ("scaling", scaling),
+    for title, section in [("engines", engines), ("schedules", schedules), ("bvh", bvh), ("scene_size", scene_size),
+                           ("scaling", scaling),
                            ("waves", waves), ("convergence", convergence),
                            ("kernels", kernels)]:
         print(f"<!-- {title} -->\n")

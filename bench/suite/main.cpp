@@ -15,14 +15,14 @@ int main(int argc, char** argv) {
     CLI::App app{"wavetrace benchmark suite"};
     Options o;
     std::string out = "results", scenes = WAVETRACE_SCENES_DIR;
-    std::vector<std::string> sections = {"engines", "waves",       "bvh",
+    std::vector<std::string> sections = {"engines", "waves",       "bvh",        "scene_size",
                                          "scaling", "convergence", "python_rays"};
     app.add_flag("--quick", o.quick, "tiny settings: check the harness only");
     app.add_option("--out", out, "results folder")->capture_default_str();
     app.add_option("--scenes", scenes, "scenes folder")->capture_default_str();
     app.add_option("--sections", sections, "sections to run")
         ->check(CLI::IsMember(
-            {"engines", "waves", "bvh", "scaling", "convergence", "python_rays"}));
+            {"engines", "waves", "bvh", "scene_size", "scaling", "convergence", "python_rays"}));
     app.add_option("--max-threads", o.max_threads,
                    "scaling: up to this many threads (default: all)");
     app.add_option("--repetitions", o.reps,
@@ -76,6 +76,7 @@ int main(int argc, char** argv) {
         if (s == "engines") bench_engines(o, r);
         if (s == "waves") bench_waves(o, r);
         if (s == "bvh") bench_bvh(o, r);
+        if (s == "scene_size") bench_scene_size(o, r);
         if (s == "scaling") bench_scaling(o, r);
         if (s == "convergence") bench_convergence(o, r);
         if (s == "python_rays") bench_python_rays(o, r);

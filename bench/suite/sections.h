@@ -50,6 +50,7 @@ RenderStats render_once(const Scene& scene,
 void bench_engines(const Options& o, Results& r);      // megakernel vs wavefront, A B A B ...
 void bench_waves(const Options& o, Results& r);        // wavefront speed vs wave size
 void bench_bvh(const Options& o, Results& r);          // our BVH vs Embree on captured rays
+void bench_scene_size(const Options& o, Results& r);   // the same, 10^4 to 10^7 triangles
 void bench_scaling(const Options& o, Results& r);      // threads 1..N, both engines
 void bench_convergence(const Options& o, Results& r);  // rMSE vs time per strategy
 void bench_python_rays(const Options& o, Results& r);  // Bvh.intersect from NumPy vs C++

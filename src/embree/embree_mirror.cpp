@@ -43,8 +43,16 @@ void attach(const Scene& s, RTCScene scene, RTCGeometry g, PrimKind kind) {
 }
 
 template <class T>
-T* buffer(RTCGeometry g, RTCBufferType type, RTCFormat format, size_t stride, size_t n) {
+T* buffer(
+    RTCGeometry g, RTCBufferType type, RTCFormat format, size_t stride, size_t n, size_t& total) {
+    total += stride * n;
     return static_cast<T*>(rtcSetNewGeometryBuffer(g, type, 0, format, stride, n));
+}
+
+// Embree's memory monitor: `bytes` allocated (> 0) or freed (< 0) by the device.
+bool count_bytes(void* held, ssize_t bytes, bool /*post*/) {
+    *static_cast<std::atomic<long long>*>(held) += bytes;
+    return true;
 }
 
 // Embree's own kernels capped at the SIMD target ours run on (use_simd_target), so that a
@@ -63,6 +71,7 @@ std::string embree_config() {
 EmbreeMirror::EmbreeMirror(const Scene& s, RTCBuildQuality quality, bool robust) {
     const std::string config = embree_config();
     device_ = rtcNewDevice(config.empty() ? nullptr : config.c_str());
+    rtcSetDeviceMemoryMonitorFunction(device_, count_bytes, &bytes_held_);
     auto start = std::chrono::steady_clock::now();
     scene_ = rtcNewScene(device_);
     if (robust) rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
@@ -70,12 +79,12 @@ EmbreeMirror::EmbreeMirror(const Scene& s, RTCBuildQuality quality, bool robust)
     if (!s.triangles.empty()) {
         RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
         rtcSetGeometryBuildQuality(g, quality);
-        auto* v =
-            buffer<float>(g, RTC_BUFFER_TYPE_VERTEX, RTC_FORMAT_FLOAT3, 12, s.positions.size());
+        auto* v = buffer<float>(g, RTC_BUFFER_TYPE_VERTEX, RTC_FORMAT_FLOAT3, 12,
+                                s.positions.size(), geometry_bytes_);
         for (size_t i = 0; i < s.positions.size(); ++i)
             for (int k = 0; k < 3; ++k) v[3 * i + k] = s.positions[i][k];
-        auto* idx =
-            buffer<uint32_t>(g, RTC_BUFFER_TYPE_INDEX, RTC_FORMAT_UINT3, 12, s.triangles.size());
+        auto* idx = buffer<uint32_t>(g, RTC_BUFFER_TYPE_INDEX, RTC_FORMAT_UINT3, 12,
+                                     s.triangles.size(), geometry_bytes_);
         for (size_t i = 0; i < s.triangles.size(); ++i)
             for (int k = 0; k < 3; ++k) idx[3 * i + k] = s.triangles[i].v[k];
         attach(s, scene_, g, PrimKind::Triangle);
@@ -83,10 +92,10 @@ EmbreeMirror::EmbreeMirror(const Scene& s, RTCBuildQuality quality, bool robust)
     if (!s.quads.empty()) {
         RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_QUAD);
         rtcSetGeometryBuildQuality(g, quality);
-        auto* v =
-            buffer<float>(g, RTC_BUFFER_TYPE_VERTEX, RTC_FORMAT_FLOAT3, 12, 4 * s.quads.size());
-        auto* idx =
-            buffer<uint32_t>(g, RTC_BUFFER_TYPE_INDEX, RTC_FORMAT_UINT4, 16, s.quads.size());
+        auto* v = buffer<float>(g, RTC_BUFFER_TYPE_VERTEX, RTC_FORMAT_FLOAT3, 12,
+                                4 * s.quads.size(), geometry_bytes_);
+        auto* idx = buffer<uint32_t>(g, RTC_BUFFER_TYPE_INDEX, RTC_FORMAT_UINT4, 16, s.quads.size(),
+                                     geometry_bytes_);
         for (size_t i = 0; i < s.quads.size(); ++i) {
             const Quad& q = s.quads[i];
             const Point3 corners[4] = {q.q, q.q + q.u, q.q + q.u + q.v, q.q + q.v};
@@ -100,7 +109,8 @@ EmbreeMirror::EmbreeMirror(const Scene& s, RTCBuildQuality quality, bool robust)
     if (!s.spheres.empty()) {
         RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_SPHERE_POINT);
         rtcSetGeometryBuildQuality(g, quality);
-        auto* v = buffer<float>(g, RTC_BUFFER_TYPE_VERTEX, RTC_FORMAT_FLOAT4, 16, s.spheres.size());
+        auto* v = buffer<float>(g, RTC_BUFFER_TYPE_VERTEX, RTC_FORMAT_FLOAT4, 16, s.spheres.size(),
+                                geometry_bytes_);
         for (size_t i = 0; i < s.spheres.size(); ++i) {
             for (int k = 0; k < 3; ++k) v[4 * i + k] = s.spheres[i].center[k];
             v[4 * i + 3] = s.spheres[i].radius;

@@ -6,6 +6,9 @@
 
 #include <embree3/rtcore.h>
 
+#include <atomic>
+#include <cstddef>
+
 #include "wavetrace/accel/bvh.h"
 #include "wavetrace/math/ray.h"
 
@@ -30,11 +33,18 @@ class EmbreeMirror {
     void intersect_packet(const Ray* rays, int width, Hit* hits = nullptr) const;
     RTCScene scene() const { return scene_; }
     double build_ms() const { return build_ms_; }
+    // What the device holds once the scene is built, as its memory monitor counts it
+    // (rtcSetDeviceMemoryMonitorFunction): the acceleration structure and the vertex and index
+    // buffers the mirror filled, whose share is geometry_bytes().
+    size_t bytes() const { return static_cast<size_t>(bytes_held_); }
+    size_t geometry_bytes() const { return geometry_bytes_; }
 
   private:
     RTCDevice device_;
     RTCScene scene_;
     double build_ms_ = 0;
+    std::atomic<long long> bytes_held_{0};
+    size_t geometry_bytes_ = 0;
 };
 
 }  // namespace wavetrace
