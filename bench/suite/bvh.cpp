@@ -27,33 +27,29 @@ void bench_bvh(const Options& o, Results& r) {
         Batches b = capture(scene, bvh, o.quick ? 32 : 512);
         for (int threads : {1, all_threads}) {
             tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
-            auto row = [&](const char* batch, const std::vector<Ray>& rays, bool shadow,
-                           bool packets) {
-                const BatchRates t =
-                    time_batch(bvh, embree, rays, shadow, packets, threads, o.repetitions());
-                nlohmann::json p8 = nullptr, p16 = nullptr, ours_p = nullptr, ratio_p = nullptr;
-                if (t.packets) {
-                    ours_p = t.ours_packet;
-                    p8 = t.embree_packet8;
-                    p16 = t.embree_packet16;
-                    ratio_p = t.ours_packet_over_embree16;
-                    std::printf(
-                        "bvh %-10s packets  %d thread(s): ours %7.2f Mrays/s, embree "
-                        "16-wide %7.2f, ours/embree %.2f\n",
-                        name, threads, t.ours_packet, t.embree_packet16,
-                        t.ours_packet_over_embree16);
-                }
-                r.row("bvh", {name, batch, threads, rays.size(), t.ours, t.embree,
-                              t.ours_over_embree, p8, p16, ours_p, ratio_p});
-                std::printf(
-                    "bvh %-10s %-8s %d thread(s): ours %7.2f Mrays/s, embree %7.2f, ours/embree "
-                    "%.2f\n",
-                    name, batch, threads, t.ours, t.embree, t.ours_over_embree);
-                std::fflush(stdout);
-            };
-            row("primary", b.primary, false, true);
-            row("diffuse", b.diffuse, false, false);
-            row("shadow", b.shadow, true, false);
+            time_batches(bvh, embree, b, threads, o.repetitions(),
+                         [&](const char* batch, size_t rays, const BatchRates& t) {
+                             nlohmann::json p8 = nullptr, p16 = nullptr, ours_p = nullptr,
+                                            ratio_p = nullptr;
+                             if (t.packets) {
+                                 ours_p = t.ours_packet;
+                                 p8 = t.embree_packet8;
+                                 p16 = t.embree_packet16;
+                                 ratio_p = t.ours_packet_over_embree16;
+                                 std::printf(
+                                     "bvh %-10s packets  %d thread(s): ours %7.2f Mrays/s, embree "
+                                     "16-wide %7.2f, ours/embree %.2f\n",
+                                     name, threads, t.ours_packet, t.embree_packet16,
+                                     t.ours_packet_over_embree16);
+                             }
+                             r.row("bvh", {name, batch, threads, rays, t.ours, t.embree,
+                                           t.ours_over_embree, p8, p16, ours_p, ratio_p});
+                             std::printf(
+                                 "bvh %-10s %-8s %d thread(s): ours %7.2f Mrays/s, embree %7.2f, "
+                                 "ours/embree %.2f\n",
+                                 name, batch, threads, t.ours, t.embree, t.ours_over_embree);
+                             std::fflush(stdout);
+                         });
         }
         double ours = median_ms([&] { return Bvh::build(scene).stats().build_ms; });
         double medium = median_ms(

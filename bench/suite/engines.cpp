@@ -71,16 +71,11 @@ void bench_engines(const Options& o, Results& r) {
         const char* scene;
         int w, h, spp;
     };
-    const Case full[] = {{"cornell", 320, 320, 16},
-                         {"everything", 320, 320, 16},
-                         {"bunny", 320, 320, 16},
-                         {"dragon", 320, 320, 16},
-                         {"veach-mis", 384, 288, 16},
-                         {"materials", 320, 160, 16},
-                         {"dragon-envmap", 320, 240, 16},
-                         {"cornell-glass", 320, 320, 16},
-                         {"cornell-mirror", 320, 320, 16},
-                         {"cornell-smoke", 320, 320, 16},
+    const Case full[] = {{"cornell", 320, 320, 16},        {"everything", 320, 320, 16},
+                         {"bunny", 320, 320, 16},          {"dragon", 320, 320, 16},
+                         {"veach-mis", 384, 288, 16},      {"materials", 320, 160, 16},
+                         {"dragon-envmap", 320, 240, 16},  {"cornell-glass", 320, 320, 16},
+                         {"cornell-mirror", 320, 320, 16}, {"cornell-smoke", 320, 320, 16},
                          {"cornell-mcguire", 320, 320, 16}};
     const int reps = o.repetitions();
     const int all = tbb::this_task_arena::max_concurrency();

@@ -30,9 +30,9 @@ int main(int argc, char** argv) {
         ->capture_default_str()
         ->check(CLI::PositiveNumber);
     app.add_option("--scene", o.only, "engines, scaling: only these bench scenes (repeatable)")
-        ->check(CLI::IsMember(
-            {"cornell", "everything", "bunny", "dragon", "veach-mis", "materials", "dragon-envmap",
-             "cornell-glass", "cornell-mirror", "cornell-smoke", "cornell-mcguire"}));
+        ->check(CLI::IsMember({"cornell", "everything", "bunny", "dragon", "veach-mis", "materials",
+                               "dragon-envmap", "cornell-glass", "cornell-mirror", "cornell-smoke",
+                               "cornell-mcguire"}));
     std::string sampler;
     app.add_option("--sampler", sampler,
                    "engines, waves, scaling: the sampler the renders draw from (default: the "

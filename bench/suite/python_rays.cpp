@@ -25,7 +25,8 @@ std::vector<Ray> incoherent_rays(const Scene& scene, size_t n) {
     std::vector<Ray> rays(n);
     for (size_t i = 0; i < n; ++i) {
         auto u = [&](int d) { return sample_1d(11, uint32_t(i), 0, d); };
-        const float z = 1 - 2 * u(0), phi = 2 * kPi * u(1), s = std::sqrt(std::max(0.0f, 1 - z * z));
+        const float z = 1 - 2 * u(0), phi = 2 * kPi * u(1),
+                    s = std::sqrt(std::max(0.0f, 1 - z * z));
         const Point3 o = centre + radius * Vec3(s * std::cos(phi), s * std::sin(phi), z);
         const Point3 target = b.lo + Vec3(u(2), u(3), u(4)) * (b.hi - b.lo);
         rays[i] = Ray{o, target - o};
@@ -50,8 +51,8 @@ double cpp_seconds(const Bvh& bvh, const std::vector<Ray>& rays, std::vector<Hit
 }  // namespace
 
 void bench_python_rays(const Options& o, Results& r) {
-    r.table("python_rays", {"scene", "rays", "cpp_ms", "python_ms", "python_over_cpp",
-                            "ratio_min", "ratio_max", "hits_equal"});
+    r.table("python_rays", {"scene", "rays", "cpp_ms", "python_ms", "python_over_cpp", "ratio_min",
+                            "ratio_max", "hits_equal"});
 #ifndef WAVETRACE_PYTHON_PATH
     std::printf("python_rays: skipped (built without the Python module)\n");
     return;
@@ -105,9 +106,10 @@ void bench_python_rays(const Options& o, Results& r) {
     const Spread ratio = spread(ratios);
     r.row("python_rays", {name, n, spread(cpp).median * 1e3, spread(py).median * 1e3, ratio.median,
                           ratio.min, ratio.max, equal});
-    std::printf("python_rays %s: %zu rays, C++ %.1f ms, Python %.1f ms, ratio %.3f [%.3f, %.3f]%s\n",
-                name.c_str(), n, spread(cpp).median * 1e3, spread(py).median * 1e3, ratio.median,
-                ratio.min, ratio.max, equal ? "" : ", HITS DIFFER");
+    std::printf(
+        "python_rays %s: %zu rays, C++ %.1f ms, Python %.1f ms, ratio %.3f [%.3f, %.3f]%s\n",
+        name.c_str(), n, spread(cpp).median * 1e3, spread(py).median * 1e3, ratio.median, ratio.min,
+        ratio.max, equal ? "" : ", HITS DIFFER");
 #endif
 }
 

@@ -126,6 +126,20 @@ BatchRates time_batch(const Bvh& bvh,
     return r;
 }
 
+void time_batches(const Bvh& bvh,
+                  const EmbreeMirror& embree,
+                  const Batches& b,
+                  int threads,
+                  int rounds,
+                  const std::function<void(const char*, size_t, const BatchRates&)>& report) {
+    report("primary", b.primary.size(),
+           time_batch(bvh, embree, b.primary, false, true, threads, rounds));
+    report("diffuse", b.diffuse.size(),
+           time_batch(bvh, embree, b.diffuse, false, false, threads, rounds));
+    report("shadow", b.shadow.size(),
+           time_batch(bvh, embree, b.shadow, true, false, threads, rounds));
+}
+
 double median_ms(const std::function<double()>& build, int times) {
     std::vector<double> t;
     for (int i = 0; i < times; ++i) t.push_back(build());

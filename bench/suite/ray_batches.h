@@ -59,6 +59,15 @@ BatchRates time_batch(const Bvh& bvh,
                       int threads,
                       int rounds);
 
+// time_batch over b's primary (with packets), diffuse and shadow batches in that order, each
+// reported as report(batch name, its ray count, its rates).
+void time_batches(const Bvh& bvh,
+                  const EmbreeMirror& embree,
+                  const Batches& b,
+                  int threads,
+                  int rounds,
+                  const std::function<void(const char*, size_t, const BatchRates&)>& report);
+
 // The median of `times` calls of `build` (each returning its milliseconds).
 double median_ms(const std::function<double()>& build, int times = 3);
 

@@ -206,8 +206,8 @@ void bench_scaling(const Options& o, Results& r) {
                 "stage %5.2fx (efficiency %.2f, %.2f, %.2f); %d renders alone at once %5.2fx, "
                 "%5.2fx (their own rates %5.2fx, %5.2fx); over the megakernel: wavefront %.2f, "
                 "stage %.2f\n",
-                name, t, cfg.spp, mk_up, wf_up, st_up, mk_up / t, wf_up / t, st_up / t, t,
-                mk_split, wf_split, mk_busy, wf_busy, q, st_q);
+                name, t, cfg.spp, mk_up, wf_up, st_up, mk_up / t, wf_up / t, st_up / t, t, mk_split,
+                wf_split, mk_busy, wf_busy, q, st_q);
             std::fflush(stdout);
         }
     }

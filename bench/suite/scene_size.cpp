@@ -205,27 +205,22 @@ void bench_scene_size(const Options& o, Results& r) {
         const Batches b = capture(scene, bvh, o.quick ? 32 : 512);
         for (int threads : {1, all_threads}) {
             tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
-            auto row = [&](const char* batch, const std::vector<Ray>& rays, bool shadow,
-                           bool packets) {
-                const BatchRates t =
-                    time_batch(bvh, embree, rays, shadow, packets, threads, o.repetitions());
-                nlohmann::json ours_p = nullptr, p16 = nullptr, ratio_p = nullptr;
-                if (t.packets) {
-                    ours_p = t.ours_packet;
-                    p16 = t.embree_packet16;
-                    ratio_p = t.ours_packet_over_embree16;
-                }
-                r.row("scene_size", {n, batch, threads, rays.size(), t.ours, t.embree,
-                                     t.ours_over_embree, ours_p, p16, ratio_p});
-                std::printf(
-                    "scene_size %9zu %-8s %d thread(s): ours %7.2f Mrays/s, embree %7.2f, "
-                    "ours/embree %.2f\n",
-                    n, batch, threads, t.ours, t.embree, t.ours_over_embree);
-                std::fflush(stdout);
-            };
-            row("primary", b.primary, false, true);
-            row("diffuse", b.diffuse, false, false);
-            row("shadow", b.shadow, true, false);
+            time_batches(bvh, embree, b, threads, o.repetitions(),
+                         [&](const char* batch, size_t rays, const BatchRates& t) {
+                             nlohmann::json ours_p = nullptr, p16 = nullptr, ratio_p = nullptr;
+                             if (t.packets) {
+                                 ours_p = t.ours_packet;
+                                 p16 = t.embree_packet16;
+                                 ratio_p = t.ours_packet_over_embree16;
+                             }
+                             r.row("scene_size", {n, batch, threads, rays, t.ours, t.embree,
+                                                  t.ours_over_embree, ours_p, p16, ratio_p});
+                             std::printf(
+                                 "scene_size %9zu %-8s %d thread(s): ours %7.2f Mrays/s, "
+                                 "embree %7.2f, ours/embree %.2f\n",
+                                 n, batch, threads, t.ours, t.embree, t.ours_over_embree);
+                             std::fflush(stdout);
+                         });
         }
         // Renders on all threads, both engines on both BVHs, interleaved: paths of up to eight
         // segments under the area light.
