@@ -9,7 +9,7 @@ namespace wavetrace {
 namespace {
 
 // o and i on o's side mirrored above the surface: f cos and pdf for o.z > 0, i.z > 0.
-Color eval_upper(const BsdfParams& b, Vec3 o, Vec3 i, float* pdf) {
+Color eval_conductor_upper(const BsdfParams& b, Vec3 o, Vec3 i, float* pdf) {
     const MicrofacetDistribution md = microfacet_of(b);
     const Vec3 h = normalize(o + i);
     const float d = md.d(h);
@@ -25,7 +25,8 @@ Color conductor_eval(const BsdfParams& b, Vec3 wo, Vec3 wi, float* pdf) {
     *pdf = 0.0f;
     if (b.is_delta() || !(wo.z * wi.z > 0.0f)) return {};
     const float side = wo.z < 0.0f ? -1.0f : 1.0f;
-    const Color f = eval_upper(b, {wo.x, wo.y, wo.z * side}, {wi.x, wi.y, wi.z * side}, pdf);
+    const Color f =
+        eval_conductor_upper(b, {wo.x, wo.y, wo.z * side}, {wi.x, wi.y, wi.z * side}, pdf);
     if (!(*pdf > 0.0f)) {
         *pdf = 0.0f;
         return {};
@@ -48,7 +49,7 @@ BsdfSample conductor_sample(const BsdfParams& b, Vec3 wo, float u1, float u2) {
     const Vec3 i = 2.0f * dot(o, m) * m - o;
     if (!(i.z > 0.0f)) return s;  // reflected below the surface: lost
     // The value and density from (o, i) as eval computes them, so that weight = eval / pdf.
-    const Color f = eval_upper(b, o, i, &s.pdf);
+    const Color f = eval_conductor_upper(b, o, i, &s.pdf);
     if (!(s.pdf > 0.0f)) return s;
     s.wi = {i.x, i.y, i.z * side};
     s.weight = f / s.pdf;

@@ -51,7 +51,7 @@ LobeChoice choose_lobes(const BsdfParams& b, Vec3 o) {
 
 // f cos_i of the lobes that are not deltas, and their density weighted by the lobe
 // probabilities, for o above the surface (o.z > 0) and i on either side.
-Color eval_upper(const BsdfParams& b, const LobeChoice& p, Vec3 o, Vec3 i, float* pdf) {
+Color eval_metallic_upper(const BsdfParams& b, const LobeChoice& p, Vec3 o, Vec3 i, float* pdf) {
     *pdf = 0.0f;
     const float f0 = schlick_f0(b.eta), m = b.metallic;
     const float fc = coat_fresnel(b, o), base = 1.0f - b.clearcoat * fc;
@@ -103,7 +103,7 @@ Color metallic_roughness_eval(const BsdfParams& b, Vec3 wo, Vec3 wi, float* pdf)
     if (wo.z == 0.0f || (b.one_sided && wo.z < 0.0f)) return {};
     const float side = wo.z < 0.0f ? -1.0f : 1.0f;
     const Vec3 o{wo.x, wo.y, wo.z * side}, i{wi.x, wi.y, wi.z * side};
-    return eval_upper(b, choose_lobes(b, o), o, i, pdf);
+    return eval_metallic_upper(b, choose_lobes(b, o), o, i, pdf);
 }
 
 BsdfSample metallic_roughness_sample(const BsdfParams& b, Vec3 wo, float u_lobe, float u1,
@@ -156,7 +156,7 @@ BsdfSample metallic_roughness_sample(const BsdfParams& b, Vec3 wo, float u_lobe,
         if (transmission) i.z = -i.z;
     }
     // The value and density from (o, i) as eval computes them, so that weight = eval / pdf.
-    const Color f = eval_upper(b, p, o, i, &s.pdf);
+    const Color f = eval_metallic_upper(b, p, o, i, &s.pdf);
     if (!(s.pdf > 0.0f)) return s;
     s.wi = {i.x, i.y, i.z * side};
     s.weight = f / s.pdf;

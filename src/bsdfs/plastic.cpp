@@ -81,7 +81,7 @@ struct Lobes {
 };
 
 // Both directions above the surface.
-Lobes eval_upper(const BsdfParams& b, Vec3 o, Vec3 i) {
+Lobes eval_plastic_upper(const BsdfParams& b, Vec3 o, Vec3 i) {
     Lobes l;
     if (b.alpha == 0.0f) {
         const float fo = fresnel_dielectric(o.z, b.eta), fi = fresnel_dielectric(i.z, b.eta);
@@ -125,7 +125,7 @@ CoatingTable rough_coating_table(Microfacet distribution, float alpha, float eta
 Color plastic_eval(const BsdfParams& b, Vec3 wo, Vec3 wi, float* pdf) {
     *pdf = 0.0f;
     if (!(wo.z > 0.0f) || !(wi.z > 0.0f)) return {};
-    const Lobes l = eval_upper(b, wo, wi);
+    const Lobes l = eval_plastic_upper(b, wo, wi);
     *pdf = l.pdf;
     return l.value;
 }
@@ -153,7 +153,7 @@ BsdfSample plastic_sample(const BsdfParams& b, Vec3 wo, float u_lobe, float u1, 
     }
     if (!(i.z > 0.0f)) return s;  // reflected below the surface: lost
     // The value and density from (wo, i) as eval computes them, so that weight = eval / pdf.
-    const Lobes l = eval_upper(b, wo, i);
+    const Lobes l = eval_plastic_upper(b, wo, i);
     if (!(l.pdf > 0.0f)) return s;
     s.wi = i;
     s.pdf = l.pdf;

@@ -10,7 +10,7 @@ namespace {
 
 // wo.z > 0 (both directions mirrored so); eta = index of the side below over the side above.
 // f cos and pdf for wi on either side.
-Color eval_upper(const BsdfParams& b, Vec3 o, Vec3 i, float eta, float* pdf) {
+Color eval_dielectric_upper(const BsdfParams& b, Vec3 o, Vec3 i, float eta, float* pdf) {
     *pdf = 0.0f;
     const MicrofacetDistribution md = microfacet_of(b);
     const bool reflect = i.z > 0.0f;
@@ -41,7 +41,8 @@ Color rough_dielectric_eval(const BsdfParams& b, Vec3 wo, Vec3 wi, float* pdf) {
     if (wo.z == 0.0f || wi.z == 0.0f) return {};
     const float side = wo.z < 0.0f ? -1.0f : 1.0f;
     const float eta = wo.z > 0.0f ? b.eta : 1.0f / b.eta;
-    const Color f = eval_upper(b, {wo.x, wo.y, wo.z * side}, {wi.x, wi.y, wi.z * side}, eta, pdf);
+    const Color f =
+        eval_dielectric_upper(b, {wo.x, wo.y, wo.z * side}, {wi.x, wi.y, wi.z * side}, eta, pdf);
     if (!(*pdf > 0.0f)) {
         *pdf = 0.0f;
         return {};
@@ -73,7 +74,7 @@ BsdfSample rough_dielectric_sample(const BsdfParams& b, Vec3 wo, float u_lobe, f
         s.transmitted = true;
     }
     // The value and density from (o, i) as eval computes them, so that weight = eval / pdf.
-    const Color value = eval_upper(b, o, i, eta, &s.pdf);
+    const Color value = eval_dielectric_upper(b, o, i, eta, &s.pdf);
     if (!(s.pdf > 0.0f)) return s;
     s.wi = {i.x, i.y, i.z * side};
     s.weight = value / s.pdf;
