@@ -299,14 +299,22 @@ TEST(Megakernel, BitIdenticalForAnyThreadCount) {
 
 TEST(Megakernel, EveryShippedSceneRendersFiniteSamples) {
     for (const char* name : {"cornell", "cornell-glass", "cornell-mirror", "cornell-smoke",
-                             "everything", "bunny", "dragon", "veach-mis", "materials"})
+                             "everything", "bunny", "dragon", "veach-mis", "materials"}) {
+        const Scene scene = load_scene(scene_path(name));
+        const Bvh bvh = Bvh::build(scene);
         for (Strategy st : kStrategies) {
-            Film film = render(load_scene(scene_path(name)), st, 24, 24, 2);
+            RenderRequest request;
+            request.width = request.height = 24;
+            request.spp = 2;
+            request.seed = 1;
+            request.estimator.strategy = st;
+            const Film film = megakernel_film(scene, bvh, request);
             EXPECT_EQ(film.invalid_samples(), 0u) << name << " " << to_string(st);
             double sum = 0;
             for (const Color& c : film.mean().pixels) sum += luminance(c);
             EXPECT_GT(sum, 0.0) << name << " " << to_string(st);
         }
+    }
 }
 
 // Veach's point, on his scene: at equal sample counts MIS is never much worse than the best

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <numeric>
+#include <string>
 
 #include "engines/wavefront.h"
 #include "render_film.h"
@@ -29,6 +30,39 @@ RenderRequest config(Strategy st, int w, int h, int spp, uint64_t seed = 11) {
     return c;
 }
 
+// The engines' images side by side: pixel channels outside 1e-4 relative (and 1e-6 absolute),
+// the worst relative difference and where, and the image means.
+struct Agreement {
+    size_t outside = 0, values = 0;
+    double worst = 0, sum_mk = 0, sum_wv = 0;
+    int worst_pixel = -1;
+    double mean_rel() const { return std::fabs(sum_mk - sum_wv) / std::max(sum_mk, 1e-30); }
+};
+
+Agreement compare_engines(const Image& mk, const Image& wv) {
+    Agreement r;
+    for (size_t i = 0; i < mk.pixels.size(); ++i)
+        for (int k = 0; k < 3; ++k, ++r.values) {
+            const double a = mk.pixels[i][k], b = wv.pixels[i][k];
+            r.sum_mk += a;
+            r.sum_wv += b;
+            const double diff = std::fabs(a - b);
+            if (diff > 1e-6 && diff > 1e-4 * std::fabs(a)) ++r.outside;
+            const double rel = diff / std::max(std::fabs(a), 1e-6);
+            if (rel > r.worst) {
+                r.worst = rel;
+                r.worst_pixel = static_cast<int>(i);
+            }
+        }
+    return r;
+}
+
+// Rounding apart, the same image: 99.9% of pixel channels within the bound, means within 1e-5.
+void expect_same_image(const Agreement& r, const std::string& what) {
+    EXPECT_LE(r.outside, r.values / 1000) << what;
+    EXPECT_LE(r.mean_rel(), 1e-5) << what;
+}
+
 }  // namespace
 
 // Every shipped scene, every strategy and sampler, 4 spp: per pixel within 1e-4 relative (or
@@ -48,30 +82,13 @@ TEST(Wavefront, EqualsTheMegakernel) {
             wf.wave_size = 700;  // several waves, the last one partial
             Image mk = megakernel_film(scene, bvh, c).mean();
             Image wv = wavefront_film(scene, bvh, c, wf).mean();
-            size_t outside = 0, values = 0;
-            double worst = 0, sum_mk = 0, sum_wv = 0;
-            int worst_pixel = -1;
-            for (size_t i = 0; i < mk.pixels.size(); ++i)
-                for (int k = 0; k < 3; ++k) {
-                    double a = mk.pixels[i][k], b = wv.pixels[i][k];
-                    sum_mk += a;
-                    sum_wv += b;
-                    ++values;
-                    double diff = std::fabs(a - b);
-                    if (diff > 1e-6 && diff > 1e-4 * std::fabs(a)) ++outside;
-                    double rel = diff / std::max(std::fabs(a), 1e-6);
-                    if (rel > worst) {
-                        worst = rel;
-                        worst_pixel = static_cast<int>(i);
-                    }
-                }
-            double mean_rel = std::fabs(sum_mk - sum_wv) / std::max(sum_mk, 1e-30);
+            const Agreement r = compare_engines(mk, wv);
             std::printf(
-                "wavefront-vs-megakernel %-14s %-8s %-11s outside bound %zu/%zu, worst relative %.2e "
-                "(pixel %d), image means %.2e relative\n",
-                name, to_string(st), to_string(kind), outside, values, worst, worst_pixel, mean_rel);
-            EXPECT_LE(outside, values / 1000) << name << " " << to_string(st) << to_string(kind);
-            EXPECT_LE(mean_rel, 1e-5) << name << " " << to_string(st) << to_string(kind);
+                "wavefront-vs-megakernel %-14s %-8s %-11s outside bound %zu/%zu, worst "
+                "relative %.2e (pixel %d), image means %.2e relative\n",
+                name, to_string(st), to_string(kind), r.outside, r.values, r.worst, r.worst_pixel,
+                r.mean_rel());
+            expect_same_image(r, std::string(name) + " " + to_string(st) + " " + to_string(kind));
         }
     }
 }
@@ -107,21 +124,11 @@ TEST(Wavefront, EqualsTheMegakernelOnMitsubasScenes) {
         c.estimator.max_depth = scene.render.max_depth;
         const Image mk = megakernel_film(scene, bvh, c).mean();
         const Image wv = wavefront_film(scene, bvh, c).mean();
-        size_t outside = 0, values = 0;
-        double sum_mk = 0, sum_wv = 0;
-        for (size_t i = 0; i < mk.pixels.size(); ++i)
-            for (int k = 0; k < 3; ++k, ++values) {
-                const double a = mk.pixels[i][k], b = wv.pixels[i][k];
-                sum_mk += a;
-                sum_wv += b;
-                const double diff = std::fabs(a - b);
-                if (diff > 1e-6 && diff > 1e-4 * std::fabs(a)) ++outside;
-            }
-        const double mean_rel = std::fabs(sum_mk - sum_wv) / std::max(sum_mk, 1e-30);
-        std::printf("wavefront-vs-megakernel %s: outside bound %zu/%zu, image means %.2e relative\n",
-                    name, outside, values, mean_rel);
-        EXPECT_LE(outside, values / 1000);
-        EXPECT_LE(mean_rel, 1e-5);
+        const Agreement r = compare_engines(mk, wv);
+        std::printf(
+            "wavefront-vs-megakernel %s: outside bound %zu/%zu, image means %.2e relative\n", name,
+            r.outside, r.values, r.mean_rel());
+        expect_same_image(r, name);
     }
 }
 
@@ -276,14 +283,8 @@ TEST(Wavefront, AnisotropicSurfacesEqualTheMegakernel) {
             const RenderRequest c = config(st, 40, 40, 4);
             const Image mk = megakernel_film(scene, bvh, c).mean();
             const Image wv = wavefront_film(scene, bvh, c).mean();
-            size_t outside = 0, values = 0;
-            for (size_t i = 0; i < mk.pixels.size(); ++i)
-                for (int k = 0; k < 3; ++k, ++values) {
-                    const double a = mk.pixels[i][k], b = wv.pixels[i][k];
-                    const double diff = std::fabs(a - b);
-                    if (diff > 1e-6 && diff > 1e-4 * std::fabs(a)) ++outside;
-                }
-            EXPECT_LE(outside, values / 1000) << to_string(st) << (textured ? " textured" : "");
+            expect_same_image(compare_engines(mk, wv),
+                              std::string(to_string(st)) + (textured ? " textured" : ""));
         }
     }
 }
@@ -339,16 +340,8 @@ TEST(Wavefront, TexturedSurfacesInLanesEqualTheMegakernel) {
         RenderRequest c = config(st, 48, 36, 4);
         Image mk = megakernel_film(scene, bvh, c).mean();
         Image wv = wavefront_film(scene, bvh, c).mean();
-        size_t outside = 0, values = 0;
-        double sum = 0;
-        for (size_t i = 0; i < mk.pixels.size(); ++i)
-            for (int k = 0; k < 3; ++k) {
-                const double a = mk.pixels[i][k], b = wv.pixels[i][k];
-                sum += a;
-                ++values;
-                if (std::fabs(a - b) > 1e-6 && std::fabs(a - b) > 1e-4 * std::fabs(a)) ++outside;
-            }
-        EXPECT_GT(sum, 0.0) << to_string(st);
-        EXPECT_LE(outside, values / 1000) << to_string(st);
+        const Agreement r = compare_engines(mk, wv);
+        EXPECT_GT(r.sum_mk, 0.0) << to_string(st);
+        expect_same_image(r, to_string(st));
     }
 }
