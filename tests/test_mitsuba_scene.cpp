@@ -281,6 +281,46 @@ TEST(MitsubaScenes, TexturesSitWhereMitsubaPutsThem) {
         }
 }
 
+// Mitsuba's checkerboard has two phases: looked up as a colour (Texture::eval) color0 lies where
+// u and v (mod 1) are on the same side of 0.5, looked up as a number (eval_1: a roughness, an
+// opacity) where they are on different sides; its reference images hold both.
+TEST(MitsubaScenes, ACheckerboardOfNumbersHasMitsubasOtherPhase) {
+    TempDir dir;
+    const std::string checker = R"(type="checkerboard"><float name="color0" value="0.05"/>
+      <float name="color1" value="0.3"/></texture>)";
+    // The masked rectangle lies out of the rays' way (a mask cuts the surface away for them);
+    // its opacity is looked up at the other's uv, the same on both.
+    const auto path = dir.write("a.xml", scene(R"(<sensor type="perspective"/>
+  <shape type="rectangle"><bsdf type="roughconductor"><texture name="alpha_u" )" + checker + R"(
+      <float name="alpha_v" value="0.1"/><texture name="specular_reflectance" )" + checker + R"(
+    </bsdf></shape>
+  <shape type="rectangle"><transform name="to_world"><translate x="3"/></transform>
+    <bsdf type="mask"><texture name="opacity" )" + checker + R"(<bsdf type="diffuse"/></bsdf>
+  </shape>)"));
+    const Scene s = load_scene(path, collecting());
+    EXPECT_TRUE(warnings.empty()) << warnings.front();
+    const Bvh bvh = Bvh::build(s);
+    TextureId opacity = kNone;
+    for (const Material& m : s.materials)
+        if (m.opacity != kNone) opacity = m.opacity;
+    ASSERT_NE(opacity, kNone);
+    for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 4; ++i) {
+            const float u = (i + 0.5f) / 4, v = (j + 0.5f) / 4;  // Mitsuba's uv there
+            const Ray ray{{2 * u - 1, 2 * v - 1, 3}, {0, 0, -1}};
+            const Hit hit = bvh.intersect(ray);
+            ASSERT_TRUE(hit.found());
+            const SurfaceHit h = surface_at(s, ray, hit);
+            const Material& m = s.materials[h.material];
+            ASSERT_NE(m.alpha_u_texture, kNone);
+            const bool same_side = (u > 0.5f) == (v > 0.5f);
+            auto at = [&](TextureId t) { return eval_texture(s, t, h.uv, h.p).x; };
+            EXPECT_EQ(at(m.albedo), same_side ? 0.05f : 0.3f) << "colour " << i << j;
+            EXPECT_EQ(at(m.alpha_u_texture), same_side ? 0.3f : 0.05f) << "alpha_u " << i << j;
+            EXPECT_EQ(at(opacity), same_side ? 0.3f : 0.05f) << "opacity " << i << j;
+        }
+}
+
 // Mitsuba's disk (the unit disk at z = 0 facing +z, −z with flip_normals) and cylinder (open,
 // from p0 to p1, facing outwards) as tessellated meshes: where they are, which way they face,
 // and their area (128 segments a turn: a disk n sin(2π/n)/(2π) of πr², a tube n sin(π/n)/π

@@ -717,7 +717,11 @@ class Translator {
                 {"offset", json::array({x.m[3], x.m[7]})}};
     }
 
-    json texture(const Element& e) {
+    // `scalar`: the texture is looked up as one number (Mitsuba's Texture::eval_1: roughness,
+    // opacity), not as a colour (eval). Mitsuba's checkerboard gives color0 where the two halves'
+    // tests agree in eval and where they differ in eval_1 (src/textures/checkerboard.cpp, since
+    // its first version): its references hold that phase, so a number's checker swaps colours.
+    json texture(const Element& e, bool scalar = false) {
         const std::string type = e.attr_or("type", "");
         Props p(e, *this);
         json t;
@@ -737,11 +741,14 @@ class Translator {
             else if (wrap != "repeat")
                 warn(e, "bitmap: wrap_mode \"" + wrap + "\" is not supported; repeat is used");
         } else if (type == "checkerboard") {
-            const Element* c0 = p.get("color0");
-            const Element* c1 = p.get("color1");
-            t = {{"type", "uv_checker"}, {"scale", 0.5},
-                 {"even", c0 ? color(*c0, true, false) : json(0.4)},
-                 {"odd", c1 ? color(*c1, true, false) : json(0.2)}};
+            auto colour = [&](const char* name, double fallback) -> json {
+                const Element* c = p.get(name);
+                if (!c) return fallback;
+                return c->tag == "texture" ? texture(*c, scalar) : color(*c, true, false);
+            };
+            json c0 = colour("color0", 0.4), c1 = colour("color1", 0.2);
+            if (scalar) std::swap(c0, c1);
+            t = {{"type", "uv_checker"}, {"scale", 0.5}, {"even", c0}, {"odd", c1}};
         } else if (type == "rawconstant") {
             // Its value as it stands (a number, or a vector such as a flat normal map's).
             const Element* v = p.get("value");
@@ -793,7 +800,7 @@ class Translator {
         if (anisotropic && (textured("alpha") || textured("alpha_u") || textured("alpha_v"))) {
             m["distribution"] = d;
             auto value = [&](const char* name) -> json {
-                if (const Element* t = textured(name)) return texture(*t);
+                if (const Element* t = textured(name)) return texture(*t, true);
                 return p.number(name, 0.1);
             };
             if (p.get("alpha_u") || p.get("alpha_v")) {
@@ -839,7 +846,10 @@ class Translator {
             m.erase("one_sided");
         } else if (type == "mask") {
             m = wrapped("mask");
-            m["opacity"] = color_property(p, "opacity", 0.5, true);
+            const Element* o = p.get("opacity");
+            m["opacity"] = !o                    ? json(0.5)
+                           : o->tag == "texture" ? texture(*o, true)
+                                                 : color(*o, true, false);
         } else if (type == "normalmap") {
             m = wrapped("normalmap");
             const Element* n = p.get("normalmap");
