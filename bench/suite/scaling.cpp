@@ -168,15 +168,15 @@ void bench_scaling(const Options& o, Results& r) {
             std::vector<double> mk, wf, st, ratio, st_ratio;
             std::vector<Independent> mk_alone, wf_alone;
             for (int rep = 0; rep < o.repetitions(); ++rep) {
-                RenderStats a, b, c;
+                RenderStats a, b, d;
                 megakernel(cfg, &a);
                 wavefront(cfg, &b);
-                wavefront(staged, &c);
+                wavefront(staged, &d);
                 mk.push_back(a.paths / a.seconds * 1e-6);
                 wf.push_back(b.paths / b.seconds * 1e-6);
-                st.push_back(c.paths / c.seconds * 1e-6);
+                st.push_back(d.paths / d.seconds * 1e-6);
                 ratio.push_back(a.seconds / b.seconds);
-                st_ratio.push_back(a.seconds / c.seconds);
+                st_ratio.push_back(a.seconds / d.seconds);
                 if (t > 1) {
                     mk_alone.push_back(independent_mpaths(t, each, megakernel));
                     wf_alone.push_back(independent_mpaths(t, each, wavefront));
