@@ -634,8 +634,9 @@ class Translator {
 
     // A colour-valued property: <rgb>, <spectrum> (constant, wavelength:value pairs, a file,
     // or a blackbody) or a texture. `bounded`: a reflectance (spectra clamped to [0, 1], as
-    // Mitsuba's RGB variants clamp them); `emitter`: radiance.
-    json color(const Element& c, bool bounded, bool emitter) {
+    // Mitsuba's RGB variants clamp them); `emitter`: radiance; `scalar`: a texture is looked up
+    // as a number (see texture()).
+    json color(const Element& c, bool bounded, bool emitter, bool scalar = false) {
         if (c.tag == "rgb") {
             const std::vector<std::string> t = tokens(c.attr_or("value", ""));
             if (t.size() == 1) return parse_number(c, t[0]);
@@ -668,7 +669,7 @@ class Translator {
             const Color rgb = spectrum_to_rgb(points, bounded && !emitter);
             return json::array({rgb.x, rgb.y, rgb.z});
         }
-        if (c.tag == "texture") return texture(c);
+        if (c.tag == "texture") return texture(c, scalar);
         fail(c, "<" + c.tag + "> where a colour or texture is expected");
     }
 
@@ -741,12 +742,8 @@ class Translator {
             else if (wrap != "repeat")
                 warn(e, "bitmap: wrap_mode \"" + wrap + "\" is not supported; repeat is used");
         } else if (type == "checkerboard") {
-            auto colour = [&](const char* name, double fallback) -> json {
-                const Element* c = p.get(name);
-                if (!c) return fallback;
-                return c->tag == "texture" ? texture(*c, scalar) : color(*c, true, false);
-            };
-            json c0 = colour("color0", 0.4), c1 = colour("color1", 0.2);
+            json c0 = color_property(p, "color0", 0.4, true, false, scalar),
+                 c1 = color_property(p, "color1", 0.2, true, false, scalar);
             if (scalar) std::swap(c0, c1);
             t = {{"type", "uv_checker"}, {"scale", 0.5}, {"even", c0}, {"odd", c1}};
         } else if (type == "rawconstant") {
@@ -780,9 +777,9 @@ class Translator {
     }
 
     json color_property(Props& p, const std::string& name, const json& fallback, bool bounded,
-                        bool emitter = false) {
+                        bool emitter = false, bool scalar = false) {
         const Element* c = p.get(name);
-        return c ? color(*c, bounded, emitter) : fallback;
+        return c ? color(*c, bounded, emitter, scalar) : fallback;
     }
 
     // ---- materials ----
@@ -846,10 +843,7 @@ class Translator {
             m.erase("one_sided");
         } else if (type == "mask") {
             m = wrapped("mask");
-            const Element* o = p.get("opacity");
-            m["opacity"] = !o                    ? json(0.5)
-                           : o->tag == "texture" ? texture(*o, true)
-                                                 : color(*o, true, false);
+            m["opacity"] = color_property(p, "opacity", 0.5, true, false, /*scalar=*/true);
         } else if (type == "normalmap") {
             m = wrapped("normalmap");
             const Element* n = p.get("normalmap");
