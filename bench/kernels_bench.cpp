@@ -277,8 +277,9 @@ void fill(LambertianRows& r, LightSampleQueue& queue, LightSampleBlock& block) {
         const Vertex& v = r.v[k];
         store_queued_vertex(
             queue, k,
-            {uint32_t(k), v.p, v.ng, v.frame.n, v.frame_angle, r.wo[k], v.bsdf.albedo, v.bsdf.alpha, v.bsdf.alpha_v,
-             v.bsdf.metallic, v.bsdf.kind, kNone, r.beta[k], r.u[k].light_select, r.u[k].light_u, r.u[k].light_v});
+            {uint32_t(k), v.p, v.ng, v.frame.n, v.frame_angle, v.unbent, v.bump_alpha2, r.wo[k],
+             v.bsdf.albedo, v.bsdf.alpha, v.bsdf.alpha_v, v.bsdf.metallic, v.bsdf.kind, kNone,
+             r.beta[k], r.u[k].light_select, r.u[k].light_u, r.u[k].light_v});
         const LightChoice light = r.c.lights->select(r.u[k].light_select);
         block.lobe[k] = int32_t(LaneLobe::Lambertian);
         block.planar[k] = r.c.lights->planar_emitter_index(light);

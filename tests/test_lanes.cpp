@@ -121,10 +121,11 @@ void expect_light_samples_are_next_event(const Scene& scene,
             *spheres += sphere >= 0;
             environment_rows += map;
             block.environment[k] = map ? 1 : 0;
-            store_queued_vertex(
-                queue, k,
-                {uint32_t(k), c.v.p, c.v.ng, c.v.frame.n, c.v.frame_angle, c.wo, c.v.bsdf.albedo, c.v.bsdf.alpha, c.v.bsdf.alpha_v,
-                 c.v.bsdf.metallic, c.v.bsdf.kind, kNone, c.beta, c.u.light_select, c.u.light_u, c.u.light_v});
+            store_queued_vertex(queue, k,
+                                {uint32_t(k), c.v.p, c.v.ng, c.v.frame.n, c.v.frame_angle,
+                                 c.v.unbent, c.v.bump_alpha2, c.wo, c.v.bsdf.albedo, c.v.bsdf.alpha,
+                                 c.v.bsdf.alpha_v, c.v.bsdf.metallic, c.v.bsdf.kind, kNone, c.beta,
+                                 c.u.light_select, c.u.light_u, c.u.light_v});
             block.lobe[k] = int32_t(lane_lobe(c.v.bsdf.kind));
             block.planar[k] = planar;
             block.sphere[k] = sphere;
@@ -784,9 +785,9 @@ TEST(Lanes, HitsResolvedInLanesAreSurfaceAtOnEverySimdTarget) {
             hits.set_step(r, c.u, c.u_rr, true);
             // The scalar path: surface_at, and resolve_segment's wo = -d / |d|.
             const SurfaceHit s = surface_at(scene, c.ray, c.hit);
-            Vertex v = surface_vertex(scene, s);
-            v.bsdf = c.bsdf;
             const Vec3 wo = -(c.ray.d / length(c.ray.d));
+            Vertex v = surface_vertex(scene, s, wo);
+            v.bsdf = c.bsdf;
             given.set_step(given.push(k, v, wo, c.beta), c.u, c.u_rr, true);
             if (c.hit.prim.kind() == PrimKind::Triangle &&
                 scene.meshes[scene.triangles[index].mesh].has_normals) {

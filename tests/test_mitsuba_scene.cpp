@@ -321,6 +321,36 @@ TEST(MitsubaScenes, ACheckerboardOfNumbersHasMitsubasOtherPhase) {
         }
 }
 
+// normalmap and bumpmap correct the mapped normal as Mitsuba 3 does by default (flipped where
+// it faces away, Estevez et al.'s shadowing), each switch as its property says.
+TEST(MitsubaScenes, MappedNormalsTakeMitsubasCorrections) {
+    TempDir dir;
+    auto materials = [&](const std::string& props) {
+        const auto path = dir.write("m.xml", scene(R"(<sensor type="perspective"/>
+  <shape type="rectangle"><bsdf type="normalmap">)" +
+                                                   props + R"(
+      <rgb name="normalmap" value="0.5, 0.5, 1"/><bsdf type="diffuse"/></bsdf></shape>
+  <shape type="sphere"><bsdf type="bumpmap">)" + props +
+                                                   R"(
+      <texture type="checkerboard"/><bsdf type="diffuse"/></bsdf></shape>)"));
+        return load_scene(path, collecting()).materials;
+    };
+    int mapped = 0;
+    for (const Material& m : materials("")) {
+        if (!m.has_normal_maps()) continue;
+        ++mapped;
+        EXPECT_TRUE(m.flip_invalid_normals);
+        EXPECT_TRUE(m.bump_shadowing);
+    }
+    EXPECT_EQ(mapped, 2);
+    for (const Material& m : materials(R"(<boolean name="flip_invalid_normals" value="false"/>
+        <boolean name="use_shadowing_function" value="false"/>)")) {
+        EXPECT_FALSE(m.flip_invalid_normals);
+        EXPECT_FALSE(m.bump_shadowing);
+    }
+    EXPECT_TRUE(warnings.empty()) << warnings.front();
+}
+
 // Mitsuba's disk (the unit disk at z = 0 facing +z, −z with flip_normals) and cylinder (open,
 // from p0 to p1, facing outwards) as tessellated meshes: where they are, which way they face,
 // and their area (128 segments a turn: a disk n sin(2π/n)/(2π) of πr², a tube n sin(π/n)/π

@@ -134,7 +134,7 @@ TEST(NormalMaps, NormalMapTiltsInTheTangentFrame) {
         m.normal_map = s.add_solid(rgb);
         s = quad_scene(s, m);
         const SurfaceHit h = hit_quad(s, 0.3f, 0.6f);
-        expect_near(mapped_normal(s, s.materials[0], h), expected, 1e-6f, "normal map");
+        expect_near(mapped_normal(s, s.materials[0], h, {0, 0, 1}), expected, 1e-6f, "normal map");
     }
 }
 
@@ -155,7 +155,8 @@ TEST(NormalMaps, BumpRampTiltsAgainstItsSlope) {
     s.add_quad({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, s.add_material(m)});
     // Between texel centres the bilinear ramp rises by 1/64 per 1/64 of u: slope 0.1.
     const SurfaceHit h = hit_quad(s, 0.4f, 0.5f);
-    expect_near(mapped_normal(s, s.materials[0], h), normalize(Vec3{-0.1f, 0, 1}), 1e-4f, "bump");
+    expect_near(mapped_normal(s, s.materials[0], h, {0, 0, 1}), normalize(Vec3{-0.1f, 0, 1}), 1e-4f,
+                "bump");
     // A quad without maps has no tangents computed, and its normal stays.
     Scene plain = quad_scene(Scene{}, Material{});
     const SurfaceHit p = hit_quad(plain, 0.4f, 0.5f);
@@ -200,7 +201,7 @@ TEST(ShadingNormals, AnisotropicRoughnessFollowsDpDu) {
     const Ray ray{{-0.5f, 0.5f, 3}, {0, 0, -1}};
     const Hit hit_of_ray{3.0f, PrimRef::make(PrimKind::Quad, 0), 0.25f, 0.5f};
     const SurfaceHit hit = surface_at(s, ray, hit_of_ray);
-    const Vertex v = surface_vertex(s, hit);
+    const Vertex v = surface_vertex(s, hit, -ray.d);
     EXPECT_NEAR(v.frame.s.y, 1.0f, 1e-6f);
     EXPECT_NEAR(v.frame.n.z, 1.0f, 1e-6f);
     EXPECT_NEAR(dot(cross(v.frame.s, v.frame.t), v.frame.n), 1.0f, 1e-6f);
@@ -217,10 +218,74 @@ TEST(ShadingNormals, AnisotropicRoughnessFollowsDpDu) {
         "even": 0.02, "odd": 0.7}, "alpha_v": 0.05)"));
     ASSERT_NE(t.materials[0].alpha_u_texture, kNone);
     EXPECT_EQ(t.materials[0].alpha_v_texture, kNone);
-    const Vertex tv = surface_vertex(t, surface_at(t, ray, hit_of_ray));
+    const Vertex tv = surface_vertex(t, surface_at(t, ray, hit_of_ray), -ray.d);
     const float cell = eval_texture(t, t.materials[0].alpha_u_texture, hit.uv, hit.p).x;
     EXPECT_TRUE(cell == 0.02f || cell == 0.7f) << cell;
     EXPECT_EQ(tv.bsdf.alpha, cell);
     EXPECT_EQ(tv.bsdf.alpha_v, 0.05f);
     EXPECT_NEAR(tv.frame.s.y, 1.0f, 1e-6f);
+}
+
+// Mitsuba 3's flip_invalid_normals: a mapped normal n facing away from the viewer (wo on the
+// unperturbed normal's side but not on n's) is mirrored about the unperturbed normal; a viewer
+// that n faces, or a material without the switch, keeps n.
+TEST(NormalMaps, InvalidNormalsAreMirroredWhereAsked) {
+    for (const bool flip : {false, true}) {
+        Scene s;
+        Material m;
+        m.normal_map = s.add_solid(Color(0.95f, 0.5f, 1.0f));  // (0.9, 0, 1) in the tangent frame
+        m.flip_invalid_normals = flip;
+        s = quad_scene(s, m);
+        const SurfaceHit h = hit_quad(s, 0.3f, 0.6f);
+        const Vec3 tilted = normalize(Vec3{0.9f, 0, 1}), mirrored = normalize(Vec3{-0.9f, 0, 1});
+        const Vec3 grazing_back = normalize(Vec3{-1, 0, 0.3f});  // below the tilted normal
+        ASSERT_LT(dot(grazing_back, tilted), 0.0f);
+        expect_near(mapped_normal(s, s.materials[0], h, grazing_back), flip ? mirrored : tilted,
+                    1e-6f, flip ? "flipped" : "kept");
+        expect_near(mapped_normal(s, s.materials[0], h, normalize(Vec3{1, 0, 0.3f})), tilted, 1e-6f,
+                    "facing");
+    }
+}
+
+// Estevez et al. 2019: a normal bent by theta_n stands for a GGX surface of alpha^2 =
+// tan^2(theta_n) / 8 (at most 1), whose Smith masking 2 / (1 + sqrt(1 + alpha^2 tan^2 theta_i))
+// scales light from theta_i off the unperturbed normal; nothing where wi lies on different sides
+// of the two normals, and no change without a bend.
+TEST(NormalMaps, BumpShadowingIsEstevezMasking) {
+    const float pi = 3.14159265f;
+    auto at = [](float degrees) {  // a direction in the xz-plane, degrees from +z towards +x
+        const float a = degrees * 3.14159265f / 180.0f;
+        return Vec3{std::sin(a), 0, std::cos(a)};
+    };
+    const Normal3 n0{0, 0, 1}, n = at(30);
+    const float alpha2 = bump_shadowing_alpha2(n0, n);
+    EXPECT_NEAR(alpha2, std::pow(std::tan(pi / 6), 2.0f) / 8, 1e-6f);
+    EXPECT_EQ(bump_shadowing_alpha2(n0, at(80)), 1.0f);  // tan^2 80 / 8 = 4: clamped
+    EXPECT_NEAR(bump_shadowing(n0, n, alpha2, n0), 1.0f, 1e-6f);
+    EXPECT_NEAR(bump_shadowing(n0, n, alpha2, at(60)), 2 / (1 + std::sqrt(1 + alpha2 * 3)), 1e-6f);
+    EXPECT_LT(bump_shadowing(n0, n, alpha2, at(85)), bump_shadowing(n0, n, alpha2, at(60)));
+    EXPECT_EQ(bump_shadowing(n0, n, alpha2, at(-70)), 0.0f);  // above n0, below n
+    EXPECT_EQ(bump_shadowing(n0, n0, 0.0f, at(-89)), 1.0f);
+
+    // At a vertex: a Lambertian quad whose normal map bends its normal by 30 degrees about y;
+    // light from 60 degrees is scaled by the masking, with the switch and only with it.
+    auto direct = [&](bool shadowing) {
+        Scene s;
+        Material m;
+        m.normal_map = s.add_solid(0.5f * (at(30) + Vec3(1.0f)));
+        m.bump_shadowing = shadowing;
+        s = quad_scene(s, m);
+        const Vertex v = surface_vertex(s, hit_quad(s, 0.3f, 0.6f), {0, 0, 1});
+        EXPECT_NEAR(v.bump_alpha2, shadowing ? alpha2 : 0.0f, 1e-6f);
+        LightSample ls;
+        ls.wi = at(60);
+        ls.dist = 1.0f;
+        ls.radiance = Color(1.0f);
+        ls.pdf = 1.0f;
+        ls.valid = true;
+        return direct_sample_from(v, {0, 0, 1}, ls).value.x;
+    };
+    const float plain = direct(false);
+    ASSERT_GT(plain, 0.0f);
+    EXPECT_NEAR(direct(true) / plain, 2 / (1 + std::sqrt(1 + alpha2 * 3)), 1e-5f);
 }

@@ -158,7 +158,9 @@ void bind_scene(py::module_& m) {
         .def_readwrite("opacity", &Material::opacity)
         .def_readwrite("normal_map", &Material::normal_map)
         .def_readwrite("bump_map", &Material::bump_map)
-        .def_readwrite("bump_scale", &Material::bump_scale);
+        .def_readwrite("bump_scale", &Material::bump_scale)
+        .def_readwrite("flip_invalid_normals", &Material::flip_invalid_normals)
+        .def_readwrite("bump_shadowing", &Material::bump_shadowing);
 
     py::enum_<SphereMapping>(m, "SphereMapping", "How a sphere's texture coordinates follow it.")
         .value("YUp", SphereMapping::YUp)

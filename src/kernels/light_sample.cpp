@@ -21,6 +21,8 @@ Vertex queued_vertex(const Scene& scene, const LightSampleQueue& q, size_t i) {
     v.p = WAVETRACE_XYZ_AT(q, p, i);
     v.ng = WAVETRACE_XYZ_AT(q, ng, i);
     v.geometric_side_test = scene.geometric_side_test;
+    v.unbent = WAVETRACE_XYZ_AT(q, unbent, i);
+    v.bump_alpha2 = q.bump_alpha2[i];
     v.material = q.material[i];
     if (v.material != kNone) {
         v.bsdf = material_bsdf(scene.materials[v.material], WAVETRACE_XYZ_AT(q, albedo, i));
@@ -67,13 +69,15 @@ size_t light_sample(const WaveInputs& in,
             block.sphere[row] = -1;
             block.environment[row] = 0;
             const Normal3 ng = WAVETRACE_XYZ_AT(queue, ng, i);
-            block.planar[row] =
-                planar_light_sample_at(ng, queue.kind[i], queue.alpha[i], in.lights, light);
+            block.planar[row] = planar_light_sample_at(ng, queue.kind[i], queue.alpha[i],
+                                                       queue.bump_alpha2[i], in.lights, light);
             if (block.planar[row] >= 0) continue;
-            block.sphere[row] = sphere_light_sample_at(
-                WAVETRACE_XYZ_AT(queue, p, i), ng, queue.kind[i], queue.alpha[i], in.lights, light);
+            block.sphere[row] =
+                sphere_light_sample_at(WAVETRACE_XYZ_AT(queue, p, i), ng, queue.kind[i],
+                                       queue.alpha[i], queue.bump_alpha2[i], in.lights, light);
             if (block.sphere[row] >= 0) continue;
-            if (environment_light_sample_at(ng, queue.kind[i], queue.alpha[i], in.lights, light)) {
+            if (environment_light_sample_at(ng, queue.kind[i], queue.alpha[i], queue.bump_alpha2[i],
+                                            in.lights, light)) {
                 block.environment[row] = 1;
                 continue;
             }

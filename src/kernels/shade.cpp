@@ -214,6 +214,8 @@ void append_light_sample(size_t path,
                          Normal3 ng,
                          Normal3 ns,
                          float frame_angle,
+                         Normal3 unbent,
+                         float bump_alpha2,
                          Vec3 wo,
                          const BsdfParams& bsdf,
                          MaterialId material,
@@ -224,10 +226,9 @@ void append_light_sample(size_t path,
                          ShadeOutputs& out) {
     WT_DCHECK_LT(out.light_sample_end, out.light_samples.capacity);
     store_queued_vertex(out.light_samples, out.light_sample_end++,
-                        {static_cast<uint32_t>(path), p, ng, ns, frame_angle, wo, bsdf.albedo,
-                         bsdf.alpha, bsdf.alpha_v,
-                         bsdf.metallic, bsdf.kind, material, beta, u.light_select, u.light_u,
-                         u.light_v, media, interior});
+                        {static_cast<uint32_t>(path), p, ng, ns, frame_angle, unbent, bump_alpha2,
+                         wo, bsdf.albedo, bsdf.alpha, bsdf.alpha_v, bsdf.metallic, bsdf.kind,
+                         material, beta, u.light_select, u.light_u, u.light_v, media, interior});
 }
 
 // Route Cross: the ray goes on past the boundary, with the optical depth left after the segment.
@@ -347,9 +348,9 @@ void resolve_in_scalar(const WaveInputs& in, const HitQueue& hits, Chunk& c, Sha
         if (!may_continue(cfg, v, depth)) continue;
         const VertexSamples u = c.samples.at(row);
         if (samples_lights(cfg, v, in.lights))
-            append_light_sample(i, v.p, v.ng, v.frame.n, v.frame_angle, seg.wo, v.bsdf, v.material,
-                                beta, u,
-                                PackedMedia::pack(media), v.interior, out);
+            append_light_sample(i, v.p, v.ng, v.frame.n, v.frame_angle, v.unbent, v.bump_alpha2,
+                                seg.wo, v.bsdf, v.material, beta, u, PackedMedia::pack(media),
+                                v.interior, out);
         if (takes_lane_step(cfg, v, in.lights)) {
             const size_t k = c.block.push(i, v, seg.wo, beta);
             c.block.set_step(k, u.continuation, u.roulette, depth + 1 >= cfg.rr_depth,
@@ -441,6 +442,8 @@ void queue_lane_light_samples(size_t first, size_t last, const Chunk& c, ShadeOu
         q.media[j] = out.paths.media[b.entry[k]];  // lane vertices never transmit
         q.interior[j] = kNone;
         q.frame_angle[j] = 0.0f;  // lane BSDFs are isotropic
+        q.unbent_x[j] = q.unbent_y[j] = q.unbent_z[j] = 0.0f;
+        q.bump_alpha2[j] = 0.0f;  // lane vertices have no mapped normal's shadowing
         q.kind[j] = material_kind(LaneLobe(b.lobe[k]));
         q.material[j] = kNone;
         const VertexSamples u = c.samples.at(b.entry[k] - c.begin);

@@ -741,6 +741,8 @@ class Loader {
                 m.normal_map = read_texture(*x, Range::Reflectance);
             if (auto x = o.optional("bump_map")) m.bump_map = read_texture(*x, Range::Radiance);
             if (auto x = o.optional("bump_scale")) m.bump_scale = x->number();
+            if (auto x = o.optional("flip_invalid_normals")) m.flip_invalid_normals = x->boolean();
+            if (auto x = o.optional("bump_shadowing")) m.bump_shadowing = x->boolean();
             if (auto x = o.optional("one_sided")) {
                 if (m.kind != MaterialKind::Lambertian && m.kind != MaterialKind::Metal &&
                     m.kind != MaterialKind::Mirror && m.kind != MaterialKind::Conductor &&

@@ -784,6 +784,12 @@ class Translator {
 
     // ---- materials ----
 
+    // normalmap's and bumpmap's corrections of the mapped normal, on by default in Mitsuba 3.
+    void mapped_normal_switches(Props& p, json& m) {
+        m["flip_invalid_normals"] = p.boolean("flip_invalid_normals", true);
+        m["bump_shadowing"] = p.boolean("use_shadowing_function", true);
+    }
+
     // `anisotropic`: the material takes alpha_u and alpha_v, numbers or textures (conductors);
     // others their mean, numbers.
     void roughness(Props& p, json& m, const Element& e, const char* default_distribution,
@@ -849,12 +855,14 @@ class Translator {
             const Element* n = p.get("normalmap");
             if (!n) fail(e, "normalmap: needs a normalmap texture");
             m["normal_map"] = color(*n, false, false);
+            mapped_normal_switches(p, m);
         } else if (type == "bumpmap") {
             m = wrapped("bumpmap");
             const std::vector<const Element*> t = p.nested("texture");
             if (t.empty()) fail(e, "bumpmap: needs a nested <texture>");
             m["bump_map"] = texture(*t.front());
             m["bump_scale"] = p.number("scale", 1.0);
+            mapped_normal_switches(p, m);
         } else if (type == "diffuse") {
             m = {{"type", "lambertian"}, {"albedo", color_property(p, "reflectance", 0.5, true)},
                  {"one_sided", true}};

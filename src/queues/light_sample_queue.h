@@ -22,11 +22,13 @@ namespace wavetrace {
     WAVETRACE_XYZ_FIELD(F, ng, "geometric normal, outward; zero in a medium")           \
     WAVETRACE_XYZ_FIELD(F, ns, "shading normal, the frame's z")                         \
     F(float, frame_angle, "anisotropic BSDFs: the frame's turn about ns (Vertex)")      \
+    WAVETRACE_XYZ_FIELD(F, unbent, "a mapped normal's shadowing: unperturbed normal")   \
+    F(float, bump_alpha2, "... and its alpha^2; 0: none (Vertex)")                      \
     WAVETRACE_XYZ_FIELD(F, wo, "unit direction back along the ray that arrived")        \
     WAVETRACE_XYZ_FIELD(F, albedo, "the BSDF's albedo at the vertex")                   \
-    F(float, alpha, "the BSDF's roughness (alpha_u) at the vertex")                      \
-    F(float, alpha_v, "... across dp/du (textures may vary both)")                       \
-    F(float, metallic, "metallic-roughness: metallic (a texture may vary both)")         \
+    F(float, alpha, "the BSDF's roughness (alpha_u) at the vertex")                     \
+    F(float, alpha_v, "... across dp/du (textures may vary both)")                      \
+    F(float, metallic, "metallic-roughness: metallic (a texture may vary both)")        \
     F(MaterialKind, kind, "the BSDF's kind")                                            \
     F(MaterialId, material, "the material, or kNone where kind, albedo, alpha say all") \
     WAVETRACE_XYZ_FIELD(F, beta, "path throughput arriving at the vertex")              \
@@ -44,6 +46,8 @@ struct QueuedVertex {
     Point3 p;
     Normal3 ng, ns;
     float frame_angle;
+    Normal3 unbent;
+    float bump_alpha2;
     Vec3 wo;
     Color albedo;
     float alpha, alpha_v;
@@ -57,11 +61,12 @@ struct QueuedVertex {
 };
 
 inline void store_queued_vertex(LightSampleQueue& q, size_t i, const QueuedVertex& v) {
-    q.store(i, {v.path,     v.p.x,      v.p.y,      v.p.z,      v.ng.x,     v.ng.y,
-                v.ng.z,     v.ns.x,     v.ns.y,     v.ns.z,     v.frame_angle, v.wo.x,
-                v.wo.y,     v.wo.z,     v.albedo.x, v.albedo.y, v.albedo.z, v.alpha,
-                v.alpha_v,  v.metallic, v.kind,     v.material, v.beta.x,   v.beta.y,   v.beta.z,
-                v.u_select, v.u1,       v.u2,       v.media,    v.interior});
+    q.store(i, {v.path,     v.p.x,      v.p.y,         v.p.z,     v.ng.x,        v.ng.y,
+                v.ng.z,     v.ns.x,     v.ns.y,        v.ns.z,    v.frame_angle, v.unbent.x,
+                v.unbent.y, v.unbent.z, v.bump_alpha2, v.wo.x,    v.wo.y,        v.wo.z,
+                v.albedo.x, v.albedo.y, v.albedo.z,    v.alpha,   v.alpha_v,     v.metallic,
+                v.kind,     v.material, v.beta.x,      v.beta.y,  v.beta.z,      v.u_select,
+                v.u1,       v.u2,       v.media,       v.interior});
 }
 
 }  // namespace wavetrace

@@ -47,11 +47,14 @@ Normal3 normal_mapped(const Scene& scene, const Material& m, const SurfaceHit& h
 
 }  // namespace
 
-Normal3 mapped_normal(const Scene& scene, const Material& m, const SurfaceHit& hit) {
+Normal3 mapped_normal(const Scene& scene, const Material& m, const SurfaceHit& hit, Vec3 wo) {
     Normal3 n = hit.ns;
     if (m.bump_map != kNone) n = bumped(scene, m, hit, n);
     if (m.normal_map != kNone) n = normal_mapped(scene, m, hit, n);
-    return dot(n, hit.ng) < 0.0f ? -n : n;
+    if (dot(n, hit.ng) < 0.0f) n = -n;
+    if (m.flip_invalid_normals && dot(wo, hit.ns) * dot(wo, n) <= 0.0f)
+        n = 2.0f * dot(n, hit.ns) * hit.ns - n;
+    return n;
 }
 
 }  // namespace wavetrace

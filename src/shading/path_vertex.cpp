@@ -35,12 +35,19 @@ Frame frame_from_normal(Vec3 n) {
 
 }  // namespace
 
-Vertex surface_vertex(const Scene& scene, const SurfaceHit& hit) {
+Vertex surface_vertex(const Scene& scene, const SurfaceHit& hit, Vec3 wo) {
     Vertex v;
     v.p = hit.p;
     v.ng = hit.ng;
     const Material& m = scene.materials[hit.material];
-    const Normal3 n = m.has_normal_maps() ? mapped_normal(scene, m, hit) : hit.ns;
+    Normal3 n = hit.ns;
+    if (m.has_normal_maps()) {
+        n = mapped_normal(scene, m, hit, wo);
+        if (m.bump_shadowing) {
+            v.unbent = hit.ns;
+            v.bump_alpha2 = bump_shadowing_alpha2(hit.ns, n);
+        }
+    }
     v.interior = hit.interior;
     v.material = hit.material;
     v.geometric_side_test = scene.geometric_side_test;
@@ -125,7 +132,7 @@ Color eval_world(const Vertex& v, Vec3 wo, Vec3 wi, float* pdf) {
         return {};
     }
     *pdf = bsdf_pdf(v.bsdf, lo, li);
-    return bsdf_eval(v.bsdf, lo, li);
+    return bsdf_eval(v.bsdf, lo, li) * bump_shadowing(v.unbent, v.frame.n, v.bump_alpha2, wi);
 }
 
 }  // namespace
@@ -171,7 +178,7 @@ Continuation sample_continuation(Strategy strategy,
                 lanes::to_lanes(wo), lanes::to_lanes(c.wi), lanes::to_lanes(v.ng));
             if (crosses != s.transmitted) return c;
         }
-        c.weight = s.weight;
+        c.weight = s.weight * bump_shadowing(v.unbent, v.frame.n, v.bump_alpha2, c.wi);
         c.pdf_bsdf = s.pdf;
         c.delta = s.delta;
         c.transmitted = s.transmitted;
@@ -219,9 +226,10 @@ int32_t sphere_light_sample_at(Point3 p,
                                Normal3 ng,
                                MaterialKind kind,
                                float alpha,
+                               float bump_alpha2,
                                const LightSet& lights,
                                LightChoice choice) {
-    if (!is_lane_vertex(ng, kind, alpha)) return -1;
+    if (!is_lane_vertex(ng, kind, alpha, bump_alpha2)) return -1;
     const int32_t k = lights.sphere_emitter_index(choice);
     if (k < 0) return -1;
     const SphereEmitterColumns& c = lights.sphere_emitter_columns();
@@ -318,7 +326,7 @@ bool scatters_in_medium(const Scene& scene,
 }
 
 float sheet_transmittance(const Scene& scene, const SurfaceHit& s, Vec3 dir) {
-    const Vertex v = surface_vertex(scene, s);
+    const Vertex v = surface_vertex(scene, s, -dir);
     const float cos_i = std::fabs(dot(dir, v.frame.n));
     return cos_i > 0.0f ? 1.0f - thin_dielectric_reflectance(cos_i, v.bsdf.eta) : 0.0f;
 }
@@ -384,12 +392,12 @@ SegmentResult resolve_segment(const Scene& scene,
         // material but diffuse_light): its emission is counted here and the path scatters on.
         if (kind == MaterialKind::DiffuseLight && mat.albedo == kNone) return r;
         r.event = SegmentEvent::Scatter;
-        r.vertex = surface_vertex(scene, s);
+        r.vertex = surface_vertex(scene, s, -dir);
         r.wo = -dir;
         return r;
     }
     r.event = SegmentEvent::Scatter;
-    r.vertex = surface_vertex(scene, s);
+    r.vertex = surface_vertex(scene, s, -dir);
     r.wo = -dir;
     return r;
 }

@@ -36,6 +36,10 @@ struct Vertex {
     MediumId interior = kNone;    // the surface's inside medium, for transmission
     MaterialId material = kNone;  // whose BSDF it is (a medium's: its phase function)
     bool geometric_side_test = true;  // Scene::geometric_side_test, at a surface
+    // A mapped normal's shadowing (shading/normal_maps.h): the unperturbed normal and the
+    // shadowing's alpha^2; 0: none (the BSDF is not scaled).
+    Normal3 unbent{0.0f};
+    float bump_alpha2 = 0.0f;
     bool on_surface() const { return ng.x != 0 || ng.y != 0 || ng.z != 0; }
 };
 
@@ -49,7 +53,8 @@ inline Frame rotated_frame(Normal3 n, float angle) {
     return {c * f.s + s * f.t, c * f.t - s * f.s, n};
 }
 
-Vertex surface_vertex(const Scene& scene, const SurfaceHit& hit);
+// The vertex of a surface hit seen from direction wo (unit, back along the arriving ray).
+Vertex surface_vertex(const Scene& scene, const SurfaceHit& hit, Vec3 wo);
 // The BSDF of a surface of material m and albedo `albedo` (its albedo texture's value there).
 inline BsdfParams material_bsdf(const Material& m, Color albedo) {
     BsdfParams b;
