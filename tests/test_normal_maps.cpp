@@ -7,12 +7,13 @@
 
 #include <cmath>
 
+#include "bsdfs/bump_terminator.h"
 #include "scene/hit_geometry.h"
-#include "temp_dir.h"
-#include "wavetrace/loaders/load_scene.h"
 #include "shading/lights.h"
 #include "shading/normal_maps.h"
 #include "shading/path_vertex.h"
+#include "temp_dir.h"
+#include "wavetrace/loaders/load_scene.h"
 #include "wavetrace/scene/scene.h"
 #include "wavetrace/scene/texture.h"
 #include "wavetrace/shading/surface.h"

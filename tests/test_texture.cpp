@@ -161,6 +161,50 @@ TEST(Texture, EachAxisWrapsByItsOwnMode) {
     EXPECT_FLOAT_EQ(img.lookup(1.0f, 0.75f, TextureFilter::Bilinear, W::Repeat, W::Clamp).x, 0.5f);
 }
 
+// An image's luminance gradient is the derivative of its bilinear interpolation inside the
+// texel cell (a difference quotient over a step that stays in the cell agrees), also through a
+// texture's uv map and colour factor; 0 with the nearest filter.
+TEST(Texture, ImageGradientIsTheCellsDerivative) {
+    Scene s;
+    ImageData img;
+    img.width = 5;
+    img.height = 3;
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> u01(0.0f, 1.0f);
+    for (int k = 0; k < img.width * img.height; ++k)
+        img.texels.push_back(Color(u01(rng), u01(rng), u01(rng)));
+    Texture t;
+    t.kind = TextureKind::Image;
+    t.image = s.add_image(img);
+    t.factor = Color(0.5f, 2.0f, 1.0f);
+    // st = A uv + b: turned by 30 degrees, scaled by 1.5 along s.
+    t.uv[0][0] = 1.5f * 0.8660254f;
+    t.uv[0][1] = -1.5f * 0.5f;
+    t.uv[0][2] = 0.1f;
+    t.uv[1][0] = 0.5f;
+    t.uv[1][1] = 0.8660254f;
+    t.uv[1][2] = 0.2f;
+    const TextureId id = s.add_texture(t);
+    const double h = 1e-3;
+    auto lum = [&](double u, double v) {
+        return double(luminance(eval_texture(s, id, {float(u), float(v)}, {})));
+    };
+    for (const Vec2 uv : {Vec2{0.31f, 0.47f}, Vec2{0.72f, 0.13f}, Vec2{0.05f, 0.88f}}) {
+        Vec2 g;
+        ASSERT_TRUE(texture_luminance_gradient(s, id, uv, &g));
+        const double du = (lum(uv.x + h, uv.y) - lum(uv.x - h, uv.y)) / (2 * h);
+        const double dv = (lum(uv.x, uv.y + h) - lum(uv.x, uv.y - h)) / (2 * h);
+        EXPECT_NEAR(g.x, du, 2e-3 * (1 + std::fabs(du))) << uv.x << ", " << uv.y;
+        EXPECT_NEAR(g.y, dv, 2e-3 * (1 + std::fabs(dv))) << uv.x << ", " << uv.y;
+    }
+    s.textures[id].filter = TextureFilter::Nearest;
+    Vec2 g;
+    ASSERT_TRUE(texture_luminance_gradient(s, id, {0.31f, 0.47f}, &g));
+    EXPECT_EQ(g.x, 0.0f);
+    EXPECT_EQ(g.y, 0.0f);
+    EXPECT_FALSE(texture_luminance_gradient(s, s.add_solid(Color(0.5f)), {0.3f, 0.3f}, &g));
+}
+
 TEST(Texture, NoiseIsDeterministicBoundedAndVaries) {
     float lo = 1e9f, hi = -1e9f;
     for (int i = 0; i < 2000; ++i) {

@@ -27,19 +27,15 @@ int wrap_index(int64_t i, int n, TextureWrap wrap) {
     }
 }
 
-}  // namespace
+// The four texels about (u, v) and its place between their centres (tx, ty in [0, 1)), as
+// the bilinear filter reads them.
+struct BilinearCell {
+    int x0, x1, y0, y1;
+    float tx, ty;
+};
 
-Color ImageData::lookup(float u, float v, TextureFilter filter, TextureWrap wrap_u,
-                        TextureWrap wrap_v) const {
-    // Far outside the image only the wrap matters, and float coordinates there are too coarse
-    // to tell texels apart: kept within 2^24 texel widths, which int64 holds.
-    const float lim = 0x1p24f;
-    if (filter == TextureFilter::Nearest) {
-        const float x = std::clamp(u * float(width), -lim, lim);
-        const float y = std::clamp((1.0f - v) * float(height), -lim, lim);
-        return texel(wrap_index(int64_t(std::floor(x)), width, wrap_u),
-                     wrap_index(int64_t(std::floor(y)), height, wrap_v));
-    }
+BilinearCell bilinear_cell(
+    float u, float v, int width, int height, TextureWrap wrap_u, TextureWrap wrap_v, float lim) {
     // A repeated axis goes into the first period first, as floats.
     const float x = wrap_u == TextureWrap::Repeat
                         ? (u - std::floor(u)) * static_cast<float>(width) - 0.5f
@@ -50,13 +46,49 @@ Color ImageData::lookup(float u, float v, TextureFilter filter, TextureWrap wrap
                                      -0.5f, static_cast<float>(height) - 0.5f)
                         : std::clamp((1.0f - v) * float(height) - 0.5f, -lim, lim);
     const float fx = std::floor(x), fy = std::floor(y);
-    const float tx = x - fx, ty = y - fy;
-    const int x0 = wrap_index(int64_t(fx), width, wrap_u);
-    const int x1 = wrap_index(int64_t(fx) + 1, width, wrap_u);
-    const int y0 = wrap_index(int64_t(fy), height, wrap_v);
-    const int y1 = wrap_index(int64_t(fy) + 1, height, wrap_v);
-    return (1 - ty) * ((1 - tx) * texel(x0, y0) + tx * texel(x1, y0)) +
-           ty * ((1 - tx) * texel(x0, y1) + tx * texel(x1, y1));
+    return {wrap_index(int64_t(fx), width, wrap_u),
+            wrap_index(int64_t(fx) + 1, width, wrap_u),
+            wrap_index(int64_t(fy), height, wrap_v),
+            wrap_index(int64_t(fy) + 1, height, wrap_v),
+            x - fx,
+            y - fy};
+}
+
+// Far outside the image only the wrap matters, and float coordinates there are too coarse to
+// tell texels apart: kept within 2^24 texel widths, which int64 holds.
+constexpr float kCoordinateLimit = 0x1p24f;
+
+}  // namespace
+
+Color ImageData::lookup(
+    float u, float v, TextureFilter filter, TextureWrap wrap_u, TextureWrap wrap_v) const {
+    const float lim = kCoordinateLimit;
+    if (filter == TextureFilter::Nearest) {
+        const float x = std::clamp(u * float(width), -lim, lim);
+        const float y = std::clamp((1.0f - v) * float(height), -lim, lim);
+        return texel(wrap_index(int64_t(std::floor(x)), width, wrap_u),
+                     wrap_index(int64_t(std::floor(y)), height, wrap_v));
+    }
+    const BilinearCell c = bilinear_cell(u, v, width, height, wrap_u, wrap_v, lim);
+    const float tx = c.tx, ty = c.ty;
+    return (1 - ty) * ((1 - tx) * texel(c.x0, c.y0) + tx * texel(c.x1, c.y0)) +
+           ty * ((1 - tx) * texel(c.x0, c.y1) + tx * texel(c.x1, c.y1));
+}
+
+Vec2 ImageData::luminance_gradient(float u,
+                                   float v,
+                                   Color factor,
+                                   TextureFilter filter,
+                                   TextureWrap wrap_u,
+                                   TextureWrap wrap_v) const {
+    if (filter == TextureFilter::Nearest) return {0.0f, 0.0f};
+    const BilinearCell c = bilinear_cell(u, v, width, height, wrap_u, wrap_v, kCoordinateLimit);
+    auto l = [&](int x, int y) { return luminance(factor * texel(x, y)); };
+    const float l00 = l(c.x0, c.y0), l10 = l(c.x1, c.y0), l01 = l(c.x0, c.y1), l11 = l(c.x1, c.y1);
+    // x = u W - 1/2 and y = (1 - v) H - 1/2 inside the cell: d/du = W d/dx, d/dv = -H d/dy.
+    const float ddx = (1 - c.ty) * (l10 - l00) + c.ty * (l11 - l01);
+    const float ddy = (1 - c.tx) * (l01 - l00) + c.tx * (l11 - l10);
+    return {float(width) * ddx, -float(height) * ddy};
 }
 
 namespace {
@@ -187,6 +219,17 @@ Color eval_texture(const Scene& scene, TextureId id, Vec2 uv, Point3 p) {
         }
         return {};
     }
+}
+
+bool texture_luminance_gradient(const Scene& scene, TextureId id, Vec2 uv, Vec2* gradient) {
+    const Texture& t = scene.textures[id];
+    if (t.kind != TextureKind::Image || t.cutoff >= 0.0f) return false;
+    const Vec2 st = t.map_uv(uv);
+    const Vec2 g = scene.images[t.image].luminance_gradient(st.x, st.y, t.factor, t.filter,
+                                                            t.wrap_u, t.wrap_v);
+    // Through the affine uv map st = A uv + b: the gradient in uv is A^T g.
+    *gradient = {t.uv[0][0] * g.x + t.uv[1][0] * g.y, t.uv[0][1] * g.x + t.uv[1][1] * g.y};
+    return true;
 }
 
 Vec2 sphere_uv(Normal3 ng) {

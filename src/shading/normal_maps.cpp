@@ -25,8 +25,14 @@ Normal3 bumped(const Scene& scene, const Material& m, const SurfaceHit& hit, Nor
         return m.bump_scale *
                luminance(eval_texture(scene, m.bump_map, {hit.uv.x + du, hit.uv.y + dv}, hit.p));
     };
-    const float dhdu = (h(kBumpStep, 0) - h(-kBumpStep, 0)) / (2 * kBumpStep);
-    const float dhdv = (h(0, kBumpStep) - h(0, -kBumpStep)) / (2 * kBumpStep);
+    Vec2 g;
+    if (texture_luminance_gradient(scene, m.bump_map, hit.uv, &g)) {
+        g = {m.bump_scale * g.x, m.bump_scale * g.y};
+    } else {
+        g = {(h(kBumpStep, 0) - h(-kBumpStep, 0)) / (2 * kBumpStep),
+             (h(0, kBumpStep) - h(0, -kBumpStep)) / (2 * kBumpStep)};
+    }
+    const float dhdu = g.x, dhdv = g.y;
     Vec3 b = cross(tu + dhdu * n, tv + dhdv * n);
     if (!usable(b)) return n;
     b = normalize(b);

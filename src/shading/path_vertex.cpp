@@ -3,17 +3,18 @@
 #include <algorithm>
 #include <cmath>
 
+#include "bsdfs/bump_terminator.h"
+#include "bsdfs/geometric_side-inl.h"
 #include "bsdfs/thin_dielectric.h"
+#include "media/medium_flight-inl.h"
 #include "sampling/bounce_dims.h"
 #include "sampling/sampler-inl.h"
 #include "sampling/sampler.h"
 #include "sampling/warp.h"
 #include "scene/camera_ray-inl.h"
 #include "shading/environment_light-inl.h"
-#include "bsdfs/geometric_side-inl.h"
 #include "shading/lane_routes.h"
 #include "shading/light_sample-inl.h"
-#include "media/medium_flight-inl.h"
 #include "shading/mis-inl.h"
 #include "shading/normal_maps.h"
 #include "shading/sphere_light-inl.h"

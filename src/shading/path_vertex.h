@@ -36,7 +36,7 @@ struct Vertex {
     MediumId interior = kNone;    // the surface's inside medium, for transmission
     MaterialId material = kNone;  // whose BSDF it is (a medium's: its phase function)
     bool geometric_side_test = true;  // Scene::geometric_side_test, at a surface
-    // A mapped normal's shadowing (shading/normal_maps.h): the unperturbed normal and the
+    // A mapped normal's shadowing (bsdfs/bump_terminator.h): the unperturbed normal and the
     // shadowing's alpha^2; 0: none (the BSDF is not scaled).
     Normal3 unbent{0.0f};
     float bump_alpha2 = 0.0f;

@@ -66,7 +66,7 @@ struct Material {
     // Mitsuba 3's two corrections of a mapped normal (both off by default here, on in its
     // `normalmap` and `bumpmap`): a mapped normal facing away from the viewer is mirrored about
     // the shading normal (flip_invalid_normals), and light is shadowed near the terminator as
-    // Estevez et al. 2019 derive (bump_shadowing; src/shading/normal_maps.h).
+    // Estevez et al. 2019 derive (bump_shadowing; src/bsdfs/bump_terminator.h).
     bool flip_invalid_normals = false;
     bool bump_shadowing = false;
     bool has_normal_maps() const { return normal_map != kNone || bump_map != kNone; }

@@ -61,6 +61,15 @@ struct ImageData {
     // The image at (u, v), u running left to right and v bottom to top (OpenGL convention):
     // texel centres sit at half-integer coordinates of (u W, (1 - v) H).
     Color lookup(float u, float v, TextureFilter filter, TextureWrap wrap_u, TextureWrap wrap_v) const;
+    // The gradient in (u, v) of luminance(factor * lookup(u, v)): with the bilinear filter the
+    // exact derivative of the interpolation inside the texel cell that holds (u, v) (as
+    // Mitsuba's bitmap eval_1_grad), with the nearest filter 0 (a constant inside each texel).
+    Vec2 luminance_gradient(float u,
+                            float v,
+                            Color factor,
+                            TextureFilter filter,
+                            TextureWrap wrap_u,
+                            TextureWrap wrap_v) const;
 };
 
 struct Scene;
@@ -71,6 +80,10 @@ struct Sphere;
 bool texture_reads_uv(const Scene& scene, TextureId id);
 
 Color eval_texture(const Scene& scene, TextureId id, Vec2 uv, Point3 p);
+// The gradient in the surface's (u, v) of texture `id`'s luminance at (uv, p), where the
+// texture is an image without a cutoff (ImageData::luminance_gradient through its uv map);
+// false for other textures, whose gradient the caller approximates.
+bool texture_luminance_gradient(const Scene& scene, TextureId id, Vec2 uv, Vec2* gradient);
 // The texture's mean over its domain (an image's texels, a checker's two cells; noise: half its
 // colour), as Mitsuba's Texture::mean; 0 for kNone.
 Color texture_mean(const Scene& scene, TextureId id);
