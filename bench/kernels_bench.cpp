@@ -198,10 +198,15 @@ LambertianRows& lambertian_rows() {
     return rows;
 }
 
+// The sampler of a 320 x 320 render of 16 samples per pixel (the engines bench's).
+Sampler bench_sampler(SamplerKind kind) {
+    return kind == SamplerKind::ZSobol ? zsobol_sampler(1, 320, 320, 16) : Sampler{1, kind};
+}
+
 void BM_CameraRays(benchmark::State& st, bool lanes, SamplerKind kind) {
     LambertianRows& r = lambertian_rows();
     const size_t n = r.v.size();
-    const Sampler sampler{1, kind};
+    const Sampler sampler = bench_sampler(kind);
     CameraRayBlock block;
     for (auto _ : st) {
         if (lanes) {
@@ -220,7 +225,7 @@ void BM_CameraRays(benchmark::State& st, bool lanes, SamplerKind kind) {
 void BM_VertexSamples(benchmark::State& st, bool lanes, SamplerKind kind) {
     LambertianRows& r = lambertian_rows();
     const size_t n = r.v.size();
-    const Sampler sampler{1, kind};
+    const Sampler sampler = bench_sampler(kind);
     SampleBlock block;
     for (auto _ : st) {
         if (lanes) {
@@ -359,18 +364,24 @@ WAVETRACE_KERNEL_BENCH(BM_Compact, cornell);
     BENCHMARK_CAPTURE(fn, one_lane, false)->Unit(benchmark::kMicrosecond)->UseRealTime(); \
     BENCHMARK_CAPTURE(fn, lanes, true)->Unit(benchmark::kMicrosecond)->UseRealTime()
 // The same for each sampler.
-#define WAVETRACE_SAMPLER_BENCH(fn)                                                      \
-    BENCHMARK_CAPTURE(fn, one_lane, false, SamplerKind::Independent)                     \
-        ->Unit(benchmark::kMicrosecond)                                                  \
-        ->UseRealTime();                                                                 \
-    BENCHMARK_CAPTURE(fn, lanes, true, SamplerKind::Independent)                         \
-        ->Unit(benchmark::kMicrosecond)                                                  \
-        ->UseRealTime();                                                                 \
-    BENCHMARK_CAPTURE(fn, one_lane_sobol, false, SamplerKind::Sobol)                     \
-        ->Unit(benchmark::kMicrosecond)                                                  \
-        ->UseRealTime();                                                                 \
-    BENCHMARK_CAPTURE(fn, lanes_sobol, true, SamplerKind::Sobol)                         \
-        ->Unit(benchmark::kMicrosecond)                                                  \
+#define WAVETRACE_SAMPLER_BENCH(fn)                                    \
+    BENCHMARK_CAPTURE(fn, one_lane, false, SamplerKind::Independent)   \
+        ->Unit(benchmark::kMicrosecond)                                \
+        ->UseRealTime();                                               \
+    BENCHMARK_CAPTURE(fn, lanes, true, SamplerKind::Independent)       \
+        ->Unit(benchmark::kMicrosecond)                                \
+        ->UseRealTime();                                               \
+    BENCHMARK_CAPTURE(fn, one_lane_sobol, false, SamplerKind::Sobol)   \
+        ->Unit(benchmark::kMicrosecond)                                \
+        ->UseRealTime();                                               \
+    BENCHMARK_CAPTURE(fn, lanes_sobol, true, SamplerKind::Sobol)       \
+        ->Unit(benchmark::kMicrosecond)                                \
+        ->UseRealTime();                                               \
+    BENCHMARK_CAPTURE(fn, one_lane_zsobol, false, SamplerKind::ZSobol) \
+        ->Unit(benchmark::kMicrosecond)                                \
+        ->UseRealTime();                                               \
+    BENCHMARK_CAPTURE(fn, lanes_zsobol, true, SamplerKind::ZSobol)     \
+        ->Unit(benchmark::kMicrosecond)                                \
         ->UseRealTime()
 WAVETRACE_SAMPLER_BENCH(BM_CameraRays);
 WAVETRACE_SAMPLER_BENCH(BM_VertexSamples);

@@ -98,3 +98,15 @@ do for [s in "cornell veach-mis"] {
     plot for [st in "bsdf light mixture nee mis"] dir."/convergence.csv" \
         using (strcol(1) eq s && strcol(2) eq st ? column(4) : 1/0):5 title st
 }
+
+# Error against time per engine and sampler, log-log, one plot per scene (the megakernel dashed).
+do for [s in "cornell veach-mis dragon-envmap cornell-glass"] {
+    set output dir."/error-time-".s.".svg"
+    set title "Relative MSE against render time on ".s
+    plot for [sm in "independent sobol zsobol"] dir."/error_time.csv" \
+        using (strcol(1) eq s && strcol(2) eq "wavefront" && strcol(3) eq sm ? column(5) : 1/0):6 \
+        with linespoints lw 2 title "wavefront, ".sm, \
+         for [sm in "independent sobol zsobol"] dir."/error_time.csv" \
+        using (strcol(1) eq s && strcol(2) eq "megakernel" && strcol(3) eq sm ? column(5) : 1/0):6 \
+        with linespoints dt 2 title "megakernel, ".sm
+}

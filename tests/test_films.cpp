@@ -94,9 +94,11 @@ TEST(Films, InterruptedAndResumedEqualsUninterruptedBitForBit) {
 // single render within 1e-6 relative per pixel (sums of doubles, associated differently), and
 // the same bits whatever the order; for each sampler.
 TEST(Films, SplitsMergedInAnyOrderEqualTheSingleRender) {
-    for (const std::string sampler : {"independent", "sobol"}) {
+    for (const std::string sampler : {"independent", "sobol", "zsobol"}) {
     SCOPED_TRACE(sampler);
-    const std::string render = kRender + "--sampler " + sampler + " ";
+    // zsobol's parts state the whole render's count, which its layout depends on.
+    const std::string render =
+        kRender + "--sampler " + sampler + (sampler == "zsobol" ? " --sampler-spp 24 " : " ");
     TempDir dir;
     ASSERT_EQ(run_cli(dir, render + "--spp 24 -o " + q(dir.path() / "full.exr")).code, 0);
     const ImageData full = read_image(dir.path() / "full.exr");
@@ -168,6 +170,22 @@ TEST(Films, MismatchedOverlappingAndDamagedFilmsAreRefused) {
               std::string::npos)
         << sobol.err;
     EXPECT_FALSE(std::filesystem::exists(film("x.exr")));
+    // zsobol laid out for another count: another render (its parts state the whole count).
+    ASSERT_EQ(run_cli(dir, kRender + "--spp 2 --sampler zsobol -o " + q(film("z.exr")) +
+                               " --film " + q(film("z.film")))
+                  .code,
+              0);
+    CliResult layout = run_cli(dir, kRender + "--spp 8 --sampler zsobol --resume " +
+                                        q(film("z.film")) + " -o " + q(film("x.exr")));
+    EXPECT_EQ(layout.code, 2);
+    EXPECT_NE(layout.err.find("the film of another render (zsobol_spp: 2 vs 8)"),
+              std::string::npos)
+        << layout.err;
+    EXPECT_EQ(run_cli(dir, kRender + "--spp 8 --sampler zsobol --sampler-spp 2 --resume " +
+                               q(film("z.film")) + " -o " + q(film("x.exr")))
+                  .code,
+              0);
+    std::filesystem::remove(film("x.exr"));
     // Overlapping parts: [0, 2) and [1, 3).
     CliResult overlap = run_cli(
         dir, "merge " + q(film("a.film")) + " " + q(film("b.film")) + " -o " + q(film("m.exr")));

@@ -260,9 +260,10 @@ TEST(Lanes, VertexSamplesAreTheScalarOnesOnEverySimdTarget) {
     }
     for (int64_t target : wide_simd_targets()) {
         use_wide_simd_target(target);
-        for (SamplerKind kind : {SamplerKind::Independent, SamplerKind::Sobol}) {
+        for (SamplerKind kind :
+             {SamplerKind::Independent, SamplerKind::Sobol, SamplerKind::ZSobol}) {
             SCOPED_TRACE(std::string(wide_simd_target()) + " " + to_string(kind));
-            const Sampler sampler{42, kind};
+            const Sampler sampler{42, kind, 37, 23, 3};
             SampleBlock block;
             draw_vertex_samples(sampler, 17, pixel, bounce, n, true, block);
             for (size_t k = 0; k < n; ++k) {
@@ -669,10 +670,11 @@ TEST(Lanes, CameraRaysAreTheScalarOnesOnEverySimdTarget) {
         }
         for (int64_t target : wide_simd_targets()) {
             use_wide_simd_target(target);
-            for (SamplerKind kind : {SamplerKind::Independent, SamplerKind::Sobol}) {
+            for (SamplerKind kind :
+                 {SamplerKind::Independent, SamplerKind::Sobol, SamplerKind::ZSobol}) {
                 SCOPED_TRACE(std::string(wide_simd_target()) + " aperture " +
                              std::to_string(aperture) + " " + to_string(kind));
-                const Sampler sampler{5, kind};
+                const Sampler sampler{5, kind, 37, 23, 2};
                 CameraRayBlock block;
                 draw_camera_rays(rays, sampler, 3, pixel, x, y, n, true, block);
                 for (size_t k = 0; k < n; ++k) {

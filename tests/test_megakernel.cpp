@@ -284,7 +284,7 @@ TEST(Megakernel, StrategiesAgree) {
 
 TEST(Megakernel, BitIdenticalForAnyThreadCount) {
     Scene scene = load_scene(scene_path("cornell-smoke"));
-    for (SamplerKind kind : {SamplerKind::Independent, SamplerKind::Sobol}) {
+    for (SamplerKind kind : {SamplerKind::Independent, SamplerKind::Sobol, SamplerKind::ZSobol}) {
         auto with = [&](int threads) {
             tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
             return render(scene, Strategy::Mis, 40, 40, 8, 5, 50, kind).mean();

@@ -87,12 +87,13 @@ TEST(Passes, SampleRangesAddUpToTheWholeRender) {
     Scene scene = load_scene(scene_path("cornell"));
     Bvh bvh = Bvh::build(scene);
     for (Engine engine : {Engine::Wavefront, Engine::Megakernel})
-    for (SamplerKind kind : {SamplerKind::Independent, SamplerKind::Sobol}) {
+    for (SamplerKind kind : {SamplerKind::Independent, SamplerKind::Sobol, SamplerKind::ZSobol}) {
         RenderRequest first = small_config(3), second = small_config(4), all = small_config(7);
         second.first_sample = 3;
         for (RenderRequest* r : {&first, &second, &all}) {
             r->engine = engine;
             r->sampler = kind;
+            r->sampler_spp = 7;  // zsobol: each part laid out for the whole render
             r->wavefront.wave_size = 300;
         }
         Film parts(first.width, first.height), whole(first.width, first.height);

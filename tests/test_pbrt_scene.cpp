@@ -79,6 +79,17 @@ Shape "sphere"
     EXPECT_EQ(s.render.sampler, SamplerKind::Sobol);
 }
 
+// pbrt-v4's default sampler is zsobol, and ours stands for it; a named one is taken as it is.
+TEST(PbrtScenes, ZSobolIsTheDefaultSampler) {
+    TempDir dir;
+    const std::string world = "WorldBegin\nShape \"sphere\"\n";
+    EXPECT_EQ(load_scene(dir.write("a.pbrt", world)).render.sampler, SamplerKind::ZSobol);
+    EXPECT_EQ(load_scene(dir.write("b.pbrt", "Sampler \"zsobol\"\n" + world)).render.sampler,
+              SamplerKind::ZSobol);
+    EXPECT_EQ(load_scene(dir.write("c.pbrt", "Sampler \"independent\"\n" + world)).render.sampler,
+              SamplerKind::Independent);
+}
+
 // pbrt's camera puts camera-space +x on the image's right: a red sphere at +x, seen from the
 // origin looking down +z, is in the right half of the image, as pbrt renders it.
 TEST(PbrtScenes, TheImageIsNotMirrored) {

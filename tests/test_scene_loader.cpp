@@ -276,7 +276,8 @@ TEST(SceneLoader, NegativeAndZeroSizesAreRejected) {
               std::string::npos);
     EXPECT_EQ(load_error(dir, std::string("{") + kCamera +
                                   R"(, "render": {"sampler": "halton"}, "objects": []})"),
-              ": /render/sampler: expected \"independent\" or \"sobol\", got \"halton\"");
+              ": /render/sampler: expected \"independent\", \"sobol\" or \"zsobol\", got "
+              "\"halton\"");
     std::string bad_medium =
         std::string("{") + kCamera +
         R"(, "media": {"fog": {"density": -0.1, "albedo": 1}}, "objects": []})";

@@ -73,7 +73,7 @@ TEST(Wavefront, EqualsTheMegakernel) {
           "everything", "bunny", "dragon", "dragon-envmap", "veach-mis", "materials"}) {
         Scene scene = load_scene(scene_path(name));
         Bvh bvh = Bvh::build(scene);
-        for (SamplerKind kind : {SamplerKind::Independent, SamplerKind::Sobol})
+        for (SamplerKind kind : {SamplerKind::Independent, SamplerKind::Sobol, SamplerKind::ZSobol})
         for (Strategy st :
              {Strategy::Bsdf, Strategy::Light, Strategy::Mixture, Strategy::Nee, Strategy::Mis}) {
             RenderRequest c = config(st, 40, 40, 4);
@@ -138,7 +138,7 @@ TEST(Wavefront, EqualsTheMegakernelOnMitsubasScenes) {
 TEST(Wavefront, BitIdenticalForAnyThreadCountAndWaveSize) {
     Scene scene = load_scene(scene_path("cornell-smoke"));
     Bvh bvh = Bvh::build(scene);
-    for (SamplerKind kind : {SamplerKind::Independent, SamplerKind::Sobol}) {
+    for (SamplerKind kind : {SamplerKind::Independent, SamplerKind::Sobol, SamplerKind::ZSobol}) {
     RenderRequest c = config(Strategy::Mis, 37, 23, 5);  // 851 pixels
     c.sampler = kind;
     // Fewer threads than the machine has through a global_control limit (as --threads does),
@@ -191,8 +191,9 @@ TEST(Wavefront, StageScheduleEqualsResidentBitForBit) {
         for (Strategy st :
              {Strategy::Bsdf, Strategy::Light, Strategy::Mixture, Strategy::Nee, Strategy::Mis}) {
             RenderRequest c = config(st, 61, 47, 2);  // 2,867 pixels
-            // Half the cases draw from the Sobol sampler.
+            // Two of the cases draw from the Sobol sampler, one from zsobol.
             if (st == Strategy::Nee || st == Strategy::Light) c.sampler = SamplerKind::Sobol;
+            if (st == Strategy::Mis) c.sampler = SamplerKind::ZSobol;
             WavefrontOptions resident, stage;
             resident.wave_size = stage.wave_size = 700;
             stage.schedule = Schedule::Stage;

@@ -159,6 +159,49 @@ def convergence(results):
     table(["scene"] + strategies, body)
 
 
+def error_time(results):
+    """Per scene: the time each engine and sampler takes to reach the error the megakernel with
+    the independent sampler has at 16 spp (from a least-squares line through log rMSE against
+    log seconds over 4-32 spp), the line's slope, and the errors at 32 spp."""
+    import math
+    series = {}
+    for r in rows(results, "error_time"):
+        key = (r["scene"], r["engine"], r["sampler"])
+        series.setdefault(key, []).append(
+            (int(r["spp"]), float(r["seconds"]), float(r["rel_mse"]), float(r["rel_mse_2x2"])))
+    scenes = list(dict.fromkeys(k[0] for k in series))
+    combos = [(e, s) for e in ("megakernel", "wavefront") for s in ("independent", "sobol", "zsobol")]
+
+    def fit(points):
+        points = [p for p in points if p[0] >= 4] or points  # --quick runs have 1 and 2
+        xs = [math.log(t) for spp, t, e, _ in points]
+        ys = [math.log(e) for spp, t, e, _ in points]
+        n = len(xs)
+        mx, my = sum(xs) / n, sum(ys) / n
+        slope = sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sum((x - mx) ** 2 for x in xs)
+        return slope, my - slope * mx
+
+    body, errors = [], []
+    for scene in scenes:
+        baseline = series[(scene, "megakernel", "independent")]
+        target = next((e for spp, t, e, _ in baseline if spp == 16), baseline[-1][2])
+        cells, times = [], {}
+        for c in combos:
+            slope, intercept = fit(series[(scene,) + c])
+            times[c] = math.exp((math.log(target) - intercept) / slope)
+            cells.append(f"{times[c] * 1e3:.0f} ({slope:.2f})")
+        base = times[("megakernel", "independent")]
+        best = min(times[("wavefront", s)] for s in ("independent", "sobol", "zsobol"))
+        body.append([scene, f"{target:.3g}"] + cells + [f"**{base / best:.2f}×**"])
+        last = {c: series[(scene,) + c][-1] for c in combos}
+        errors.append([scene] + [f"{last[('wavefront', s)][2]:.3g} / {last[('wavefront', s)][3]:.3g}"
+                                 for s in ("independent", "sobol", "zsobol")])
+    table(["scene", "target rMSE"] + [f"{e}, {s}: ms (slope)" for e, s in combos] +
+          ["speed-up to the target, best wavefront over megakernel independent"], body)
+    print("Wavefront at the most samples, relative MSE per pixel / over 2 x 2 squares:\n")
+    table(["scene", "independent", "sobol", "zsobol"], errors)
+
+
 def kernels(results):
     with open(os.path.join(results, "kernels.json")) as fh:
         data = json.load(fh)
@@ -174,9 +217,13 @@ def main():
     for title, section in [("engines", engines), ("schedules", schedules), ("bvh", bvh), ("scene_size", scene_size),
                            ("scaling", scaling),
                            ("waves", waves), ("convergence", convergence),
+                           ("error_time", error_time),
                            ("kernels", kernels)]:
         print(f"<!-- {title} -->\n")
-        section(results)
+        try:
+            section(results)
+        except FileNotFoundError as e:  # a run of some sections only (--sections)
+            print(f"(not in this run: {os.path.basename(e.filename)})\n")
 
 
 if __name__ == "__main__":

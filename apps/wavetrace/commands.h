@@ -54,6 +54,7 @@ struct RenderOptions {
     std::string strategy = "mis";
     std::string heuristic = "power";
     std::optional<std::string> sampler;  // default: the scene's
+    std::optional<long long> sampler_spp;  // zsobol's layout; default: offset + spp
     std::string simd;                     // "": the best target
 };
 

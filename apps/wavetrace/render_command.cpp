@@ -52,9 +52,14 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
         ->capture_default_str();
     cmd->add_option("--sampler", o.sampler,
                     "where the random numbers come from: independent (a hash of each "
-                    "coordinate) or sobol (Owen-scrambled Sobol points per pixel); default: the "
-                    "scene's")
-        ->check(CLI::IsMember({"independent", "sobol"}));
+                    "coordinate), sobol (Owen-scrambled Sobol points per pixel) or zsobol (one "
+                    "Owen-scrambled Sobol sequence over the pixels in a shuffled Morton order: "
+                    "blue-noise error); default: the scene's")
+        ->check(CLI::IsMember({"independent", "sobol", "zsobol"}));
+    cmd->add_option("--sampler-spp", o.sampler_spp,
+                    "zsobol: the samples per pixel its sequence is laid out for (default: "
+                    "--sample-offset + --spp); every part of a split or resumed render states "
+                    "the same");
     cmd->add_option("--simd", o.simd,
                     "run every kernel on this SIMD target (Highway's name, e.g. AVX2; default: "
                     "the best this CPU runs), to measure what other CPUs get");
@@ -214,6 +219,7 @@ std::optional<std::string> check_options(const RenderOptions& o, const RenderSet
     if (auto e = out_of_range("--width", o.width, 1, kMaxImageSide)) return e;
     if (auto e = out_of_range("--height", o.height, 1, kMaxImageSide)) return e;
     if (auto e = out_of_range("--spp", o.spp, 1, kMaxSpp)) return e;
+    if (auto e = out_of_range("--sampler-spp", o.sampler_spp, 1, kMaxSpp)) return e;
     if (auto e = out_of_range("--max-depth", o.max_depth, 1, kMaxDepth)) return e;
     if (auto e = out_of_range("--wave-size", o.wave_size, 1, 1LL << 26)) return e;
     if (o.time_limit && !(*o.time_limit > 0 && *o.time_limit < 1e9))
@@ -291,6 +297,8 @@ RenderRequest color_request(const RenderOptions& o, const Scene& scene, int widt
     request.height = height;
     request.seed = o.seed;
     request.sampler = o.sampler ? *parse_sampler(*o.sampler) : scene.render.sampler;
+    request.sampler_spp = static_cast<int>(o.sampler_spp.value_or(std::min<long long>(
+        kMaxSpp, o.sample_offset.value_or(0) + o.spp.value_or(scene.render.spp))));
     request.engine = *parse_engine(o.engine);
     request.estimator.strategy = *parse_strategy(o.strategy);
     request.estimator.heuristic =

@@ -16,20 +16,21 @@ int main(int argc, char** argv) {
     Options o;
     std::string out = "results", scenes = WAVETRACE_SCENES_DIR;
     std::vector<std::string> sections = {"engines", "waves",       "bvh",        "scene_size",
-                                         "scaling", "convergence", "python_rays"};
+                                         "scaling", "convergence", "error_time", "python_rays"};
     app.add_flag("--quick", o.quick, "tiny settings: check the harness only");
     app.add_option("--out", out, "results folder")->capture_default_str();
     app.add_option("--scenes", scenes, "scenes folder")->capture_default_str();
     app.add_option("--sections", sections, "sections to run")
-        ->check(CLI::IsMember(
-            {"engines", "waves", "bvh", "scene_size", "scaling", "convergence", "python_rays"}));
+        ->check(CLI::IsMember({"engines", "waves", "bvh", "scene_size", "scaling", "convergence",
+                               "error_time", "python_rays"}));
     app.add_option("--max-threads", o.max_threads,
                    "scaling: up to this many threads (default: all)");
     app.add_option("--repetitions", o.reps,
                    "engines, bvh, scaling: interleaved repetitions to take medians of")
         ->capture_default_str()
         ->check(CLI::PositiveNumber);
-    app.add_option("--scene", o.only, "engines, scaling: only these bench scenes (repeatable)")
+    app.add_option("--scene", o.only,
+                   "engines, scaling, error_time: only these bench scenes (repeatable)")
         ->check(CLI::IsMember({"cornell", "everything", "bunny", "dragon", "veach-mis", "materials",
                                "dragon-envmap", "cornell-glass", "cornell-mirror", "cornell-smoke",
                                "cornell-mcguire"}));
@@ -37,16 +38,14 @@ int main(int argc, char** argv) {
     app.add_option("--sampler", sampler,
                    "engines, waves, scaling: the sampler the renders draw from (default: the "
                    "library's)")
-        ->check(CLI::IsMember({"independent", "sobol"}));
+        ->check(CLI::IsMember({"independent", "sobol", "zsobol"}));
     std::string simd;
     app.add_option("--simd", simd,
                    "run every kernel on this SIMD target (e.g. AVX2; default: the best this CPU "
                    "runs)");
     CLI11_PARSE(app, argc, argv);
     o.scenes = scenes;
-    if (!sampler.empty())
-        o.sampler = sampler == "sobol" ? wavetrace::SamplerKind::Sobol
-                                       : wavetrace::SamplerKind::Independent;
+    if (!sampler.empty()) o.sampler = *wavetrace::parse_sampler(sampler);
     if (!wavetrace::use_simd_target(simd)) {
         std::string names;
         for (const std::string& t : wavetrace::simd_targets()) names += " " + t;
@@ -79,6 +78,7 @@ int main(int argc, char** argv) {
         if (s == "scene_size") bench_scene_size(o, r);
         if (s == "scaling") bench_scaling(o, r);
         if (s == "convergence") bench_convergence(o, r);
+        if (s == "error_time") bench_error_time(o, r);
         if (s == "python_rays") bench_python_rays(o, r);
     }
     r.note("seconds",

@@ -22,7 +22,7 @@ struct Options {
     int reps = kRepetitions;  // interleaved repetitions (--repetitions)
     int max_threads = 0;      // scaling goes 1 .. this (0: all hardware threads)
     std::filesystem::path scenes;
-    std::vector<std::string> only;  // engines and scaling: these bench scenes only (empty: all)
+    std::vector<std::string> only;  // engines, scaling, error_time: these bench scenes only
     SamplerKind sampler = RenderRequest{}.sampler;  // engines, waves, scaling (--sampler)
 
     int repetitions() const { return quick ? 1 : reps; }
@@ -53,6 +53,7 @@ void bench_bvh(const Options& o, Results& r);          // our BVH vs Embree on c
 void bench_scene_size(const Options& o, Results& r);   // the same, 10^4 to 10^7 triangles
 void bench_scaling(const Options& o, Results& r);      // threads 1..N, both engines
 void bench_convergence(const Options& o, Results& r);  // rMSE vs time per strategy
+void bench_error_time(const Options& o, Results& r);   // rMSE vs time per engine and sampler
 void bench_python_rays(const Options& o, Results& r);  // Bvh.intersect from NumPy vs C++
 
 }  // namespace wavetrace::bench

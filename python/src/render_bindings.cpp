@@ -97,7 +97,8 @@ py::tuple render_scene(const std::shared_ptr<PyScene>& s,
                        const py::object& progress,
                        bool variance,
                        PyFilm* film,
-                       const std::optional<std::string>& sampler) {
+                       const std::optional<std::string>& sampler,
+                       std::optional<long long> sampler_spp) {
     const Scene& scene = s->scene;
     const int w = checked("width", width, scene.render.width, 1, kMaxImageSide);
     const int h = checked("height", height, scene.render.height, 1, kMaxImageSide);
@@ -144,6 +145,9 @@ py::tuple render_scene(const std::shared_ptr<PyScene>& s,
     request.wavefront.schedule = parsed("schedule", schedule, parse_schedule(schedule));
     request.wavefront.sort_by_material = sort_by_material;
     request.time_limit = time_limit;
+    request.sampler_spp =
+        checked("sampler_spp", sampler_spp,
+                std::min<long long>(kMaxSpp, sample_offset.value_or(0) + samples), 1, kMaxSpp);
 
     // Samples [first, first + spp): from sample_offset, or after those the film holds.
     const std::string settings = film_settings(s->fingerprint, request);
@@ -196,7 +200,8 @@ void bind_render(py::module_& m) {
           py::arg("seed"), py::arg("threads"), py::arg("max_depth"), py::arg("sample_offset"),
           py::arg("time_limit"), py::arg("wave_size"), py::arg("schedule"),
           py::arg("sort_by_material"), py::arg("aov"), py::arg("progress"), py::arg("variance"),
-          py::arg("film").none(true), py::arg("sampler").none(true));
+          py::arg("film").none(true), py::arg("sampler").none(true),
+          py::arg("sampler_spp").none(true));
 }
 
 }  // namespace wavetrace::python

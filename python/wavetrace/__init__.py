@@ -118,7 +118,7 @@ def render(scene: Scene, spp: Optional[int] = None, width: Optional[int] = None,
            variance: bool = False, film: Optional[Film] = None, mis_heuristic: str = "power",
            wave_size: Optional[int] = None, schedule: str = "resident",
            sort_by_material: bool = False, return_stats: bool = False,
-           sampler: Optional[str] = None):
+           sampler: Optional[str] = None, sampler_spp: Optional[int] = None):
     """Renders the scene; returns the image as float32 (height, width, 3), linear RGB.
 
     The same render as ``wavetrace render`` with the same options, bit for bit. None takes
@@ -127,9 +127,12 @@ def render(scene: Scene, spp: Optional[int] = None, width: Optional[int] = None,
     - engine: "wavefront" or "megakernel"; strategy: "bsdf", "light", "mixture", "nee", "mis".
     - seed, sample_offset: the samples are [sample_offset, sample_offset + spp) of each pixel's
       sequence from this seed; parts of one render merge with Film.merge.
-    - sampler: "independent" (a hash of each coordinate) or "sobol" (Owen-scrambled Sobol
-      points per pixel), by default the scene's (scene.render.sampler, "sobol" unless set);
-      the samples are a pure function of (seed, pixel, sample, dimension) either way.
+    - sampler: "independent" (a hash of each coordinate), "sobol" (Owen-scrambled Sobol
+      points per pixel) or "zsobol" (one Owen-scrambled Sobol sequence over the pixels in a
+      shuffled Morton order: blue-noise error), by default the scene's (scene.render.sampler,
+      "sobol" unless set); the samples are a pure function of (seed, pixel, sample,
+      dimension) in each. sampler_spp: the samples per pixel zsobol's sequence is laid out
+      for (default sample_offset + spp): every part of one render states the same.
     - threads: worker threads (0: all). time_limit: seconds after which no pass starts.
     - aov: "color" (light transport), or "albedo", "normal", "depth" from primary rays (raw
       values: normals in [-1, 1], depth inf where nothing is hit).
@@ -155,7 +158,7 @@ def render(scene: Scene, spp: Optional[int] = None, width: Optional[int] = None,
         image, var, stats, interrupted = _wavetrace._render(
             scene, spp, width, height, engine, strategy, mis_heuristic, seed, threads, max_depth,
             sample_offset, 0.0 if time_limit is None else time_limit, wave_size, schedule,
-            sort_by_material, aov, callback, variance, film, sampler)
+            sort_by_material, aov, callback, variance, film, sampler, sampler_spp)
     finally:
         if bar is not None:
             bar.close()

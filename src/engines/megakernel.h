@@ -122,6 +122,7 @@ RenderStats megakernel(const Scene& scene,
     const MediumStack camera_media = media_at(scene, bvh, scene.camera.look_from);
     const bool shadows_walk = wavetrace::shadows_walk(scene);
     const int width = request.width, height = request.height;
+    const Sampler sampler = request_sampler(request);
     const int tiles_x = (width + kTile - 1) / kTile;
     const int tiles_y = (height + kTile - 1) / kTile;
     const int tiles = tiles_x * tiles_y;
@@ -140,9 +141,9 @@ RenderStats megakernel(const Scene& scene,
                         const uint32_t pixel = static_cast<uint32_t>(y) * width + x;
                         for (uint32_t sample = first; sample < first + uint32_t(count); ++sample) {
                             megakernel_detail::PathContext<Tracer> ctx{
-                                scene, bvh, lights, request.estimator, Sampler{request.seed, request.sampler}, pixel, sample, shadows_walk};
-                            Ray ray =
-                                generate_camera_ray(camera, Sampler{request.seed, request.sampler}, pixel, sample, x, y);
+                                scene,   bvh,   lights, request.estimator,
+                                sampler, pixel, sample, shadows_walk};
+                            Ray ray = generate_camera_ray(camera, sampler, pixel, sample, x, y);
                             Color c = megakernel_detail::ray_color(
                                 ctx, ray, 0, 0, camera_media, PreviousVertex{ray.o}, Color(1.0f),
                                 1.0f);

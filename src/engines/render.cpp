@@ -41,7 +41,17 @@ std::string film_settings(uint64_t scene_fingerprint, const RenderRequest& reque
            // independent sampler's, as every film written before samplers existed is.
            (request.sampler == SamplerKind::Independent
                 ? std::string()
-                : "sampler=" + std::string(to_string(request.sampler)) + "\n");
+                : "sampler=" + std::string(to_string(request.sampler)) + "\n") +
+           (request.sampler == SamplerKind::ZSobol
+                ? "zsobol_spp=" + std::to_string(1L << request_sampler(request).log2_spp) + "\n"
+                : std::string());
+}
+
+Sampler request_sampler(const RenderRequest& request) {
+    if (request.sampler != SamplerKind::ZSobol) return Sampler{request.seed, request.sampler};
+    return zsobol_sampler(
+        request.seed, request.width, request.height,
+        request.sampler_spp > 0 ? request.sampler_spp : request.first_sample + request.spp);
 }
 
 bool RenderObserver::on_pass(int, int, const Film&) {

@@ -221,7 +221,8 @@ class Loader {
         if (auto x = o.optional("sampler")) {
             const std::string name = x->string();
             const std::optional<SamplerKind> kind = parse_sampler(name);
-            if (!kind) x->fail("expected \"independent\" or \"sobol\", got \"" + name + "\"");
+            if (!kind)
+                x->fail("expected \"independent\", \"sobol\" or \"zsobol\", got \"" + name + "\"");
             r.sampler = *kind;
         }
         o.finish();

@@ -97,6 +97,14 @@ struct OneLane {
     static U64 Add64(U64 a, U64 b) { return a + b; }
     static U64 Sub64(U64 a, U64 b) { return a - b; }
     static U64 Mul64(U64 a, U64 b) { return a * b; }  // modulo 2^64
+    static U64 ShiftRightBy(U64 x, U64 bits) { return x >> bits; }  // bits < 64, per lane
+    static U64 ShiftRightSame(U64 x, int bits) { return x >> bits; }
+    static U64 ShiftLeftSame(U64 x, int bits) { return x << bits; }
+    // f(lane) of each 32-bit lane, for what has no lane formula (a division).
+    template <class Fn>
+    static U64 MapLanes(U32 x, Fn f) {
+        return f(x);
+    }
     // The product of the low 32 bits of each, modulo 2^32.
     static U64 MulLow32(U64 a, U64 b) { return uint32_t(a) * uint32_t(b); }
     // Bits 0..31 in reverse order, of a value below 2^32: five swaps of halves.
@@ -177,6 +185,17 @@ struct HashLanes : FloatLanes<hn::Rebind<float, D64>> {
     static HWY_INLINE U64 And64(U64 a, U64 b) { return hn::And(a, b); }
     static HWY_INLINE U64 Add64(U64 a, U64 b) { return hn::Add(a, b); }
     static HWY_INLINE U64 Sub64(U64 a, U64 b) { return hn::Sub(a, b); }
+    static HWY_INLINE U64 ShiftRightBy(U64 x, U64 bits) { return hn::Shr(x, bits); }
+    static HWY_INLINE U64 ShiftRightSame(U64 x, int bits) { return hn::ShiftRightSame(x, bits); }
+    static HWY_INLINE U64 ShiftLeftSame(U64 x, int bits) { return hn::ShiftLeftSame(x, bits); }
+    template <class Fn>
+    static HWY_INLINE U64 MapLanes(U32 x, Fn f) {
+        HWY_ALIGN uint32_t in[HWY_MAX_BYTES / 8];
+        HWY_ALIGN uint64_t out[HWY_MAX_BYTES / 8];
+        hn::Store(x, D32(), in);
+        for (size_t i = 0; i < hn::Lanes(D64()); ++i) out[i] = f(in[i]);
+        return hn::Load(D64(), out);
+    }
     static HWY_INLINE U64 MulLow32(U64 a, U64 b) {
 #if HWY_TARGET == HWY_SCALAR || HWY_TARGET == HWY_EMU128
         const D64 d;

@@ -183,9 +183,9 @@ class Translator {
         : reader_(path, asset_root), warn_(warn) {}
 
     PbrtDocument translate() {
-        // pbrt-v4's defaults; its default sampler, zsobol, is low-discrepancy: our Sobol one.
+        // pbrt-v4's defaults, its default sampler (zsobol) included.
         out_["render"] = {
-            {"width", 1280}, {"height", 720}, {"spp", 16}, {"max_depth", 6}, {"sampler", "sobol"}};
+            {"width", 1280}, {"height", 720}, {"spp", 16}, {"max_depth", 6}, {"sampler", "zsobol"}};
         out_["materials"] = json::object();
         out_["objects"] = json::array();
         states_.emplace_back();
@@ -449,10 +449,13 @@ class Translator {
             const std::string type = string_arg(d);
             PbrtParams p = params("Sampler \"" + type + "\"");
             out_["render"]["spp"] = p.integer("pixelsamples", 16, 1, kMaxSpp);
-            // Independent as it is; every low-discrepancy sampler as our Sobol one (pbrt-v4's
-            // paddedsobol is the same construction; the others order or stratify otherwise).
-            out_["render"]["sampler"] = type == "independent" ? "independent" : "sobol";
-            if (type != "independent" && type != "sobol" && type != "paddedsobol")
+            // Independent and zsobol as they are; every other low-discrepancy sampler as our
+            // Sobol one (pbrt-v4's paddedsobol is the same construction; the others order or
+            // stratify otherwise).
+            out_["render"]["sampler"] =
+                type == "independent" || type == "zsobol" ? type : std::string("sobol");
+            if (type != "independent" && type != "zsobol" && type != "sobol" &&
+                type != "paddedsobol")
                 warn(place, "Sampler \"" + type +
                                 "\": wavetrace draws Owen-scrambled Sobol points per pixel");
             p.finish(pwarn(), {"seed", "randomization", "jitter", "dimensions", "xsamples", "ysamples"});

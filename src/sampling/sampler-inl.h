@@ -25,13 +25,101 @@ HWY_INLINE typename L::U64 Mix64(typename L::U64 z) {
     return L::Xor(z, L::template ShiftRight<31>(z));
 }
 
+// A 32-bit hash with low bias (Wellons' "lowbias32", from his hash prospector) of x < 2^32.
+template <class L>
+HWY_INLINE typename L::U64 Hash32(typename L::U64 x) {
+    x = L::Xor(x, L::template ShiftRight<16>(x));
+    x = L::MulLow32(x, L::Set64(0x7feb352dULL));
+    x = L::Xor(x, L::template ShiftRight<15>(x));
+    x = L::MulLow32(x, L::Set64(0x846ca68bULL));
+    return L::Xor(x, L::template ShiftRight<16>(x));
+}
+
 // The state all dimensions of path (pixel, sample) are drawn from.
 template <class L>
 struct SampleState {
-    typename L::U64 key;  // independent: the path's hash; Sobol: the pixel's
+    // Independent: the path's hash; Sobol: the pixel's; ZSobol: the path's index into the
+    // one sequence: its pixel's Morton index above its sample's bits, digits shuffled.
+    typename L::U64 key;
     uint32_t sample;
     SamplerKind kind;
+    // ZSobol: the hash of the seed and the sample's block.
+    uint64_t block_key = 0;
 };
+
+// x's bits at the even positions of a 64-bit word, y's at the odd ones: the position of pixel
+// (x, y) along the Morton (Z-order) curve.
+HWY_INLINE uint64_t Morton2(uint32_t x, uint32_t y) {
+    auto spread = [](uint64_t v) {
+        v = (v | (v << 16)) & 0x0000ffff0000ffffULL;
+        v = (v | (v << 8)) & 0x00ff00ff00ff00ffULL;
+        v = (v | (v << 4)) & 0x0f0f0f0f0f0f0f0fULL;
+        v = (v | (v << 2)) & 0x3333333333333333ULL;
+        return (v | (v << 1)) & 0x5555555555555555ULL;
+    };
+    return spread(x) | (spread(y) << 1);
+}
+
+// The 24 permutations of a base-4 digit in lexicographic order, eight bits each (the image of
+// digit d in bits 2d and 2d + 1), eight to a word.
+struct DigitPermutations {
+    uint64_t word[3] = {};
+    constexpr DigitPermutations() {
+        int n = 0;
+        for (int a = 0; a < 4; ++a)
+            for (int b = 0; b < 4; ++b)
+                for (int c = 0; c < 4; ++c) {
+                    const int d = 6 - a - b - c;
+                    if (a == b || a == c || b == c) continue;
+                    const uint64_t p = uint64_t(a | b << 2 | c << 4 | d << 6);
+                    word[n / 8] |= p << (8 * (n % 8));
+                    ++n;
+                }
+    }
+};
+constexpr DigitPermutations kDigitPermutations;
+
+// ZSobol's order of the sequence: each base-4 digit of `index` (`digits` of them, from the top;
+// the lowest a single bit when log2_spp is odd) replaced by its image under one of the 24
+// permutations, chosen by hashing the digits above it with `seed` (Ahmed & Wonka's random
+// child order). Each 2 x 2 square of pixels, and of squares, so takes the quarters of its
+// block of the sequence in a random order; the quarters together are a net, so that
+// neighbouring pixels' errors cancel (blue noise).
+template <class L>
+HWY_INLINE typename L::U64 ShuffleDigits(typename L::U64 index,
+                                         uint32_t seed,
+                                         int digits,
+                                         int odd) {
+    using U64 = typename L::U64;
+    const DigitPermutations& t = kDigitPermutations;
+    auto hash = [&](U64 higher) {
+        const U64 folded = L::Xor(higher, L::template ShiftRight<32>(higher));
+        return Hash32<L>(L::And64(L::Xor(folded, L::Set64(seed)), L::Set64(0xffffffffULL)));
+    };
+    U64 out = L::Set64(0);
+    for (int i = digits - 1; i >= odd; --i) {
+        const int shift = 2 * i - odd;
+        const U64 digit = L::And64(L::ShiftRightSame(index, shift), L::Set64(3));
+        // One of 24 from the hash's top 24 bits, then its word and byte.
+        const U64 p = L::template ShiftRight<24>(L::MulLow32(
+            L::template ShiftRight<8>(hash(L::ShiftRightSame(index, shift + 2))), L::Set64(24)));
+        const U64 q = L::template ShiftRight<3>(p);
+        const U64 in_q1 = L::Sub64(L::Set64(0), L::And64(q, L::Set64(1)));
+        const U64 in_q2 = L::Sub64(L::Set64(0), L::template ShiftRight<1>(q));
+        const U64 word =
+            L::Xor(L::Set64(t.word[0]), L::Xor(L::And64(L::Set64(t.word[0] ^ t.word[1]), in_q1),
+                                               L::And64(L::Set64(t.word[0] ^ t.word[2]), in_q2)));
+        const U64 permutation =
+            L::ShiftRightBy(word, L::template ShiftLeft<3>(L::And64(p, L::Set64(7))));
+        const U64 image =
+            L::And64(L::ShiftRightBy(permutation, L::template ShiftLeft<1>(digit)), L::Set64(3));
+        out = L::Or64(out, L::ShiftLeftSame(image, shift));
+    }
+    if (odd)
+        out = L::Or64(out, L::Xor(L::And64(index, L::Set64(1)),
+                                  L::And64(hash(L::template ShiftRight<1>(index)), L::Set64(1))));
+    return out;
+}
 
 // The counters folded in one at a time through the mixer, so that neighbouring counters give
 // independent-looking values; the Sobol sampler hashes the pixel alone, its points being
@@ -40,6 +128,25 @@ template <class L>
 HWY_INLINE SampleState<L> PathState(const Sampler& sampler,
                                     typename L::U32 pixel,
                                     uint32_t sample) {
+    if (sampler.kind == SamplerKind::ZSobol) {
+        // The image's Morton indices run over a square of a power-of-two side; each pixel
+        // holds 2^log2_spp consecutive indices, and sample s lies in block s >> log2_spp.
+        const uint32_t width = static_cast<uint32_t>(sampler.width);
+        const int log2_spp = sampler.log2_spp;
+        int side_bits = 0;
+        while ((1 << side_bits) < std::max(sampler.width, sampler.height)) ++side_bits;
+        const uint64_t in_block = sample & ((uint64_t(1) << log2_spp) - 1);
+        const uint64_t block = uint64_t(sample) >> log2_spp;
+        SampleState<L> s{
+            L::MapLanes(
+                pixel,
+                [&](uint32_t p) { return (Morton2(p % width, p / width) << log2_spp) | in_block; }),
+            sample, sampler.kind};
+        s.block_key = Mix64<OneLane>(Mix64<OneLane>(sampler.seed ^ 0x3c6ef372fe94f82bULL) + block);
+        s.key = ShuffleDigits<L>(s.key, uint32_t(s.block_key >> 32), side_bits + (log2_spp + 1) / 2,
+                                 log2_spp & 1);
+        return s;
+    }
     if (sampler.kind == SamplerKind::Sobol) {
         const uint64_t seeded = Mix64<OneLane>(sampler.seed ^ 0x2545f4914f6cdd1dULL);
         return {Mix64<L>(L::Xor(L::Set64(seeded), L::Widen(pixel))), sample, sampler.kind};
@@ -100,8 +207,22 @@ struct SobolPairState {
     typename L::U64 scramble;
 };
 
+// ---- ZSobol (Ahmed & Wonka, "Screen-Space Blue-Noise Diffusion of Monte Carlo Sampling Error
+// via Hierarchical Ordering of Pixels", SIGGRAPH Asia 2020, as pbrt-v4's ZSobolSampler uses it)
+
 template <class L>
 HWY_INLINE SobolPairState<L> SobolPair(const SampleState<L>& state, typename L::U64 pair) {
+    if (state.kind == SamplerKind::ZSobol) {
+        // The pair's seeds depend on the seed and the block, not on the pixel: all pixels
+        // draw from one scrambled sequence. Its index, in the order the digits' shuffle gave,
+        // is shuffled again per pair by a nested uniform scramble, as the Sobol sampler's is:
+        // blocks stay blocks, and the pairs are decorrelated.
+        const typename L::U64 h = Mix64<L>(L::Add64(L::Set64(state.block_key), pair));
+        const typename L::U64 shuffle = L::And64(h, L::Set64(0xffffffffULL));
+        const typename L::U64 index = L::And64(state.key, L::Set64(0xffffffffULL));
+        return {ReverseBits32<L>(LaineKarras<L>(ReverseBits32<L>(index), shuffle)),
+                L::template ShiftRight<32>(h)};
+    }
     const typename L::U64 h = Mix64<L>(L::Add64(state.key, pair));
     const typename L::U64 shuffle = L::And64(h, L::Set64(0xffffffffULL));
     const uint64_t reversed_sample = ReverseBits32<OneLane>(state.sample);
@@ -127,7 +248,7 @@ constexpr uint64_t kSecondScramble = 0x9e3779b9ULL;
 //   own seed.
 template <class L>
 HWY_INLINE typename L::F SampleDim(const SampleState<L>& state, typename L::U64 dim) {
-    if (state.kind == SamplerKind::Sobol) {
+    if (state.kind != SamplerKind::Independent) {
         const SobolPairState<L> p = SobolPair<L>(state, L::template ShiftRight<1>(dim));
         const typename L::U64 odd = L::And64(dim, L::Set64(1));
         const typename L::U64 all_if_odd = L::Sub64(L::Set64(0), odd);
@@ -146,7 +267,7 @@ HWY_INLINE void SampleDimPair(const SampleState<L>& state,
                               typename L::U64 first,
                               typename L::F* a,
                               typename L::F* b) {
-    if (state.kind == SamplerKind::Sobol) {
+    if (state.kind != SamplerKind::Independent) {
         const SobolPairState<L> p = SobolPair<L>(state, L::template ShiftRight<1>(first));
         *a = ScrambledSobol<L>(p.index, p.scramble);
         *b = ScrambledSobol<L>(SobolSecond<L>(p.index),

@@ -16,7 +16,8 @@ SMALL = dict(width=48, height=40, spp=4, seed=7)
 
 @pytest.mark.parametrize("engine,strategy,sampler", [
     ("wavefront", "mis", "independent"), ("megakernel", "mis", "independent"),
-    ("wavefront", "bsdf", "independent"), ("wavefront", "mis", "sobol")])
+    ("wavefront", "bsdf", "independent"), ("wavefront", "mis", "sobol"),
+    ("megakernel", "mis", "zsobol")])
 def test_render_equals_the_cli_image_bit_for_bit(cli, cornell, tmp_path, engine, strategy,
                                                  sampler):
     out, var = tmp_path / "cli.exr", tmp_path / "cli-var.exr"

@@ -59,6 +59,10 @@ struct RenderRequest {
     int first_sample = 0;
     uint64_t seed = 0;
     SamplerKind sampler = SamplerKind::Sobol;
+    // ZSobol lays each pixel's samples out in a block of the one sequence, sized for a sample
+    // count (rounded up to a power of two): this one, or 0 for first_sample + spp. Parts of
+    // one render (a resume to more samples, sample ranges) state the whole render's count.
+    int sampler_spp = 0;
     Estimator estimator;
     Engine engine = Engine::Wavefront;
     WavefrontOptions wavefront;  // read by the wavefront engine only
@@ -99,6 +103,9 @@ class RenderObserver {
 // fingerprint (e.g. fnv1a_64 of its file; 0 for a scene built in code), the image size and
 // every request setting that changes the samples, as "key=value" lines.
 std::string film_settings(uint64_t scene_fingerprint, const RenderRequest& request);
+
+// The sampler a request's samples come from.
+Sampler request_sampler(const RenderRequest& request);
 
 // Renders the request's samples into `film` (of the request's size), after those it holds.
 // The image does not depend on the thread count, the wave size or how the passes fell.
