@@ -24,11 +24,12 @@ mkdir -p "$artifacts"
 failed=0
 for seed in "$@"; do
   work=$(mktemp -d)
+  scratch=$(mktemp -d)  # the harness's TMPDIR: its per-process input folders, removed below
   cp "$root/tests/fuzz/corpus/mesh/"* "$work/"
   log="$build/fuzz-heap-$seed.log"
   # -handle_abrt=0: glibc's abort on a damaged heap ends the process at once (libFuzzer's own
   # handler would allocate on that heap and hang).
-  LD_PRELOAD="$debug" MALLOC_CHECK_=3 timeout -k 10 1800 "$build/bin/fuzz_mesh" -seed="$seed" \
+  TMPDIR="$scratch" LD_PRELOAD="$debug" MALLOC_CHECK_=3 timeout -k 10 1800 "$build/bin/fuzz_mesh" -seed="$seed" \
     -runs="$runs" -timeout=10 -rss_limit_mb=4096 -handle_abrt=0 \
     "-artifact_prefix=$artifacts/seed-$seed-" "$work" >"$log" 2>&1 &
   pid=$!
@@ -36,12 +37,12 @@ for seed in "$@"; do
     echo "fuzz_mesh seed $seed: $runs executions, no heap damage, crash, hang or blow-up"
   else
     failed=1
-    # The harness writes each input to wavetrace-fuzz-mesh-<pid>/ in the temporary folder.
-    kept=$(ls -d "${TMPDIR:-/tmp}/wavetrace-fuzz-mesh-$pid" 2>/dev/null || true)
+    # The harness writes each input to wavetrace-fuzz-mesh-<pid>/ in its TMPDIR.
+    kept=$(ls -d "$scratch/wavetrace-fuzz-mesh-"* 2>/dev/null || true)
     [[ -n "$kept" ]] && cp -r "$kept" "$artifacts/seed-$seed-input"
     echo "fuzz_mesh seed $seed: FAILED (log: $log; inputs in $artifacts)" >&2
     grep -E "ERROR|SUMMARY|free\(\)|corrupted|malloc\(\)|Test unit written" "$log" | head -5 >&2
   fi
-  rm -rf "$work"
+  rm -rf "$work" "$scratch"
 done
 exit $failed

@@ -26,10 +26,14 @@ common=(-seed=1 -timeout=10 -rss_limit_mb=4096 -max_len=65536 -print_final_stats
 # One target per process, all side by side (each is single-threaded); each reports to its own
 # file, printed in order once all are done.
 fuzz_one() {
-  # `work` is global: the EXIT trap of this function's subshell still needs it.
+  # `work` and `scratch` are global: the EXIT trap of this function's subshell still needs
+  # them. The targets write their inputs under TMPDIR (wavetrace-fuzz-TARGET-PID/): a folder of
+  # this run's own, removed with it.
   local target=$1 log start runs cov before
   work=$(mktemp -d)
-  trap 'rm -rf "$work"' EXIT
+  scratch=$(mktemp -d)
+  trap 'rm -rf "$work" "$scratch"' EXIT
+  export TMPDIR="$scratch"
   log="$build/fuzz-$target.log"
   if [[ "$mode" == "--runs" ]]; then
     cp "$root/tests/fuzz/corpus/$target/"* "$work/"
