@@ -100,7 +100,7 @@ do for [s in "cornell veach-mis"] {
 }
 
 # Error against time per engine and sampler, log-log, one plot per scene (the megakernel dashed).
-do for [s in "cornell veach-mis dragon-envmap cornell-glass"] {
+do for [s in "cornell veach-mis dragon-envmap cornell-glass mitsuba-pointlight"] {
     set output dir."/error-time-".s.".svg"
     set title "Relative MSE against render time on ".s
     plot for [sm in "independent sobol zsobol"] dir."/error_time.csv" \
