@@ -52,10 +52,10 @@ std::string after_first_checkpoint(const TempDir& dir) {
 
 // A render interrupted by SIGINT (its film written at the end, its checkpoints refreshed
 // during it) and resumed to the requested spp: the same film file, byte for byte, as the render
-// that was never stopped — and so the same image. Both engines, and the Sobol sampler.
+// that was never stopped — and so the same image. Both engines, and the Sobol samplers.
 TEST(Films, InterruptedAndResumedEqualsUninterruptedBitForBit) {
     for (const char* engine :
-         {"wavefront", "megakernel", "wavefront --sampler sobol"}) {
+         {"wavefront", "megakernel", "wavefront --sampler sobol", "megakernel --sampler zsobol"}) {
         TempDir dir;
         const std::string common = kRender + "--engine " + engine;
         const int spp = kLongRenderSpp;
