@@ -170,6 +170,9 @@ TEST(Samplers, ValuesArePureFunctionsInTheUnitInterval) {
         }
         EXPECT_LT(same, 5) << to_string(kind);
     }
+    // ZSobol without its layout (a Sampler built by hand) still draws numbers in [0, 1).
+    const float u = sample_1d(Sampler{3, SamplerKind::ZSobol}, 17, 5, 2);
+    EXPECT_TRUE(u >= 0.0f && u < 1.0f);
 }
 
 // The engines draw a vertex's dimensions by pairs (SampleDimPair): the same values as one at a

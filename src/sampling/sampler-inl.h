@@ -131,7 +131,8 @@ HWY_INLINE SampleState<L> PathState(const Sampler& sampler,
     if (sampler.kind == SamplerKind::ZSobol) {
         // The image's Morton indices run over a square of a power-of-two side; each pixel
         // holds 2^log2_spp consecutive indices, and sample s lies in block s >> log2_spp.
-        const uint32_t width = static_cast<uint32_t>(sampler.width);
+        // (A sampler without its layout, width 0, draws as for a one-pixel-wide image.)
+        const uint32_t width = static_cast<uint32_t>(std::max(sampler.width, 1));
         const int log2_spp = sampler.log2_spp;
         int side_bits = 0;
         while ((1 << side_bits) < std::max(sampler.width, sampler.height)) ++side_bits;
