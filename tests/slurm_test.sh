@@ -100,7 +100,8 @@ fi
 
 # --- the split render and its merge, then the same render in one piece ---
 scene=$src/scenes/cornell.json
-args="--width 64 --height 48 --seed 5"
+# zsobol: its layout (--sampler-spp, which submit.sh passes) must agree across the parts.
+args="--width 64 --height 48 --seed 5 --sampler zsobol"
 merge_job=$("$src/tools/slurm/submit.sh" --parts 4 --spp-per-part 4 --wavetrace "$wavetrace" \
   "$t/out" "$scene" $args)
 for _ in $(seq 480); do
