@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <utility>
 #include <vector>
 
 #include "chi2.h"
@@ -26,13 +27,16 @@ std::vector<uint32_t> first_dims_of_pairs() {
     return dims;
 }
 
-// Whether samples [first, first + 2^m) of `pixel` in dimensions (dim, dim + 1) put exactly
-// one point in every elementary interval [a / 2^k, (a + 1) / 2^k) x [b / 2^(m-k), ...).
-bool is_net(const Sampler& s, uint32_t pixel, uint32_t dim, uint32_t first, int m) {
-    const uint32_t n = 1u << m;
+// Whether 2^m points of dimensions (dim, dim + 1) — samples (pixel, i) — put exactly one in
+// every elementary interval [a / 2^k, (a + 1) / 2^k) x [b / 2^(m-k), ...).
+bool points_are_net(const Sampler& s,
+                    const std::vector<std::pair<uint32_t, uint32_t>>& samples,
+                    uint32_t dim,
+                    int m) {
+    if (samples.size() != (size_t(1) << m)) return false;
     for (int k = 0; k <= m; ++k) {
-        std::vector<int> count(n, 0);
-        for (uint32_t i = first; i < first + n; ++i) {
+        std::vector<int> count(samples.size(), 0);
+        for (auto [pixel, i] : samples) {
             const auto a = static_cast<uint32_t>(sample_1d(s, pixel, i, dim) * float(1u << k));
             const auto b =
                 static_cast<uint32_t>(sample_1d(s, pixel, i, dim + 1) * float(1u << (m - k)));
@@ -42,6 +46,13 @@ bool is_net(const Sampler& s, uint32_t pixel, uint32_t dim, uint32_t first, int 
             if (c != 1) return false;
     }
     return true;
+}
+
+// Whether samples [first, first + 2^m) of `pixel` are such a net.
+bool is_net(const Sampler& s, uint32_t pixel, uint32_t dim, uint32_t first, int m) {
+    std::vector<std::pair<uint32_t, uint32_t>> samples;
+    for (uint32_t i = first; i < first + (1u << m); ++i) samples.push_back({pixel, i});
+    return points_are_net(s, samples, dim, m);
 }
 
 }  // namespace
@@ -72,24 +83,12 @@ namespace {
 // Whether samples [0, 2^m) of every pixel of the side x side square at (x0, y0), together,
 // put exactly one point in every elementary interval of dimensions (dim, dim + 1).
 bool square_is_net(const Sampler& s, int x0, int y0, int side, uint32_t dim, int m) {
-    const int points_bits = m + 2 * (side == 1 ? 0 : side == 2 ? 1 : 2);
-    const uint32_t n = 1u << points_bits;
-    for (int k = 0; k <= points_bits; ++k) {
-        std::vector<int> count(n, 0);
-        for (int y = y0; y < y0 + side; ++y)
-            for (int x = x0; x < x0 + side; ++x)
-                for (uint32_t i = 0; i < (1u << m); ++i) {
-                    const uint32_t pixel = static_cast<uint32_t>(y * s.width + x);
-                    const auto a =
-                        static_cast<uint32_t>(sample_1d(s, pixel, i, dim) * float(1u << k));
-                    const auto b = static_cast<uint32_t>(sample_1d(s, pixel, i, dim + 1) *
-                                                         float(1u << (points_bits - k)));
-                    ++count[(a << (points_bits - k)) | b];
-                }
-        for (int c : count)
-            if (c != 1) return false;
-    }
-    return true;
+    std::vector<std::pair<uint32_t, uint32_t>> samples;
+    for (int y = y0; y < y0 + side; ++y)
+        for (int x = x0; x < x0 + side; ++x)
+            for (uint32_t i = 0; i < (1u << m); ++i)
+                samples.push_back({static_cast<uint32_t>(y * s.width + x), i});
+    return points_are_net(s, samples, dim, m + 2 * (side == 1 ? 0 : side == 2 ? 1 : 2));
 }
 
 }  // namespace

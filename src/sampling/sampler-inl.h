@@ -9,6 +9,8 @@
 #define WAVETRACE_SAMPLING_SAMPLER_INL_H_
 #endif
 
+#include <bit>
+
 #include "math/lanes-inl.h"
 #include "sampling/sampler.h"
 
@@ -46,6 +48,9 @@ struct SampleState {
     // ZSobol: the hash of the seed and the sample's block.
     uint64_t block_key = 0;
 };
+
+// ---- ZSobol (Ahmed & Wonka, "Screen-Space Blue-Noise Diffusion of Monte Carlo Sampling Error
+// via Hierarchical Ordering of Pixels", SIGGRAPH Asia 2020, as pbrt-v4's ZSobolSampler uses it)
 
 // x's bits at the even positions of a 64-bit word, y's at the odd ones: the position of pixel
 // (x, y) along the Morton (Z-order) curve.
@@ -134,8 +139,8 @@ HWY_INLINE SampleState<L> PathState(const Sampler& sampler,
         // (A sampler without its layout, width 0, draws as for a one-pixel-wide image.)
         const uint32_t width = static_cast<uint32_t>(std::max(sampler.width, 1));
         const int log2_spp = sampler.log2_spp;
-        int side_bits = 0;
-        while ((1 << side_bits) < std::max(sampler.width, sampler.height)) ++side_bits;
+        const int side_bits =
+            std::bit_width(static_cast<unsigned>(std::max({sampler.width, sampler.height, 1}) - 1));
         const uint64_t in_block = sample & ((uint64_t(1) << log2_spp) - 1);
         const uint64_t block = uint64_t(sample) >> log2_spp;
         SampleState<L> s{
@@ -208,26 +213,19 @@ struct SobolPairState {
     typename L::U64 scramble;
 };
 
-// ---- ZSobol (Ahmed & Wonka, "Screen-Space Blue-Noise Diffusion of Monte Carlo Sampling Error
-// via Hierarchical Ordering of Pixels", SIGGRAPH Asia 2020, as pbrt-v4's ZSobolSampler uses it)
-
 template <class L>
 HWY_INLINE SobolPairState<L> SobolPair(const SampleState<L>& state, typename L::U64 pair) {
-    if (state.kind == SamplerKind::ZSobol) {
-        // The pair's seeds depend on the seed and the block, not on the pixel: all pixels
-        // draw from one scrambled sequence. Its index, in the order the digits' shuffle gave,
-        // is shuffled again per pair by a nested uniform scramble, as the Sobol sampler's is:
-        // blocks stay blocks, and the pairs are decorrelated.
-        const typename L::U64 h = Mix64<L>(L::Add64(L::Set64(state.block_key), pair));
-        const typename L::U64 shuffle = L::And64(h, L::Set64(0xffffffffULL));
-        const typename L::U64 index = L::And64(state.key, L::Set64(0xffffffffULL));
-        return {ReverseBits32<L>(LaineKarras<L>(ReverseBits32<L>(index), shuffle)),
-                L::template ShiftRight<32>(h)};
-    }
-    const typename L::U64 h = Mix64<L>(L::Add64(state.key, pair));
-    const typename L::U64 shuffle = L::And64(h, L::Set64(0xffffffffULL));
-    const uint64_t reversed_sample = ReverseBits32<OneLane>(state.sample);
-    return {ReverseBits32<L>(LaineKarras<L>(L::Set64(reversed_sample), shuffle)),
+    // ZSobol's pair seeds depend on the seed and the block, not on the pixel: all pixels draw
+    // from one scrambled sequence, whose index (its digits shuffled, the path's key) the pair
+    // shuffles again as the Sobol sampler shuffles the sample index: blocks stay blocks, and
+    // the pairs are decorrelated.
+    const bool zsobol = state.kind == SamplerKind::ZSobol;
+    const typename L::U64 h =
+        Mix64<L>(L::Add64(zsobol ? L::Set64(state.block_key) : state.key, pair));
+    const typename L::U64 reversed_index =
+        zsobol ? ReverseBits32<L>(L::And64(state.key, L::Set64(0xffffffffULL)))
+               : L::Set64(ReverseBits32<OneLane>(state.sample));
+    return {ReverseBits32<L>(LaineKarras<L>(reversed_index, L::And64(h, L::Set64(0xffffffffULL)))),
             L::template ShiftRight<32>(h)};
 }
 
