@@ -283,7 +283,7 @@ void fill(LambertianRows& r, LightSampleQueue& queue, LightSampleBlock& block) {
         store_queued_vertex(
             queue, k,
             {uint32_t(k), v.p, v.ng, v.frame.n, v.frame_angle, v.unbent, v.bump_alpha2, r.wo[k],
-             v.bsdf.albedo, v.bsdf.alpha, v.bsdf.alpha_v, v.bsdf.metallic, v.bsdf.kind, kNone,
+             v.bsdf.albedo, v.bsdf.alpha, v.bsdf.alpha_v, v.bsdf.metallic, v.uv, v.bsdf.kind, kNone,
              r.beta[k], r.u[k].light_select, r.u[k].light_u, r.u[k].light_v});
         const LightChoice light = r.c.lights->select(r.u[k].light_select);
         block.lobe[k] = int32_t(LaneLobe::Lambertian);

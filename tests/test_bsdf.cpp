@@ -10,6 +10,7 @@
 #include "bsdfs/fresnel.h"
 #include "bsdfs/microfacet.h"
 #include "bsdfs/plastic.h"
+#include "bsdfs/principled.h"
 #include "bsdfs/thin_dielectric.h"
 #include "chi2.h"
 #include "sampling/sampler.h"
@@ -89,6 +90,36 @@ BsdfParams metallic_roughness(float metallic, float alpha, float transmission = 
     return b;
 }
 
+// Mitsuba's principled BSDF of base colour (0.8, 0.6, 0.4), index 1.5 (thin: a sheet); the
+// alphas as the material gives them.
+BsdfParams principled(float roughness,
+                      float metallic,
+                      float spec_trans,
+                      float anisotropic = 0.0f,
+                      float clearcoat = 0.0f,
+                      float sheen = 0.0f,
+                      bool thin = false,
+                      float diff_trans = 0.0f) {
+    BsdfParams b;
+    b.kind = MaterialKind::Principled;
+    b.albedo = Color(0.8f, 0.6f, 0.4f);
+    b.eta = 1.5f;
+    b.metallic = metallic;
+    b.transmission = spec_trans;
+    b.clearcoat = clearcoat;
+    b.clearcoat_alpha = 0.03f;
+    b.principled.roughness = roughness;
+    b.principled.anisotropic = anisotropic;
+    b.principled.sheen = sheen;
+    b.principled.sheen_tint = 0.5f;
+    b.principled.spec_tint = 0.3f;
+    b.principled.flatness = 0.2f;
+    b.principled.thin = thin;
+    b.principled.diff_trans = diff_trans;
+    principled_alphas(roughness, anisotropic, &b.alpha, &b.alpha_v);
+    return b;
+}
+
 std::vector<Case> smooth_cases() {
     auto params = [](MaterialKind k, float alpha) {
         BsdfParams b;
@@ -155,6 +186,18 @@ std::vector<Case> smooth_cases() {
         {"gltf-smooth-transmission-coat", metallic_roughness(0.0f, 0.0f, 0.5f, 1.0f, 0.0f),
          oblique},
         {"gltf-smooth-base-rough-coat", metallic_roughness(0.4f, 0.0f, 0.0f, 0.8f, 0.09f), below},
+        // Mitsuba's principled: samples drawn outside their own lobe are lost.
+        {"principled-base", principled(0.5f, 0.0f, 0.0f), oblique},
+        {"principled-metal-aniso", principled(0.3f, 0.7f, 0.0f, 0.8f), oblique},
+        {"principled-coat-sheen-grazing", principled(0.6f, 0.2f, 0.0f, 0.0f, 0.9f, 0.7f), grazing},
+        {"principled-transmission", principled(0.4f, 0.1f, 0.7f, 0.3f, 0.5f), oblique},
+        {"principled-transmission-below", principled(0.5f, 0.0f, 0.8f), below},
+        {"principled-below", principled(0.5f, 0.3f, 0.0f), below},
+        {"principled-thin", principled(0.5f, 0.0f, 0.5f, 0.0f, 0.0f, 0.4f, true, 0.6f), oblique},
+        {"principled-thin-aniso-below", principled(0.4f, 0.0f, 0.8f, 0.5f, 0.0f, 0.0f, true, 0.3f),
+         below},
+        {"principled-thin-grazing", principled(0.7f, 0.0f, 0.3f, 0.0f, 0.0f, 0.2f, true, 0.5f),
+         grazing},
     };
 }
 
@@ -216,7 +259,7 @@ TEST(Bsdf, DensityIntegratesToTheSamplingProbability) {
         EXPECT_NEAR(mean, p, 4 * se + 4 * se_p + 1e-9) << c.name;
         if (c.b.kind != MaterialKind::Metal && c.b.kind != MaterialKind::Conductor &&
             c.b.kind != MaterialKind::Dielectric && c.b.kind != MaterialKind::Plastic &&
-            c.b.kind != MaterialKind::MetallicRoughness) {
+            c.b.kind != MaterialKind::MetallicRoughness && c.b.kind != MaterialKind::Principled) {
             EXPECT_EQ(valid, n) << c.name;
         }
         if (c.b.kind == MaterialKind::Plastic && c.b.alpha == 0.0f) {

@@ -124,8 +124,8 @@ void expect_light_samples_are_next_event(const Scene& scene,
             store_queued_vertex(queue, k,
                                 {uint32_t(k), c.v.p, c.v.ng, c.v.frame.n, c.v.frame_angle,
                                  c.v.unbent, c.v.bump_alpha2, c.wo, c.v.bsdf.albedo, c.v.bsdf.alpha,
-                                 c.v.bsdf.alpha_v, c.v.bsdf.metallic, c.v.bsdf.kind, kNone, c.beta,
-                                 c.u.light_select, c.u.light_u, c.u.light_v});
+                                 c.v.bsdf.alpha_v, c.v.bsdf.metallic, c.v.uv, c.v.bsdf.kind, kNone,
+                                 c.beta, c.u.light_select, c.u.light_u, c.u.light_v});
             block.lobe[k] = int32_t(lane_lobe(c.v.bsdf.kind));
             block.planar[k] = planar;
             block.sphere[k] = sphere;

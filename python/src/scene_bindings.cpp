@@ -125,7 +125,8 @@ void bind_scene(py::module_& m) {
         .value("Conductor", MaterialKind::Conductor)
         .value("Plastic", MaterialKind::Plastic)
         .value("ThinDielectric", MaterialKind::ThinDielectric)
-        .value("MetallicRoughness", MaterialKind::MetallicRoughness);
+        .value("MetallicRoughness", MaterialKind::MetallicRoughness)
+        .value("Principled", MaterialKind::Principled);
     py::enum_<Microfacet>(m, "Microfacet")
         .value("Ggx", Microfacet::Ggx)
         .value("Beckmann", Microfacet::Beckmann);

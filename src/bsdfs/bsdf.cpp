@@ -6,9 +6,10 @@
 #include "bsdfs/conductor.h"
 #include "bsdfs/diffuse-inl.h"
 #include "bsdfs/fresnel.h"
-#include "bsdfs/metallic_roughness.h"
 #include "bsdfs/ggx-inl.h"
+#include "bsdfs/metallic_roughness.h"
 #include "bsdfs/plastic.h"
+#include "bsdfs/principled.h"
 #include "bsdfs/rough_dielectric.h"
 #include "bsdfs/thin_dielectric.h"
 #include "sampling/warp.h"
@@ -82,6 +83,10 @@ Color bsdf_eval(const BsdfParams& b, Vec3 wo, Vec3 wi) {
             float pdf;
             return metallic_roughness_eval(b, wo, wi, &pdf);
         }
+        case MaterialKind::Principled: {
+            float pdf;
+            return principled_eval(b, wo, wi, &pdf);
+        }
         default:
             return {};  // delta lobes, emitters and interfaces do not scatter smoothly
     }
@@ -123,6 +128,11 @@ float bsdf_pdf(const BsdfParams& b, Vec3 wo, Vec3 wi) {
         case MaterialKind::MetallicRoughness: {
             float pdf;
             metallic_roughness_eval(b, wo, wi, &pdf);
+            return pdf;
+        }
+        case MaterialKind::Principled: {
+            float pdf;
+            principled_eval(b, wo, wi, &pdf);
             return pdf;
         }
         default:
@@ -201,6 +211,8 @@ BsdfSample bsdf_sample(const BsdfParams& b, Vec3 wo, float u_lobe, float u1, flo
         }
         case MaterialKind::MetallicRoughness:
             return metallic_roughness_sample(b, wo, u_lobe, u1, u2);
+        case MaterialKind::Principled:
+            return principled_sample(b, wo, u_lobe, u1, u2);
         case MaterialKind::Isotropic:
             s.wi = sample_uniform_sphere(u1, u2);
             s.pdf = lanes::PhasePdf<OneLane>();

@@ -15,6 +15,14 @@
 
 namespace wavetrace {
 
+// The lobe weights of a principled BSDF (bsdfs/principled.h) at one point, each in [0, 1].
+struct PrincipledLobes {
+    float roughness = 0.5f, anisotropic = 0.0f, spec_tint = 0.0f, sheen = 0.0f, sheen_tint = 0.0f,
+          flatness = 0.0f;
+    float diff_trans = 0.0f;  // thin: the diffuse transmission, Mitsuba's diff_trans / 2
+    bool thin = false;        // principledthin
+};
+
 // A material resolved at one point: the kind and its parameters with textures evaluated.
 struct BsdfParams {
     MaterialKind kind = MaterialKind::Lambertian;
@@ -41,6 +49,10 @@ struct BsdfParams {
     // roughness^2, eta the index of refraction giving F0; metallic, transmission and clearcoat
     // in [0, 1], the clearcoat's GGX alpha; one_sided as for Plastic.
     float metallic = 0.0f, transmission = 0.0f, clearcoat = 0.0f, clearcoat_alpha = 0.0f;
+    // Principled (bsdfs/principled.h): albedo is the base colour, eta the index of refraction of
+    // the surface's inside over its front's, metallic, transmission (spec_trans) and clearcoat
+    // as for MetallicRoughness, clearcoat_alpha the GTR1 alpha; the other lobes here.
+    PrincipledLobes principled;
 
     bool is_delta() const;  // every lobe is a Dirac delta: never light-sampled
 };

@@ -23,6 +23,7 @@ Color albedo_of(const Scene& scene, const SurfaceHit& s) {
         case MaterialKind::Lambertian:
         case MaterialKind::Plastic:            // its base
         case MaterialKind::MetallicRoughness:  // its base colour
+        case MaterialKind::Principled:         // its base colour
         case MaterialKind::Metal:
         case MaterialKind::Mirror:
         case MaterialKind::Isotropic:

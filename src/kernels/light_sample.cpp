@@ -7,6 +7,7 @@
 
 #include "kernels/kernels.h"
 #include "kernels/lane_kernels.h"
+#include "scene/material_lookup.h"
 #include "shading/lane_routes.h"
 #include "shading/path_vertex.h"
 #include "util/check.h"
@@ -30,6 +31,8 @@ Vertex queued_vertex(const Scene& scene, const LightSampleQueue& q, size_t i) {
         v.bsdf.alpha = q.alpha[i];
         v.bsdf.alpha_v = q.alpha_v[i];
         if (v.bsdf.kind == MaterialKind::MetallicRoughness) v.bsdf.metallic = q.metallic[i];
+        if (v.bsdf.kind == MaterialKind::Principled)
+            principled_at(scene, scene.materials[v.material], {q.uv_u[i], q.uv_v[i]}, v.p, &v.bsdf);
         return v;
     }
     v.bsdf.kind = q.kind[i];

@@ -218,6 +218,7 @@ void append_light_sample(size_t path,
                          float bump_alpha2,
                          Vec3 wo,
                          const BsdfParams& bsdf,
+                         Vec2 uv,
                          MaterialId material,
                          Color beta,
                          const VertexSamples& u,
@@ -227,7 +228,7 @@ void append_light_sample(size_t path,
     WT_DCHECK_LT(out.light_sample_end, out.light_samples.capacity);
     store_queued_vertex(out.light_samples, out.light_sample_end++,
                         {static_cast<uint32_t>(path), p, ng, ns, frame_angle, unbent, bump_alpha2,
-                         wo, bsdf.albedo, bsdf.alpha, bsdf.alpha_v, bsdf.metallic, bsdf.kind,
+                         wo, bsdf.albedo, bsdf.alpha, bsdf.alpha_v, bsdf.metallic, uv, bsdf.kind,
                          material, beta, u.light_select, u.light_u, u.light_v, media, interior});
 }
 
@@ -349,7 +350,7 @@ void resolve_in_scalar(const WaveInputs& in, const HitQueue& hits, Chunk& c, Sha
         const VertexSamples u = c.samples.at(row);
         if (samples_lights(cfg, v, in.lights))
             append_light_sample(i, v.p, v.ng, v.frame.n, v.frame_angle, v.unbent, v.bump_alpha2,
-                                seg.wo, v.bsdf, v.material, beta, u, PackedMedia::pack(media),
+                                seg.wo, v.bsdf, v.uv, v.material, beta, u, PackedMedia::pack(media),
                                 v.interior, out);
         if (takes_lane_step(cfg, v, in.lights)) {
             const size_t k = c.block.push(i, v, seg.wo, beta);

@@ -9,21 +9,22 @@
 #include <iostream>
 #include <map>
 
+#include "bsdfs/principled.h"
 #include "files/confinement.h"
 #include "files/input_file.h"
+#include "files/output_file.h"
 #include "formats/gltf_json.h"
 #include "formats/json_reader.h"
+#include "formats/ply_write.h"
 #include "loaders/mesh_file.h"
 #include "loaders/serialized_mesh.h"
 #include "mitsuba/mitsuba_xml.h"
 #include "pbrt/translate.h"
-#include "formats/ply_write.h"
-#include "files/output_file.h"
 #include "scene/named_metals.h"
 #include "scene/tessellate.h"
 #include "wavetrace/image/image.h"
-#include "wavetrace/math/frame.h"
 #include "wavetrace/loaders/load_scene.h"
+#include "wavetrace/math/frame.h"
 #include "wavetrace/scene/scene.h"
 
 namespace wavetrace {
@@ -627,6 +628,38 @@ class Loader {
         if (auto x = o.optional("two_sided")) m.two_sided = x->boolean();
     }
 
+    // Mitsuba 3's principled BSDF, or with "thin": true its principledthin, under Mitsuba's
+    // names and defaults (base colour 0.5, roughness 0.5, specular 0.5, i.e. ior 1.5); each
+    // weight a number or a texture (its luminance).
+    void read_principled(Object& o, Material& m) {
+        m.kind = MaterialKind::Principled;
+        PrincipledWeights& w = m.principled;
+        if (auto x = o.optional("thin")) w.thin = x->boolean();
+        auto base = o.optional("base_color");
+        m.albedo = base ? read_texture(*base, Range::Reflectance) : scene_.add_solid(Vec3(0.5f));
+        const std::optional<Value> ior = o.optional("ior"), specular = o.optional("specular");
+        if (ior && specular) specular->fail("give \"ior\" or \"specular\", not both");
+        if (specular && w.thin) specular->fail("a thin principled material takes \"ior\"");
+        m.ior = ior ? read_ior(*ior)
+                    : principled_eta_of_specular(specular ? specular->in_range(0.0f, 1.0f) : 0.5f);
+        w.for_each([&](const char* name, TexturedNumber& n) {
+            const bool thin_only = std::string_view(name) == "diff_trans";
+            const bool full_only = std::string_view(name) == "metallic" ||
+                                   std::string_view(name) == "clearcoat" ||
+                                   std::string_view(name) == "clearcoat_gloss";
+            auto x = o.optional(name);
+            if (!x) return;
+            if ((thin_only && !w.thin) || (full_only && w.thin))
+                x->fail(std::string(name) + " is a weight of " +
+                        (w.thin ? "the full (not thin)" : "the thin") + " principled material");
+            const float top = thin_only ? 2.0f : 1.0f;
+            if (x->is_object())
+                n.texture = read_texture(*x, thin_only ? Range::Radiance : Range::Reflectance);
+            else
+                n.value = x->in_range(0.0f, top);
+        });
+    }
+
     // Lights that are not shapes: point, spot and directional (docs/scene-format.md#lights).
     void read_lights(const Value& v) {
         for (size_t i = 0; i < v.size(); ++i) {
@@ -723,6 +756,8 @@ class Loader {
                 read_plastic(o, m);
             } else if (type == "metallic_roughness") {
                 read_metallic_roughness(o, m);
+            } else if (type == "principled") {
+                read_principled(o, m);
             } else if (type == "diffuse_light") {
                 m.kind = MaterialKind::DiffuseLight;
                 m.emission = read_texture(o.required("radiance"), Range::Radiance);
@@ -732,8 +767,8 @@ class Loader {
             } else {
                 type_value.fail("unknown material type \"" + type +
                                 "\" (expected lambertian, metal, mirror, dielectric, "
-                                "thin_dielectric, conductor, plastic, metallic_roughness or "
-                                "diffuse_light; media are declared under /media)");
+                                "thin_dielectric, conductor, plastic, metallic_roughness, "
+                                "principled or diffuse_light; media are declared under /media)");
             }
             // An alpha mask, for any surface (scene/opacity.h).
             if (auto x = o.optional("opacity")) m.opacity = read_texture(*x, Range::Reflectance);

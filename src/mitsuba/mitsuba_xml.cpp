@@ -902,18 +902,50 @@ class Translator {
                 m["specular"] = color(*s, false, false);
             if (p.boolean("nonlinear", false)) m["nonlinear"] = true;
             if (type == "roughplastic") roughness(p, m, e, "beckmann");
-        } else if (type == "principled") {
-            m = {{"type", "metallic_roughness"},
-                 {"base_color", color_property(p, "base_color", 0.8, true)},
-                 {"metallic", p.number("metallic", 0.0)},
-                 {"roughness", p.number("roughness", 0.5)},
-                 {"ior", p.number("eta", 1.5)},
-                 {"transmission", p.number("spec_trans", 0.0)},
-                 {"clearcoat", p.number("clearcoat", 0.0)},
-                 {"clearcoat_roughness", 1.0 - p.number("clearcoat_gloss", 0.0)},
-                 {"one_sided", true}};
-            warn(e, "principled is rendered as glTF's metallic-roughness material (base_color, "
-                    "metallic, roughness, eta, spec_trans, clearcoat); its other lobes are not");
+        } else if (type == "principled" || type == "principledthin") {
+            const bool thin = type == "principledthin";
+            m = {{"type", "principled"},
+                 {"base_color", color_property(p, "base_color", 0.5, true)}};
+            if (thin) m["thin"] = true;
+            // Each weight a number or a texture; Mitsuba's scalar lookups (eval_1) of a
+            // checkerboard take its cells the other way round (texture(..., true)).
+            for (const char* name :
+                 {"metallic", "roughness", "anisotropic", "spec_trans", "spec_tint", "sheen",
+                  "sheen_tint", "flatness", "clearcoat", "clearcoat_gloss", "diff_trans"}) {
+                const Element* c = p.get(name);
+                if (!c) continue;
+                const bool thin_only = std::string_view(name) == "diff_trans";
+                const bool full_only = std::string_view(name) == "metallic" ||
+                                       std::string_view(name) == "clearcoat" ||
+                                       std::string_view(name) == "clearcoat_gloss";
+                if ((thin && full_only) || (!thin && thin_only)) {
+                    warn(*c, type + ": " + name + " is not one of its parameters; ignored");
+                    continue;
+                }
+                m[name] = c->tag == "texture" ? texture(*c, true) : json(p.number(name, 0.0));
+            }
+            const bool transmits = m.contains("spec_trans") && m["spec_trans"] != json(0.0);
+            const Element* eta = p.get("eta");
+            if (eta && eta->tag == "texture")
+                fail(*eta, type + ": eta as a texture is not supported");
+            if (thin) {
+                m["ior"] = p.number("eta", 1.5);
+            } else if (eta && p.get("specular")) {
+                fail(e, "principled: give eta or specular, not both");
+            } else if (eta) {
+                // An index of 1 cannot transmit; Mitsuba takes 1.001 then.
+                const double v = p.number("eta", 1.5);
+                m["ior"] = transmits && v == 1.0 ? 1.001 : v;
+            } else {
+                const double v = p.number("specular", 0.5);
+                m["specular"] = transmits && v == 0.0 ? 1e-3 : v;
+            }
+            for (const char* rate :
+                 {"main_specular_sampling_rate", "clearcoat_sampling_rate",
+                  "diffuse_reflectance_sampling_rate", "specular_reflectance_sampling_rate",
+                  "specular_transmittance_sampling_rate", "diffuse_transmittance_sampling_rate"})
+                if (const Element* r = p.get(rate))
+                    warn(*r, type + ": " + rate + " is not supported (sampling only); ignored");
         } else {
             warn(e, "bsdf \"" + type + "\" is not supported; a grey diffuse (0.5) stands for it");
             return {{"type", "lambertian"}, {"albedo", 0.5}, {"one_sided", true}};

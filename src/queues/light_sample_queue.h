@@ -15,7 +15,8 @@ namespace wavetrace {
 // A Lambertian or rough metal vertex, or a medium's isotropic phase function, is described by
 // its albedo and roughness (the light_sample kernel's lanes read them); any other BSDF by its
 // material besides (a conductor's index of refraction comes from there), with its roughness
-// and a metallic-roughness one's metallic at the vertex (textures may vary them).
+// and a metallic-roughness one's metallic at the vertex (textures may vary them); a principled
+// one's weights are looked up again at its texture coordinates.
 #define WAVETRACE_LIGHT_SAMPLE_FIELDS(F)                                                \
     F(uint32_t, path, "entry of the path queue it belongs to")                          \
     WAVETRACE_XYZ_FIELD(F, p, "vertex position")                                        \
@@ -29,6 +30,8 @@ namespace wavetrace {
     F(float, alpha, "the BSDF's roughness (alpha_u) at the vertex")                     \
     F(float, alpha_v, "... across dp/du (textures may vary both)")                      \
     F(float, metallic, "metallic-roughness: metallic (a texture may vary both)")        \
+    F(float, uv_u, "principled: texture coordinates, where its weights are looked up")  \
+    F(float, uv_v, "")                                                                  \
     F(MaterialKind, kind, "the BSDF's kind")                                            \
     F(MaterialId, material, "the material, or kNone where kind, albedo, alpha say all") \
     WAVETRACE_XYZ_FIELD(F, beta, "path throughput arriving at the vertex")              \
@@ -52,6 +55,7 @@ struct QueuedVertex {
     Color albedo;
     float alpha, alpha_v;
     float metallic;
+    Vec2 uv;
     MaterialKind kind;
     MaterialId material;
     Color beta;
@@ -61,12 +65,12 @@ struct QueuedVertex {
 };
 
 inline void store_queued_vertex(LightSampleQueue& q, size_t i, const QueuedVertex& v) {
-    q.store(i, {v.path,     v.p.x,      v.p.y,         v.p.z,     v.ng.x,        v.ng.y,
-                v.ng.z,     v.ns.x,     v.ns.y,        v.ns.z,    v.frame_angle, v.unbent.x,
-                v.unbent.y, v.unbent.z, v.bump_alpha2, v.wo.x,    v.wo.y,        v.wo.z,
-                v.albedo.x, v.albedo.y, v.albedo.z,    v.alpha,   v.alpha_v,     v.metallic,
-                v.kind,     v.material, v.beta.x,      v.beta.y,  v.beta.z,      v.u_select,
-                v.u1,       v.u2,       v.media,       v.interior});
+    q.store(i, {v.path,     v.p.x,      v.p.y,         v.p.z,      v.ng.x,        v.ng.y,
+                v.ng.z,     v.ns.x,     v.ns.y,        v.ns.z,     v.frame_angle, v.unbent.x,
+                v.unbent.y, v.unbent.z, v.bump_alpha2, v.wo.x,     v.wo.y,        v.wo.z,
+                v.albedo.x, v.albedo.y, v.albedo.z,    v.alpha,    v.alpha_v,     v.metallic,
+                v.uv.x,     v.uv.y,     v.kind,        v.material, v.beta.x,      v.beta.y,
+                v.beta.z,   v.u_select, v.u1,          v.u2,       v.media,       v.interior});
 }
 
 }  // namespace wavetrace

@@ -33,6 +33,8 @@ const char* to_string(MaterialKind kind) {
             return "thin_dielectric";
         case MaterialKind::MetallicRoughness:
             return "metallic_roughness";
+        case MaterialKind::Principled:
+            return "principled";
     }
     return "?";
 }

@@ -24,6 +24,7 @@ bool reads_albedo(MaterialKind kind) {
         case MaterialKind::Conductor:
         case MaterialKind::Plastic:
         case MaterialKind::MetallicRoughness:
+        case MaterialKind::Principled:
             return true;
         default:
             return false;
@@ -66,6 +67,13 @@ void check_scene(const Scene& scene) {
         check_texture(i, m.bump_map, "bump_map", false);
         check_texture(i, m.alpha_u_texture, "alpha_u_texture", false);
         check_texture(i, m.alpha_v_texture, "alpha_v_texture", false);
+        m.principled.for_each([&](const char* name, const TexturedNumber& w) {
+            check_texture(i, w.texture, name, false);
+            const bool up_to_2 = std::string_view(name) == "diff_trans";
+            if (!(w.value >= 0 && w.value <= (up_to_2 ? 2 : 1)))
+                fail("material", i,
+                     std::string(name) + (up_to_2 ? " must be in [0, 2]" : " must be in [0, 1]"));
+        });
         if (!(m.ior > 0) || !std::isfinite(m.ior)) fail("material", i, "ior must be positive");
         if (!(m.alpha_u >= 0 && m.alpha_v >= 0 && m.alpha_u <= 64 && m.alpha_v <= 64))
             fail("material", i, "alpha_u and alpha_v must be in [0, 64]");

@@ -12,6 +12,7 @@
 #include "sampling/sampler.h"
 #include "sampling/warp.h"
 #include "scene/camera_ray-inl.h"
+#include "scene/material_lookup.h"
 #include "shading/environment_light-inl.h"
 #include "shading/lane_routes.h"
 #include "shading/light_sample-inl.h"
@@ -64,6 +65,8 @@ Vertex surface_vertex(const Scene& scene, const SurfaceHit& hit, Vec3 wo) {
     auto textured_alpha = [&](TextureId t) {
         return std::clamp(eval_texture(scene, t, hit.uv, hit.p).x, 1e-4f, 1.0f);
     };
+    v.uv = hit.uv;
+    if (m.kind == MaterialKind::Principled) principled_at(scene, m, hit.uv, hit.p, &v.bsdf);
     if (m.alpha_u_texture != kNone) v.bsdf.alpha = textured_alpha(m.alpha_u_texture);
     if (m.alpha_v_texture != kNone) v.bsdf.alpha_v = textured_alpha(m.alpha_v_texture);
     v.frame = frame_from_normal(n);
@@ -99,7 +102,8 @@ bool can_sample_lights(const Vertex& v, const LightSet& lights) {
            (v.bsdf.kind == MaterialKind::Lambertian || v.bsdf.kind == MaterialKind::Metal ||
             v.bsdf.kind == MaterialKind::Isotropic || v.bsdf.kind == MaterialKind::Conductor ||
             v.bsdf.kind == MaterialKind::Dielectric || v.bsdf.kind == MaterialKind::Plastic ||
-            v.bsdf.kind == MaterialKind::MetallicRoughness);
+            v.bsdf.kind == MaterialKind::MetallicRoughness ||
+            v.bsdf.kind == MaterialKind::Principled);
 }
 
 Point3 offset_origin(const Vertex& v, Vec3 w) {
@@ -126,7 +130,8 @@ Color eval_world(const Vertex& v, Vec3 wo, Vec3 wi, float* pdf) {
         lanes::CrossesGeometricSurface<OneLane>(to_lanes(wo), to_lanes(wi), to_lanes(v.ng));
     Vec3 lo = v.frame.to_local(wo), li = v.frame.to_local(wi);
     const bool transmits = (v.bsdf.kind == MaterialKind::Dielectric ||
-                            v.bsdf.kind == MaterialKind::MetallicRoughness) &&
+                            v.bsdf.kind == MaterialKind::MetallicRoughness ||
+                            v.bsdf.kind == MaterialKind::Principled) &&
                            lo.z * li.z < 0.0f;
     if (v.geometric_side_test && crosses != transmits) {
         *pdf = 0.0f;
@@ -450,7 +455,8 @@ PathStep continue_path(const Scene& scene,
     Continuation c = sample_continuation(config.strategy, scene, lights, v, wo, u);
     if (!c.valid) return step;
     step.eta_scale = eta_scale;
-    if (c.transmitted && v.bsdf.kind == MaterialKind::Dielectric) {
+    if (c.transmitted && (v.bsdf.kind == MaterialKind::Dielectric ||
+                          (v.bsdf.kind == MaterialKind::Principled && !v.bsdf.principled.thin))) {
         // The relative index the refraction crossed: into the material from its front.
         const float eta = dot(wo, v.frame.n) > 0.0f ? v.bsdf.eta : 1.0f / v.bsdf.eta;
         step.eta_scale *= eta * eta;

@@ -40,6 +40,7 @@ struct Vertex {
     // shadowing's alpha^2; 0: none (the BSDF is not scaled).
     Normal3 unbent{0.0f};
     float bump_alpha2 = 0.0f;
+    Vec2 uv;  // a surface's texture coordinates (light_sample looks a principled BSDF up there)
     bool on_surface() const { return ng.x != 0 || ng.y != 0 || ng.z != 0; }
 };
 

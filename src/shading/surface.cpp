@@ -1,10 +1,8 @@
 #include "wavetrace/shading/surface.h"
 
-#include <cmath>
-
 #include "scene/hit_geometry.h"
+#include "scene/material_lookup.h"
 #include "scene/surface_point-inl.h"
-#include "wavetrace/math/constants.h"
 #include "wavetrace/scene/scene.h"
 #include "wavetrace/scene/texture.h"
 
@@ -53,11 +51,7 @@ SurfaceHit surface_at(const Scene& scene, const Ray& ray, const Hit& hit) {
                 lanes::SpherePoint<OneLane>(to_lanes(s.p), to_lanes(sp.center), sp.radius).ng);
             // sphere_uv: an acos and an atan2 (7% of a render of spheres lit by spheres), so only
             // where a texture or a map of the sphere's material reads it.
-            if (sp.material != kNone &&
-                (texture_reads_uv(scene, scene.materials[sp.material].albedo) ||
-                 texture_reads_uv(scene, scene.materials[sp.material].emission) ||
-                 texture_reads_uv(scene, scene.materials[sp.material].metallic_roughness) ||
-                 scene.materials[sp.material].has_normal_maps())) {
+            if (sp.material != kNone && material_reads_uv(scene, scene.materials[sp.material])) {
                 s.uv = sphere_uv(scene, sp, s.ng);
             }
             s.material = sp.material;

@@ -11,18 +11,19 @@ enum class MaterialKind : uint8_t {
     Metal,   // conductor with albedo and roughness in [0, 1] (Ray Tracing in One Weekend's "fuzz");
              // 0 is a mirror
     Mirror,  // perfect specular reflection tinted by albedo
-    Dielectric,    // glass of index of refraction `ior`: smooth, or rough (alpha_u, alpha_v > 0)
-    DiffuseLight,  // emits `emission` radiance from its front side (or both sides if `two_sided`)
-    Isotropic,     // phase function of a participating medium; scattering albedo `albedo`
-    Interface,     // no surface at all: a medium's boundary that rays cross unchanged
-    Conductor,     // Fresnel of a complex index of refraction eta + i k, smooth or microfacet
-    Plastic,       // a diffuse base under a dielectric coating, smooth or rough (Mitsuba 3's
-                   // plastic and roughplastic)
+    Dielectric,      // glass of index of refraction `ior`: smooth, or rough (alpha_u, alpha_v > 0)
+    DiffuseLight,    // emits `emission` radiance from its front side (or both sides if `two_sided`)
+    Isotropic,       // phase function of a participating medium; scattering albedo `albedo`
+    Interface,       // no surface at all: a medium's boundary that rays cross unchanged
+    Conductor,       // Fresnel of a complex index of refraction eta + i k, smooth or microfacet
+    Plastic,         // a diffuse base under a dielectric coating, smooth or rough (Mitsuba 3's
+                     // plastic and roughplastic)
     ThinDielectric,  // a sheet of glass of index `ior`: reflects, or passes light straight on
     MetallicRoughness,  // glTF 2.0's metallic-roughness material, with its transmission and
                         // clearcoat extensions
+    Principled,         // Mitsuba 3's principled BSDF (Burley's Disney BSDF), or its thin sheet
 };
-inline constexpr int kMaterialKinds = int(MaterialKind::MetallicRoughness) + 1;
+inline constexpr int kMaterialKinds = int(MaterialKind::Principled) + 1;
 
 // The microfacet normal distributions of rough materials (bsdfs/microfacet.h).
 enum class Microfacet : uint8_t {

@@ -12,6 +12,46 @@ namespace wavetrace {
 
 const char* to_string(MaterialKind kind);
 
+// A number, or a texture in its place: the luminance of the texture at the point (kNone: the
+// number).
+struct TexturedNumber {
+    float value = 0.0f;
+    TextureId texture = kNone;
+};
+
+// The weights of a principled material (Mitsuba 3's principled and principledthin,
+// bsdfs/principled.h), each in [0, 1] but diff_trans, in [0, 2] as Mitsuba has it.
+struct PrincipledWeights {
+    TexturedNumber metallic, roughness{0.5f}, anisotropic, spec_trans, spec_tint, sheen, sheen_tint,
+        flatness, clearcoat, clearcoat_gloss, diff_trans;
+    bool thin = false;  // principledthin: a sheet with diffuse transmission, no clearcoat
+    // Each weight with its name in scene files, in this order.
+    template <typename F>
+    void for_each(F&& f) {
+        each(*this, f);
+    }
+    template <typename F>
+    void for_each(F&& f) const {
+        each(*this, f);
+    }
+
+  private:
+    template <typename Self, typename F>
+    static void each(Self& w, F& f) {
+        f("metallic", w.metallic);
+        f("roughness", w.roughness);
+        f("anisotropic", w.anisotropic);
+        f("spec_trans", w.spec_trans);
+        f("spec_tint", w.spec_tint);
+        f("sheen", w.sheen);
+        f("sheen_tint", w.sheen_tint);
+        f("flatness", w.flatness);
+        f("clearcoat", w.clearcoat);
+        f("clearcoat_gloss", w.clearcoat_gloss);
+        f("diff_trans", w.diff_trans);
+    }
+};
+
 struct Material {
     std::string name;
     MaterialKind kind = MaterialKind::Lambertian;
@@ -54,6 +94,9 @@ struct Material {
     float metallic = 1.0f, transmission = 0.0f, clearcoat = 0.0f, clearcoat_roughness = 0.0f;
     TextureId metallic_roughness = kNone;
 
+    // Principled: albedo is the base colour, ior the index of refraction; the lobes' weights.
+    PrincipledWeights principled;
+
     // Any surface material: an alpha mask, the surface cut away where the texture's luminance
     // is below 1 (kNone: opaque; src/scene/opacity.h).
     TextureId opacity = kNone;
@@ -72,6 +115,8 @@ struct Material {
     bool has_normal_maps() const { return normal_map != kNone || bump_map != kNone; }
     // Whether its roughness may differ along dp/du (alpha_u) and across it (alpha_v).
     bool anisotropic() const {
+        if (kind == MaterialKind::Principled)
+            return principled.anisotropic.value != 0.0f || principled.anisotropic.texture != kNone;
         return alpha_u != alpha_v || alpha_u_texture != alpha_v_texture;
     }
     // Whether its shading frame must follow the surface's dp/du: normal and bump maps, and an

@@ -1,0 +1,46 @@
+#include "scene/material_lookup.h"
+
+#include <algorithm>
+
+#include "bsdfs/principled.h"
+#include "wavetrace/scene/scene.h"
+#include "wavetrace/scene/texture.h"
+
+namespace wavetrace {
+
+bool material_reads_uv(const Scene& scene, const Material& m) {
+    bool reads = m.has_normal_maps();
+    for (const TextureId t :
+         {m.albedo, m.emission, m.metallic_roughness, m.alpha_u_texture, m.alpha_v_texture})
+        reads = reads || texture_reads_uv(scene, t);
+    if (m.kind == MaterialKind::Principled)
+        m.principled.for_each([&](const char*, const TexturedNumber& w) {
+            reads = reads || texture_reads_uv(scene, w.texture);
+        });
+    return reads;
+}
+
+void principled_at(const Scene& scene, const Material& m, Vec2 uv, Point3 p, BsdfParams* b) {
+    const PrincipledWeights& w = m.principled;
+    auto at = [&](const TexturedNumber& x) {
+        return x.texture == kNone ? x.value : luminance(eval_texture(scene, x.texture, uv, p));
+    };
+    auto unit = [&](const TexturedNumber& x) { return std::clamp(at(x), 0.0f, 1.0f); };
+    PrincipledLobes& l = b->principled;
+    l.thin = w.thin;
+    l.roughness = unit(w.roughness);
+    l.anisotropic = unit(w.anisotropic);
+    l.spec_tint = unit(w.spec_tint);
+    l.sheen = unit(w.sheen);
+    l.sheen_tint = unit(w.sheen_tint);
+    l.flatness = unit(w.flatness);
+    l.diff_trans = w.thin ? 0.5f * std::clamp(at(w.diff_trans), 0.0f, 2.0f) : 0.0f;
+    b->metallic = w.thin ? 0.0f : unit(w.metallic);
+    b->transmission = unit(w.spec_trans);
+    b->clearcoat = w.thin ? 0.0f : unit(w.clearcoat);
+    // GTR1's alpha from the gloss, 0.1 (0) to 0.001 (1) (Burley 2012, B.2).
+    b->clearcoat_alpha = 0.1f + (0.001f - 0.1f) * unit(w.clearcoat_gloss);
+    principled_alphas(l.roughness, l.anisotropic, &b->alpha, &b->alpha_v);
+}
+
+}  // namespace wavetrace

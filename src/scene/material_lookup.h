@@ -1,0 +1,22 @@
+// What a material's textures give at a surface point, beyond its albedo: the weights of a
+// principled material, and whether any of its textures needs the point's uv at all.
+#pragma once
+
+#include "bsdfs/bsdf.h"
+#include "wavetrace/math/vec3.h"
+#include "wavetrace/scene/material.h"
+
+namespace wavetrace {
+
+struct Scene;
+
+// Whether any texture or map of m reads texture coordinates (a sphere's cost an acos and an
+// atan2 to find).
+bool material_reads_uv(const Scene& scene, const Material& m);
+
+// The weights of a principled material m at texture coordinates uv and point p, into b (whose
+// albedo is its base colour there): each a texture's luminance or a number, clamped to its
+// range; the main lobes' GGX alphas and the clearcoat's GTR1 alpha from them.
+void principled_at(const Scene& scene, const Material& m, Vec2 uv, Point3 p, BsdfParams* b);
+
+}  // namespace wavetrace
