@@ -285,6 +285,29 @@ TEST(Surface, SphereUvFollowsTheSeed) {
     EXPECT_FALSE(inside.front_face);
 }
 
+// Every texture of a material counts: a rough conductor's alpha, a principled material's weight.
+TEST(Surface, SphereUvForEveryTextureOfItsMaterial) {
+    Scene s;
+    Material rough;
+    rough.kind = MaterialKind::Conductor;
+    rough.albedo = s.add_solid({1, 1, 1});
+    rough.alpha_u_texture = rough.alpha_v_texture = add_image_texture(s);
+    Material principled;
+    principled.kind = MaterialKind::Principled;
+    principled.albedo = s.add_solid({0.5f, 0.5f, 0.5f});
+    principled.principled.sheen.texture = add_image_texture(s);
+    s.add_material(rough);
+    s.add_material(principled);
+    s.add_sphere({{0, 0, 0}, 1, 0, kNone});
+    s.add_sphere({{0, 0, 0}, 1, 1, kNone});
+    for (uint32_t i = 0; i < 2; ++i) {
+        const Hit hit{1.0f, PrimRef::make(PrimKind::Sphere, i)};
+        const SurfaceHit h = surface_at(s, Ray{{2, 0, 0}, {-1, 0, 0}}, hit);
+        EXPECT_NEAR(h.uv.x, 0.5f, 1e-6f) << "material " << i;
+        EXPECT_NEAR(h.uv.y, 0.5f, 1e-6f) << "material " << i;
+    }
+}
+
 TEST(Background, EnvironmentMapIsLatLongWithMinusZAtTheCentre) {
     TempDir dir;
     // Four columns of grey 0, 1, 2, 3 in the top row, 10 more in the bottom row (HDR values
