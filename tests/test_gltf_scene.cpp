@@ -107,7 +107,7 @@ TEST(GltfScenes, AModelWithoutCameraOrLightsIsFramedAndWarnedAbout) {
     EXPECT_LT(view.z, -0.9f);
     const float half = 0.5f * s.camera.vfov * 3.14159265f / 180.0f;
     EXPECT_GT(length(s.camera.look_from) * std::sin(half), std::sqrt(2.0f));
-    EXPECT_TRUE(warned("no perspective camera in the default scene; framing the model from +z"));
+    EXPECT_TRUE(warned("no camera in the default scene; framing the model from +z"));
     EXPECT_TRUE(warned("no lights and no emissive materials: the image will be black"));
 }
 
@@ -140,12 +140,28 @@ TEST(GltfScenes, MalformedHierarchiesAreRefusedWithThePlace) {
         error(R"(, {"extensions": {"KHR_lights_punctual": {"light": 0}}})", "0, 1",
               R"(, "extensions": {"KHR_lights_punctual": {"lights": [{"type": "area"}]}})"),
         "/extensions/KHR_lights_punctual/lights/0/type: unknown light type \"area\"");
-    // An orthographic camera is left out, with a warning, and the model framed instead.
-    EXPECT_EQ(error(R"(, {"camera": 0})", "0, 1",
-                    R"(, "cameras": [{"type": "orthographic", "orthographic":
-                        {"xmag": 1, "ymag": 1, "znear": 0.1, "zfar": 10}}])"),
-              "");
-    EXPECT_TRUE(warned("/cameras/0: not a perspective camera; left out"));
+    // An orthographic camera needs both magnifications.
+    EXPECT_EQ(
+        error(R"(, {"camera": 0})", "0, 1",
+              R"(, "cameras": [{"type": "orthographic", "orthographic": {"xmag": 1}}])"),
+        "/cameras/0/orthographic: expected xmag and ymag in (0, 1e7], their ratio within 100");
+}
+
+// An orthographic camera: its view 2 xmag wide and 2 ymag high, the image's aspect theirs.
+TEST(GltfScenes, OrthographicCameraKeepsItsMagnifications) {
+    TempDir dir;
+    const auto path =
+        dir.write("ortho.gltf", gltf(R"(, {"camera": 0, "translation": [0, 0, 4]})", "0, 1",
+                                     R"(, "cameras": [{"type": "orthographic", "orthographic":
+                               {"xmag": 2, "ymag": 1, "znear": 0.1, "zfar": 10}}])"));
+    const Scene s = load_scene(path, collecting());
+    EXPECT_TRUE(s.camera.orthographic);
+    EXPECT_FLOAT_EQ(s.camera.view_width, 4.0f);
+    EXPECT_FLOAT_EQ(s.camera.view_height, 2.0f);
+    EXPECT_EQ(s.render.width, 800);
+    EXPECT_EQ(s.render.height, 400);
+    EXPECT_EQ(s.camera.look_from, Vec3(0, 0, 4));
+    EXPECT_FALSE(warned("camera"));
 }
 
 // --camera picks a camera by its name (or its node's); a name the file lacks is an error that
@@ -172,9 +188,9 @@ TEST(GltfScenes, CameraIsChosenByName) {
         load_scene(path, options);
         ADD_FAILURE() << "expected an error";
     } catch (const SceneError& e) {
-        EXPECT_EQ(std::string(e.what()),
-                  path.string() + ": no perspective camera named \"top\" (the file has "
-                                  "\"front\", \"side\")");
+        EXPECT_EQ(std::string(e.what()), path.string() +
+                                             ": no camera named \"top\" (the file has "
+                                             "\"front\", \"side\")");
     }
 
     const auto json = dir.write("s.json", R"({"camera": {"look_from": [0, 0, 5], "look_at": [0, 0, 0]},

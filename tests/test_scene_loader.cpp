@@ -376,6 +376,42 @@ TEST(SceneLoader, CameraMustBeWellPosed) {
     EXPECT_EQ(load_error(dir, R"({"objects": []})"), ": /: missing required key \"camera\"");
 }
 
+// An orthographic camera: parallel rays along the view direction, from a film of view_width x
+// view_height centred on look_from (the width following the aspect where not given).
+TEST(SceneLoader, OrthographicCameraSendsParallelRaysFromItsFilm) {
+    TempDir dir;
+    const std::filesystem::path p =
+        dir.write("x.json", R"({"camera": {"type": "orthographic", "look_from": [1, 2, 5],
+        "look_at": [1, 2, 0], "view_height": 3}, "objects": []})");
+    const Scene scene = load_scene(p);
+    ASSERT_TRUE(scene.camera.orthographic);
+    const CameraRays camera(scene.camera, 40, 20);
+    const Ray centre = camera.generate(20.0f, 10.0f, 0.3f, 0.7f);
+    const Ray corner = camera.generate(0.0f, 0.0f, 0.3f, 0.7f);
+    for (const Ray& r : {centre, corner}) {
+        EXPECT_NEAR(r.d.x, 0.0f, 1e-6f);
+        EXPECT_NEAR(r.d.y, 0.0f, 1e-6f);
+        EXPECT_NEAR(r.d.z, -1.0f, 1e-6f);
+        EXPECT_NEAR(r.o.z, 5.0f, 1e-6f);
+    }
+    EXPECT_NEAR(centre.o.x, 1.0f, 1e-6f);
+    EXPECT_NEAR(centre.o.y, 2.0f, 1e-6f);
+    // The top-left corner: half the height (1.5) up and half the width (3, from the aspect)
+    // left; looking down -z with y up, the image's left is -x.
+    EXPECT_NEAR(corner.o.x, 1.0f - 3.0f, 1e-5f);
+    EXPECT_NEAR(corner.o.y, 2.0f + 1.5f, 1e-5f);
+    EXPECT_EQ(load_error(dir, R"({"camera": {"look_from": [0, 0, 1], "look_at": [0, 0, 0],
+        "view_height": 2}, "objects": []})"),
+              ": /camera/view_height: view_height is an orthographic camera's");
+    EXPECT_EQ(load_error(dir, R"({"camera": {"type": "orthographic", "look_from": [0, 0, 1],
+        "look_at": [0, 0, 0], "aperture": 0.1}, "objects": []})"),
+              ": /camera/aperture: an orthographic camera has no lens");
+    EXPECT_EQ(load_error(dir, R"({"camera": {"type": "fisheye", "look_from": [0, 0, 1],
+        "look_at": [0, 0, 0]}, "objects": []})"),
+              ": /camera/type: unknown camera type \"fisheye\" (expected perspective or "
+              "orthographic)");
+}
+
 TEST(SceneLoader, MissingAndUnreadableFilesAreNamed) {
     TempDir dir;
     try {

@@ -211,7 +211,9 @@ void bind_scene(py::module_& m) {
     filter.def_readwrite("kind", &PixelFilter::kind)
         .def_readwrite("radius", &PixelFilter::radius)
         .def_readwrite("sigma", &PixelFilter::sigma);
-    py::class_<Camera> camera(m, "Camera", "A thin-lens camera; aperture 0 is a pinhole.");
+    py::class_<Camera> camera(m, "Camera",
+                              "A thin-lens camera (aperture 0: a pinhole), or with orthographic "
+                              "parallel rays from a view_width x view_height film at look_from.");
     keyword_init(camera);
     camera.def_readwrite("look_from", &Camera::look_from)
         .def_readwrite("look_at", &Camera::look_at)
@@ -220,6 +222,9 @@ void bind_scene(py::module_& m) {
         .def_readwrite("aperture", &Camera::aperture)
         .def_readwrite("focus_distance", &Camera::focus_distance)
         .def_readwrite("mirror", &Camera::mirror)
+        .def_readwrite("orthographic", &Camera::orthographic)
+        .def_readwrite("view_height", &Camera::view_height)
+        .def_readwrite("view_width", &Camera::view_width)
         .def_readwrite("filter", &Camera::filter);
 
     py::class_<Background> background(

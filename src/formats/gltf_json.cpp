@@ -175,9 +175,13 @@ GltfPlacements gltf_placements(const std::filesystem::path& path, bool binary) {
             const size_t c = index(node["camera"], cameras.size(), where + "/camera");
             const auto& cam = cameras[c];
             const std::string cam_where = "/cameras/" + std::to_string(c);
-            if (!cam.is_object() || !cam.contains("perspective") ||
-                !cam["perspective"].is_object()) {
-                out.warnings.push_back(cam_where + ": not a perspective camera; left out");
+            const bool ortho =
+                cam.is_object() && cam.contains("orthographic") && cam["orthographic"].is_object();
+            if (!ortho && (!cam.is_object() || !cam.contains("perspective") ||
+                           !cam["perspective"].is_object())) {
+                out.warnings.push_back(cam_where +
+                                       ": neither a perspective nor an orthographic "
+                                       "camera; left out");
             } else {
                 GltfCamera g;
                 g.pointer = where;
@@ -186,16 +190,35 @@ GltfPlacements gltf_placements(const std::filesystem::path& path, bool binary) {
                              : node.contains("name") && node["name"].is_string()
                                    ? node["name"].get<std::string>()
                                    : "camera " + std::to_string(c);
-                const double yfov = number(cam["perspective"], "yfov", -1, cam_where + "/perspective");
-                if (!(yfov > 0 && yfov < 3.12))
-                    throw std::runtime_error(cam_where + "/perspective/yfov: expected radians in "
-                                             "(0, 3.12)");
-                g.yfov_degrees = float(yfov * 180.0 / 3.14159265358979323846);
-                g.aspect = float(number(cam["perspective"], "aspectRatio", 0,
-                                        cam_where + "/perspective"));
-                if (!(g.aspect >= 0 && g.aspect < 100))
-                    throw std::runtime_error(cam_where +
-                                             "/perspective/aspectRatio: expected (0, 100)");
+                if (ortho) {
+                    // xmag and ymag: half the view's width and height (the specification's
+                    // "magnifications").
+                    const std::string o_where = cam_where + "/orthographic";
+                    const double xmag = std::fabs(number(cam["orthographic"], "xmag", 0, o_where));
+                    const double ymag = std::fabs(number(cam["orthographic"], "ymag", 0, o_where));
+                    if (!(xmag > 0 && ymag > 0 && xmag <= 1e7 && ymag <= 1e7 && xmag / ymag < 100 &&
+                          ymag / xmag < 100))
+                        throw std::runtime_error(o_where +
+                                                 ": expected xmag and ymag in (0, 1e7], "
+                                                 "their ratio within 100");
+                    g.orthographic = true;
+                    g.view_width = float(2 * xmag);
+                    g.view_height = float(2 * ymag);
+                    g.aspect = float(xmag / ymag);
+                } else {
+                    const double yfov =
+                        number(cam["perspective"], "yfov", -1, cam_where + "/perspective");
+                    if (!(yfov > 0 && yfov < 3.12))
+                        throw std::runtime_error(cam_where +
+                                                 "/perspective/yfov: expected "
+                                                 "radians in (0, 3.12)");
+                    g.yfov_degrees = float(yfov * 180.0 / 3.14159265358979323846);
+                    g.aspect = float(
+                        number(cam["perspective"], "aspectRatio", 0, cam_where + "/perspective"));
+                    if (!(g.aspect >= 0 && g.aspect < 100))
+                        throw std::runtime_error(cam_where +
+                                                 "/perspective/aspectRatio: expected (0, 100)");
+                }
                 g.position = world.point(0, 0, 0);
                 g.forward = unit(world.vector(0, 0, -1), where);
                 g.up = unit(world.vector(0, 1, 0), where);

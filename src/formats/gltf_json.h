@@ -28,15 +28,17 @@ json_reader::Document check_gltf(const std::filesystem::path& path, bool binary)
 // not give one. Throws std::runtime_error for a strength that is negative or not finite.
 std::vector<float> gltf_emissive_strengths(const json_reader::json& doc);
 
-// A perspective camera where a node puts it, in world space: glTF cameras look along their
-// node's -z with +y up.
+// A perspective or orthographic camera where a node puts it, in world space: glTF cameras look
+// along their node's -z with +y up.
 struct GltfCamera {
     std::string name;        // the camera's, else its node's
     std::string pointer;     // JSON pointer of the node, for messages
     Point3 position;
     Vec3 forward, up;        // unit
-    float yfov_degrees = 0;  // vertical field of view
+    float yfov_degrees = 0;  // perspective: vertical field of view
     float aspect = 0;        // width / height; 0: not given
+    bool orthographic = false;
+    float view_width = 0, view_height = 0;  // orthographic: 2 xmag, 2 ymag
 };
 
 // A KHR_lights_punctual light where a node puts it, in world space.

@@ -133,7 +133,7 @@ class Loader {
                 std::string names;
                 for (const GltfCamera& g : placed.cameras)
                     names += (names.empty() ? "" : ", ") + ("\"" + g.name + "\"");
-                throw SceneError(file_ + ": no perspective camera named \"" + options_.camera +
+                throw SceneError(file_ + ": no camera named \"" + options_.camera +
                                  "\" (the file has " + (names.empty() ? "none" : names) + ")");
             }
         }
@@ -143,6 +143,9 @@ class Loader {
             c.look_at = g.position + g.forward;
             c.up = g.up;
             c.vfov = g.yfov_degrees;
+            c.orthographic = g.orthographic;
+            c.view_width = g.view_width;
+            c.view_height = g.view_height;
             if (g.aspect > 0.0f)
                 r.height = std::clamp(static_cast<int>(std::lround(800.0f / g.aspect)), 1, 8000);
             if (max_component(abs(c.look_from)) > kMaxCoordinate)
@@ -157,7 +160,7 @@ class Loader {
             const float distance = 1.1f * radius / std::sin(radians(0.5f * c.vfov));
             c.look_at = centre;
             c.look_from = centre + distance * normalize(Vec3{0.0f, 0.25f, 1.0f});
-            warn("no perspective camera in the default scene; framing the model from +z");
+            warn("no camera in the default scene; framing the model from +z");
         }
         for (const GltfLight& g : placed.lights) {
             Light l;
@@ -262,7 +265,30 @@ class Loader {
                 x->fail("expected a number in (0, 179], got " + x->describe());
             c.vfov = x->number();
         }
-        if (auto x = o.optional("aperture")) c.aperture = x->non_negative();
+        if (auto x = o.optional("type")) {
+            const std::string type = x->string();
+            if (type == "orthographic")
+                c.orthographic = true;
+            else if (type != "perspective")
+                x->fail("unknown camera type \"" + type +
+                        "\" (expected perspective or orthographic)");
+        }
+        // Orthographic: the film's extent in world units (coordinates stay within 1e7).
+        auto extent = [](const Value& x) {
+            if (!x.is_number() || !(x.number() > 0.0f && x.number() <= kMaxCoordinate))
+                x.fail("expected a number in (0, 1e7], got " + x.describe());
+            return x.number();
+        };
+        for (const char* key : {"view_height", "view_width"})
+            if (auto x = o.optional(key)) {
+                if (!c.orthographic) x->fail(std::string(key) + " is an orthographic camera's");
+                (std::string_view(key) == "view_height" ? c.view_height : c.view_width) =
+                    extent(*x);
+            }
+        if (auto x = o.optional("aperture")) {
+            c.aperture = x->non_negative();
+            if (c.orthographic && c.aperture > 0.0f) x->fail("an orthographic camera has no lens");
+        }
         if (auto x = o.optional("focus_distance")) c.focus_distance = x->positive();
         if (auto x = o.optional("mirror")) c.mirror = x->boolean();
         if (auto x = o.optional("filter")) c.filter = read_filter(*x);

@@ -1268,7 +1268,7 @@ class Translator {
 
     void sensor_(const Element& e) {
         const std::string type = e.attr_or("type", "");
-        if (type != "perspective" && type != "thinlens") {
+        if (type != "perspective" && type != "thinlens" && type != "orthographic") {
             warn(e, "sensor \"" + type + "\" is not supported; rendered as a perspective camera");
         }
         Props p(e, *this);
@@ -1354,6 +1354,14 @@ class Translator {
         // forward x up, so a to_world that mirrors (a scale by -1) needs our mirrored camera.
         if (dot(cross(forward, up), left) > 0) camera["mirror"] = true;
         if (!filter.is_null()) camera["filter"] = filter;
+        if (type == "orthographic") {
+            // Mitsuba's orthographic film spans [-1, 1] x [-1 / aspect, 1 / aspect] of camera
+            // space, scaled by to_world.
+            camera.erase("vfov");
+            camera["type"] = "orthographic";
+            camera["view_width"] = 2 * norm(left);
+            camera["view_height"] = 2 * norm(up) / aspect;
+        }
         if (type == "thinlens") {
             camera["aperture"] = 2 * p.number("aperture_radius", 0.0);
             camera["focus_distance"] = p.number("focus_distance", 0.0);

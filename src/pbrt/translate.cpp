@@ -559,8 +559,9 @@ class Translator {
     void camera_directive(const std::string& place) {
         const std::string type = string_arg("Camera");
         PbrtParams p = params("Camera \"" + type + "\"");
-        if (type != "perspective")
+        if (type != "perspective" && type != "orthographic")
             warn(place, "Camera \"" + type + "\" is not supported; rendered as a perspective camera");
+        orthographic_ = type == "orthographic";
         camera_seen_ = true;
         camera_ctm_ = state().ctm;
         camera_place_ = place;
@@ -570,8 +571,23 @@ class Translator {
         focal_distance_ = p.number("focaldistance", 1e6);
         if (lens_radius_ < 0) fail(place, "Camera: lensradius must be >= 0");
         if (!(focal_distance_ > 0)) fail(place, "Camera: focaldistance must be > 0");
-        for (const char* n : {"screenwindow", "frameaspectratio"})
-            if (p.get(n)) warn(place, std::string("Camera: ") + n + " is not supported; ignored");
+        screen_window_.clear();
+        if (const std::vector<double>* w = p.numbers("screenwindow", 4); w && orthographic_) {
+            if (w->size() != 4 || !((*w)[1] > (*w)[0] && (*w)[3] > (*w)[2]))
+                fail(place,
+                     "Camera: screenwindow must be [xmin xmax ymin ymax], each max above its min");
+            if ((*w)[0] + (*w)[1] != 0 || (*w)[2] + (*w)[3] != 0)
+                warn(place, "Camera: an off-centre screenwindow is rendered centred");
+            screen_window_ = *w;
+        } else if (p.get("screenwindow")) {
+            warn(place, "Camera: screenwindow is not supported; ignored");
+        }
+        if (p.get("frameaspectratio"))
+            warn(place, "Camera: frameaspectratio is not supported; ignored");
+        if (orthographic_ && lens_radius_ > 0) {
+            warn(place, "Camera: an orthographic camera's lens is not supported; rendered sharp");
+            lens_radius_ = 0;
+        }
         p.finish(pwarn(), {"shutteropen", "shutterclose"});
         M4 inverse;
         if (!invert(camera_ctm_, &inverse)) fail(place, "Camera: the transform is singular");
@@ -602,6 +618,20 @@ class Translator {
         if (lens_radius_ > 0) {
             c["aperture"] = 2 * lens_radius_;
             c["focus_distance"] = focal_distance_;
+        }
+        if (orthographic_) {
+            // pbrt's screen window, in camera space: [-aspect, aspect] x [-1, 1] for a wide image,
+            // [-1, 1] x [-1 / aspect, 1 / aspect] for a tall one, unless the file gives it.
+            const double aspect = width / height;
+            double w = aspect > 1 ? 2 * aspect : 2, h = aspect > 1 ? 2 : 2 / aspect;
+            if (screen_window_.size() == 4) {
+                w = screen_window_[1] - screen_window_[0];
+                h = screen_window_[3] - screen_window_[2];
+            }
+            c.erase("vfov");
+            c["type"] = "orthographic";
+            c["view_width"] = w * norm(right);
+            c["view_height"] = h * norm(up);
         }
         out_["camera"] = c;
     }
@@ -1417,6 +1447,8 @@ class Translator {
     M4 camera_ctm_ = identity();
     std::string camera_place_;
     double fov_ = 90, lens_radius_ = 0, focal_distance_ = 1e6;
+    bool orthographic_ = false;
+    std::vector<double> screen_window_;  // orthographic: as the file gives it, or empty
 };
 
 }  // namespace

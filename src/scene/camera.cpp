@@ -9,7 +9,7 @@
 namespace wavetrace {
 
 // The camera of Ray Tracing in One Weekend (§12-13): a film on the focus plane, rays from a disk
-// lens.
+// lens; or an orthographic one's film at the eye.
 CameraRays::CameraRays(const Camera& camera, int width, int height) {
     float focus = camera.focus_distance > 0 ? camera.focus_distance
                                             : length(camera.look_at - camera.look_from);
@@ -22,6 +22,15 @@ CameraRays::CameraRays(const Camera& camera, int width, int height) {
     Vec3 v = cross(w, u);                                   // up
     if (camera.mirror) u = -u;
 
+    if (camera.orthographic) {
+        // The film at look_from itself, rays along -w.
+        view_h = camera.view_height;
+        view_w = camera.view_width > 0.0f
+                     ? camera.view_width
+                     : view_h * (static_cast<float>(width) / static_cast<float>(height));
+        focus = 0.0f;
+        frame_.parallel = -w;
+    }
     frame_.origin = camera.look_from;
     frame_.du = u * (view_w / static_cast<float>(width));
     frame_.dv = -v * (view_h / static_cast<float>(height));

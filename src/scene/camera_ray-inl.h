@@ -22,9 +22,10 @@ HWY_INLINE V3<typename L::F> Broadcast(Vec3 v) {
     return {L::Set(v.x), L::Set(v.y), L::Set(v.z)};
 }
 
-// The camera of Ray Tracing in One Weekend (§12-13): a film on the focus plane, rays from a disk lens. (x, y)
-// in pixels, (lens_u, lens_v) in [0,1)^2 pick the lens point by the polar map (r = sqrt(u1),
-// phi = 2 pi u2). The direction is not normalized.
+// The camera of Ray Tracing in One Weekend (§12-13): a film on the focus plane, rays from a disk
+// lens, or an orthographic camera's parallel rays from its film. (x, y) in pixels, (lens_u, lens_v)
+// in [0,1)^2 pick the lens point by the polar map (r = sqrt(u1), phi = 2 pi u2). The direction is
+// not normalized.
 template <class L>
 HWY_INLINE void CameraRay(const CameraFrame& c,
                           typename L::F x,
@@ -35,6 +36,11 @@ HWY_INLINE void CameraRay(const CameraFrame& c,
                           V3<typename L::F>* dir) {
     using F = typename L::F;
     const V3<F> target = Broadcast<L>(c.pixel00) + Broadcast<L>(c.du) * x + Broadcast<L>(c.dv) * y;
+    if (c.orthographic()) {
+        *origin = target;
+        *dir = Broadcast<L>(c.parallel);
+        return;
+    }
     V3<F> o = Broadcast<L>(c.origin);
     if (c.has_lens()) {
         F sin_phi, cos_phi;

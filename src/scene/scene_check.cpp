@@ -151,6 +151,11 @@ void check_scene(const Scene& scene) {
         throw SceneError(
             "scene: the camera needs distinct look_from and look_at and an up not along them");
     if (!(c.vfov > 0 && c.vfov < 180)) throw SceneError("scene: the camera's vfov must be in (0, 180)");
+    if (c.orthographic && !(c.view_height > 0 && c.view_height <= 1e7f && c.view_width >= 0 &&
+                            c.view_width <= 1e7f && c.aperture == 0))
+        throw SceneError(
+            "scene: an orthographic camera needs view_height in (0, 1e7], view_width "
+            "in [0, 1e7] and no aperture");
 }
 
 }  // namespace wavetrace

@@ -82,8 +82,8 @@ def test_a_bad_scene_raises_naming_the_file_and_place(tmp_path):
 
 def test_warnings_become_python_warnings(tmp_path):
     f = tmp_path / "warn.pbrt"
-    f.write_text('Camera "orthographic"\nWorldBegin\nShape "sphere"\n')
-    with pytest.warns(UserWarning, match="orthographic"):
+    f.write_text('Camera "realistic"\nWorldBegin\nShape "sphere"\n')
+    with pytest.warns(UserWarning, match="realistic"):
         wt.load_scene(f)
 
 
@@ -169,6 +169,30 @@ def test_a_medium_of_per_channel_density_renders_as_in_json(tmp_path):
     # Through the sphere's middle green, the densest, is the darkest.
     r, g, b = a[8, 8]
     assert g < b < r
+
+
+def test_an_orthographic_camera_renders_as_in_json(tmp_path):
+    # A unit sphere seen by parallel rays through a 4 x 2 film: a disk of radius 1 centred,
+    # a quarter of the image's width across.
+    path = tmp_path / "ortho.json"
+    path.write_text(json.dumps({
+        "camera": {"type": "orthographic", "look_from": [0, 0, -4], "look_at": [0, 0, 0],
+                   "view_height": 2},
+        "background": [1, 1, 1],
+        "materials": {"black": {"type": "lambertian", "albedo": [0, 0, 0]}},
+        "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "black"}]}))
+    from_json = wt.load_scene(path)
+    s = wt.Scene()
+    s.camera = wt.Camera(look_from=(0, 0, -4), look_at=(0, 0, 0), up=(0, 1, 0),
+                         orthographic=True, view_height=2)
+    s.background = wt.Background(radiance=(1, 1, 1))
+    black = s.add_material(wt.Material(name="black", albedo=s.add_solid((0, 0, 0))))
+    s.add_sphere(wt.Sphere(center=(0, 0, 0), radius=1, material=black))
+    a = wt.render(s, width=32, height=16, spp=4)
+    assert np.array_equal(a, wt.render(from_json, width=32, height=16, spp=4))
+    row = a[8, :, 0]
+    assert row[16] == 0 and row[9] == 0 and row[22] == 0  # inside the disk, |x| < 1
+    assert row[6] == 1 and row[25] == 1  # outside it, |x| > 1.1
 
 
 def test_a_spot_projecting_a_texture_renders_as_in_json(tmp_path):

@@ -20,7 +20,9 @@ struct PixelFilter {
     float sigma = 0.5f;   // Gaussian: the standard deviation, in pixels
 };
 
-// A thin-lens camera as in the seed (RTIOW §12-13). With aperture 0 it is a pinhole.
+// A thin-lens camera as in the seed (RTIOW §12-13). With aperture 0 it is a pinhole. Or an
+// orthographic camera (Mitsuba 3's and pbrt-v4's `orthographic`): parallel rays along the view
+// direction from a film of view_width x view_height world units centred on look_from.
 struct Camera {
     Point3 look_from{0.0f, 0.0f, 0.0f};
     Point3 look_at{0.0f, 0.0f, -1.0f};
@@ -28,6 +30,9 @@ struct Camera {
     float vfov = 40.0f;           // vertical field of view, degrees
     float aperture = 0.0f;        // lens diameter, world units
     float focus_distance = 0.0f;  // 0: the distance from look_from to look_at
+    bool orthographic = false;
+    float view_height = 2.0f;  // orthographic: the film's height in world units
+    float view_width = 0.0f;   // ... and width (0: view_height times the image's aspect)
     // The image's x axis reversed (a left-handed camera frame, as pbrt's): the image's right
     // is cross(w, up) instead of cross(up, w), w pointing backwards.
     bool mirror = false;
@@ -40,9 +45,13 @@ struct CameraFrame {
     Point3 pixel00;       // the top-left corner of the film on the focus plane
     Vec3 du, dv;          // one pixel to the right / down, on the focus plane
     Vec3 lens_u, lens_v;  // lens radius times the camera's right / up axes
+    // Orthographic: the view direction, every ray's (the film then lies at look_from); zero for
+    // a perspective camera.
+    Vec3 parallel{0.0f};
     PixelFilter filter;
     float filter_erf = 0.0f;  // Gaussian: erf(radius / (sigma sqrt 2)), the mass it keeps
     bool has_lens() const { return lens_u.x != 0 || lens_u.y != 0 || lens_u.z != 0; }
+    bool orthographic() const { return parallel.x != 0 || parallel.y != 0 || parallel.z != 0; }
 };
 
 // A camera set up for one film size: maps film positions to rays.
