@@ -368,8 +368,9 @@ TEST(Megakernel, MisEarnsItsName) {
     }
 }
 
-// A spot light's falloff and a directional light's irradiance on a diffuse plane, against
-// their closed forms (next-event estimation; the others see black, as for a point light).
+// A spot light's falloff, a projector's frustum and a directional light's irradiance on a
+// diffuse plane, against their closed forms (next-event estimation; the others see black, as
+// for a point light).
 TEST(Megakernel, SpotAndDirectionalLightsMatchTheirClosedForms) {
     const float rho = 0.6f;
     auto plane = [&](Light light) {
@@ -405,6 +406,26 @@ TEST(Megakernel, SpotAndDirectionalLightsMatchTheirClosedForms) {
         std::printf("spot (%s falloff) %.6f (closed form %.6f)\n",
                     falloff == Light::Falloff::Linear ? "linear" : "smoothstep", mean, expected);
         EXPECT_NEAR(mean, expected, 1e-3 * expected);
+    }
+    // A projector at the spot's place: pi I / cos^3 towards the origin (26.57 degrees off its
+    // axis) inside a frustum of half extents 1 and 0.75 (45 and 36.9 degrees), dark outside one
+    // of 0.4 x 0.3 (21.8 degrees across, where the origin lies along x).
+    for (float half : {1.0f, 0.4f}) {
+        Light projector;
+        projector.kind = Light::Kind::Projector;
+        projector.position = {0, 2, 0};
+        projector.direction = normalize(Vec3(1.0f, -2.0f, 0.0f));
+        projector.up = {0, 0, 1};
+        projector.intensity = Color(9.0f);
+        projector.half_width = half;
+        projector.half_height = 0.75f * half;
+        const double cos_off = 2 / std::sqrt(5.0);
+        const double expected =
+            half == 1.0f ? rho / pi * pi * 9.0 / std::pow(cos_off, 3) / 4.0 : 0.0;
+        const double mean =
+            luminance(render(plane(projector), Strategy::Mis, 1, 1, 16, 3, 2).mean().at(0, 0));
+        std::printf("projector half width %.1f: %.6f (closed form %.6f)\n", half, mean, expected);
+        EXPECT_NEAR(mean, expected, 1e-3 * expected + 1e-9);
     }
     Light sun;
     sun.kind = Light::Kind::Directional;

@@ -412,6 +412,36 @@ TEST(SceneLoader, OrthographicCameraSendsParallelRaysFromItsFilm) {
               "orthographic)");
 }
 
+// A projector's frustum from its field of view on the named axis and its image's aspect (1
+// for a colour); its refusals.
+TEST(SceneLoader, ProjectorFrustumFollowsItsFieldOfView) {
+    TempDir dir;
+    auto load = [&](const std::string& light) {
+        const std::filesystem::path p =
+            dir.write("x.json", std::string("{") + kCamera + R"(, "objects": [], "lights": [)" +
+                                    light + "]}");
+        return load_scene(p).lights.at(0);
+    };
+    const Light x = load(R"({"type": "projector", "position": [0, 2, 0], "look_at": [0, 0, 0],
+        "fov": 90, "irradiance": [1, 0.5, 0.25], "scale": 2})");
+    EXPECT_EQ(x.kind, Light::Kind::Projector);
+    EXPECT_NEAR(x.half_width, 1.0f, 1e-6f);
+    EXPECT_NEAR(x.half_height, 1.0f, 1e-6f);
+    EXPECT_EQ(x.intensity, Color(2.0f, 1.0f, 0.5f));
+    EXPECT_EQ(x.texture, kNone);
+    EXPECT_NEAR(dot(x.up, x.direction), 0.0f, 1e-6f);
+    const Light d = load(R"({"type": "projector", "position": [0, 2, 0], "look_at": [0, 0, 0],
+        "fov": 90, "fov_axis": "diagonal"})");
+    EXPECT_NEAR(d.half_width, std::sqrt(0.5f), 1e-6f);
+    EXPECT_EQ(load_error(dir, std::string("{") + kCamera + R"(, "objects": [], "lights": [
+        {"type": "projector", "position": [0, 2, 0], "look_at": [0, 0, 0], "fov_axis": "z"}]})"),
+              ": /lights/0/fov_axis: unknown fov_axis \"z\" (expected x, y, diagonal, smaller or "
+              "larger)");
+    EXPECT_EQ(load_error(dir, std::string("{") + kCamera + R"(, "objects": [], "lights": [
+        {"type": "projector", "position": [0, 2, 0], "look_at": [0, 0, 0], "up": [0, 1, 0]}]})"),
+              ": /lights/0/up: up must not lie along the axis");
+}
+
 TEST(SceneLoader, MissingAndUnreadableFilesAreNamed) {
     TempDir dir;
     try {

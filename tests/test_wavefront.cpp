@@ -121,7 +121,8 @@ TEST(Wavefront, EqualsTheMegakernelOnMitsubasScenes) {
           "bsdf_spheres/test_texturedprincipled2_path.xml",
           "bsdf_spheres/test_texturedprincipledthin_path.xml",
           "floating_sphere/test_directional_direct.xml", "spot_light/test_spot_direct.xml",
-          "orthographic_sensor/test_orthographic_path.xml"}) {
+          "orthographic_sensor/test_orthographic_path.xml",
+          "projector/test_projector_textured_direct.xml"}) {
         SCOPED_TRACE(name);
         Scene scene = load_scene(dir / name);
         Bvh bvh = Bvh::build(scene);

@@ -182,11 +182,12 @@ void bind_scene(py::module_& m) {
         .def_readwrite("flip_v", &Quad::flip_v)
         .def_readwrite("interior", &Quad::interior);
 
-    py::class_<Light> light(m, "Light", "A point, spot or directional light.");
+    py::class_<Light> light(m, "Light", "A point, spot, directional or projector light.");
     py::enum_<Light::Kind>(light, "Kind")
         .value("Point", Light::Kind::Point)
         .value("Spot", Light::Kind::Spot)
-        .value("Directional", Light::Kind::Directional);
+        .value("Directional", Light::Kind::Directional)
+        .value("Projector", Light::Kind::Projector);
     py::enum_<Light::Falloff>(light, "Falloff")
         .value("Linear", Light::Falloff::Linear)
         .value("Smoothstep", Light::Falloff::Smoothstep);
@@ -199,8 +200,12 @@ void bind_scene(py::module_& m) {
         .def_readwrite("falloff_start_degrees", &Light::falloff_start_degrees)
         .def_readwrite("falloff", &Light::falloff)
         .def_readwrite("texture", &Light::texture,
-                       "spot: the id of a texture it projects (NONE: none)")
-        .def_readwrite("up", &Light::up, "spot with a texture: the image's top, unit, across the axis");
+                       "spot, projector: the id of a texture it projects (NONE: none)")
+        .def_readwrite("up", &Light::up,
+                       "spot with a texture, projector: the image's top, unit, across the axis")
+        .def_readwrite("half_width", &Light::half_width,
+                       "projector: the frustum's half width at unit distance (a tangent)")
+        .def_readwrite("half_height", &Light::half_height, "projector: ... and half height");
 
     py::class_<PixelFilter> filter(m, "PixelFilter");
     py::enum_<PixelFilter::Kind>(filter, "Kind")

@@ -686,6 +686,64 @@ class Loader {
         });
     }
 
+    // Mitsuba 3's projector: a pinhole at `position` looking at `look_at` (`up`, default as a
+    // camera's, the image's top), projecting `irradiance` (a colour, or a texture) times
+    // `scale` through a frustum of field of view `fov` degrees (default 90) on `fov_axis` (x, y,
+    // diagonal, smaller or larger, as Mitsuba's sensors; default x), its aspect the image's
+    // (1 for any other texture or a colour).
+    void read_projector(Object& o, Light& light) {
+        light.kind = Light::Kind::Projector;
+        light.position = point(o.required("position"));
+        Value at = o.required("look_at");
+        const Vec3 axis = point(at) - light.position;
+        if (!(length(axis) > 1e-6f * std::max(1.0f, max_component(abs(light.position)))))
+            at.fail("look_at must differ from position");
+        light.direction = normalize(axis);
+        Vec3 up = std::abs(light.direction.y) < 0.999f ? Vec3(0, 1, 0) : Vec3(0, 0, 1);
+        auto up_value = o.optional("up");
+        if (up_value) up = up_value->nonzero_vec3();
+        const Vec3 across = up - dot(up, light.direction) * light.direction;
+        if (!(length(across) > 1e-3f * length(up)))
+            (up_value ? *up_value : at).fail("up must not lie along the axis");
+        light.up = normalize(across);
+        float scale = 1.0f;
+        if (auto x = o.optional("scale")) scale = x->non_negative();
+        float aspect = 1.0f;
+        light.intensity = Color(scale);
+        if (auto x = o.optional("irradiance")) {
+            if (x->is_object()) {
+                light.texture = read_texture(*x, Range::Radiance);
+                const Texture& t = scene_.textures[light.texture];
+                if (t.kind == TextureKind::Image) {
+                    const ImageData& image = scene_.images[t.image];
+                    aspect = float(image.width) / float(image.height);
+                }
+            } else {
+                light.intensity = x->color() * scale;
+            }
+        }
+        float fov = 90.0f;
+        Value fov_value = o.optional("fov").value_or(at);
+        if (auto x = o.optional("fov")) fov = x->in_range(0.0f, 179.0f);
+        if (!(fov > 0.0f)) fov_value.fail("the field of view must lie in (0, 179]");
+        const float half = std::tan(radians(0.5f * fov));
+        std::string axis_name = "x";
+        auto fov_axis = o.optional("fov_axis");
+        if (fov_axis) axis_name = fov_axis->string();
+        // The frustum's half width at unit distance from the half extent on the named axis.
+        if (axis_name == "x" || (axis_name == "larger" && aspect >= 1) ||
+            (axis_name == "smaller" && aspect < 1))
+            light.half_width = half;
+        else if (axis_name == "y" || axis_name == "larger" || axis_name == "smaller")
+            light.half_width = half * aspect;
+        else if (axis_name == "diagonal")
+            light.half_width = half * aspect / std::sqrt(1.0f + aspect * aspect);
+        else
+            fov_axis->fail("unknown fov_axis \"" + axis_name +
+                           "\" (expected x, y, diagonal, smaller or larger)");
+        light.half_height = light.half_width / aspect;
+    }
+
     // Lights that are not shapes: point, spot and directional (docs/scene-format.md#lights).
     void read_lights(const Value& v) {
         for (size_t i = 0; i < v.size(); ++i) {
@@ -737,9 +795,11 @@ class Loader {
                 light.kind = Light::Kind::Directional;
                 light.direction = normalize(o.required("direction").nonzero_vec3());
                 light.intensity = o.required("irradiance").color();
+            } else if (type == "projector") {
+                read_projector(o, light);
             } else {
                 type_value.fail("unknown light type \"" + type +
-                                "\" (expected point, spot or directional)");
+                                "\" (expected point, spot, projector or directional)");
             }
             o.finish();
             scene_.lights.push_back(light);

@@ -1212,6 +1212,33 @@ class Translator {
                 const V3 y = to_world.vector(0, 1, 0);
                 lights_.back()["up"] = to_json(V3{-y[0], -y[1], -y[2]});
             }
+        } else if (type == "projector") {
+            // Mitsuba looks its irradiance up at (1/2 - x / (2 z tan_x), 1/2 - y / (2 z tan_y))
+            // of the light's local direction (a camera's film; v_M down from the image's top):
+            // our (u, 1 - v) with right = -x, so up = +y (Light::texture).
+            const V3 position = to_world.point(0, 0, 0);
+            const V3 axis = normalized(to_world.vector(0, 0, 1));
+            json light = {{"type", "projector"},
+                          {"position", to_json(position)},
+                          {"look_at", to_json(add(position, axis))},
+                          {"up", to_json(to_world.vector(0, 1, 0))},
+                          {"scale", p.number("scale", 1.0)}};
+            const Element* irradiance = p.get("irradiance");
+            light["irradiance"] =
+                irradiance ? color(*irradiance, false, true) : to_json_color(kD65Rgb);
+            if (const Element* f = p.get("fov")) {
+                light["fov"] = parse_number(*f, f->attr_or("value", ""));
+                light["fov_axis"] = p.string("fov_axis", "x");
+            } else {
+                // A focal length on 35 mm film: its field of view on the diagonal.
+                std::string text = p.string("focal_length", "50mm");
+                if (text.size() > 2 && text.substr(text.size() - 2) == "mm")
+                    text = text.substr(0, text.size() - 2);
+                light["fov"] = 2 * std::atan(std::hypot(36.0, 24.0) / (2 * parse_number(e, text))) *
+                               180 / kPiD;
+                light["fov_axis"] = "diagonal";
+            }
+            lights_.push_back(light);
         } else if (type == "directional") {
             const Element* d = p.get("direction");
             const V3 direction = d ? xyz(*d, 0.0) : to_world.vector(0, 0, 1);

@@ -127,12 +127,22 @@ void check_scene(const Scene& scene) {
             length(l.direction) == 0)
             fail("light", i, "needs a finite position, intensity and non-zero direction");
         if (l.texture != kNone) {
-            if (l.kind != Light::Kind::Spot) fail("light", i, "only a spot projects a texture");
+            if (l.kind != Light::Kind::Spot && l.kind != Light::Kind::Projector)
+                fail("light", i, "only a spot or a projector projects a texture");
             if (l.texture >= textures) fail("light", i, "its texture names no texture");
             if (!finite(l.up) || std::abs(length(l.up) - 1) > 1e-4f ||
                 std::abs(dot(l.up, l.direction)) > 1e-4f * length(l.direction))
                 fail("light", i, "a projected texture needs a unit up orthogonal to the axis");
         }
+    }
+    for (size_t i = 0; i < scene.lights.size(); ++i) {
+        const Light& l = scene.lights[i];
+        if (l.kind == Light::Kind::Projector &&
+            (!(l.half_width > 0 && l.half_height > 0) || !std::isfinite(l.half_width) ||
+             !std::isfinite(l.half_height) || !finite(l.up) || std::abs(length(l.up) - 1) > 1e-4f ||
+             std::abs(dot(l.up, l.direction)) > 1e-4f * length(l.direction)))
+            fail("light", i,
+                 "a projector needs a finite frustum and a unit up orthogonal to its axis");
     }
     const Background& bg = scene.background;
     if (!finite(bg.radiance)) throw SceneError("scene: the background radiance is not finite");

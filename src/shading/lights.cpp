@@ -5,6 +5,7 @@
 
 #include "accel/intersect.h"
 #include "sampling/warp.h"
+#include "scene/delta_lights.h"
 #include "shading/environment_light-inl.h"
 #include "shading/sphere_light-inl.h"
 #include "wavetrace/math/frame.h"
@@ -29,42 +30,6 @@ SphereCone sphere_cone(const Sphere& s, Point3 ref) {
 }
 
 }  // namespace
-
-float spot_falloff(const Light& l, float cos_theta) {
-    const float cos_cutoff = std::cos(radians(l.cutoff_degrees));
-    const float cos_start = std::cos(radians(l.falloff_start_degrees));
-    if (cos_theta <= cos_cutoff) return 0.0f;
-    if (cos_theta >= cos_start) return 1.0f;
-    if (l.falloff == Light::Falloff::Smoothstep) {
-        const float t = (cos_theta - cos_cutoff) / (cos_start - cos_cutoff);
-        return t * t * (3.0f - 2.0f * t);
-    }
-    const float theta = std::acos(std::clamp(cos_theta, -1.0f, 1.0f));
-    return (radians(l.cutoff_degrees) - theta) /
-           (radians(l.cutoff_degrees) - radians(l.falloff_start_degrees));
-}
-
-Vec2 spot_texture_uv(const Light& l, Vec3 d) {
-    const float scale = 0.5f / (dot(d, l.direction) * std::tan(radians(l.cutoff_degrees)));
-    return {0.5f + dot(d, cross(l.direction, l.up)) * scale, 0.5f + dot(d, l.up) * scale};
-}
-
-float delta_light_power(const Light& l, float scene_radius) {
-    const float lum = luminance(l.intensity);
-    switch (l.kind) {
-        case Light::Kind::Point:
-            return 4.0f * kPi * lum;
-        case Light::Kind::Spot: {
-            // Full within the falloff start, about half across the falloff (pbrt-v4's Phi).
-            const float cos_start = std::cos(radians(l.falloff_start_degrees));
-            const float cos_cutoff = std::cos(radians(l.cutoff_degrees));
-            return 2.0f * kPi * lum * ((1.0f - cos_start) + 0.5f * (cos_start - cos_cutoff));
-        }
-        case Light::Kind::Directional:
-            return kPi * scene_radius * scene_radius * lum;
-    }
-    return 0.0f;
-}
 
 LightSet::LightSet(const Scene& scene, bool mis_compensation) {
     emitters_ = collect_emitters(scene);
@@ -124,7 +89,7 @@ LightSet::LightSet(const Scene& scene, bool mis_compensation) {
     std::vector<float> area_power = power;
     const Aabb bounds = scene.bounds();
     const float scene_radius = bounds.empty() ? 1.0f : 0.5f * length(bounds.extent());
-    for (const Light& l : scene.lights) power.push_back(delta_light_power(l, scene_radius));
+    for (const Light& l : scene.lights) power.push_back(delta_light_power(scene, l, scene_radius));
     delta_count_ = scene.lights.size();
     background_ = !scene.background.is_black();
     if (background_) {
@@ -237,19 +202,13 @@ LightSample LightSet::sample(
             ls.valid = ls.pdf > 0.0f;
             return ls;
         }
-        // Intensity / d^2 along the direction to the light, a spot's falloff times that.
+        // Intensity / d^2 along the direction to the light.
         const Vec3 d = l.position - ref;
         const float dist2 = length_squared(d);
         if (!(dist2 > 0.0f)) return ls;
         ls.dist = std::sqrt(dist2);
         ls.wi = d / ls.dist;
-        ls.radiance = l.intensity / dist2;
-        if (l.kind == Light::Kind::Spot) {
-            const float falloff = spot_falloff(l, dot(-ls.wi, l.direction));
-            ls.radiance *= falloff;
-            if (l.texture != kNone && falloff > 0.0f)
-                ls.radiance *= eval_texture(scene, l.texture, spot_texture_uv(l, -ls.wi), l.position);
-        }
+        ls.radiance = delta_light_intensity(scene, l, -ls.wi) / dist2;
         ls.valid = std::isfinite(ls.dist) && ls.pdf > 0.0f;
         return ls;
     }

@@ -158,19 +158,6 @@ class LightSet {
     EnvironmentView environment_view_;
 };
 
-// A spot light's falloff for a direction at cos_theta from its axis: 1 within the falloff
-// start, 0 beyond the cutoff, between them linear in the angle (Mitsuba 3) or smoothstep in the
-// cosine (pbrt-v4), as l.falloff says.
-struct Light;
-float spot_falloff(const Light& l, float cos_theta);
-// Where a spot's projected texture is looked up for light leaving it along unit d, inside its
-// cutoff cone (the convention of Light::texture).
-Vec2 spot_texture_uv(const Light& l, Vec3 d);
-// The power light selection gives a light that is not a shape: a point 4 pi I, a spot
-// 2 pi I ((1 - cos start) + (cos start - cos cutoff) / 2), a directional light the irradiance
-// over a disk of the scene's radius, pi r^2 E (luminances).
-float delta_light_power(const Light& l, float scene_radius);
-
 // Radiance a surface emits towards the side the ray came from (0 unless the material emits;
 // one-sided emitters emit only on their front).
 struct SurfaceHit;

@@ -7,15 +7,19 @@
 
 namespace wavetrace {
 
-// A light that is not a shape: a Dirac delta in position (point, spot) or in direction
-// (directional). No ray can hit one, so only next-event estimation (strategies nee and mis)
-// reaches it, as in pbrt-v4 and Mitsuba 3.
+// A light that is not a shape: a Dirac delta in position (point, spot, projector) or in
+// direction (directional). No ray can hit one, so only next-event estimation (strategies nee and
+// mis) reaches it, as in pbrt-v4 and Mitsuba 3.
 struct Light {
     enum class Kind : uint8_t {
         Point,        // radiant intensity `intensity` (W sr^-1 per channel) in every direction
         Spot,         // the same within a cone about `direction`, with a falloff towards its edge
         Directional,  // parallel light travelling along `direction`: irradiance `intensity`
                       // (W m^-2 per channel) on a surface facing it
+        Projector,    // Mitsuba 3's projector: a pinhole projecting `texture` (or white) through
+                      // a rectangular frustum about `direction`; a white Lambertian plane at
+                      // unit distance across the axis shows radiance `intensity` x texture
+                      // (intensity pi `intensity` texture / cos^3 theta, theta from the axis)
     };
     // How a spot light's intensity falls from the falloff start to the cutoff.
     enum class Falloff : uint8_t {
@@ -32,11 +36,16 @@ struct Light {
     Falloff falloff = Falloff::Linear;
     // spot: a texture it projects, like a slide projector (kNone: none). Its intensity towards
     // direction d is multiplied by the texture at
-    //   (u, v) = (1/2 + (d . right) / (2 (d . axis) tan cutoff), 1/2 + (d . up) / (2 (d . axis) tan cutoff)),
+    //   u = 1/2 + (d . right) / (2 (d . axis) tan cutoff),
+    //   v = 1/2 + (d . up) / (2 (d . axis) tan cutoff),
     // right = axis x up: seen from the light looking along its axis, the image stands upright
     // with `up` towards its top and spans the square that the cutoff cone is inscribed in.
+    // A projector's texture is looked up at (1/2 + (d . right) / (2 (d . axis) half_width),
+    // 1/2 + (d . up) / (2 (d . axis) half_height)): its frustum, as a spot's, upright.
     TextureId texture = kNone;
-    Vec3 up{0.0f, 1.0f, 0.0f};  // spot with a texture: unit, orthogonal to `direction`
+    Vec3 up{0.0f, 1.0f, 0.0f};  // spot with a texture, projector: unit, orthogonal to `direction`
+    // projector: the frustum's half extents at unit distance along the axis (tangents).
+    float half_width = 1.0f, half_height = 1.0f;
 
     // A point light of `intensity` at `position`.
     static Light point(Point3 position, Color intensity) {
