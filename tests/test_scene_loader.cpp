@@ -690,8 +690,8 @@ TEST(SceneLoader, LightsAreValidated) {
         load_error(dir, with(R"([{"type": "point", "position": [0, 1e9, 0], "intensity": 1}])")),
         ": /lights/0/position: coordinate beyond +-1e7, got [0,1000000000.0,0]");
     EXPECT_EQ(load_error(dir, with(R"([{"type": "laser", "position": [0, 1, 0]}])")),
-              ": /lights/0/type: unknown light type \"laser\" (expected point, spot or "
-              "directional)");
+              ": /lights/0/type: unknown light type \"laser\" (expected point, spot, projector "
+              "or directional)");
     EXPECT_EQ(
         load_error(
             dir,
