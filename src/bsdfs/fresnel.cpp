@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "bsdfs/ggx-inl.h"
+
 namespace wavetrace {
 
 float fresnel_dielectric(float cos_i, float eta) {
@@ -38,6 +40,20 @@ Color fresnel_conductor(float cos_i, Color eta, Color k) {
     const double c = std::clamp(static_cast<double>(cos_i), 0.0, 1.0);
     return {conductor_channel(c, eta.x, k.x), conductor_channel(c, eta.y, k.y),
             conductor_channel(c, eta.z, k.z)};
+}
+
+float schlick_weight(float cos_theta) {
+    namespace lanes = HWY_NAMESPACE;
+    return lanes::Schlick<lanes::OneLane>(lanes::to_lanes(Color(0.0f)), cos_theta).x;
+}
+
+bool refract(Vec3 o, Vec3 m, float eta, Vec3* i) {
+    const float cos_om = dot(o, m);
+    const float sin2_t = (1.0f - cos_om * cos_om) / (eta * eta);
+    if (sin2_t >= 1.0f) return false;
+    const float cos_t = std::sqrt(1.0f - sin2_t);
+    *i = normalize(-o / eta + (cos_om / eta - cos_t) * m);
+    return true;
 }
 
 }  // namespace wavetrace

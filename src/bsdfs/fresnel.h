@@ -16,4 +16,13 @@ float fresnel_dielectric(float cos_i, float eta);
 // incidence ((eta - 1)^2 + k^2) / ((eta + 1)^2 + k^2); with k = 0 it is fresnel_dielectric.
 Color fresnel_conductor(float cos_i, Color eta, Color k);
 
+// Schlick's weight (1 - cos_theta)^5, cos_theta clamped to [0, 1]: the lane formula's
+// (ggx-inl.h Schlick, F0 = 0).
+float schlick_weight(float cos_theta);
+
+// Snell's law about a microfacet normal m on o's side (o.m > 0), eta the index of the side i
+// enters over o's: i = -o / eta + ((o.m) / eta - cos_t) m, normalized. False under total
+// internal reflection.
+bool refract(Vec3 o, Vec3 m, float eta, Vec3* i);
+
 }  // namespace wavetrace

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "bsdfs/fresnel.h"
 #include "bsdfs/ggx-inl.h"
 #include "bsdfs/microfacet.h"
 #include "sampling/warp.h"
@@ -12,11 +13,6 @@ namespace wavetrace {
 namespace lanes = HWY_NAMESPACE;
 using lanes::OneLane;
 namespace {
-
-// Schlick's (1 - cos)^5: the lane formula's (ggx-inl.h) with F0 = 0; every cosine here is >= 0.
-float schlick_weight(float cos_theta) {
-    return lanes::Schlick<OneLane>(lanes::to_lanes(Color(0.0f)), cos_theta).x;
-}
 
 // The clearcoat's Fresnel at the view direction (0 without a clearcoat).
 float coat_fresnel(const BsdfParams& b, Vec3 o) {

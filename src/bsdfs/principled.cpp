@@ -11,12 +11,6 @@
 namespace wavetrace {
 namespace {
 
-// (1 - |cos|)^5, Schlick's weight.
-float schlick_weight(float cos_theta) {
-    const float m = std::clamp(1.0f - std::fabs(cos_theta), 0.0f, 1.0f);
-    return (m * m) * (m * m) * m;
-}
-
 // Schlick's approximation with reflectance r0 at normal incidence, for light at cos_theta to a
 // normal on the outside (cos_theta >= 0) of an interface of index eta or inside it; from the
 // denser side the weight is taken at the refracted angle (1 under total internal reflection).
@@ -25,7 +19,7 @@ T schlick(T r0, float cos_theta, float eta) {
     const float eta_it = cos_theta >= 0.0f ? eta : 1.0f / eta;
     float w;
     if (eta_it > 1.0f) {
-        w = schlick_weight(cos_theta);
+        w = schlick_weight(std::fabs(cos_theta));
     } else {
         const float cos_t2 = 1.0f - (1.0f - cos_theta * cos_theta) * eta_it * eta_it;
         w = schlick_weight(std::sqrt(std::max(0.0f, cos_t2)));
@@ -91,7 +85,7 @@ struct DiffuseSheen {
     float diffuse, sheen;
 };
 DiffuseSheen diffuse_sheen(const PrincipledLobes& l, float cos_o, float cos_i, float cos_d) {
-    const float fo = schlick_weight(cos_o), fi = schlick_weight(cos_i);
+    const float fo = schlick_weight(std::fabs(cos_o)), fi = schlick_weight(std::fabs(cos_i));
     const float lambert = (1.0f - 0.5f * fo) * (1.0f - 0.5f * fi);
     const float rr = 2.0f * l.roughness * cos_d * cos_d;
     const float retro = rr * (fo + fi + fo * fi * (rr - 1.0f));
@@ -104,7 +98,7 @@ DiffuseSheen diffuse_sheen(const PrincipledLobes& l, float cos_o, float cos_i, f
             1.25f * (fss * (1.0f / (std::fabs(cos_o) + std::fabs(cos_i)) - 0.5f) + 0.5f);
         diffuse += l.flatness * (ss - diffuse);
     }
-    return {diffuse * kInvPi, schlick_weight(cos_d)};
+    return {diffuse * kInvPi, schlick_weight(std::fabs(cos_d))};
 }
 
 // The densities of a direction under each lobe's sampling, weighted by the lobe's probability;
@@ -115,6 +109,19 @@ struct LobeDensities {
     float lobe[4] = {};
     float total() const { return lobe[0] + lobe[1] + lobe[2] + lobe[3]; }
 };
+
+// The sample of direction i that `lobe` drew, f |cos| and the densities there: dropped where
+// that lobe has none.
+BsdfSample kept_sample(Vec3 o, Vec3 i, int lobe, Color f, const LobeDensities& pdf) {
+    BsdfSample s;
+    if (!(pdf.lobe[lobe] > 0.0f)) return s;
+    s.pdf = pdf.total();
+    s.wi = i;
+    s.weight = f / s.pdf;
+    s.transmitted = o.z * i.z < 0.0f;
+    s.valid = true;
+    return s;
+}
 
 // --- principled ---------------------------------------------------------------------------
 
@@ -220,8 +227,7 @@ Color principled_full_eval(const BsdfParams& b, Vec3 o, Vec3 i, LobeDensities* p
 }
 
 BsdfSample principled_full_sample(const BsdfParams& b, Vec3 o, float u_lobe, float u1, float u2) {
-    BsdfSample s;
-    if (o.z == 0.0f) return s;
+    if (o.z == 0.0f) return {};
     const bool front = o.z > 0.0f;
     const LobeChoice p = lobes_of(b, front);
     Vec3 i;
@@ -238,7 +244,7 @@ BsdfSample principled_full_sample(const BsdfParams& b, Vec3 o, float u_lobe, flo
         const float om = dot(o, m), f = fresnel(om, b.eta);
         const float share_t = transmission_share(b, front, f);
         const float shares = (front ? 1.0f - share_t : f) + share_t;
-        if (!(shares > 0.0f)) return s;
+        if (!(shares > 0.0f)) return {};
         // The lobe's part of u_lobe, rescaled to [0, 1), picks reflection or transmission.
         const float u = (u_lobe - p.diffuse - p.coat) / p.specular;
         if (u * shares < shares - share_t) {
@@ -246,22 +252,14 @@ BsdfSample principled_full_sample(const BsdfParams& b, Vec3 o, float u_lobe, flo
             i = reflect(o, m);
         } else {
             lobe = 3;
-            const float eta_ti = om >= 0.0f ? 1.0f / b.eta : b.eta;
-            const float cos_t2 = 1.0f - eta_ti * eta_ti * (1.0f - om * om);
-            if (cos_t2 <= 0.0f) return s;  // total internal reflection
-            const float cos_t = om >= 0.0f ? -std::sqrt(cos_t2) : std::sqrt(cos_t2);
-            i = normalize(m * (om * eta_ti + cos_t) - o * eta_ti);
+            // About the normal on o's side, into the material from its front.
+            if (!refract(o, om >= 0.0f ? m : -m, om >= 0.0f ? b.eta : 1.0f / b.eta, &i))
+                return {};  // total internal reflection
         }
     }
     LobeDensities pdf;
     const Color f = principled_full_eval(b, o, i, &pdf);
-    if (!(pdf.lobe[lobe] > 0.0f)) return s;
-    s.pdf = pdf.total();
-    s.wi = i;
-    s.weight = f / s.pdf;
-    s.transmitted = o.z * i.z < 0.0f;
-    s.valid = true;
-    return s;
+    return kept_sample(o, i, lobe, f, pdf);
 }
 
 // --- principledthin -----------------------------------------------------------------------
@@ -335,8 +333,7 @@ Color principled_thin_eval(const BsdfParams& b, Vec3 o_in, Vec3 i_in, LobeDensit
 
 BsdfSample principled_thin_sample(
     const BsdfParams& b, Vec3 o_in, float u_lobe, float u1, float u2) {
-    BsdfSample s;
-    if (o_in.z == 0.0f) return s;
+    if (o_in.z == 0.0f) return {};
     const float side = o_in.z > 0.0f ? 1.0f : -1.0f;
     const Vec3 o = o_in * side;
     const ThinLobes p = thin_lobes_of(b);
@@ -360,13 +357,7 @@ BsdfSample principled_thin_sample(
     i = i * side;
     LobeDensities pdf;
     const Color f = principled_thin_eval(b, o_in, i, &pdf);
-    if (!(pdf.lobe[lobe] > 0.0f)) return s;
-    s.pdf = pdf.total();
-    s.wi = i;
-    s.weight = f / s.pdf;
-    s.transmitted = o_in.z * i.z < 0.0f;
-    s.valid = true;
-    return s;
+    return kept_sample(o_in, i, lobe, f, pdf);
 }
 
 }  // namespace

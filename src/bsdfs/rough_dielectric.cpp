@@ -65,11 +65,7 @@ BsdfSample rough_dielectric_sample(const BsdfParams& b, Vec3 wo, float u_lobe, f
         i = 2.0f * cos_om * m - o;
         if (!(i.z > 0.0f)) return s;
     } else {
-        // Snell about m: i = -o / eta + (cos_om / eta - cos_t) m.
-        const float sin2_t = (1.0f - cos_om * cos_om) / (eta * eta);
-        if (sin2_t >= 1.0f) return s;  // total internal reflection: f = 1, not reached
-        const float cos_t = std::sqrt(1.0f - sin2_t);
-        i = normalize(-o / eta + (cos_om / eta - cos_t) * m);
+        if (!refract(o, m, eta, &i)) return s;  // total internal reflection: f = 1, not reached
         if (!(i.z < 0.0f)) return s;
         s.transmitted = true;
     }

@@ -669,21 +669,37 @@ class Loader {
         m.ior = ior ? read_ior(*ior)
                     : principled_eta_of_specular(specular ? specular->in_range(0.0f, 1.0f) : 0.5f);
         w.for_each([&](const char* name, TexturedNumber& n) {
-            const bool thin_only = std::string_view(name) == "diff_trans";
-            const bool full_only = std::string_view(name) == "metallic" ||
-                                   std::string_view(name) == "clearcoat" ||
-                                   std::string_view(name) == "clearcoat_gloss";
             auto x = o.optional(name);
             if (!x) return;
-            if ((thin_only && !w.thin) || (full_only && w.thin))
+            if (!PrincipledWeights::has(name, w.thin))
                 x->fail(std::string(name) + " is a weight of " +
                         (w.thin ? "the full (not thin)" : "the thin") + " principled material");
-            const float top = thin_only ? 2.0f : 1.0f;
+            const float top = PrincipledWeights::max_of(name);
             if (x->is_object())
-                n.texture = read_texture(*x, thin_only ? Range::Radiance : Range::Reflectance);
+                n.texture = read_texture(*x, top > 1.0f ? Range::Radiance : Range::Reflectance);
             else
                 n.value = x->in_range(0.0f, top);
         });
+    }
+
+    // A spot or projector at `position` aimed at `look_at`: its position and unit axis.
+    void read_aim(Object& o, Light& light) {
+        light.position = point(o.required("position"));
+        Value at = o.required("look_at");
+        const Vec3 axis = point(at) - light.position;
+        if (!(length(axis) > 1e-6f * std::max(1.0f, max_component(abs(light.position)))))
+            at.fail("look_at must differ from position");
+        light.direction = normalize(axis);
+    }
+
+    // The top of a light's image: `up` made orthogonal to the axis, or by default +y (+z for an
+    // axis along y), what a camera's default up would be.
+    static Vec3 image_up(const std::optional<Value>& up, Vec3 axis) {
+        Vec3 u = std::abs(axis.y) < 0.999f ? Vec3(0, 1, 0) : Vec3(0, 0, 1);
+        if (up) u = up->nonzero_vec3();
+        const Vec3 across = u - dot(u, axis) * axis;
+        if (up && !(length(across) > 1e-3f * length(u))) up->fail("up must not lie along the axis");
+        return normalize(across);
     }
 
     // Mitsuba 3's projector: a pinhole at `position` looking at `look_at` (`up`, default as a
@@ -693,19 +709,8 @@ class Loader {
     // (1 for any other texture or a colour).
     void read_projector(Object& o, Light& light) {
         light.kind = Light::Kind::Projector;
-        light.position = point(o.required("position"));
-        Value at = o.required("look_at");
-        const Vec3 axis = point(at) - light.position;
-        if (!(length(axis) > 1e-6f * std::max(1.0f, max_component(abs(light.position)))))
-            at.fail("look_at must differ from position");
-        light.direction = normalize(axis);
-        Vec3 up = std::abs(light.direction.y) < 0.999f ? Vec3(0, 1, 0) : Vec3(0, 0, 1);
-        auto up_value = o.optional("up");
-        if (up_value) up = up_value->nonzero_vec3();
-        const Vec3 across = up - dot(up, light.direction) * light.direction;
-        if (!(length(across) > 1e-3f * length(up)))
-            (up_value ? *up_value : at).fail("up must not lie along the axis");
-        light.up = normalize(across);
+        read_aim(o, light);
+        light.up = image_up(o.optional("up"), light.direction);
         float scale = 1.0f;
         if (auto x = o.optional("scale")) scale = x->non_negative();
         float aspect = 1.0f;
@@ -723,9 +728,10 @@ class Loader {
             }
         }
         float fov = 90.0f;
-        Value fov_value = o.optional("fov").value_or(at);
-        if (auto x = o.optional("fov")) fov = x->in_range(0.0f, 179.0f);
-        if (!(fov > 0.0f)) fov_value.fail("the field of view must lie in (0, 179]");
+        if (auto x = o.optional("fov")) {
+            fov = x->in_range(0.0f, 179.0f);
+            if (!(fov > 0.0f)) x->fail("the field of view must lie in (0, 179]");
+        }
         const float half = std::tan(radians(0.5f * fov));
         std::string axis_name = "x";
         auto fov_axis = o.optional("fov_axis");
@@ -756,12 +762,7 @@ class Loader {
                 light.intensity = o.required("intensity").color();
             } else if (type == "spot") {
                 light.kind = Light::Kind::Spot;
-                light.position = point(o.required("position"));
-                Value at = o.required("look_at");
-                const Vec3 axis = point(at) - light.position;
-                if (!(length(axis) > 1e-6f * std::max(1.0f, max_component(abs(light.position)))))
-                    at.fail("look_at must differ from position");
-                light.direction = normalize(axis);
+                read_aim(o, light);
                 light.intensity = o.required("intensity").color();
                 if (auto x = o.optional("cutoff")) {
                     light.cutoff_degrees = x->in_range(0.0f, 90.0f);
@@ -780,17 +781,10 @@ class Loader {
                         x->fail("unknown falloff \"" + f + "\" (expected linear or smoothstep)");
                 }
                 if (auto x = o.optional("texture")) light.texture = read_texture(*x, Range::Radiance);
-                if (auto x = o.optional("up")) {
-                    if (light.texture == kNone) x->fail("up orients a projected texture: give one");
-                    const Vec3 up = x->nonzero_vec3();
-                    const Vec3 across = up - dot(up, light.direction) * light.direction;
-                    if (!(length(across) > 1e-3f * length(up))) x->fail("up must not lie along the axis");
-                    light.up = normalize(across);
-                } else if (light.texture != kNone) {
-                    // +y, or +z for an axis along y: what a camera's default up would be
-                    const Vec3 up = std::abs(light.direction.y) < 0.999f ? Vec3(0, 1, 0) : Vec3(0, 0, 1);
-                    light.up = normalize(up - dot(up, light.direction) * light.direction);
-                }
+                const std::optional<Value> up = o.optional("up");
+                if (up && light.texture == kNone)
+                    up->fail("up orients a projected texture: give one");
+                if (light.texture != kNone) light.up = image_up(up, light.direction);
             } else if (type == "directional") {
                 light.kind = Light::Kind::Directional;
                 light.direction = normalize(o.required("direction").nonzero_vec3());

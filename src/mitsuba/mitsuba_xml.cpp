@@ -909,21 +909,15 @@ class Translator {
             if (thin) m["thin"] = true;
             // Each weight a number or a texture; Mitsuba's scalar lookups (eval_1) of a
             // checkerboard take its cells the other way round (texture(..., true)).
-            for (const char* name :
-                 {"metallic", "roughness", "anisotropic", "spec_trans", "spec_tint", "sheen",
-                  "sheen_tint", "flatness", "clearcoat", "clearcoat_gloss", "diff_trans"}) {
+            PrincipledWeights().for_each([&](const char* name, const TexturedNumber&) {
                 const Element* c = p.get(name);
-                if (!c) continue;
-                const bool thin_only = std::string_view(name) == "diff_trans";
-                const bool full_only = std::string_view(name) == "metallic" ||
-                                       std::string_view(name) == "clearcoat" ||
-                                       std::string_view(name) == "clearcoat_gloss";
-                if ((thin && full_only) || (!thin && thin_only)) {
+                if (!c) return;
+                if (!PrincipledWeights::has(name, thin)) {
                     warn(*c, type + ": " + name + " is not one of its parameters; ignored");
-                    continue;
+                    return;
                 }
                 m[name] = c->tag == "texture" ? texture(*c, true) : json(p.number(name, 0.0));
-            }
+            });
             const bool transmits = m.contains("spec_trans") && m["spec_trans"] != json(0.0);
             const Element* eta = p.get("eta");
             if (eta && eta->tag == "texture")

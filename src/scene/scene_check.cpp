@@ -69,10 +69,10 @@ void check_scene(const Scene& scene) {
         check_texture(i, m.alpha_v_texture, "alpha_v_texture", false);
         m.principled.for_each([&](const char* name, const TexturedNumber& w) {
             check_texture(i, w.texture, name, false);
-            const bool up_to_2 = std::string_view(name) == "diff_trans";
-            if (!(w.value >= 0 && w.value <= (up_to_2 ? 2 : 1)))
+            const float top = PrincipledWeights::max_of(name);
+            if (!(w.value >= 0 && w.value <= top))
                 fail("material", i,
-                     std::string(name) + (up_to_2 ? " must be in [0, 2]" : " must be in [0, 1]"));
+                     std::string(name) + (top > 1 ? " must be in [0, 2]" : " must be in [0, 1]"));
         });
         if (!(m.ior > 0) || !std::isfinite(m.ior)) fail("material", i, "ior must be positive");
         if (!(m.alpha_u >= 0 && m.alpha_v >= 0 && m.alpha_u <= 64 && m.alpha_v <= 64))

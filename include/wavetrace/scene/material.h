@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <string>
+#include <string_view>
 
 #include "wavetrace/bsdfs/coating.h"
 #include "wavetrace/bsdfs/material_kind.h"
@@ -25,6 +26,14 @@ struct PrincipledWeights {
     TexturedNumber metallic, roughness{0.5f}, anisotropic, spec_trans, spec_tint, sheen, sheen_tint,
         flatness, clearcoat, clearcoat_gloss, diff_trans;
     bool thin = false;  // principledthin: a sheet with diffuse transmission, no clearcoat
+    // Whether the full (thin false) or the thin material has the weight `name`: diff_trans only
+    // the sheet; metallic, clearcoat and clearcoat_gloss only the full one.
+    static bool has(std::string_view name, bool thin) {
+        if (name == "diff_trans") return thin;
+        return !thin || (name != "metallic" && name != "clearcoat" && name != "clearcoat_gloss");
+    }
+    // The largest value of the weight `name`: 2 for diff_trans (Mitsuba's range), else 1.
+    static float max_of(std::string_view name) { return name == "diff_trans" ? 2.0f : 1.0f; }
     // Each weight with its name in scene files, in this order.
     template <typename F>
     void for_each(F&& f) {
