@@ -351,6 +351,64 @@ TEST(MitsubaScenes, MappedNormalsTakeMitsubasCorrections) {
     EXPECT_TRUE(warnings.empty()) << warnings.front();
 }
 
+// mitsuba-data's various_shapes (before its sdfgrid) loads from its own file: every shape
+// (sphere, cylinder, disk, rectangle, the rectangle as .serialized, OBJ and PLY, two cubes),
+// warned only about the clip planes and the disk's texture coordinates.
+TEST(MitsubaScenes, VariousShapesLoadEveryShape) {
+    const std::filesystem::path path =
+        std::filesystem::path(WAVETRACE_REFERENCE_DIR) /
+        "mitsuba3/tests/scenes/various_shapes/test_various_shapes_path.xml";
+    const Scene s = load_scene(path, collecting());
+    EXPECT_EQ(warnings.size(), 2u);
+    EXPECT_TRUE(warned("test_various_shapes_path.xml:12: warning: sensor: near_clip and far_clip"));
+    EXPECT_TRUE(warned("test_various_shapes_path.xml:67: warning: disk: its texture coordinates"));
+    EXPECT_EQ(s.spheres.size(), 1u);
+    EXPECT_EQ(s.quads.size(), 13u);  // the rectangle, and six faces each cube
+    EXPECT_EQ(s.meshes.size(), 5u);  // cylinder, disk, .serialized, OBJ, PLY
+}
+
+// blendbsdf becomes our blend of its two BSDFs, its weight a number or a texture (read as
+// Mitsuba's eval_1 reads it); twosided around it makes both sides of each BSDF reflect. What
+// the hit would have to decide before choosing (a mask) is refused, with its place.
+TEST(MitsubaScenes, BlendbsdfBlendsItsTwoBsdfs) {
+    TempDir dir;
+    const auto path = dir.write("b.xml", scene(R"(<sensor type="perspective"/>
+  <bsdf type="roughconductor" id="metal"/>
+  <shape type="sphere"><bsdf type="twosided"><bsdf type="blendbsdf">
+      <texture name="weight" type="checkerboard"/>
+      <bsdf type="diffuse"/><ref id="metal"/></bsdf></bsdf></shape>
+  <shape type="rectangle"><bsdf type="blendbsdf"><float name="weight" value="0.25"/>
+      <bsdf type="diffuse"/><bsdf type="plastic"/></bsdf></shape>)"));
+    const Scene s = load_scene(path, collecting());
+    EXPECT_TRUE(warnings.empty()) << warnings.front();
+    int blends = 0;
+    for (const Material& m : s.materials) {
+        if (m.kind != MaterialKind::Blend) continue;
+        ++blends;
+        const Material &a = s.materials[m.blend[0]], &b = s.materials[m.blend[1]];
+        EXPECT_EQ(a.kind, MaterialKind::Lambertian);
+        if (m.blend_weight.texture != kNone) {  // the two-sided one
+            EXPECT_EQ(s.textures[m.blend_weight.texture].kind, TextureKind::UvChecker);
+            EXPECT_EQ(b.kind, MaterialKind::Conductor);
+            EXPECT_FALSE(a.one_sided);
+            EXPECT_FALSE(b.one_sided);
+        } else {
+            EXPECT_FLOAT_EQ(m.blend_weight.value, 0.25f);
+            EXPECT_EQ(b.kind, MaterialKind::Plastic);
+            EXPECT_TRUE(a.one_sided);
+            EXPECT_TRUE(b.one_sided);
+        }
+    }
+    EXPECT_EQ(blends, 2);
+    auto one = dir.write("o.xml", scene(R"(<shape type="sphere"><bsdf type="blendbsdf">
+      <float name="weight" value="0.5"/><bsdf type="diffuse"/></bsdf></shape>)"));
+    EXPECT_NE(error_of(one).find("o.xml:2"), std::string::npos) << error_of(one);
+    auto masked = dir.write("m.xml", scene(R"(<shape type="sphere"><bsdf type="blendbsdf">
+      <float name="weight" value="0.5"/><bsdf type="diffuse"/>
+      <bsdf type="mask"><bsdf type="diffuse"/></bsdf></bsdf></shape>)"));
+    EXPECT_NE(error_of(masked).find("m.xml:4"), std::string::npos) << error_of(masked);
+}
+
 // Mitsuba's disk (the unit disk at z = 0 facing +z, −z with flip_normals) and cylinder (open,
 // from p0 to p1, facing outwards) as tessellated meshes: where they are, which way they face,
 // and their area (128 segments a turn: a disk n sin(2π/n)/(2π) of πr², a tube n sin(π/n)/π

@@ -420,6 +420,45 @@ Shape "sphere"
     EXPECT_EQ(even.alpha_u, even.alpha_v);
 }
 
+// pbrt-v4's mix is our blend of its two named materials, "amount" its weight (a number,
+// clamped to [0, 1], or a float texture); a material that has no surface is refused.
+TEST(PbrtScenes, MixIsABlendOfTwoNamedMaterials) {
+    TempDir dir;
+    auto path = dir.write("a.pbrt", R"(Camera "perspective"
+WorldBegin
+MakeNamedMaterial "red" "string type" "diffuse" "rgb reflectance" [0.8 0.1 0.1]
+MakeNamedMaterial "gold" "string type" "conductor" "spectrum eta" "metal-Au-eta" "spectrum k" "metal-Au-k"
+Texture "cells" "float" "checkerboard" "float uscale" 4 "float vscale" 4
+Material "mix" "string materials" ["red" "gold"] "float amount" 0.3
+Shape "sphere"
+Material "mix" "string materials" ["gold" "red"] "texture amount" "cells"
+Shape "sphere"
+Material "mix" "string materials" ["gold" "red"] "float amount" 7
+Shape "sphere"
+)");
+    Scene s = load_scene(path, collecting());
+    EXPECT_TRUE(warnings.empty()) << (warnings.empty() ? "" : warnings.front());
+    ASSERT_EQ(s.spheres.size(), 3u);
+    const Material& a = s.materials[s.spheres[0].material];
+    ASSERT_EQ(a.kind, MaterialKind::Blend);
+    EXPECT_EQ(s.materials[a.blend[0]].kind, MaterialKind::Lambertian);
+    EXPECT_EQ(s.materials[a.blend[1]].kind, MaterialKind::Conductor);
+    EXPECT_FLOAT_EQ(a.blend_weight.value, 0.3f);
+    const Material& b = s.materials[s.spheres[1].material];
+    ASSERT_EQ(b.kind, MaterialKind::Blend);
+    EXPECT_EQ(s.materials[b.blend[0]].kind, MaterialKind::Conductor);
+    EXPECT_NE(b.blend_weight.texture, kNone);
+    EXPECT_FLOAT_EQ(s.materials[s.spheres[2].material].blend_weight.value, 1.0f);
+    auto none = dir.write("n.pbrt", R"(Camera "perspective"
+WorldBegin
+MakeNamedMaterial "red" "string type" "diffuse"
+MakeNamedMaterial "nothing" "string type" "interface"
+Material "mix" "string materials" ["red" "nothing"]
+Shape "sphere"
+)");
+    EXPECT_NE(error_of(none).find("n.pbrt:5"), std::string::npos) << error_of(none);
+}
+
 TEST(PbrtScenes, MediaFillShapesWithTheInterfaceMaterial) {
     TempDir dir;
     auto path = dir.write("a.pbrt", R"(

@@ -126,7 +126,8 @@ void bind_scene(py::module_& m) {
         .value("Plastic", MaterialKind::Plastic)
         .value("ThinDielectric", MaterialKind::ThinDielectric)
         .value("MetallicRoughness", MaterialKind::MetallicRoughness)
-        .value("Principled", MaterialKind::Principled);
+        .value("Principled", MaterialKind::Principled)
+        .value("Blend", MaterialKind::Blend);
     py::enum_<Microfacet>(m, "Microfacet")
         .value("Ggx", Microfacet::Ggx)
         .value("Beckmann", Microfacet::Beckmann);
@@ -161,7 +162,21 @@ void bind_scene(py::module_& m) {
         .def_readwrite("bump_map", &Material::bump_map)
         .def_readwrite("bump_scale", &Material::bump_scale)
         .def_readwrite("flip_invalid_normals", &Material::flip_invalid_normals)
-        .def_readwrite("bump_shadowing", &Material::bump_shadowing);
+        .def_readwrite("bump_shadowing", &Material::bump_shadowing)
+        // Blend: (first, second) material ids, and the second's weight, a number or a texture.
+        .def_property(
+            "blend_materials",
+            [](const Material& x) { return std::make_pair(x.blend[0], x.blend[1]); },
+            [](Material& x, std::pair<MaterialId, MaterialId> b) {
+                x.blend[0] = b.first;
+                x.blend[1] = b.second;
+            })
+        .def_property(
+            "blend_weight", [](const Material& x) { return x.blend_weight.value; },
+            [](Material& x, float w) { x.blend_weight.value = w; })
+        .def_property(
+            "blend_weight_texture", [](const Material& x) { return x.blend_weight.texture; },
+            [](Material& x, TextureId t) { x.blend_weight.texture = t; });
 
     py::enum_<SphereMapping>(m, "SphereMapping", "How a sphere's texture coordinates follow it.")
         .value("YUp", SphereMapping::YUp)

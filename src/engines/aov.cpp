@@ -39,6 +39,7 @@ Color albedo_of(const Scene& scene, const SurfaceHit& s) {
             return peak > 0 ? e / peak : e;
         }
         case MaterialKind::Interface:
+        case MaterialKind::Blend:  // surface_at has chosen one of its materials
             break;
     }
     return {};

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <set>
 
 #include "bsdfs/principled.h"
 #include "files/confinement.h"
@@ -800,78 +801,127 @@ class Loader {
         }
     }
 
+    // Materials are read in the order blends need, each after the materials it blends, which
+    // it names or holds.
     void read_materials(const Value& v) {
         Object all(v);
-        for (const auto& [name, unused] : v.raw().items()) {
-            Value mv = all.required(name);
-            Object o(mv);
-            Value type_value = o.required("type");
-            std::string type = type_value.string();
-            Material m;
-            m.name = name;
-            if (type == "lambertian") {
-                m.kind = MaterialKind::Lambertian;
-                m.albedo = read_texture(o.required("albedo"), Range::Reflectance);
-            } else if (type == "metal") {
-                m.kind = MaterialKind::Metal;
-                m.albedo = read_texture(o.required("albedo"), Range::Reflectance);
-                if (auto x = o.optional("roughness")) m.roughness = x->in_range(0.0f, 1.0f);
-            } else if (type == "mirror") {
-                m.kind = MaterialKind::Mirror;
-                auto x = o.optional("albedo");
-                m.albedo = x ? read_texture(*x, Range::Reflectance) : scene_.add_solid(Vec3(1.0f));
-            } else if (type == "dielectric") {
-                m.kind = MaterialKind::Dielectric;
-                m.ior = read_relative_ior(o, read_ior(o.required("ior")));
-                read_roughness(o, m);
-                // Index-matched, the interface is invisible however rough it is (Walter's model
-                // degenerates to a delta there): the smooth dielectric says so exactly.
-                if (m.ior == 1.0f) m.alpha_u = m.alpha_v = 0.0f;
-            } else if (type == "conductor") {
-                read_conductor(o, m);
-            } else if (type == "thin_dielectric") {
-                m.kind = MaterialKind::ThinDielectric;
-                m.ior = read_relative_ior(o, read_ior(o.required("ior")));
-            } else if (type == "plastic") {
-                read_plastic(o, m);
-            } else if (type == "metallic_roughness") {
-                read_metallic_roughness(o, m);
-            } else if (type == "principled") {
-                read_principled(o, m);
-            } else if (type == "diffuse_light") {
-                m.kind = MaterialKind::DiffuseLight;
-                m.emission = read_texture(o.required("radiance"), Range::Radiance);
-                if (auto x = o.optional("two_sided")) m.two_sided = x->boolean();
-                // Optional: the emitter also reflects, as a Lambertian surface.
-                if (auto x = o.optional("albedo")) m.albedo = read_texture(*x, Range::Reflectance);
-            } else {
-                type_value.fail("unknown material type \"" + type +
-                                "\" (expected lambertian, metal, mirror, dielectric, "
-                                "thin_dielectric, conductor, plastic, metallic_roughness, "
-                                "principled or diffuse_light; media are declared under /media)");
-            }
-            // An alpha mask, for any surface (scene/opacity.h).
-            if (auto x = o.optional("opacity")) m.opacity = read_texture(*x, Range::Reflectance);
-            // Normal and bump maps, for any surface (shading/normal_maps.h).
-            if (auto x = o.optional("normal_map"))
-                m.normal_map = read_texture(*x, Range::Reflectance);
-            if (auto x = o.optional("bump_map")) m.bump_map = read_texture(*x, Range::Radiance);
-            if (auto x = o.optional("bump_scale")) m.bump_scale = x->number();
-            if (auto x = o.optional("flip_invalid_normals")) m.flip_invalid_normals = x->boolean();
-            if (auto x = o.optional("bump_shadowing")) m.bump_shadowing = x->boolean();
-            if (auto x = o.optional("one_sided")) {
-                if (m.kind != MaterialKind::Lambertian && m.kind != MaterialKind::Metal &&
-                    m.kind != MaterialKind::Mirror && m.kind != MaterialKind::Conductor &&
-                    m.kind != MaterialKind::Plastic && m.kind != MaterialKind::MetallicRoughness)
-                    x->fail(
-                        "only lambertian, metal, mirror, conductor, plastic and "
-                        "metallic_roughness materials are one-sided or not");
-                m.one_sided = x->boolean();
-            }
-            o.finish();
-            materials_[name] = scene_.add_material(std::move(m));
-        }
+        for (const auto& [name, unused] : v.raw().items())
+            declared_materials_.emplace(name, all.required(name));
+        for (const auto& [name, unused] : v.raw().items()) named_material(name, nullptr);
         all.finish();
+    }
+
+    // The material /materials declares as `name`, read on first use; `from` the place that
+    // names it (nullptr: /materials itself).
+    MaterialId named_material(const std::string& name, const Value* from) {
+        if (auto it = materials_.find(name); it != materials_.end()) return it->second;
+        auto declared = declared_materials_.find(name);
+        if (declared == declared_materials_.end())
+            from->fail("no material named \"" + name + "\" in /materials");
+        if (!reading_materials_.insert(name).second)
+            from->fail("blend \"" + name + "\" contains itself");
+        const MaterialId id = read_material(declared->second, name);
+        reading_materials_.erase(name);
+        return materials_[name] = id;
+    }
+
+    MaterialId read_material(const Value& mv, const std::string& name) {
+        Object o(mv);
+        Value type_value = o.required("type");
+        std::string type = type_value.string();
+        Material m;
+        m.name = name;
+        if (type == "lambertian") {
+            m.kind = MaterialKind::Lambertian;
+            m.albedo = read_texture(o.required("albedo"), Range::Reflectance);
+        } else if (type == "metal") {
+            m.kind = MaterialKind::Metal;
+            m.albedo = read_texture(o.required("albedo"), Range::Reflectance);
+            if (auto x = o.optional("roughness")) m.roughness = x->in_range(0.0f, 1.0f);
+        } else if (type == "mirror") {
+            m.kind = MaterialKind::Mirror;
+            auto x = o.optional("albedo");
+            m.albedo = x ? read_texture(*x, Range::Reflectance) : scene_.add_solid(Vec3(1.0f));
+        } else if (type == "dielectric") {
+            m.kind = MaterialKind::Dielectric;
+            m.ior = read_relative_ior(o, read_ior(o.required("ior")));
+            read_roughness(o, m);
+            // Index-matched, the interface is invisible however rough it is (Walter's model
+            // degenerates to a delta there): the smooth dielectric says so exactly.
+            if (m.ior == 1.0f) m.alpha_u = m.alpha_v = 0.0f;
+        } else if (type == "conductor") {
+            read_conductor(o, m);
+        } else if (type == "thin_dielectric") {
+            m.kind = MaterialKind::ThinDielectric;
+            m.ior = read_relative_ior(o, read_ior(o.required("ior")));
+        } else if (type == "plastic") {
+            read_plastic(o, m);
+        } else if (type == "metallic_roughness") {
+            read_metallic_roughness(o, m);
+        } else if (type == "principled") {
+            read_principled(o, m);
+        } else if (type == "blend") {
+            read_blend(o, m);
+        } else if (type == "diffuse_light") {
+            m.kind = MaterialKind::DiffuseLight;
+            m.emission = read_texture(o.required("radiance"), Range::Radiance);
+            if (auto x = o.optional("two_sided")) m.two_sided = x->boolean();
+            // Optional: the emitter also reflects, as a Lambertian surface.
+            if (auto x = o.optional("albedo")) m.albedo = read_texture(*x, Range::Reflectance);
+        } else {
+            type_value.fail("unknown material type \"" + type +
+                            "\" (expected lambertian, metal, mirror, dielectric, "
+                            "thin_dielectric, conductor, plastic, metallic_roughness, "
+                            "principled, blend or diffuse_light; media are declared under "
+                            "/media)");
+        }
+        // An alpha mask, for any surface (scene/opacity.h).
+        if (auto x = o.optional("opacity")) m.opacity = read_texture(*x, Range::Reflectance);
+        // Normal and bump maps, for any surface (shading/normal_maps.h).
+        if (auto x = o.optional("normal_map")) m.normal_map = read_texture(*x, Range::Reflectance);
+        if (auto x = o.optional("bump_map")) m.bump_map = read_texture(*x, Range::Radiance);
+        if (auto x = o.optional("bump_scale")) m.bump_scale = x->number();
+        if (auto x = o.optional("flip_invalid_normals")) m.flip_invalid_normals = x->boolean();
+        if (auto x = o.optional("bump_shadowing")) m.bump_shadowing = x->boolean();
+        if (auto x = o.optional("one_sided")) {
+            if (m.kind != MaterialKind::Lambertian && m.kind != MaterialKind::Metal &&
+                m.kind != MaterialKind::Mirror && m.kind != MaterialKind::Conductor &&
+                m.kind != MaterialKind::Plastic && m.kind != MaterialKind::MetallicRoughness)
+                x->fail(
+                    "only lambertian, metal, mirror, conductor, plastic and "
+                    "metallic_roughness materials are one-sided or not");
+            m.one_sided = x->boolean();
+        }
+        o.finish();
+        return scene_.add_material(std::move(m));
+    }
+
+    // A blend of two materials, each a name in /materials or a material object, mixed by
+    // "weight": a number or a texture (its luminance) in [0, 1], 0 the first, 1 the second.
+    void read_blend(Object& o, Material& m) {
+        m.kind = MaterialKind::Blend;
+        Value list = o.required("materials");
+        if (list.size() != 2) list.fail("expected two materials, names or objects");
+        for (size_t k = 0; k < 2; ++k) {
+            const Value c = list[k];
+            m.blend[k] = c.is_string() ? named_material(c.string(), &c)
+                                       : read_material(c, m.name + "/" + std::to_string(k));
+            // A hit chooses once its surface is shaded; what is decided before (what emits,
+            // cuts away, passes shadow rays or bounds a medium) must be the blend's own.
+            const Material& x = scene_.materials[m.blend[k]];
+            if (x.is_emissive() || x.opacity != kNone || x.kind == MaterialKind::ThinDielectric ||
+                x.kind == MaterialKind::Interface || x.kind == MaterialKind::Isotropic ||
+                x.kind == MaterialKind::DiffuseLight)
+                c.fail(std::string("a blend's materials cannot emit, have an opacity, or be a "
+                                   "thin_dielectric (found ") +
+                       to_string(x.kind) + ")");
+        }
+        if (auto x = o.optional("weight")) {
+            if (x->is_object())
+                m.blend_weight.texture = read_texture(*x, Range::Reflectance);
+            else
+                m.blend_weight.value = x->in_range(0.0f, 1.0f);
+        }
     }
 
     void read_media(const Value& v) {
@@ -1397,6 +1447,8 @@ class Loader {
     const std::map<std::string, PbrtMesh>* memory_meshes_ = nullptr;
     Scene scene_;
     std::map<std::string, MaterialId> materials_;
+    std::map<std::string, Value> declared_materials_;  // /materials, before each is read
+    std::set<std::string> reading_materials_;          // blends being read, to find cycles
     std::map<std::string, MediumId> media_;
     size_t skipped_triangles_ = 0;
 };

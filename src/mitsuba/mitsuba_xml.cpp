@@ -846,7 +846,25 @@ class Translator {
         };
         if (type == "twosided") {
             m = wrapped("twosided");
-            m.erase("one_sided");
+            two_sided(m);
+        } else if (type == "blendbsdf") {
+            const std::vector<const Element*> inner = p.nested("bsdf");
+            if (inner.size() != 2) fail(e, "blendbsdf: needs two nested BSDFs");
+            m = {{"type", "blend"}, {"materials", json::array()}};
+            for (const Element* b : inner) {
+                json c = bsdf(*b, depth + 1);
+                // What a hit decides before it is shaded must be the blend's own.
+                if (c.contains("opacity") || c["type"] == "thin_dielectric")
+                    fail(*b,
+                         "blendbsdf: a mask or a thindielectric inside a blend is not "
+                         "supported; put the mask around the blend");
+                m["materials"].push_back(std::move(c));
+            }
+            // Mitsuba reads the weight as a number (eval_1), a checkerboard's cells the other
+            // way round (texture(..., true)).
+            const Element* w = p.get("weight");
+            if (!w) fail(e, "blendbsdf: needs a weight");
+            m["weight"] = w->tag == "texture" ? texture(*w, true) : json(p.number("weight", 0.5));
         } else if (type == "mask") {
             m = wrapped("mask");
             m["opacity"] = color_property(p, "opacity", 0.5, true, false, /*scalar=*/true);
@@ -946,6 +964,14 @@ class Translator {
         }
         p.finish({"sample_visible", "id"});
         return m;
+    }
+
+    // A material seen from both sides, as Mitsuba's twosided makes its BSDF: a blend's
+    // materials each.
+    static void two_sided(json& m) {
+        m.erase("one_sided");
+        if (m["type"] == "blend")
+            for (json& c : m["materials"]) two_sided(c);
     }
 
     // The material name of a <bsdf> element, translated once however often it is referenced.

@@ -1063,12 +1063,31 @@ class Translator {
         } else if (type == "mix") {
             PbrtParam* q = p.get("materials");
             if (!q || q->strings.size() != 2) fail(place, p.what + ": needs two \"materials\"");
-            warn(place, p.what + ": a mix is not supported; the first material \"" + q->strings[0] + "\" is used");
-            auto it = named_materials_.find(q->strings[0]);
-            if (it == named_materials_.end()) fail(q->place, "no material named \"" + q->strings[0] + "\"");
-            p.get("amount");
-            p.finish(pwarn());
-            return it->second;
+            // pbrt-v4's MixMaterial: the second with probability "amount", as our blend.
+            m = {{"type", "blend"}, {"materials", json::array()}};
+            for (const std::string& n : q->strings) {
+                auto it = named_materials_.find(n);
+                if (it == named_materials_.end()) fail(q->place, "no material named \"" + n + "\"");
+                const json& c = it->second == kInterface ? json() : out_["materials"][it->second];
+                if (it->second == kInterface || c.contains("opacity") ||
+                    c["type"] == "thin_dielectric")
+                    fail(q->place, p.what + ": \"" + n +
+                                       "\" cannot be mixed (no surface, an alpha "
+                                       "mask or a thindielectric)");
+                m["materials"].push_back(it->second);
+            }
+            PbrtParam* amount = p.get("amount");
+            if (amount && amount->type == "texture") {
+                auto it = float_textures_.find(amount->strings.at(0));
+                if (it == float_textures_.end())
+                    fail(amount->place, "no float texture named \"" + amount->strings.at(0) + "\"");
+                m["weight"] = it->second;
+            } else {
+                if (amount && amount->numbers.size() != 1)
+                    fail(amount->place, p.what + ": \"amount\" should be one float");
+                // pbrt takes an amount outside [0, 1] as its nearer end.
+                m["weight"] = amount ? std::clamp<double>(amount->numbers[0], 0.0, 1.0) : 0.5;
+            }
         } else {
             warn(place, p.what + ": material \"" + type + "\" is not supported; a grey diffuse stands in");
             m = {{"type", "lambertian"}, {"albedo", 0.5}};

@@ -17,7 +17,31 @@ bool material_reads_uv(const Scene& scene, const Material& m) {
         m.principled.for_each([&](const char*, const TexturedNumber& w) {
             reads = reads || texture_reads_uv(scene, w.texture);
         });
+    if (m.kind == MaterialKind::Blend) {
+        reads = reads || texture_reads_uv(scene, m.blend_weight.texture);
+        for (const MaterialId b : m.blend)
+            reads = reads || material_reads_uv(scene, scene.materials[b]);
+    }
     return reads;
+}
+
+MaterialId blend_choice(const Scene& scene, MaterialId m, Vec2 uv, Point3 p, float u) {
+    while (m != kNone && scene.materials[m].kind == MaterialKind::Blend) {
+        const Material& b = scene.materials[m];
+        const TexturedNumber& x = b.blend_weight;
+        const float w = std::clamp(
+            x.texture == kNone ? x.value : luminance(eval_texture(scene, x.texture, uv, p)), 0.0f,
+            1.0f);
+        if (u < w) {
+            m = b.blend[1];
+            u = u / w;
+        } else {
+            m = b.blend[0];
+            u = w < 1.0f ? (u - w) / (1.0f - w) : 0.0f;
+        }
+        u = std::min(u, 0x1.fffffep-1f);
+    }
+    return m;
 }
 
 void principled_at(const Scene& scene, const Material& m, Vec2 uv, Point3 p, BsdfParams* b) {

@@ -1,5 +1,6 @@
 // What a material's textures give at a surface point, beyond its albedo: the weights of a
-// principled material, and whether any of its textures needs the point's uv at all.
+// principled material, the material a blend takes there, and whether any of its textures needs
+// the point's uv at all.
 #pragma once
 
 #include "bsdfs/bsdf.h"
@@ -11,12 +12,18 @@ namespace wavetrace {
 struct Scene;
 
 // Whether any texture or map of m reads texture coordinates (a sphere's cost an acos and an
-// atan2 to find).
+// atan2 to find); of a blend, its weight's or either material's.
 bool material_reads_uv(const Scene& scene, const Material& m);
 
 // The weights of a principled material m at texture coordinates uv and point p, into b (whose
 // albedo is its base colour there): each a texture's luminance or a number, clamped to its
 // range; the main lobes' GGX alphas and the clearcoat's GTR1 alpha from them.
 void principled_at(const Scene& scene, const Material& m, Vec2 uv, Point3 p, BsdfParams* b);
+
+// The material a hit on material m takes at texture coordinates uv and point p, u uniform in
+// [0, 1): m itself unless it is a blend; a blend's second material where u < w (its weight
+// there), else its first, and so on down nested blends, u rescaled at each choice to stay
+// uniform over the part it fell in.
+MaterialId blend_choice(const Scene& scene, MaterialId m, Vec2 uv, Point3 p, float u);
 
 }  // namespace wavetrace

@@ -35,6 +35,8 @@ const char* to_string(MaterialKind kind) {
             return "metallic_roughness";
         case MaterialKind::Principled:
             return "principled";
+        case MaterialKind::Blend:
+            return "blend";
     }
     return "?";
 }

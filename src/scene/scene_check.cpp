@@ -74,6 +74,28 @@ void check_scene(const Scene& scene) {
                 fail("material", i,
                      std::string(name) + (top > 1 ? " must be in [0, 2]" : " must be in [0, 1]"));
         });
+        if (m.kind == MaterialKind::Blend) {
+            check_texture(i, m.blend_weight.texture, "a blend's weight", false);
+            if (!(m.blend_weight.value >= 0 && m.blend_weight.value <= 1))
+                fail("material", i, "a blend's weight must be in [0, 1]");
+            for (const MaterialId b : m.blend) {
+                // Materials come first, as sub-textures do: choosing one ends.
+                if (b >= i) fail("material", i, "a blend's materials must be added before it");
+                // A hit decides between them once its surface is shaded; what is decided
+                // before that (what emits, cuts away, passes shadow rays or bounds a medium)
+                // must be the blend's own.
+                const Material& c = scene.materials[b];
+                if (c.is_emissive() || c.opacity != kNone || c.kind == MaterialKind::DiffuseLight ||
+                    c.kind == MaterialKind::ThinDielectric || c.kind == MaterialKind::Interface ||
+                    c.kind == MaterialKind::Isotropic)
+                    fail("material", i,
+                         "a blend's materials cannot emit, be cut away, be a thin dielectric, a "
+                         "medium's interface or a phase function (blend " +
+                             std::string(to_string(c.kind)) + " \"" + c.name + "\")");
+            }
+        }
+        if (m.is_emissive() && m.kind == MaterialKind::Blend)
+            fail("material", i, "a blend cannot emit; its materials are chosen at each hit");
         if (!(m.ior > 0) || !std::isfinite(m.ior)) fail("material", i, "ior must be positive");
         if (!(m.alpha_u >= 0 && m.alpha_v >= 0 && m.alpha_u <= 64 && m.alpha_v <= 64))
             fail("material", i, "alpha_u and alpha_v must be in [0, 64]");

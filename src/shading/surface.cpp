@@ -1,6 +1,7 @@
 #include "wavetrace/shading/surface.h"
 
 #include "scene/hit_geometry.h"
+#include "scene/hit_hash.h"
 #include "scene/material_lookup.h"
 #include "scene/surface_point-inl.h"
 #include "wavetrace/scene/scene.h"
@@ -59,6 +60,11 @@ SurfaceHit surface_at(const Scene& scene, const Ray& ray, const Hit& hit) {
             break;
         }
     }
+    // A blend becomes one of its materials here, where both engines and every walk of a ray
+    // meet the hit, so that all that follows sees one material.
+    if (s.material != kNone && scene.materials[s.material].kind == MaterialKind::Blend)
+        s.material =
+            blend_choice(scene, s.material, s.uv, s.p, hit_hash(ray, hit.prim, HitDecision::Blend));
     if (s.material != kNone && scene.materials[s.material].needs_tangents()) {
         const Tangents t = hit_tangents(scene, hit.prim, s.p);
         s.dpdu = t.dpdu;

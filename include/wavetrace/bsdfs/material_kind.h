@@ -22,8 +22,10 @@ enum class MaterialKind : uint8_t {
     MetallicRoughness,  // glTF 2.0's metallic-roughness material, with its transmission and
                         // clearcoat extensions
     Principled,         // Mitsuba 3's principled BSDF (Burley's Disney BSDF), or its thin sheet
+    Blend,  // one of two materials at each hit (Mitsuba 3's blendbsdf, pbrt-v4's mix): chosen
+            // where the hit is found (shading/surface.h), so no BSDF of this kind is evaluated
 };
-inline constexpr int kMaterialKinds = int(MaterialKind::Principled) + 1;
+inline constexpr int kMaterialKinds = int(MaterialKind::Blend) + 1;
 
 // The microfacet normal distributions of rough materials (bsdfs/microfacet.h).
 enum class Microfacet : uint8_t {

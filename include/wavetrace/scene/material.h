@@ -106,6 +106,13 @@ struct Material {
     // Principled: albedo is the base colour, ior the index of refraction; the lobes' weights.
     PrincipledWeights principled;
 
+    // Blend (Mitsuba 3's blendbsdf, pbrt-v4's mix): the materials blend[0] and blend[1], added
+    // before it, mixed as (1 - w) f0 + w f1 with w = blend_weight at the hit, clamped to [0, 1].
+    // Each hit takes blend[1] with probability w and blend[0] otherwise (pbrt-v4's
+    // MixMaterial), which has that mixture as its expected value; shading/surface.h.
+    TexturedNumber blend_weight{0.5f};
+    MaterialId blend[2] = {kNone, kNone};
+
     // Any surface material: an alpha mask, the surface cut away where the texture's luminance
     // is below 1 (kNone: opaque; src/scene/opacity.h).
     TextureId opacity = kNone;
