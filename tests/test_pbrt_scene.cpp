@@ -17,6 +17,7 @@
 #include "cli_run.h"
 #include "load_warnings.h"
 #include "ramp_image.h"
+#include "scene/delta_lights.h"
 #include "temp_dir.h"
 #include "wavetrace/wavetrace.h"
 
@@ -277,6 +278,54 @@ Shape "sphere"
     EXPECT_NEAR(s.lights[2].direction.z, 1.0f, 1e-5f);
     EXPECT_EQ(s.background.kind, Background::Kind::Constant);
     EXPECT_NEAR(s.background.radiance.y, 0.2f, 1e-6f);
+}
+
+// pbrt-v4's projection light: its image's nearest texel times scale is the intensity itself
+// (no 1/cos^3 as Mitsuba's projector has), through a frustum of `fov` on the image's shorter
+// side, the image upright towards the light's +y and its right towards +x (pbrt flips the
+// light's y): four coloured quadrants, and a 2 x 1 ramp (texels 0 and 1, left to right).
+TEST(PbrtScenes, ProjectionLightsProjectIntensityUpright) {
+    TempDir dir;
+    Image img(2, 2);
+    img.at(0, 0) = Color(1, 0, 0);  // top left
+    img.at(1, 0) = Color(0, 1, 0);  // top right
+    img.at(0, 1) = Color(0, 0, 1);  // bottom left
+    img.at(1, 1) = Color(1, 1, 1);
+    write_image(dir.path() / "quads.exr", img);
+    write_image(dir.path() / "wide.exr", ramp_image(2, 1));
+    auto path = dir.write("a.pbrt", R"(Camera "perspective"
+WorldBegin
+LightSource "projection" "string filename" "quads.exr" "float fov" 60 "float scale" 3
+LightSource "projection" "string filename" "wide.exr" "float fov" 40
+Shape "sphere"
+)");
+    Scene s = load_scene(path, collecting());
+    EXPECT_TRUE(warnings.empty()) << (warnings.empty() ? "" : warnings.front());
+    ASSERT_EQ(s.lights.size(), 2u);
+    const Light& l = s.lights[0];
+    EXPECT_EQ(l.kind, Light::Kind::Projector);
+    EXPECT_TRUE(l.projects_intensity);
+    const float t = std::tan(30.0f * 3.14159265f / 180.0f);
+    EXPECT_NEAR(l.half_width, t, 1e-5f);
+    EXPECT_NEAR(l.half_height, t, 1e-5f);
+    auto at = [&](const Light& x, float sx, float sy) {  // towards screen point (sx, sy)
+        return delta_light_intensity(s, x, normalize(Vec3(sx, sy, 1.0f)));
+    };
+    const Color tl = at(l, -0.5f * t, 0.5f * t), tr = at(l, 0.5f * t, 0.5f * t),
+                bl = at(l, -0.5f * t, -0.5f * t);
+    EXPECT_NEAR(tl.x, 3.0f, 1e-5f);
+    EXPECT_NEAR(tl.y + tl.z, 0.0f, 1e-6f);
+    EXPECT_NEAR(tr.y, 3.0f, 1e-5f);
+    EXPECT_NEAR(tr.x + tr.z, 0.0f, 1e-6f);
+    EXPECT_NEAR(bl.z, 3.0f, 1e-5f);
+    EXPECT_EQ(max_component(at(l, 1.1f * t, 0.0f)), 0.0f);  // outside the frustum
+    // The 2:1 image: the field of view on its shorter (vertical) side.
+    const Light& w = s.lights[1];
+    const float u = std::tan(20.0f * 3.14159265f / 180.0f);
+    EXPECT_NEAR(w.half_height, u, 1e-5f);
+    EXPECT_NEAR(w.half_width, 2 * u, 1e-5f);
+    EXPECT_NEAR(at(w, -u, 0.0f).x, 0.0f, 1e-6f);
+    EXPECT_NEAR(at(w, u, 0.0f).x, 1.0f, 1e-6f);
 }
 
 // pbrt-v4's image infinite light: a square equal-area map in the light's frame (here turned

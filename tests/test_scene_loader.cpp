@@ -6,11 +6,13 @@
 #include <string>
 #include <vector>
 
+#include "scene/delta_lights.h"
 #include "temp_dir.h"
 #include "test_paths.h"
 #include "wavetrace/accel/bvh.h"
 #include "wavetrace/image/image.h"
 #include "wavetrace/loaders/load_scene.h"
+#include "wavetrace/math/constants.h"
 #include "wavetrace/scene/scene.h"
 #include "wavetrace/shading/surface.h"
 
@@ -433,6 +435,20 @@ TEST(SceneLoader, ProjectorFrustumFollowsItsFieldOfView) {
     const Light d = load(R"({"type": "projector", "position": [0, 2, 0], "look_at": [0, 0, 0],
         "fov": 90, "fov_axis": "diagonal"})");
     EXPECT_NEAR(d.half_width, std::sqrt(0.5f), 1e-6f);
+    EXPECT_FALSE(x.projects_intensity);
+    // pbrt's projection light: the intensity itself, and its power the mean over the frustum's
+    // solid angle, 2π/3 for a 90-degree square (a cube's face from its centre).
+    const Light i = load(R"({"type": "projector", "position": [0, 2, 0], "look_at": [0, 0, 0],
+        "intensity": [1, 1, 1], "scale": 3})");
+    EXPECT_TRUE(i.projects_intensity);
+    EXPECT_EQ(i.intensity, Color(3.0f));
+    Scene one;
+    one.lights.push_back(i);
+    EXPECT_NEAR(delta_light_power(one, i, 1.0f), 3.0f * 4.0f * kPi / 6.0f, 1e-4f);
+    EXPECT_EQ(load_error(dir, std::string("{") + kCamera + R"(, "objects": [], "lights": [
+        {"type": "projector", "position": [0, 2, 0], "look_at": [0, 0, 0], "irradiance": 1,
+         "intensity": 1}]})"),
+              ": /lights/0/intensity: give \"irradiance\" or \"intensity\", not both");
     EXPECT_EQ(load_error(dir, std::string("{") + kCamera + R"(, "objects": [], "lights": [
         {"type": "projector", "position": [0, 2, 0], "look_at": [0, 0, 0], "fov_axis": "z"}]})"),
               ": /lights/0/fov_axis: unknown fov_axis \"z\" (expected x, y, diagonal, smaller or "

@@ -220,7 +220,10 @@ void bind_scene(py::module_& m) {
                        "spot with a texture, projector: the image's top, unit, across the axis")
         .def_readwrite("half_width", &Light::half_width,
                        "projector: the frustum's half width at unit distance (a tangent)")
-        .def_readwrite("half_height", &Light::half_height, "projector: ... and half height");
+        .def_readwrite("half_height", &Light::half_height, "projector: ... and half height")
+        .def_readwrite("projects_intensity", &Light::projects_intensity,
+                       "projector: intensity x texture is the intensity (pbrt-v4's projection "
+                       "light), not Mitsuba's irradiance at unit distance");
 
     py::class_<PixelFilter> filter(m, "PixelFilter");
     py::enum_<PixelFilter::Kind>(filter, "Kind")

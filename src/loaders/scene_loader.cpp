@@ -704,10 +704,10 @@ class Loader {
     }
 
     // Mitsuba 3's projector: a pinhole at `position` looking at `look_at` (`up`, default as a
-    // camera's, the image's top), projecting `irradiance` (a colour, or a texture) times
-    // `scale` through a frustum of field of view `fov` degrees (default 90) on `fov_axis` (x, y,
-    // diagonal, smaller or larger, as Mitsuba's sensors; default x), its aspect the image's
-    // (1 for any other texture or a colour).
+    // camera's, the image's top), projecting `irradiance` (a colour, or a texture; or
+    // `intensity`, pbrt-v4's projection light) times `scale` through a frustum of field of view
+    // `fov` degrees (default 90) on `fov_axis` (x, y, diagonal, smaller or larger, as Mitsuba's
+    // sensors; default x), its aspect the image's (1 for any other texture or a colour).
     void read_projector(Object& o, Light& light) {
         light.kind = Light::Kind::Projector;
         read_aim(o, light);
@@ -716,16 +716,22 @@ class Loader {
         if (auto x = o.optional("scale")) scale = x->non_negative();
         float aspect = 1.0f;
         light.intensity = Color(scale);
-        if (auto x = o.optional("irradiance")) {
-            if (x->is_object()) {
-                light.texture = read_texture(*x, Range::Radiance);
+        std::optional<Value> given = o.optional("irradiance");
+        if (auto i = o.optional("intensity")) {
+            if (given) i->fail("give \"irradiance\" or \"intensity\", not both");
+            light.projects_intensity = true;
+            given = i;
+        }
+        if (given) {
+            if (given->is_object()) {
+                light.texture = read_texture(*given, Range::Radiance);
                 const Texture& t = scene_.textures[light.texture];
                 if (t.kind == TextureKind::Image) {
                     const ImageData& image = scene_.images[t.image];
                     aspect = float(image.width) / float(image.height);
                 }
             } else {
-                light.intensity = x->color() * scale;
+                light.intensity = given->color() * scale;
             }
         }
         float fov = 90.0f;

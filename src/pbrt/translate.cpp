@@ -1207,6 +1207,31 @@ class Translator {
                                {"intensity", color_json(i * static_cast<float>(scale))},
                                {"cutoff", cone}, {"falloff_start", start},
                                {"falloff", "smoothstep"}});
+        } else if (type == "projection") {
+            // pbrt-v4's ProjectionLight: at the CTM's origin along its +z, the image's texel
+            // (nearest) times scale is the intensity through a frustum of `fov` on the image's
+            // shorter side. pbrt flips the light's y, so that the image's top lies towards +y
+            // and its right towards +x, where our projector's right is axis x up = -x: the
+            // image is looked up mirrored in u.
+            const std::string file = p.string("filename", "");
+            if (file.empty()) fail(place, "LightSource projection: needs a \"filename\"");
+            const V3 from = apply_point(m, {0, 0, 0});
+            const V3 axis = normalized(apply_vector(m, {0, 0, 1}));
+            if (p.get("power"))
+                warn(place, "LightSource projection: power is not supported; scale is used");
+            lights_.push_back({{"type", "projector"},
+                               {"position", to_json(from)},
+                               {"look_at", to_json(add(from, axis))},
+                               {"up", to_json(apply_vector(m, {0, 1, 0}))},
+                               {"intensity",
+                                {{"type", "image"},
+                                 {"file", reader_.relative(file)},
+                                 {"filter", "nearest"},
+                                 {"wrap", "clamp"},
+                                 {"uv_transform", {{"scale", {-1, 1}}, {"offset", {1, 0}}}}}},
+                               {"scale", scale},
+                               {"fov", p.number("fov", 90)},
+                               {"fov_axis", "smaller"}});
         } else if (type == "distant") {
             const Color l = intensity("L");
             const double e = p.number("illuminance", -1);

@@ -53,7 +53,7 @@ Color delta_light_intensity(const Scene& scene, const Light& l, Vec3 d) {
             if (!(uv.x >= 0.0f && uv.x <= 1.0f && uv.y >= 0.0f && uv.y <= 1.0f)) return Color(0.0f);
             const Color t =
                 l.texture == kNone ? Color(1.0f) : eval_texture(scene, l.texture, uv, l.position);
-            return l.intensity * t * (kPi / (z * z * z));
+            return l.projects_intensity ? l.intensity * t : l.intensity * t * (kPi / (z * z * z));
         }
         case Light::Kind::Directional:
             break;
@@ -75,7 +75,14 @@ float delta_light_power(const Scene& scene, const Light& l, float scene_radius) 
         case Light::Kind::Projector: {
             const float mean_texture =
                 l.texture == kNone ? 1.0f : luminance(texture_mean(scene, l.texture));
-            return kPi * lum * mean_texture * 4.0f * l.half_width * l.half_height;
+            // Mitsuba's: pi I t over the frustum's area at unit distance (cos^3 is the solid
+            // angle's dA); pbrt's: I t over the frustum's solid angle, that of a rectangular
+            // pyramid, 4 asin(w h / sqrt((1 + w^2) (1 + h^2))).
+            const float w = l.half_width, h = l.half_height;
+            return l.projects_intensity
+                       ? lum * mean_texture * 4.0f *
+                             std::asin(w * h / std::sqrt((1.0f + w * w) * (1.0f + h * h)))
+                       : kPi * lum * mean_texture * 4.0f * w * h;
         }
         case Light::Kind::Directional:
             return kPi * scene_radius * scene_radius * lum;

@@ -19,7 +19,9 @@ struct Light {
         Projector,    // Mitsuba 3's projector: a pinhole projecting `texture` (or white) through
                       // a rectangular frustum about `direction`; a white Lambertian plane at
                       // unit distance across the axis shows radiance `intensity` x texture
-                      // (intensity pi `intensity` texture / cos^3 theta, theta from the axis)
+                      // (intensity pi `intensity` texture / cos^3 theta, theta from the axis),
+                      // or with projects_intensity pbrt-v4's projection light (intensity
+                      // `intensity` texture)
     };
     // How a spot light's intensity falls from the falloff start to the cutoff.
     enum class Falloff : uint8_t {
@@ -46,6 +48,9 @@ struct Light {
     Vec3 up{0.0f, 1.0f, 0.0f};  // spot with a texture, projector: unit, orthogonal to `direction`
     // projector: the frustum's half extents at unit distance along the axis (tangents).
     float half_width = 1.0f, half_height = 1.0f;
+    // projector: `intensity` x texture is the intensity itself, the same towards every texel
+    // (pbrt-v4's projection light), rather than Mitsuba's irradiance at unit distance.
+    bool projects_intensity = false;
 
     // A point light of `intensity` at `position`.
     static Light point(Point3 position, Color intensity) {
