@@ -627,13 +627,19 @@ TEST(MitsubaScenes, BadInputNamesTheFileAndLine) {
         {"<shape type=\"sphere\">\n<ref id=\"nothing\"/></shape>", "no element with id"},
         {"<bsdf type=\"diffuse\" id=\"x\"/>\n<bsdf type=\"diffuse\" id=\"x\"/>", "duplicate id"},
         {"<shape type=\"sphere\"><bsdf type=\"diffuse\">\n<rgb name=\"reflectance\" value=\"1 2\"/>"
-         "</bsdf></shape>", "a.xml:3"},
+         "</bsdf></shape>",
+         "a.xml:3"},
         {"<shape type=\"sphere\">\n<transform name=\"to_world\"><shear/></transform></shape>",
          "a.xml:3"},
         {"<shape type=\"sphere\"><float name=\"radius\" value=\"1\">", "a.xml"},
         // A reflectance above 1, found by the JSON loader: the material names its element.
         {"<shape type=\"sphere\"><bsdf type=\"diffuse\">\n<rgb name=\"reflectance\" value=\"2\"/>"
-         "</bsdf></shape>", "diffuse at a.xml:2"},
+         "</bsdf></shape>",
+         "diffuse at a.xml:2"},
+        // ... and in a light: its element's line.
+        {"\n<emitter type=\"spot\"><texture name=\"texture\" type=\"bitmap\">"
+         "<string name=\"filename\" value=\"missing.png\"/></texture></emitter>",
+         "a.xml:3: /lights/0/texture/file: cannot open image"},
     };
     for (const Case& c : cases) {
         auto path = dir.write("a.xml", scene(c.body));

@@ -590,6 +590,10 @@ TEST(PbrtScenes, BadInputNamesTheFileAndLine) {
         {"Shape \"sphere\" \"float radius\" -1", "a.pbrt:3: Shape sphere: radius must be > 0"},
         {"Texture \"t\" \"color\" \"imagemap\"", "the kind is \"float\" or \"spectrum\""},
         {"Material \"diffuse\" \"texture reflectance\" \"nope\"", "a.pbrt:3: no texture named \"nope\""},
+        // Found by the JSON loader in a light: the directive's line.
+        {"\nLightSource \"projection\" \"string filename\" \"missing.png\"",
+         "a.pbrt:4: /lights/0/intensity/file: cannot open image"},
+        {"LightSource \"point\" \"float scale\" -1", "a.pbrt:3: /lights/0/intensity"},
     };
     for (const auto& [line, expected] : cases) {
         auto path = dir.write("a.pbrt", head + line + "\n");

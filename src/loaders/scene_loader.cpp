@@ -1461,10 +1461,13 @@ class Loader {
 
 }  // namespace
 
-// An error the JSON loader finds in a translated document's object names the place in the
-// source file (an XML element, a pbrt directive) it came from.
-Scene build_translated(const fs::path& path, const LoadOptions& options, nlohmann::json scene,
-                       const std::vector<std::string>& places,
+// An error the JSON loader finds in a translated document's object, light or background names
+// the place in the source file (an XML element, a pbrt directive) it came from.
+Scene build_translated(const fs::path& path,
+                       const LoadOptions& options,
+                       nlohmann::json scene,
+                       const std::vector<std::string>& object_places,
+                       const std::vector<std::string>& light_places,
                        const std::string& background_place,
                        const std::map<std::string, PbrtMesh>* meshes) {
     const std::string file = path.string();
@@ -1472,14 +1475,17 @@ Scene build_translated(const fs::path& path, const LoadOptions& options, nlohman
         return Loader(path, options).build(std::move(scene), meshes);
     } catch (const SceneError& e) {
         std::string message = e.what();
-        const std::string prefix = file + ": /objects/";
-        if (message.rfind(prefix, 0) == 0) {
+        auto entry_of = [&](const char* array, const std::vector<std::string>& places) {
+            const std::string prefix = file + ": /" + array + "/";
+            if (message.rfind(prefix, 0) != 0) return false;
             const size_t index = std::strtoul(message.c_str() + prefix.size(), nullptr, 10);
             if (index < places.size())
                 message = places[index] + ": " + message.substr(file.size() + 2);
-        } else if (!background_place.empty() && message.rfind(file + ": /background", 0) == 0) {
+            return true;
+        };
+        if (!entry_of("objects", object_places) && !entry_of("lights", light_places) &&
+            !background_place.empty() && message.rfind(file + ": /background", 0) == 0)
             message = background_place + ": " + message.substr(file.size() + 2);
-        }
         throw SceneError(message);
     }
 }
@@ -1500,7 +1506,7 @@ Scene load_mitsuba(const fs::path& path, const LoadOptions& options) {
                                          "Mitsuba scene has one sensor");
     MitsubaDocument doc = translate_mitsuba_xml(path, options.params, warner(options), options.asset_root);
     return build_translated(path, options, std::move(doc.scene), doc.object_places,
-                            doc.background_place, nullptr);
+                            doc.light_places, doc.background_place, nullptr);
 }
 
 // A pbrt-v4 file: the same, its written-out meshes held in memory.
@@ -1513,7 +1519,7 @@ Scene load_pbrt(const fs::path& path, const LoadOptions& options) {
                                          "scene has none");
     PbrtDocument doc = translate_pbrt(path, warner(options), options.asset_root);
     return build_translated(path, options, std::move(doc.scene), doc.object_places,
-                            doc.background_place, &doc.meshes);
+                            doc.light_places, doc.background_place, &doc.meshes);
 }
 
 namespace {

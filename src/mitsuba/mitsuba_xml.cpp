@@ -1282,6 +1282,7 @@ class Translator {
             warn(e, "emitter \"" + type + "\" is not supported; ignored");
             return;
         }
+        doc_.light_places.resize(lights_.size(), e.place);
         p.finish();
     }
 

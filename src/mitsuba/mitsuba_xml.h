@@ -17,7 +17,8 @@ struct MitsubaDocument {
     nlohmann::json scene;  // our JSON scene; file names relative to the XML file's folder
     // For each entry of scene["objects"]: the XML element it came from ("a.xml:12").
     std::vector<std::string> object_places;
-    // The element the background came from, if any.
+    // For each entry of scene["lights"]: the element it came from; the background's, if any.
+    std::vector<std::string> light_places;
     std::string background_place;
 };
 

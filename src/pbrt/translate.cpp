@@ -1260,6 +1260,7 @@ class Translator {
             warn(place, "LightSource \"" + type + "\" is not supported; ignored");
             for (PbrtParam& q : p.list) q.used = true;
         }
+        doc_.light_places.resize(lights_.size(), place);
         p.finish(pwarn());
     }
 

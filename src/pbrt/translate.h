@@ -28,7 +28,8 @@ struct PbrtDocument {
     nlohmann::json scene;  // our JSON scene; file names relative to the pbrt file's folder
     // For each entry of scene["objects"]: the directive it came from ("a.pbrt:12").
     std::vector<std::string> object_places;
-    // The directive the background came from, if any.
+    // For each entry of scene["lights"]: the directive it came from; the background's, if any.
+    std::vector<std::string> light_places;
     std::string background_place;
     // The meshes written out in the file, by the "file" name their mesh objects give
     // ("@mesh/3": never a real file); the loader takes them from here, `convert` writes them.
