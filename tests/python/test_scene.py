@@ -101,6 +101,31 @@ def test_a_built_scene_is_checked_before_it_is_rendered():
         wt.Material(colour=(1, 0, 0))
 
 
+def test_a_blend_built_in_python_renders_as_the_same_blend_from_json(tmp_path):
+    (tmp_path / "b.json").write_text(json.dumps({
+        "camera": {"look_from": [0, 0, 5], "look_at": [0, 0, 0]},
+        "background": {"type": "constant", "radiance": [1, 1, 1]},
+        "materials": {"red": {"type": "lambertian", "albedo": [0.8, 0.1, 0.1]},
+                      "m": {"type": "blend", "weight": 0.25,
+                            "materials": ["red", {"type": "mirror"}]}},
+        "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "m"}]}))
+    s = wt.Scene()
+    s.camera = wt.Camera(look_from=(0, 0, 5), look_at=(0, 0, 0))
+    s.background = wt.Background(radiance=(1, 1, 1))
+    red = s.add_material(wt.Material(kind=wt.MaterialKind.Lambertian,
+                                      albedo=s.add_solid((0.8, 0.1, 0.1))))
+    mirror = s.add_material(wt.Material(kind=wt.MaterialKind.Mirror, albedo=s.add_solid((1, 1, 1))))
+    blend = s.add_material(wt.Material(kind=wt.MaterialKind.Blend, blend_materials=(red, mirror),
+                                       blend_weight=0.25))
+    s.add_sphere(wt.Sphere(center=(0, 0, 0), radius=1, material=blend))
+    a = wt.render(s, width=16, height=16, spp=4)
+    b = wt.render(wt.load_scene(tmp_path / "b.json"), width=16, height=16, spp=4)
+    assert np.array_equal(a, b)
+    s.add_material(wt.Material(kind=wt.MaterialKind.Blend, blend_materials=(blend, 99)))
+    with pytest.raises(wt.SceneError, match="must be added before it"):
+        s.check()
+
+
 def test_a_mesh_from_arrays_is_hit_where_it_lies():
     s = wt.Scene()
     m = s.add_material(wt.Material(kind=wt.MaterialKind.Lambertian,
