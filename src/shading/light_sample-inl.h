@@ -81,7 +81,7 @@ struct VertexLightSample {
     typename L::M valid;      // false: no contribution (back face, below the surface ...)
     V3<typename L::F> value;  // f |cos| Le / p_light: unweighted, unoccluded
     typename L::F pdf_light, pdf_bsdf;
-    V3<typename L::F> origin, wi;  // the shadow ray, t in [0, tmax]
+    V3<typename L::F> origin, wi;  // the shadow ray (ShadowRayTo), t in [0, tmax]
     typename L::F tmax;
 };
 
@@ -90,6 +90,29 @@ struct VertexLightSample {
 template <class L>
 HWY_INLINE typename L::F ShadowRayEnd(typename L::F dist) {
     return dist * L::Set(1.0f - 1e-4f);
+}
+
+// The shadow ray from p (geometric normal ng) towards a light point at unit direction wi and
+// distance dist: from p's offset origin (OffsetRayOrigin), aimed at the point itself and ending
+// ShadowRayEnd short of it. Aimed along wi from the offset origin, the ray would be displaced by
+// the offset, which carries it across a light seen at a grazing angle before its end. A point at
+// infinity (dist infinite) keeps wi.
+template <class L>
+HWY_INLINE void ShadowRayTo(V3<typename L::F> p,
+                            V3<typename L::F> ng,
+                            V3<typename L::F> wi,
+                            typename L::F dist,
+                            V3<typename L::F>* origin,
+                            V3<typename L::F>* dir,
+                            typename L::F* tmax) {
+    using F = typename L::F;
+    *origin = OffsetRayOrigin<L>(p, ng, wi);
+    const auto finite = L::IsFinite(dist);
+    const V3<F> to = p + wi * L::Select(finite, dist, L::Set(0.0f)) - *origin;
+    const F len = L::Sqrt(Dot(to, to));
+    const auto aimed = L::And(finite, len > L::Set(0.0f));
+    *dir = Select3<L>(aimed, to * (L::Set(1.0f) / len), wi);
+    *tmax = L::Select(aimed, ShadowRayEnd<L>(len), ShadowRayEnd<L>(dist));
 }
 
 // A point sampled on a light, seen from the vertex: the unit direction to it and its distance,
@@ -181,8 +204,7 @@ HWY_INLINE VertexLightSample<L> SampleTowards(const LightSampleVertex<L>& v,
     ok = L::And(ok, MaxComponent<L>(f) > zero);
     r.valid = ok;
     r.value = f * l.radiance * (one / l.pdf);
-    r.origin = OffsetRayOrigin<L>(v.p, v.ng, r.wi);
-    r.tmax = ShadowRayEnd<L>(l.dist);
+    ShadowRayTo<L>(v.p, v.ng, l.wi, l.dist, &r.origin, &r.wi, &r.tmax);
     return r;
 }
 

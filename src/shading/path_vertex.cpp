@@ -161,7 +161,11 @@ DirectSample direct_sample_from(const Vertex& v, Vec3 wo, const LightSample& ls)
     if (ls.delta) d.pdf_bsdf = 0.0f;  // no BSDF sample finds a point light: MIS weight 1
     d.value = f * ls.radiance / ls.pdf;
     d.pdf_light = ls.pdf;
-    d.shadow = Ray{offset_origin(v, ls.wi), ls.wi, 0.0f, lanes::ShadowRayEnd<OneLane>(ls.dist)};
+    lanes::V3<float> origin, dir;
+    float tmax;
+    lanes::ShadowRayTo<OneLane>(lanes::to_lanes(v.p), lanes::to_lanes(v.ng), lanes::to_lanes(ls.wi),
+                                ls.dist, &origin, &dir, &tmax);
+    d.shadow = Ray{lanes::to_vec3(origin), lanes::to_vec3(dir), 0.0f, tmax};
     d.valid = true;
     return d;
 }
