@@ -10,8 +10,10 @@
 #include "sampling/warp.h"
 #include "shading/lights.h"
 #include "shading/path_vertex.h"
-#include "wavetrace/accel/bvh.h"
 #include "temp_dir.h"
+#include "wavetrace/accel/bvh.h"
+#include "wavetrace/engines/render.h"
+#include "wavetrace/film/film.h"
 #include "wavetrace/image/image.h"
 #include "wavetrace/scene/scene.h"
 
@@ -322,4 +324,47 @@ TEST(Lights, EqualAreaMapsAreSeenInTheirFrameAtTheNearestTexel) {
         return;
     }
     FAIL() << "no equal-area case";
+}
+
+// A light seen at a grazing angle from a point whose shadow-ray origin is offset towards the
+// light's plane (a wall 10 units from the origin, where the offset is 2.2e-4): the shadow ray
+// must still end short of the light, so that next-event estimation finds it as BSDF sampling
+// does. A 1 x 1 image aimed at the point, direct light only, NEE against BSDF sampling with
+// the variances of both means: with rays aimed along the direction from the unmoved point, the
+// offset carried them across the light and NEE lost most of it.
+TEST(Lights, NeeFindsALightSeenAtAGrazingAngle) {
+    Scene s;
+    Material wall;
+    wall.albedo = s.add_solid(Color(0.8f));
+    const Point3 p{0.0f, 0.0f, -10.0f};
+    s.add_quad({{-5, -5, -10}, {10, 0, 0}, {0, 10, 0}, s.add_material(wall), kNone});
+    // The light's centre 3 away along w, its normal 78 degrees from -w, leaning against +z.
+    const Vec3 w = normalize(Vec3(0.3f, 0.0f, 1.0f)), ng{0.0f, 0.0f, 1.0f};
+    const Vec3 t = -normalize(ng - dot(ng, w) * w);
+    const Vec3 n = normalize(-0.2f * w + 0.98f * t);
+    const Vec3 a = normalize(cross(n, Vec3(0.0f, 1.0f, 0.0f))), b = cross(n, a);
+    const Point3 c = p + 3.0f * w;
+    s.add_quad({c - 0.5f * a - 0.5f * b, a, b, add_light(s), kNone});
+    ASSERT_GT(dot(cross(a, b), n), 0.99f);  // facing the wall point
+    s.camera.look_from = p + Vec3(0.0f, 0.3f, 2.0f);
+    s.camera.look_at = p;
+    s.camera.vfov = 0.01f;
+    const Bvh bvh = Bvh::build(s);
+    auto render_with = [&](Strategy strategy) {
+        RenderRequest r;
+        r.width = r.height = 1;
+        r.spp = 200'000;
+        r.seed = 4;
+        r.estimator.strategy = strategy;
+        r.estimator.max_depth = 2;
+        Film film(1, 1);
+        render(s, bvh, r, film);
+        return std::make_pair(film.mean().at(0, 0).y, film.variance_of_mean().at(0, 0).y);
+    };
+    const auto [nee, var_nee] = render_with(Strategy::Nee);
+    const auto [bsdf, var_bsdf] = render_with(Strategy::Bsdf);
+    const double z = (nee - bsdf) / std::sqrt(double(var_nee) + var_bsdf);
+    std::printf("grazing light: NEE %.5f, BSDF %.5f, z %.2f\n", nee, bsdf, z);
+    EXPECT_GT(bsdf, 0.0f);
+    EXPECT_LT(std::fabs(z), 4.0);
 }
