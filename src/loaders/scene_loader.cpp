@@ -912,12 +912,8 @@ class Loader {
             const Value c = list[k];
             m.blend[k] = c.is_string() ? named_material(c.string(), &c)
                                        : read_material(c, m.name + "/" + std::to_string(k));
-            // A hit chooses once its surface is shaded; what is decided before (what emits,
-            // cuts away, passes shadow rays or bounds a medium) must be the blend's own.
             const Material& x = scene_.materials[m.blend[k]];
-            if (x.is_emissive() || x.opacity != kNone || x.kind == MaterialKind::ThinDielectric ||
-                x.kind == MaterialKind::Interface || x.kind == MaterialKind::Isotropic ||
-                x.kind == MaterialKind::DiffuseLight)
+            if (!x.can_be_blended())
                 c.fail(std::string("a blend's materials cannot emit, have an opacity, or be a "
                                    "thin_dielectric (found ") +
                        to_string(x.kind) + ")");

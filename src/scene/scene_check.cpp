@@ -81,13 +81,8 @@ void check_scene(const Scene& scene) {
             for (const MaterialId b : m.blend) {
                 // Materials come first, as sub-textures do: choosing one ends.
                 if (b >= i) fail("material", i, "a blend's materials must be added before it");
-                // A hit decides between them once its surface is shaded; what is decided
-                // before that (what emits, cuts away, passes shadow rays or bounds a medium)
-                // must be the blend's own.
                 const Material& c = scene.materials[b];
-                if (c.is_emissive() || c.opacity != kNone || c.kind == MaterialKind::DiffuseLight ||
-                    c.kind == MaterialKind::ThinDielectric || c.kind == MaterialKind::Interface ||
-                    c.kind == MaterialKind::Isotropic)
+                if (!c.can_be_blended())
                     fail("material", i,
                          "a blend's materials cannot emit, be cut away, be a thin dielectric, a "
                          "medium's interface or a phase function (blend " +

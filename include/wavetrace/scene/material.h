@@ -140,6 +140,14 @@ struct Material {
     bool needs_tangents() const { return has_normal_maps() || anisotropic(); }
 
     bool is_emissive() const { return emission != kNone; }
+    // Whether it may be one of a blend's materials: a hit chooses among those once its surface
+    // is shaded, so what is decided before (what emits, is cut away, passes shadow rays, bounds
+    // a medium or scatters in one) must be the blend's own.
+    bool can_be_blended() const {
+        return !is_emissive() && opacity == kNone && kind != MaterialKind::DiffuseLight &&
+               kind != MaterialKind::ThinDielectric && kind != MaterialKind::Interface &&
+               kind != MaterialKind::Isotropic;
+    }
 };
 
 }  // namespace wavetrace
