@@ -92,7 +92,8 @@ void bind_scene(py::module_& m) {
         .value("Checker", TextureKind::Checker)
         .value("UvChecker", TextureKind::UvChecker)
         .value("Noise", TextureKind::Noise)
-        .value("Image", TextureKind::Image);
+        .value("Image", TextureKind::Image)
+        .value("MeshAttribute", TextureKind::MeshAttribute);
     py::enum_<TextureFilter>(m, "TextureFilter")
         .value("Bilinear", TextureFilter::Bilinear)
         .value("Nearest", TextureFilter::Nearest);
@@ -112,7 +113,8 @@ void bind_scene(py::module_& m) {
         .def_readwrite("cutoff", &Texture::cutoff)
         .def_readwrite("filter", &Texture::filter)
         .def_readwrite("wrap_u", &Texture::wrap_u)
-        .def_readwrite("wrap_v", &Texture::wrap_v);
+        .def_readwrite("wrap_v", &Texture::wrap_v)
+        .def_readwrite("attribute", &Texture::attribute);
 
     py::enum_<MaterialKind>(m, "MaterialKind")
         .value("Lambertian", MaterialKind::Lambertian)
@@ -404,7 +406,7 @@ void bind_scene(py::module_& m) {
         .def("add_mesh",
              [](S& s, const py::handle& positions, const py::handle& indices, MaterialId mat,
                 const py::handle& normals, const py::handle& uvs, MediumId interior,
-                const std::string& name, const Transform& t) {
+                const std::string& name, const Transform& t, const py::dict& attributes) {
                  auto idx = py::array_t<int64_t, py::array::c_style | py::array::forcecast>::ensure(indices);
                  if (!idx || (!(idx.ndim() == 2 && idx.shape(1) == 3) && idx.ndim() != 1))
                      throw py::value_error("indices: expected an array of shape (n, 3)");
@@ -421,19 +423,48 @@ void bind_scene(py::module_& m) {
                  auto uv = rows<Vec2>(uvs, 2, "uvs");
                  if ((!n.empty() && n.size() != p.size()) || (!uv.empty() && uv.size() != p.size()))
                      throw py::value_error("normals and uvs: one per position");
+                 std::vector<MeshAttribute> attrs;
+                 for (const auto& [key, value] : attributes) {
+                     MeshAttribute a;
+                     a.name = py::cast<std::string>(key);
+                     a.per_face = a.name.rfind("face_", 0) == 0;
+                     if (!a.per_face && a.name.rfind("vertex_", 0) != 0)
+                         throw py::value_error("attributes: '" + a.name +
+                                               "' does not start with vertex_ or face_");
+                     using Floats = py::array_t<float, py::array::c_style | py::array::forcecast>;
+                     auto v = Floats::ensure(value);
+                     if (!v || !(v.ndim() == 1 || (v.ndim() == 2 && v.shape(1) == 3)))
+                         throw py::value_error("attributes: '" + a.name +
+                                               "': expected an array of shape (k,) or (k, 3)");
+                     a.channels = v.ndim() == 1 ? 1 : 3;
+                     const py::ssize_t k = v.shape(0);
+                     if (size_t(k) != (a.per_face ? index.size() / 3 : p.size()))
+                         throw py::value_error("attributes: '" + a.name +
+                                               "': expected one value per " +
+                                               (a.per_face ? "triangle" : "position"));
+                     const float* x = v.data();
+                     for (py::ssize_t i = 0; i < k; ++i)
+                         a.values.push_back(a.channels == 1
+                                                ? Color(x[i])
+                                                : Color(x[3 * i], x[3 * i + 1], x[3 * i + 2]));
+                     attrs.push_back(std::move(a));
+                 }
                  s.begin_change();
                  Mesh mesh;
                  mesh.name = name;
                  mesh.material = mat;
                  mesh.interior = interior;
-                 return s.scene.add_mesh(mesh, p, n, uv, index, t);
+                 return s.scene.add_mesh(mesh, p, n, uv, index, t, std::move(attrs));
              },
              py::arg("positions"), py::arg("indices"), py::arg("material"),
              py::arg("normals") = py::none(), py::arg("uvs") = py::none(),
              py::arg("interior") = kNone, py::arg("name") = "", py::arg("to_world") = Transform(),
+             py::arg("attributes") = py::dict(),
              "Adds a triangle mesh from arrays: positions (n, 3), indices (m, 3) counter-clockwise "
-             "seen from the front, optional normals (n, 3) and uvs (n, 2). Degenerate triangles "
-             "are skipped; returns how many were.")
+             "seen from the front, optional normals (n, 3) and uvs (n, 2), and attributes: a dict "
+             "of name to one value per position (\"vertex_NAME\") or per triangle "
+             "(\"face_NAME\"), shape (k,) or (k, 3), read by TextureKind.MeshAttribute. "
+             "Degenerate triangles are skipped (with their face values); returns how many were.")
         .def("add_light",
              [](S& s, const Light& l) {
                  s.begin_change();

@@ -27,12 +27,13 @@ Color albedo_of(const Scene& scene, const SurfaceHit& s) {
         case MaterialKind::Metal:
         case MaterialKind::Mirror:
         case MaterialKind::Isotropic:
-            return eval_texture(scene, m.albedo, s.uv, s.p);
+            return eval_texture(scene, m.albedo, s.texture_point());
         case MaterialKind::Dielectric:
         case MaterialKind::ThinDielectric:
             return Color(1.0f);
         case MaterialKind::Conductor:  // its reflectance at normal incidence
-            return eval_texture(scene, m.albedo, s.uv, s.p) * fresnel_conductor(1.0f, m.eta, m.k);
+            return eval_texture(scene, m.albedo, s.texture_point()) *
+                   fresnel_conductor(1.0f, m.eta, m.k);
         case MaterialKind::DiffuseLight: {
             Color e = eval_texture(scene, m.emission, s.uv, s.p);
             float peak = max_component(e);

@@ -9,9 +9,6 @@
 
 namespace wavetrace {
 
-// A PLY file: a complete header, a binary body as long as the header's counts need, and
-// lists no longer than the rest of the file can hold. Throws std::runtime_error.
-void check_ply(const std::filesystem::path& path);
 // An OFF file: vertex and face counts that a file of its size can hold.
 void check_off(const std::filesystem::path& path);
 

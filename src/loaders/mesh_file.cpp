@@ -19,6 +19,7 @@
 #include "files/input_file.h"
 #include "formats/gltf_json.h"
 #include "formats/mesh_guards.h"
+#include "formats/ply_mesh.h"
 #include "loaders/mesh_io.h"
 
 namespace wavetrace {
@@ -165,6 +166,9 @@ FileMaterial read_material(const aiMaterial& m, bool gltf) {
 MeshFile read_mesh_file(const std::filesystem::path& path,
                         const std::filesystem::path& asset_root) {
     check_input_file(path, kMaxMeshFileBytes, "meshes");
+    std::string lower = path.extension().string();
+    for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (lower == ".ply") return read_ply_mesh(path);
     Assimp::Importer importer;
     auto* io = new MeshIO(path, asset_root);
     importer.SetIOHandler(io);  // the importer owns it
@@ -172,9 +176,7 @@ MeshFile read_mesh_file(const std::filesystem::path& path,
     if (ext.empty() || !importer.IsExtensionSupported(ext))
         throw std::runtime_error("unsupported mesh format '" + ext +
                                  "' (Assimp reads e.g. .obj, .ply, .gltf, .glb, .stl)");
-    std::string lower = ext.substr(1);
-    for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    if (lower == "ply") check_ply(path);
+    lower = lower.substr(1);
     if (lower == "off") check_off(path);
     if (lower == "obj") check_obj(path);
     const bool gltf = lower == "gltf" || lower == "glb";

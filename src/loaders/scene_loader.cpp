@@ -17,10 +17,11 @@
 #include "formats/gltf_json.h"
 #include "formats/json_reader.h"
 #include "formats/ply_write.h"
+#include "formats/serialized_mesh.h"
 #include "loaders/mesh_file.h"
-#include "loaders/serialized_mesh.h"
 #include "mitsuba/mitsuba_xml.h"
 #include "pbrt/translate.h"
+#include "scene/material_lookup.h"
 #include "scene/named_metals.h"
 #include "scene/tessellate.h"
 #include "wavetrace/image/image.h"
@@ -415,6 +416,15 @@ class Loader {
         }
     }
 
+    // Texture `id`, read at `v` for something that is no mesh's surface, which must not read a
+    // mesh attribute.
+    TextureId off_meshes(TextureId id, const Value& v) const {
+        std::vector<std::string> names;
+        texture_attributes(scene_, id, &names);
+        if (!names.empty()) v.fail("a mesh attribute is read only on a mesh's surface");
+        return id;
+    }
+
     // A texture: a colour [r, g, b] (or a grey number), or an object with a "type". Reflectances
     // (albedos) must not exceed 1 in any channel; radiances may.
     enum class Range { Reflectance, Radiance };
@@ -440,6 +450,14 @@ class Loader {
             t.scale = o.required("scale").positive();
             t.color = Vec3(1.0f);
             if (auto x = o.optional("color")) t.color = colour(*x);
+        } else if (type == "mesh_attribute") {
+            t.kind = TextureKind::MeshAttribute;
+            Value name = o.required("name");
+            t.attribute = name.string();
+            if (t.attribute.rfind("vertex_", 0) != 0 && t.attribute.rfind("face_", 0) != 0)
+                name.fail("expected a name that starts with \"vertex_\" or \"face_\", got " +
+                          name.describe());
+            if (auto x = o.optional("scale")) t.scale = x->number();
         } else if (type == "uv_checker") {
             t.kind = TextureKind::UvChecker;
             t.scale = o.required("scale").positive();
@@ -724,7 +742,7 @@ class Loader {
         }
         if (given) {
             if (given->is_object()) {
-                light.texture = read_texture(*given, Range::Radiance);
+                light.texture = off_meshes(read_texture(*given, Range::Radiance), *given);
                 const Texture& t = scene_.textures[light.texture];
                 if (t.kind == TextureKind::Image) {
                     const ImageData& image = scene_.images[t.image];
@@ -787,7 +805,8 @@ class Loader {
                     else
                         x->fail("unknown falloff \"" + f + "\" (expected linear or smoothstep)");
                 }
-                if (auto x = o.optional("texture")) light.texture = read_texture(*x, Range::Radiance);
+                if (auto x = o.optional("texture"))
+                    light.texture = off_meshes(read_texture(*x, Range::Radiance), *x);
                 const std::optional<Value> up = o.optional("up");
                 if (up && light.texture == kNone)
                     up->fail("up orients a projected texture: give one");
@@ -899,6 +918,10 @@ class Loader {
             m.one_sided = x->boolean();
         }
         o.finish();
+        if (const char* field = attribute_misuse(scene_, m))
+            mv.fail(std::string("its ") + field +
+                    " reads a mesh attribute, which only a material's albedo, metallic_roughness, "
+                    "alpha textures, opacity and a blend's weight can");
         return scene_.add_material(std::move(m));
     }
 
@@ -936,7 +959,9 @@ class Loader {
             const Value d = o.required("density");
             const Color sigma_t = d.is_number() ? Color(d.positive()) : d.color();
             if (!(max_component(sigma_t) > 0.0f)) d.fail("a medium's density must be > 0 in some channel");
-            TextureId albedo = read_texture(o.required("albedo"), Range::Reflectance);
+            const Value albedo_value = o.required("albedo");
+            TextureId albedo =
+                off_meshes(read_texture(albedo_value, Range::Reflectance), albedo_value);
             o.finish();
             media_[name] = scene_.add_medium(name, sigma_t, albedo);
         }
@@ -1375,8 +1400,9 @@ class Loader {
                 m.name = p.filename().string();
                 m.material = material;
                 m.interior = interior;
-                skipped_triangles_ += scene_.add_mesh(std::move(m), mesh.positions, mesh.normals,
-                                                      mesh.uvs, mesh.indices, to_world);
+                skipped_triangles_ +=
+                    scene_.add_mesh(std::move(m), mesh.positions, mesh.normals, mesh.uvs,
+                                    mesh.indices, to_world, std::move(mesh.attributes));
             }
         } else if (type == "disk" || type == "cylinder") {
             // Tessellated in a frame whose +z is the disk's normal or the cylinder's axis.
@@ -1415,10 +1441,11 @@ class Loader {
     }
 
     struct Counts {
-        size_t triangles, quads, spheres;
+        size_t triangles, quads, spheres, meshes;
     };
     Counts counts() const {
-        return {scene_.triangles.size(), scene_.quads.size(), scene_.spheres.size()};
+        return {scene_.triangles.size(), scene_.quads.size(), scene_.spheres.size(),
+                scene_.meshes.size()};
     }
 
     // The object's primitives, once transformed, must stay in the range where float
@@ -1440,6 +1467,16 @@ class Loader {
         if (!box.empty() && !(max_component(abs(box.lo)) <= kMaxCoordinate &&
                               max_component(abs(box.hi)) <= kMaxCoordinate))
             v.fail("after its transform the object reaches beyond +-1e7");
+        for (size_t i = before.meshes; i < now.meshes; ++i)
+            if (const std::string missing = missing_attribute(scene_, uint32_t(i));
+                !missing.empty())
+                v.fail(missing);
+        const bool quads = now.quads > before.quads, spheres = now.spheres > before.spheres;
+        if ((quads || spheres) &&
+            !material_attributes(
+                 scene_, quads ? scene_.quads.back().material : scene_.spheres.back().material)
+                 .empty())
+            v.fail("its material reads a mesh attribute, and only meshes have them");
     }
 
     fs::path path_;

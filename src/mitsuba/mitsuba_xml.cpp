@@ -746,6 +746,12 @@ class Translator {
                  c1 = color_property(p, "color1", 0.2, true, false, scalar);
             if (scalar) std::swap(c0, c1);
             t = {{"type", "uv_checker"}, {"scale", 0.5}, {"even", c0}, {"odd", c1}};
+        } else if (type == "mesh_attribute") {
+            // The hit mesh's attribute, as the mesh reader names a PLY's further properties.
+            t = {{"type", "mesh_attribute"}, {"name", p.string("name", "")}};
+            if (const double scale = p.number("scale", 1.0); scale != 1.0) t["scale"] = scale;
+            p.finish();
+            return t;
         } else if (type == "rawconstant") {
             // Its value as it stands (a number, or a vector such as a flat normal map's).
             const Element* v = p.get("value");

@@ -25,13 +25,45 @@ bool material_reads_uv(const Scene& scene, const Material& m) {
     return reads;
 }
 
-MaterialId blend_choice(const Scene& scene, MaterialId m, Vec2 uv, Point3 p, float u) {
+std::vector<std::string> material_attributes(const Scene& scene, MaterialId id) {
+    std::vector<std::string> names;
+    if (id == kNone || id >= scene.materials.size()) return names;
+    const Material& m = scene.materials[id];
+    for (const TextureId t :
+         {m.albedo, m.metallic_roughness, m.alpha_u_texture, m.alpha_v_texture, m.opacity})
+        texture_attributes(scene, t, &names);
+    if (m.kind == MaterialKind::Blend) {
+        texture_attributes(scene, m.blend_weight.texture, &names);
+        for (const MaterialId b : m.blend)  // materials before it (check_scene): this ends
+            if (b < id)
+                for (std::string& n : material_attributes(scene, b)) names.push_back(std::move(n));
+    }
+    return names;
+}
+
+const char* attribute_misuse(const Scene& scene, const Material& m) {
+    auto reads = [&](TextureId id) {
+        std::vector<std::string> names;
+        texture_attributes(scene, id, &names);
+        return !names.empty();
+    };
+    if (reads(m.emission)) return "emission";
+    if (reads(m.normal_map)) return "normal_map";
+    if (reads(m.bump_map)) return "bump_map";
+    const char* weight = nullptr;
+    m.principled.for_each([&](const char* name, const TexturedNumber& w) {
+        if (!weight && reads(w.texture)) weight = name;
+    });
+    return weight;
+}
+
+MaterialId blend_choice(const Scene& scene, MaterialId m, const TexturePoint& at, float u) {
     while (m != kNone && scene.materials[m].kind == MaterialKind::Blend) {
         const Material& b = scene.materials[m];
         const TexturedNumber& x = b.blend_weight;
-        const float w = std::clamp(
-            x.texture == kNone ? x.value : luminance(eval_texture(scene, x.texture, uv, p)), 0.0f,
-            1.0f);
+        const float w =
+            std::clamp(x.texture == kNone ? x.value : luminance(eval_texture(scene, x.texture, at)),
+                       0.0f, 1.0f);
         if (u < w) {
             m = b.blend[1];
             u = u / w;

@@ -3,9 +3,13 @@
 // the point's uv at all.
 #pragma once
 
+#include <string>
+#include <vector>
+
 #include "bsdfs/bsdf.h"
 #include "wavetrace/math/vec3.h"
 #include "wavetrace/scene/material.h"
+#include "wavetrace/scene/texture.h"
 
 namespace wavetrace {
 
@@ -15,15 +19,24 @@ struct Scene;
 // atan2 to find); of a blend, its weight's or either material's.
 bool material_reads_uv(const Scene& scene, const Material& m);
 
+// The mesh attributes a hit on material m reads (some more than once): those of its albedo,
+// metallic_roughness, alpha_u/alpha_v and opacity textures and, of a blend, its weight's and
+// either material's. Its other textures may not read any (check_scene).
+std::vector<std::string> material_attributes(const Scene& scene, MaterialId m);
+
+// The field of m that reads a mesh attribute where none may be read (its emission, normal or
+// bump map, a principled weight: they are looked up where no triangle is known), or nullptr.
+const char* attribute_misuse(const Scene& scene, const Material& m);
+
 // The weights of a principled material m at texture coordinates uv and point p, into b (whose
 // albedo is its base colour there): each a texture's luminance or a number, clamped to its
 // range; the main lobes' GGX alphas and the clearcoat's GTR1 alpha from them.
 void principled_at(const Scene& scene, const Material& m, Vec2 uv, Point3 p, BsdfParams* b);
 
-// The material a hit on material m takes at texture coordinates uv and point p, u uniform in
+// The material a hit on material m takes at texture point `at`, u uniform in
 // [0, 1): m itself unless it is a blend; a blend's second material where u < w (its weight
 // there), else its first, and so on down nested blends, u rescaled at each choice to stay
 // uniform over the part it fell in.
-MaterialId blend_choice(const Scene& scene, MaterialId m, Vec2 uv, Point3 p, float u);
+MaterialId blend_choice(const Scene& scene, MaterialId m, const TexturePoint& at, float u);
 
 }  // namespace wavetrace

@@ -17,8 +17,10 @@ bool cut_away(const Scene& scene, PrimRef prim, float t, float u, float v, const
     const MaterialId m = scene.prim_material(prim);
     if (m == kNone || scene.materials[m].opacity == kNone) return false;
     const Point3 p = ray.at(t);
+    const bool triangle = prim.kind() == PrimKind::Triangle;
     const Color c =
-        eval_texture(scene, scene.materials[m].opacity, hit_uv(scene, prim, u, v, p), p);
+        eval_texture(scene, scene.materials[m].opacity,
+                     {hit_uv(scene, prim, u, v, p), p, triangle ? prim.index() : kNone, u, v});
     const float a = std::clamp(luminance(c), 0.0f, 1.0f);
     if (a >= 1.0f) return false;
     if (a <= 0.0f) return true;

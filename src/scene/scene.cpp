@@ -203,8 +203,19 @@ size_t Scene::add_mesh(Mesh mesh,
                        const std::vector<Normal3>& nrm,
                        const std::vector<Vec2>& uv,
                        const std::vector<uint32_t>& indices,
-                       const Transform& to_world) {
+                       const Transform& to_world,
+                       std::vector<MeshAttribute> attributes) {
+    const size_t faces = indices.size() / 3;
+    for (const MeshAttribute& a : attributes)
+        if (a.values.size() != (a.per_face ? faces : pos.size()) ||
+            !(a.channels == 1 || a.channels == 3))
+            throw SceneError("mesh '" + mesh.name + "': attribute '" + a.name + "' has " +
+                             std::to_string(a.values.size()) + " values of " +
+                             std::to_string(a.channels) + " channels for " +
+                             std::to_string(a.per_face ? faces : pos.size()) +
+                             (a.per_face ? " triangles" : " vertices"));
     mesh.first_vertex = static_cast<uint32_t>(positions.size());
+    mesh.first_triangle = static_cast<uint32_t>(triangles.size());
     mesh.vertex_count = static_cast<uint32_t>(pos.size());
     mesh.has_normals = !nrm.empty() && nrm.size() == pos.size();
     mesh.has_uvs = !uv.empty() && uv.size() == pos.size();
@@ -254,8 +265,21 @@ size_t Scene::add_mesh(Mesh mesh,
             continue;
         }
         triangles.push_back({{base + a, base + b, base + c}, mesh_id});
+        for (MeshAttribute& x : attributes)  // kept triangles' values move down over skipped ones
+            if (x.per_face) x.values[i / 3 - skipped] = x.values[i / 3];
+    }
+    for (MeshAttribute& x : attributes) {
+        if (x.per_face) x.values.resize(faces - skipped);
+        x.mesh = mesh_id;
+        mesh_attributes.push_back(std::move(x));
     }
     return skipped;
+}
+
+const MeshAttribute* Scene::mesh_attribute(uint32_t mesh, const std::string& name) const {
+    for (const MeshAttribute& a : mesh_attributes)
+        if (a.mesh == mesh && a.name == name) return &a;
+    return nullptr;
 }
 
 Aabb Scene::prim_bounds(PrimRef prim) const {

@@ -1,6 +1,7 @@
 #include <cmath>
 #include <string>
 
+#include "scene/material_lookup.h"
 #include "wavetrace/scene/scene.h"
 
 namespace wavetrace {
@@ -33,6 +34,19 @@ bool reads_albedo(MaterialKind kind) {
 
 }  // namespace
 
+std::string missing_attribute(const Scene& scene, uint32_t mesh) {
+    const Mesh& m = scene.meshes[mesh];
+    for (const std::string& name : material_attributes(scene, m.material)) {
+        if (scene.mesh_attribute(mesh, name)) continue;
+        std::string has;
+        for (const MeshAttribute& a : scene.mesh_attributes)
+            if (a.mesh == mesh) has += (has.empty() ? "" : ", ") + ("\"" + a.name + "\"");
+        return "its material reads the mesh attribute \"" + name + "\", which mesh '" + m.name +
+               "' does not have (" + (has.empty() ? "it has none" : "it has " + has) + ")";
+    }
+    return "";
+}
+
 void check_scene(const Scene& scene) {
     const size_t textures = scene.textures.size(), materials = scene.materials.size(),
                  media = scene.media.size();
@@ -50,7 +64,15 @@ void check_scene(const Scene& scene) {
             (t.image >= scene.images.size() || scene.images[t.image].texels.empty()))
             fail("texture", i, "names no image of the scene");
         if (!finite(t.color) || !finite(t.factor)) fail("texture", i, "a colour is not finite");
+        if (t.kind == TextureKind::MeshAttribute && !std::isfinite(t.scale))
+            fail("texture", i, "a mesh attribute's scale is not finite");
     }
+    // Only what surface_at and surface_vertex look up at a triangle's hit knows the triangle.
+    auto reads_attributes = [&](TextureId id) {
+        std::vector<std::string> names;
+        texture_attributes(scene, id, &names);
+        return !names.empty();
+    };
     auto check_texture = [&](size_t m, TextureId id, const char* field, bool required) {
         if (id == kNone && !required) return;
         if (id >= textures)
@@ -89,6 +111,8 @@ void check_scene(const Scene& scene) {
                              std::string(to_string(c.kind)) + " \"" + c.name + "\")");
             }
         }
+        if (const char* field = attribute_misuse(scene, m))
+            fail("material", i, std::string("its ") + field + " reads a mesh attribute");
         if (m.is_emissive() && m.kind == MaterialKind::Blend)
             fail("material", i, "a blend cannot emit; its materials are chosen at each hit");
         if (!(m.ior > 0) || !std::isfinite(m.ior)) fail("material", i, "ior must be positive");
@@ -99,6 +123,8 @@ void check_scene(const Scene& scene) {
         const Medium& m = scene.media[i];
         if (m.phase >= materials || scene.materials[m.phase].kind != MaterialKind::Isotropic)
             fail("medium", i, "its phase must be an isotropic material of the scene");
+        if (reads_attributes(scene.materials[m.phase].albedo))
+            fail("medium", i, "its phase's albedo reads a mesh attribute");
         for (int c = 0; c < 3; ++c)
             if (!(m.sigma_t[c] >= 0) || !std::isfinite(m.sigma_t[c]))
                 fail("medium", i, "sigma_t must be non-negative numbers");
@@ -112,6 +138,8 @@ void check_scene(const Scene& scene) {
         check_refs("sphere", i, s.material, s.interior);
         if (!finite(s.center) || !(s.radius > 0) || !std::isfinite(s.radius))
             fail("sphere", i, "needs a finite centre and a positive radius");
+        if (!material_attributes(scene, s.material).empty())
+            fail("sphere", i, "its material reads a mesh attribute");
         if (s.mapping != SphereMapping::YUp && s.mapping != SphereMapping::ZUp)
             fail("sphere", i, "has no known texture mapping");
         if (s.frame != kNone && (s.frame >= scene.sphere_frames.size() ||
@@ -123,12 +151,26 @@ void check_scene(const Scene& scene) {
         check_refs("quad", i, q.material, q.interior);
         if (!finite(q.q) || !finite(q.u) || !finite(q.v) || length(cross(q.u, q.v)) == 0)
             fail("quad", i, "needs finite, non-parallel edges");
+        if (!material_attributes(scene, q.material).empty())
+            fail("quad", i, "its material reads a mesh attribute");
     }
     for (size_t i = 0; i < scene.meshes.size(); ++i) {
         const Mesh& m = scene.meshes[i];
         check_refs("mesh", i, m.material, m.interior);
         if (size_t(m.first_vertex) + m.vertex_count > scene.positions.size())
             fail("mesh", i, "its vertices lie beyond the scene's positions");
+        if (const std::string missing = missing_attribute(scene, uint32_t(i)); !missing.empty())
+            fail("mesh", i, missing);
+    }
+    for (size_t i = 0; i < scene.mesh_attributes.size(); ++i) {
+        const MeshAttribute& a = scene.mesh_attributes[i];
+        if (a.mesh >= scene.meshes.size()) fail("mesh attribute", i, "names no mesh of the scene");
+        const Mesh& m = scene.meshes[a.mesh];
+        const size_t next = a.mesh + 1 < scene.meshes.size()
+                                ? scene.meshes[a.mesh + 1].first_triangle
+                                : scene.triangles.size();
+        if (a.values.size() != (a.per_face ? next - m.first_triangle : m.vertex_count))
+            fail("mesh attribute", i, "needs one value per vertex or per triangle of its mesh");
     }
     for (size_t i = 0; i < scene.triangles.size(); ++i) {
         const Triangle& t = scene.triangles[i];
@@ -143,6 +185,7 @@ void check_scene(const Scene& scene) {
         if (!finite(l.position) || !finite(l.intensity) || !finite(l.direction) ||
             length(l.direction) == 0)
             fail("light", i, "needs a finite position, intensity and non-zero direction");
+        if (reads_attributes(l.texture)) fail("light", i, "its texture reads a mesh attribute");
         if (l.texture != kNone) {
             if (l.kind != Light::Kind::Spot && l.kind != Light::Kind::Projector)
                 fail("light", i, "only a spot or a projector projects a texture");

@@ -175,12 +175,27 @@ bool texture_reads_uv(const Scene& scene, TextureId id) {
             return texture_reads_uv(scene, t.even) || texture_reads_uv(scene, t.odd);
         case TextureKind::Solid:
         case TextureKind::Noise:
+        case TextureKind::MeshAttribute:
             return false;
     }
     return false;
 }
 
-Color eval_texture(const Scene& scene, TextureId id, Vec2 uv, Point3 p) {
+void texture_attributes(const Scene& scene, TextureId id, std::vector<std::string>* names) {
+    if (id == kNone || id >= scene.textures.size()) return;
+    const Texture& t = scene.textures[id];
+    if (t.kind == TextureKind::MeshAttribute) names->push_back(t.attribute);
+    // A checker's cells come before it (check_scene), so this ends.
+    if ((t.kind == TextureKind::Checker || t.kind == TextureKind::UvChecker) && t.even < id &&
+        t.odd < id) {
+        texture_attributes(scene, t.even, names);
+        texture_attributes(scene, t.odd, names);
+    }
+}
+
+Color eval_texture(const Scene& scene, TextureId id, const TexturePoint& at) {
+    const Vec2 uv = at.uv;
+    const Point3 p = at.p;
     for (;;) {
         const Texture& t = scene.textures[id];
         switch (t.kind) {
@@ -215,6 +230,17 @@ Color eval_texture(const Scene& scene, TextureId id, Vec2 uv, Point3 p) {
                                                                   t.wrap_v);
                 if (t.cutoff >= 0.0f) return Color(c.x >= t.cutoff ? 1.0f : 0.0f);
                 return c;
+            }
+            case TextureKind::MeshAttribute: {
+                // check_scene has made sure that only meshes holding the attribute read it.
+                if (at.triangle == kNone) return {};
+                const Triangle& tri = scene.triangles[at.triangle];
+                const MeshAttribute* a = scene.mesh_attribute(tri.mesh, t.attribute);
+                if (!a) return {};
+                const Mesh& m = scene.meshes[tri.mesh];
+                if (a->per_face) return t.scale * a->values[at.triangle - m.first_triangle];
+                const auto v = [&](int k) { return a->values[tri.v[k] - m.first_vertex]; };
+                return t.scale * ((1.0f - at.b1 - at.b2) * v(0) + at.b1 * v(1) + at.b2 * v(2));
             }
         }
         return {};
@@ -267,6 +293,16 @@ Color texture_mean(const Scene& scene, TextureId id) {
                 for (const Color& c : image.texels) sum += c;
                 return image.texels.empty() ? Color(0.0f)
                                             : t.factor * sum / float(image.texels.size());
+            }
+            case TextureKind::MeshAttribute: {  // over every mesh's values of that name
+                Color sum{0.0f};
+                size_t n = 0;
+                for (const MeshAttribute& a : scene.mesh_attributes)
+                    if (a.name == t.attribute) {
+                        for (const Color& c : a.values) sum += c;
+                        n += a.values.size();
+                    }
+                return n == 0 ? Color(0.0f) : t.scale * sum / float(n);
             }
         }
         return {};

@@ -31,6 +31,9 @@ SurfaceHit surface_at(const Scene& scene, const Ray& ray, const Hit& hit) {
             s.ng = to_vec3(sp.ng);
             s.ns = to_vec3(sp.ns);
             s.uv = hit_uv(scene, hit.prim, hit.u, hit.v, s.p);
+            s.triangle = i;
+            s.b1 = hit.u;
+            s.b2 = hit.v;
             s.material = mesh.material;
             s.interior = mesh.interior;
             break;
@@ -63,8 +66,8 @@ SurfaceHit surface_at(const Scene& scene, const Ray& ray, const Hit& hit) {
     // A blend becomes one of its materials here, where both engines and every walk of a ray
     // meet the hit, so that all that follows sees one material.
     if (s.material != kNone && scene.materials[s.material].kind == MaterialKind::Blend)
-        s.material =
-            blend_choice(scene, s.material, s.uv, s.p, hit_hash(ray, hit.prim, HitDecision::Blend));
+        s.material = blend_choice(scene, s.material, s.texture_point(),
+                                  hit_hash(ray, hit.prim, HitDecision::Blend));
     if (s.material != kNone && scene.materials[s.material].needs_tangents()) {
         const Tangents t = hit_tangents(scene, hit.prim, s.p);
         s.dpdu = t.dpdu;

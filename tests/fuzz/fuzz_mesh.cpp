@@ -12,8 +12,8 @@
 #include <string>
 
 #include "formats/gltf_json.h"
+#include "formats/serialized_mesh.h"
 #include "loaders/mesh_file.h"
-#include "loaders/serialized_mesh.h"
 
 namespace fs = std::filesystem;
 

@@ -138,6 +138,55 @@ def test_a_mesh_from_arrays_is_hit_where_it_lies():
     assert hits.t[0] == pytest.approx(2) and hits.kind[0] == 0 and hits.prim[0] == 0
 
 
+def test_mesh_attributes_from_arrays_render_as_the_same_ply_from_json(tmp_path):
+    positions = [[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]]
+    faces = [[0, 1, 2], [0, 0, 1], [0, 2, 3]]  # the second is degenerate: skipped
+    face_color = [[0.9, 0.1, 0.1], [5, 5, 5], [0.1, 0.1, 0.9]]
+    vertex_weight = [0.0, 0.25, 0.5, 1.0]
+    ply = ("ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+           "property float z\nproperty float weight_0\nelement face 3\n"
+           "property list uchar int vertex_indices\nproperty float color_r\n"
+           "property float color_g\nproperty float color_b\nend_header\n")
+    ply += "".join(f"{x} {y} {z} {w}\n" for (x, y, z), w in zip(positions, vertex_weight))
+    ply += "".join(f"3 {a} {b} {c} {r} {g} {bl}\n" for (a, b, c), (r, g, bl) in zip(faces, face_color))
+    (tmp_path / "m.ply").write_text(ply)
+    (tmp_path / "m.json").write_text(json.dumps({
+        "camera": {"look_from": [0, 0, 3], "look_at": [0, 0, 0]},
+        "background": {"type": "constant", "radiance": [1, 1, 1]},
+        "materials": {
+            "face": {"type": "lambertian",
+                     "albedo": {"type": "mesh_attribute", "name": "face_color_color"}},
+            "m": {"type": "blend", "weight": {"type": "mesh_attribute", "name": "vertex_weight"},
+                  "materials": ["face", {"type": "lambertian", "albedo": [0.2, 0.8, 0.2]}]}},
+        "objects": [{"type": "mesh", "file": "m.ply", "material": "m"}]}))
+    s = wt.Scene()
+    s.camera = wt.Camera(look_from=(0, 0, 3), look_at=(0, 0, 0))
+    s.background = wt.Background(radiance=(1, 1, 1))
+    face = s.add_material(wt.Material(
+        kind=wt.MaterialKind.Lambertian,
+        albedo=s.add_texture(wt.Texture(kind=wt.TextureKind.MeshAttribute,
+                                        attribute="face_color_color"))))
+    green = s.add_material(wt.Material(kind=wt.MaterialKind.Lambertian,
+                                       albedo=s.add_solid((0.2, 0.8, 0.2))))
+    weight = s.add_texture(wt.Texture(kind=wt.TextureKind.MeshAttribute, attribute="vertex_weight"))
+    blend = s.add_material(wt.Material(kind=wt.MaterialKind.Blend, blend_materials=(face, green),
+                                       blend_weight_texture=weight))
+    attributes = {"face_color_color": np.array(face_color, np.float32),
+                  "vertex_weight": np.array(vertex_weight, np.float32)}
+    assert s.add_mesh(np.array(positions, np.float32), np.array(faces), blend, name="m.ply",
+                      attributes=attributes) == 1
+    a = wt.render(s, width=16, height=16, spp=4)
+    b = wt.render(wt.load_scene(tmp_path / "m.json"), width=16, height=16, spp=4)
+    assert np.array_equal(a, b)
+    assert a[8, 4, 2] > a[8, 4, 0]  # the left half is the blue face's
+    with pytest.raises(ValueError, match="one value per triangle"):
+        s.add_mesh(np.array(positions, np.float32), np.array(faces), blend,
+                   attributes={"face_x": np.zeros(2, np.float32)})
+    s.add_sphere(wt.Sphere(center=(0, 0, -5), radius=1, material=face))
+    with pytest.raises(wt.SceneError, match="sphere 0: its material reads a mesh attribute"):
+        s.check()
+
+
 def test_an_asset_root_confines_the_files_read(tmp_path):
     assert wt.load_scene(SCENES / "bunny.json", asset_root=SCENES).info()["triangles"] > 0
     with pytest.raises(wt.SceneError, match="outside the asset root"):

@@ -66,6 +66,7 @@ struct Scene {
     std::vector<Point3> positions;  // mesh vertices, all meshes back to back
     std::vector<Normal3> normals;   // per vertex; zero for meshes without normals
     std::vector<Vec2> uvs;          // per vertex; zero for meshes without uvs
+    std::vector<MeshAttribute> mesh_attributes;  // of every mesh, each naming its mesh
     std::vector<Light> lights;      // lights that are not shapes (emissive shapes are lights too)
 
     // ---- builders (all transforms are baked into the stored shapes) ----
@@ -97,12 +98,17 @@ struct Scene {
     // Appends a mesh; normals and uvs may be empty (else one per position). Indices are
     // relative to this mesh's positions. Degenerate triangles (zero area, repeated or
     // out-of-range indices, non-finite vertices) are skipped; returns how many were.
+    // `attributes` hold one value per position or per triangle of `indices` (any other count
+    // is a SceneError); a skipped triangle's value goes with it.
     size_t add_mesh(Mesh mesh,
                     const std::vector<Point3>& positions,
                     const std::vector<Normal3>& normals,
                     const std::vector<Vec2>& uvs,
                     const std::vector<uint32_t>& indices,
-                    const Transform& to_world = {});
+                    const Transform& to_world = {},
+                    std::vector<MeshAttribute> attributes = {});
+    // The attribute `name` of mesh `mesh`, or nullptr.
+    const MeshAttribute* mesh_attribute(uint32_t mesh, const std::string& name) const;
 
     // How far a medium boundary with these world bounds is moved outwards.
     static float boundary_margin(const Aabb& world_bounds);
@@ -141,6 +147,9 @@ struct Scene {
 // returns passes; a scene built in code should be checked before a BVH is built over it.
 void check_scene(const Scene& scene);
 
+// Why mesh `mesh` cannot be rendered with its material: an attribute the material reads that
+// the mesh does not have (named, with those it has); "" if none.
+std::string missing_attribute(const Scene& scene, uint32_t mesh);
 // Every primitive whose material emits: the scene's area lights.
 std::vector<PrimRef> collect_emitters(const Scene& scene);
 

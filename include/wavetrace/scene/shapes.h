@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "wavetrace/math/vec3.h"
 #include "wavetrace/scene/ids.h"
@@ -45,10 +46,23 @@ struct Mesh {
     std::string name;
     uint32_t first_vertex = 0;
     uint32_t vertex_count = 0;
+    uint32_t first_triangle = 0;  // its triangles are Scene::triangles[first_triangle, ...)
     bool has_normals = false;  // Scene::normals holds per-vertex shading normals for it
     bool has_uvs = false;      // Scene::uvs holds per-vertex texture coordinates for it
     MaterialId material = kNone;
     MediumId interior = kNone;
+};
+
+// Values a mesh gives each vertex or each triangle beyond its geometry, read by
+// TextureKind::MeshAttribute (Mitsuba 3's mesh attributes, a PLY's further properties). The
+// name starts with "vertex_" or "face_"; values holds one entry per vertex or per triangle of
+// the mesh in order, a one-channel attribute's value in all three channels.
+struct MeshAttribute {
+    std::string name;
+    bool per_face = false;
+    uint8_t channels = 3;  // 1 or 3
+    std::vector<Color> values;
+    uint32_t mesh = 0;  // in Scene::mesh_attributes: the mesh it belongs to
 };
 
 // Counter-clockwise winding seen from the front: normal along (v1 - v0) x (v2 - v0).

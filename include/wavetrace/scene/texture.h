@@ -15,6 +15,10 @@ enum class TextureKind : uint8_t {
     UvChecker,  // checkerboard over the (u, v) plane, cells of side `scale` in uv units
     Noise,      // Perlin turbulence "marble": 0.5 (1 + sin(scale z + 10 turb(p))) (RTNW §5)
     Image,      // an image mapped by the surface's (u, v): `filter`, `wrap_u`, `wrap_v`
+    // The hit mesh's attribute named `attribute` (Scene::mesh_attributes) times `scale`: a
+    // per-vertex one interpolated by the hit's barycentrics, a per-face one the triangle's
+    // (Mitsuba 3's mesh_attribute). Only meshes have attributes.
+    MeshAttribute,
 };
 
 // How an image texture is looked up between texels: interpolated between the four nearest
@@ -31,6 +35,8 @@ struct Texture {
     TextureKind kind = TextureKind::Solid;
     Color color{0.0f};       // Solid: the colour. Noise: the colour multiplied in.
     float scale = 1.0f;      // Checker: cell size (world units). Noise: frequency.
+                             // MeshAttribute: multiplied in.
+    std::string attribute;   // MeshAttribute: its name ("vertex_color", "face_weight")
     TextureId even = kNone;  // Checker: the texture of even cells
     TextureId odd = kNone;   // Checker: the texture of odd cells
     ImageId image = kNone;   // Image: index into Scene::images
@@ -74,12 +80,28 @@ struct ImageData {
 
 struct Scene;
 struct Sphere;
-// Evaluates texture `id` at surface coordinates `uv` and world point `p`.
 // Whether texture `id` (kNone: no texture) reads the surface's uv: image textures, directly or
 // as a checker's cell. The others read the point or nothing.
 bool texture_reads_uv(const Scene& scene, TextureId id);
+// The mesh attributes texture `id` (kNone: none) reads, directly or as a checker's cell,
+// appended to `names`.
+void texture_attributes(const Scene& scene, TextureId id, std::vector<std::string>* names);
 
-Color eval_texture(const Scene& scene, TextureId id, Vec2 uv, Point3 p);
+// Where a texture is looked up: the surface's texture coordinates and world point, and on a
+// triangle (kNone: elsewhere) the hit's barycentric coordinates of its second and third vertex.
+struct TexturePoint {
+    Vec2 uv;
+    Point3 p;
+    uint32_t triangle = kNone;
+    float b1 = 0.0f, b2 = 0.0f;
+};
+
+// Evaluates texture `id` at `at`.
+Color eval_texture(const Scene& scene, TextureId id, const TexturePoint& at);
+// At a point of no triangle (a sphere, a quad, a light's own texture).
+inline Color eval_texture(const Scene& scene, TextureId id, Vec2 uv, Point3 p) {
+    return eval_texture(scene, id, TexturePoint{uv, p});
+}
 // The gradient in the surface's (u, v) of texture `id`'s luminance at (uv, p), where the
 // texture is an image without a cutoff (ImageData::luminance_gradient through its uv map);
 // false for other textures, whose gradient the caller approximates.

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <filesystem>
 
-#include "loaders/mesh_file.h"
+#include "formats/mesh_data.h"
 
 namespace wavetrace {
 

@@ -1,4 +1,4 @@
-#include "loaders/serialized_mesh.h"
+#include "formats/serialized_mesh.h"
 
 #include <zlib.h>
 
