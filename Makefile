@@ -50,7 +50,7 @@ CLANG_CMAKE = -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
 # would take a shard most of its time (their code paths run in the Wavefront, Megakernel and
 # other Compare tests here too). The suites named
 # here must live in tests/CMakeLists.txt's WAVETRACE_SANITIZED_TEST_SOURCES.
-SAN_TESTS ?= Check*:SceneLoader.*:MitsubaScenes.*:PbrtScenes.*:Cli.*:Hostile*:Bvh.*:Triangle.*:Sphere.*:Quad.*:MeshFiles.*:Wavefront.*:Megakernel.*:Kernels.*:Lanes.*:Films.*:CompareImages.*:-Cli.WavefrontMemoryDoesNotGrowWithSamples:Megakernel.StrategiesAgree:Megakernel.MisEarnsItsName:Wavefront.EqualsTheMegakernelOnMitsubasScenes:PbrtScenes.BitterlisCornellBoxRendersTungstensImageMean:Cli.CompareTellsNoiseFromADifferentImage
+SAN_TESTS ?= Check*:SceneLoader.*:MitsubaScenes.*:PbrtScenes.*:Cli.*:Hostile*:Bvh.*:Triangle.*:Sphere.*:Quad.*:MeshFiles.*:MeshAttributes.*:Wavefront.*:Megakernel.*:Kernels.*:Lanes.*:Films.*:CompareImages.*:-Cli.WavefrontMemoryDoesNotGrowWithSamples:Megakernel.StrategiesAgree:Megakernel.MisEarnsItsName:Wavefront.EqualsTheMegakernelOnMitsubasScenes:PbrtScenes.BitterlisCornellBoxRendersTungstensImageMean:Cli.CompareTellsNoiseFromADifferentImage
 # Sized so that the six targets, side by side on CI's two cores, end together in about 2
 # minutes on a slow machine (a Zen 1; the millions each target has had are in
 # docs/fuzzing.md). An XML execution loads a dozen shapes, meshes and images, a mesh execution

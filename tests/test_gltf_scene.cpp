@@ -210,3 +210,44 @@ TEST(GltfScenes, CameraIsChosenByName) {
     EXPECT_EQ(r.code, 0) << r.err;
     EXPECT_TRUE(std::filesystem::exists(dir.path() / "c.png"));
 }
+
+// COLOR_0 multiplies the base colour (glTF 2.0, 3.7.2.1): the quad's corners red, green, blue
+// and white, its base colour (0.5, 1, 0.25); each corner's albedo is their product, and a point
+// inside a triangle the product with the interpolated colour.
+TEST(GltfScenes, VertexColorsMultiplyTheBaseColour) {
+    TempDir dir;
+    const auto path = dir.write("colors.gltf", R"({"asset": {"version": "2.0"}, "scene": 0,
+      "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+      "materials": [{"pbrMetallicRoughness": {"baseColorFactor": [0.5, 1, 0.25, 1],
+                     "metallicFactor": 0}}],
+      "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "COLOR_0": 2}, "indices": 1,
+                                  "material": 0}]}],
+      "buffers": [{"byteLength": 108, "uri": "data:application/octet-stream;base64,AACAvwAAgL8AAAAAAACAPwAAgL8AAAAAAACAPwAAgD8AAAAAAACAvwAAgD8AAAAAAAABAAIAAAACAAMAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAAAAAAAAAAAAIA/AACAPwAAgD8AAIA/"}],
+      "bufferViews": [{"buffer": 0, "byteLength": 48}, {"buffer": 0, "byteOffset": 48, "byteLength": 12},
+                      {"buffer": 0, "byteOffset": 60, "byteLength": 48}],
+      "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3",
+                     "min": [-1, -1, 0], "max": [1, 1, 0]},
+                    {"bufferView": 1, "componentType": 5123, "count": 6, "type": "SCALAR"},
+                    {"bufferView": 2, "componentType": 5126, "count": 4, "type": "VEC3"}]})");
+    const Scene s = load_scene(path);
+    ASSERT_EQ(s.triangles.size(), 2u);
+    const TextureId albedo = s.materials[s.meshes[0].material].albedo;
+    ASSERT_EQ(s.textures[albedo].kind, TextureKind::Product);
+    auto corner = [&](Point3 p) {  // the file's colour at a corner of the quad
+        return p.x < 0 ? (p.y < 0 ? Color(1, 0, 0) : Color(1, 1, 1))
+                       : (p.y < 0 ? Color(0, 1, 0) : Color(0, 0, 1));
+    };
+    const Color base(0.5f, 1.0f, 0.25f);
+    for (uint32_t t = 0; t < 2; ++t) {
+        const Triangle& tri = s.triangles[t];
+        Color mixed(0.0f);
+        const float b[3] = {0.5f, 0.25f, 0.25f};
+        for (int k = 0; k < 3; ++k) {
+            const Color at_corner = eval_texture(
+                s, albedo, TexturePoint{{}, {}, t, k == 1 ? 1.0f : 0.0f, k == 2 ? 1.0f : 0.0f});
+            expect_near(at_corner, base * corner(s.positions[tri.v[k]]));
+            mixed += b[k] * corner(s.positions[tri.v[k]]);
+        }
+        expect_near(eval_texture(s, albedo, TexturePoint{{}, {}, t, 0.25f, 0.25f}), base * mixed);
+    }
+}

@@ -708,3 +708,24 @@ TEST(PbrtScenes, BitterlisCornellBoxRendersTungstensImageMean) {
         EXPECT_NEAR(ours, reference[c], 4 * sigma + 0.003 * reference[c]) << "channel " << c;
     }
 }
+
+// A scale texture of two textures is their product (both checkerboards here).
+TEST(PbrtScenes, ScaleOfTwoTexturesIsTheirProduct) {
+    TempDir dir;
+    auto path = dir.write("a.pbrt", R"(Camera "perspective"
+WorldBegin
+Texture "a" "spectrum" "checkerboard" "rgb tex1" [0.5 0.5 0.5] "rgb tex2" [1 1 1]
+Texture "b" "float" "checkerboard" "float tex1" 0.25 "float tex2" 1
+Texture "s" "spectrum" "scale" "texture tex" "a" "texture scale" "b"
+Material "diffuse" "texture reflectance" "s"
+Shape "sphere"
+)");
+    Scene s = load_scene(path, collecting());
+    EXPECT_TRUE(warnings.empty()) << (warnings.empty() ? "" : warnings.front());
+    const Texture& t = s.textures[s.materials[0].albedo];
+    ASSERT_EQ(t.kind, TextureKind::Product);
+    EXPECT_EQ(s.textures[t.factors[0]].kind, TextureKind::UvChecker);
+    EXPECT_EQ(s.textures[t.factors[1]].kind, TextureKind::UvChecker);
+    // Both checkerboards have the same cells: the product is 0.125 or 1.
+    EXPECT_NEAR(eval_texture(s, s.materials[0].albedo, {0.25f, 0.25f}, {}).x, 0.125f, 1e-6f);
+}

@@ -447,3 +447,21 @@ TEST(Background, IlluminanceScalesTheMapToMeetIt) {
         EXPECT_NE(err.find("black.exr' is black above its horizon"), std::string::npos) << err;
     }
 }
+
+TEST(Texture, ProductMultipliesItsFactors) {
+    TempDir dir;
+    const auto p = dir.write("p.json", R"({"camera": {"look_from": [0, 0, 3], "look_at": [0, 0, 0]},
+      "materials": {"m": {"type": "lambertian", "albedo": {"type": "product", "factors": [
+          [0.5, 0.25, 1], {"type": "checker", "scale": 1, "even": 0.5, "odd": [1, 0.5, 0.2]}]}}},
+      "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "m"}]})");
+    const Scene s = load_scene(p);
+    const TextureId t = s.materials[0].albedo;
+    EXPECT_EQ(eval_texture(s, t, {}, {0.5f, 0.5f, 0.5f}), Color(0.25f, 0.125f, 0.5f));
+    EXPECT_EQ(eval_texture(s, t, {}, {1.5f, 0.5f, 0.5f}), Color(0.5f, 0.125f, 0.2f));
+    EXPECT_EQ(texture_mean(s, t), Color(0.5f, 0.25f, 1) * Color(0.75f, 0.5f, 0.35f));
+    // A reflectance's factors are reflectances.
+    dir.write("q.json", R"({"camera": {"look_from": [0, 0, 3], "look_at": [0, 0, 0]},
+      "materials": {"m": {"type": "lambertian", "albedo": {"type": "product", "factors": [2, 0.1]}}},
+      "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "m"}]})");
+    EXPECT_THROW(load_scene(dir.path() / "q.json"), SceneError);
+}

@@ -93,7 +93,8 @@ void bind_scene(py::module_& m) {
         .value("UvChecker", TextureKind::UvChecker)
         .value("Noise", TextureKind::Noise)
         .value("Image", TextureKind::Image)
-        .value("MeshAttribute", TextureKind::MeshAttribute);
+        .value("MeshAttribute", TextureKind::MeshAttribute)
+        .value("Product", TextureKind::Product);
     py::enum_<TextureFilter>(m, "TextureFilter")
         .value("Bilinear", TextureFilter::Bilinear)
         .value("Nearest", TextureFilter::Nearest);
@@ -114,7 +115,13 @@ void bind_scene(py::module_& m) {
         .def_readwrite("filter", &Texture::filter)
         .def_readwrite("wrap_u", &Texture::wrap_u)
         .def_readwrite("wrap_v", &Texture::wrap_v)
-        .def_readwrite("attribute", &Texture::attribute);
+        .def_readwrite("attribute", &Texture::attribute)
+        .def_property(
+            "factors", [](const Texture& t) { return std::pair(t.factors[0], t.factors[1]); },
+            [](Texture& t, std::pair<TextureId, TextureId> f) {
+                t.factors[0] = f.first;
+                t.factors[1] = f.second;
+            });
 
     py::enum_<MaterialKind>(m, "MaterialKind")
         .value("Lambertian", MaterialKind::Lambertian)

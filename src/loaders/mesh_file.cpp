@@ -238,13 +238,17 @@ MeshFile read_mesh_file(const std::filesystem::path& path,
         }
         out.embedded.push_back(std::move(image));
     }
-    bool all_normals = true, all_uvs = true;
+    bool all_normals = true, all_uvs = true, any_colors = false;
     for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
         const aiMesh* mesh = scene->mMeshes[m];
         if (!(mesh->mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;
         all_normals = all_normals && mesh->HasNormals();
         all_uvs = all_uvs && mesh->HasTextureCoords(0);
+        any_colors = any_colors || mesh->HasVertexColors(0);
     }
+    // glTF's COLOR_0 multiplies the base colour (glTF 2.0, 3.7.2.1): an attribute of every
+    // vertex, white where a mesh has none (the specification's default).
+    if (gltf && any_colors) out.attributes.push_back({"vertex_color", false, 3, {}});
     for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
         const aiMesh* mesh = scene->mMeshes[m];
         if (!(mesh->mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;
@@ -259,6 +263,11 @@ MeshFile read_mesh_file(const std::filesystem::path& path,
             if (all_uvs) {
                 const aiVector3D& t = mesh->mTextureCoords[0][v];
                 out.uvs.push_back({t.x, t.y});
+            }
+            if (!out.attributes.empty()) {
+                const aiColor4D c =
+                    mesh->HasVertexColors(0) ? mesh->mColors[0][v] : aiColor4D(1, 1, 1, 1);
+                out.attributes[0].values.push_back({c.r, c.g, c.b});
             }
         }
         MeshPart part{out.indices.size() / 3, 0, mesh->mMaterialIndex};

@@ -450,6 +450,12 @@ class Loader {
             t.scale = o.required("scale").positive();
             t.color = Vec3(1.0f);
             if (auto x = o.optional("color")) t.color = colour(*x);
+        } else if (type == "product") {
+            t.kind = TextureKind::Product;
+            Value factors = o.required("factors");
+            if (!factors.is_array() || factors.size() != 2)
+                factors.fail("expected two textures, got " + factors.describe());
+            for (size_t k = 0; k < 2; ++k) t.factors[k] = read_texture(factors[k], range);
         } else if (type == "mesh_attribute") {
             t.kind = TextureKind::MeshAttribute;
             Value name = o.required("name");
@@ -1032,13 +1038,21 @@ class Loader {
         std::vector<MaterialId> mapped(mesh.materials.size(), kNone);
         for (const MeshPart& part : mesh.parts) {
             if (mapped[part.material] == kNone)
-                mapped[part.material] =
-                    map_file_material(mesh.materials[part.material], mesh.embedded, path, where);
-            // The part's own vertices, re-indexed from 0.
+                mapped[part.material] = map_file_material(
+                    mesh.materials[part.material], mesh.embedded, path, where, mesh.attributes);
+            // The part's own vertices, re-indexed from 0, and its share of the attributes.
             std::vector<uint32_t> indices, remap(mesh.positions.size(), UINT32_MAX);
             std::vector<Point3> positions;
             std::vector<Normal3> normals;
             std::vector<Vec2> uvs;
+            std::vector<MeshAttribute> attributes;
+            for (const MeshAttribute& a : mesh.attributes) {
+                attributes.push_back({a.name, a.per_face, a.channels, {}});
+                if (a.per_face)
+                    attributes.back().values.assign(
+                        a.values.begin() + part.first_triangle,
+                        a.values.begin() + part.first_triangle + part.triangles);
+            }
             for (size_t k = 3 * part.first_triangle; k < 3 * (part.first_triangle + part.triangles);
                  ++k) {
                 const uint32_t v = mesh.indices[k];
@@ -1048,6 +1062,9 @@ class Loader {
                     positions.push_back(mesh.positions[v]);
                     if (!mesh.normals.empty()) normals.push_back(mesh.normals[v]);
                     if (!mesh.uvs.empty()) uvs.push_back(mesh.uvs[v]);
+                    for (size_t a = 0; a < attributes.size(); ++a)
+                        if (!attributes[a].per_face)
+                            attributes[a].values.push_back(mesh.attributes[a].values[v]);
                 }
                 indices.push_back(remap[v]);
             }
@@ -1055,8 +1072,8 @@ class Loader {
             m.name = path.filename().string() + ":" + mesh.materials[part.material].name;
             m.material = mapped[part.material];
             m.interior = interior;
-            skipped_triangles_ +=
-                scene_.add_mesh(std::move(m), positions, normals, uvs, indices, to_world);
+            skipped_triangles_ += scene_.add_mesh(std::move(m), positions, normals, uvs, indices,
+                                                  to_world, std::move(attributes));
         }
     }
 
@@ -1068,7 +1085,8 @@ class Loader {
     MaterialId map_file_material(const FileMaterial& fm,
                                  const std::vector<EmbeddedImage>& embedded,
                                  const fs::path& mesh_path,
-                                 const Value& where) {
+                                 const Value& where,
+                                 const std::vector<MeshAttribute>& attributes) {
         const std::string who = mesh_path.filename().string() + ": material \"" + fm.name + "\"";
         auto positive = [](Color c) { return max_component(c) > 0.0f; };
         auto check_color = [&](Color c, const char* key) {
@@ -1078,7 +1096,7 @@ class Loader {
         check_color(fm.kd, "Kd");
         check_color(fm.ks, "Ks");
         check_color(fm.ke, "Ke");
-        if (fm.pbr) return map_gltf_material(fm, embedded, mesh_path, where, who);
+        if (fm.pbr) return map_gltf_material(fm, embedded, mesh_path, where, who, attributes);
         Material m;
         m.name = fm.name;
         const bool dielectric = fm.illum == 4 || fm.illum == 6 || fm.illum == 7;
@@ -1160,7 +1178,8 @@ class Loader {
                                  const std::vector<EmbeddedImage>& embedded,
                                  const fs::path& mesh_path,
                                  const Value& where,
-                                 const std::string& who) {
+                                 const std::string& who,
+                                 const std::vector<MeshAttribute>& attributes) {
         auto unit = [&](float x, const char* key) {
             if (!(x >= 0.0f && x <= 1.0f))
                 where.fail(who + ": " + key + " " + std::to_string(x) + " is not in [0, 1]");
@@ -1209,6 +1228,17 @@ class Loader {
         const Color base = min(fm.kd, Color(1.0f));
         m.albedo = texture(fm.map_kd, "baseColorTexture", ImageChannels::Linear, base, fm.kd_sampler);
         if (m.albedo == kNone) m.albedo = scene_.add_solid(base);
+        // glTF's vertex colours multiply the base colour.
+        if (std::any_of(attributes.begin(), attributes.end(),
+                        [](const MeshAttribute& a) { return a.name == "vertex_color"; })) {
+            Texture colors, product;
+            colors.kind = TextureKind::MeshAttribute;
+            colors.attribute = "vertex_color";
+            product.kind = TextureKind::Product;
+            product.factors[0] = m.albedo;
+            product.factors[1] = scene_.add_texture(colors);
+            m.albedo = scene_.add_texture(product);
+        }
         m.metallic = unit(fm.metallic, "metallicFactor");
         m.roughness = unit(fm.roughness, "roughnessFactor");
         m.metallic_roughness = texture(fm.map_metallic_roughness, "metallicRoughnessTexture",

@@ -890,7 +890,7 @@ class Translator {
         } else if (type == "scale") {
             json tex = texture_value(p, "tex", 1.0, is_float);
             json scale = texture_value(p, "scale", 1.0, true);
-            t = scale_texture(tex, scale, place);
+            t = scale_texture(tex, scale);
             p.finish(pwarn());
         } else {
             warn(place, "Texture \"" + type + "\" is not supported; a constant 0.5 stands in");
@@ -917,8 +917,9 @@ class Translator {
         return color_json(spectrum(*q, false, false));
     }
 
-    // tex x scale where one of them is a constant.
-    json scale_texture(json tex, const json& scale, const std::string& place) {
+    // tex times scale: folded into a number, a colour or an image's factor where one is a
+    // number, else a product texture.
+    json scale_texture(json tex, const json& scale) {
         auto times = [](const json& c, double s) {
             if (c.is_number()) return json(c.get<double>() * s);
             json r = json::array();
@@ -937,8 +938,7 @@ class Translator {
             r["factor"] = times(r.contains("factor") ? r["factor"] : json(1.0), tex.get<double>());
             return r;
         }
-        warn(place, "Texture \"scale\" of two textures is not supported; the first is used");
-        return tex;
+        return {{"type", "product"}, {"factors", json::array({tex, scale})}};
     }
 
     // ---- materials ----

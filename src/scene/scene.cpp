@@ -276,9 +276,9 @@ size_t Scene::add_mesh(Mesh mesh,
     return skipped;
 }
 
-const MeshAttribute* Scene::mesh_attribute(uint32_t mesh, const std::string& name) const {
+const MeshAttribute* Scene::mesh_attribute(uint32_t mesh, const std::string& attribute) const {
     for (const MeshAttribute& a : mesh_attributes)
-        if (a.mesh == mesh && a.name == name) return &a;
+        if (a.mesh == mesh && a.name == attribute) return &a;
     return nullptr;
 }
 

@@ -60,6 +60,8 @@ void check_scene(const Scene& scene) {
             if (!(t.scale > 0) || !std::isfinite(t.scale))
                 fail("texture", i, "a checker's scale must be a positive number");
         }
+        if (t.kind == TextureKind::Product && (t.factors[0] >= i || t.factors[1] >= i))
+            fail("texture", i, "a product's factors must be textures added before it");
         if (t.kind == TextureKind::Image &&
             (t.image >= scene.images.size() || scene.images[t.image].texels.empty()))
             fail("texture", i, "names no image of the scene");

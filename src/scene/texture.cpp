@@ -173,6 +173,8 @@ bool texture_reads_uv(const Scene& scene, TextureId id) {
             return true;
         case TextureKind::Checker:
             return texture_reads_uv(scene, t.even) || texture_reads_uv(scene, t.odd);
+        case TextureKind::Product:
+            return texture_reads_uv(scene, t.factors[0]) || texture_reads_uv(scene, t.factors[1]);
         case TextureKind::Solid:
         case TextureKind::Noise:
         case TextureKind::MeshAttribute:
@@ -185,12 +187,13 @@ void texture_attributes(const Scene& scene, TextureId id, std::vector<std::strin
     if (id == kNone || id >= scene.textures.size()) return;
     const Texture& t = scene.textures[id];
     if (t.kind == TextureKind::MeshAttribute) names->push_back(t.attribute);
-    // A checker's cells come before it (check_scene), so this ends.
-    if ((t.kind == TextureKind::Checker || t.kind == TextureKind::UvChecker) && t.even < id &&
-        t.odd < id) {
-        texture_attributes(scene, t.even, names);
-        texture_attributes(scene, t.odd, names);
-    }
+    // A checker's cells and a product's factors come before it (check_scene), so this ends.
+    const bool checker = t.kind == TextureKind::Checker || t.kind == TextureKind::UvChecker;
+    const bool product = t.kind == TextureKind::Product;
+    if (!checker && !product) return;
+    for (const TextureId sub :
+         checker ? std::array{t.even, t.odd} : std::array{t.factors[0], t.factors[1]})
+        if (sub < id) texture_attributes(scene, sub, names);
 }
 
 Color eval_texture(const Scene& scene, TextureId id, const TexturePoint& at) {
@@ -231,6 +234,9 @@ Color eval_texture(const Scene& scene, TextureId id, const TexturePoint& at) {
                 if (t.cutoff >= 0.0f) return Color(c.x >= t.cutoff ? 1.0f : 0.0f);
                 return c;
             }
+            case TextureKind::Product:
+                return eval_texture(scene, t.factors[0], at) *
+                       eval_texture(scene, t.factors[1], at);
             case TextureKind::MeshAttribute: {
                 // check_scene has made sure that only meshes holding the attribute read it.
                 if (at.triangle == kNone) return {};
@@ -287,6 +293,8 @@ Color texture_mean(const Scene& scene, TextureId id) {
                 return 0.5f * (mean_of(t.even, depth + 1) + mean_of(t.odd, depth + 1));
             case TextureKind::Noise:
                 return 0.5f * t.color;
+            case TextureKind::Product:
+                return mean_of(t.factors[0], depth + 1) * mean_of(t.factors[1], depth + 1);
             case TextureKind::Image: {
                 const ImageData& image = scene.images[t.image];
                 Color sum{0.0f};

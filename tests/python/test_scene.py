@@ -187,6 +187,29 @@ def test_mesh_attributes_from_arrays_render_as_the_same_ply_from_json(tmp_path):
         s.check()
 
 
+def test_a_product_texture_built_in_python_renders_as_in_json(tmp_path):
+    (tmp_path / "p.json").write_text(json.dumps({
+        "camera": {"look_from": [0, 0, 5], "look_at": [0, 0, 0]},
+        "background": {"type": "constant", "radiance": [1, 1, 1]},
+        "materials": {"m": {"type": "lambertian", "albedo": {"type": "product", "factors": [
+            [0.9, 0.5, 0.2], {"type": "checker", "scale": 0.5, "even": 1, "odd": 0.3}]}}},
+        "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "m"}]}))
+    s = wt.Scene()
+    s.camera = wt.Camera(look_from=(0, 0, 5), look_at=(0, 0, 0))
+    s.background = wt.Background(radiance=(1, 1, 1))
+    tint = s.add_solid((0.9, 0.5, 0.2))
+    checker = s.add_texture(wt.Texture(kind=wt.TextureKind.Checker, scale=0.5,
+                                       even=s.add_solid((1, 1, 1)),
+                                       odd=s.add_solid((0.3, 0.3, 0.3))))
+    product = s.add_texture(wt.Texture(kind=wt.TextureKind.Product, factors=(tint, checker)))
+    s.add_sphere(wt.Sphere(center=(0, 0, 0), radius=1,
+                           material=s.add_material(wt.Material(kind=wt.MaterialKind.Lambertian,
+                                                               albedo=product))))
+    a = wt.render(s, width=16, height=16, spp=4)
+    b = wt.render(wt.load_scene(tmp_path / "p.json"), width=16, height=16, spp=4)
+    assert np.array_equal(a, b)
+
+
 def test_an_asset_root_confines_the_files_read(tmp_path):
     assert wt.load_scene(SCENES / "bunny.json", asset_root=SCENES).info()["triangles"] > 0
     with pytest.raises(wt.SceneError, match="outside the asset root"):

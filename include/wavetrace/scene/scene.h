@@ -107,8 +107,8 @@ struct Scene {
                     const std::vector<uint32_t>& indices,
                     const Transform& to_world = {},
                     std::vector<MeshAttribute> attributes = {});
-    // The attribute `name` of mesh `mesh`, or nullptr.
-    const MeshAttribute* mesh_attribute(uint32_t mesh, const std::string& name) const;
+    // The attribute named `attribute` of mesh `mesh`, or nullptr.
+    const MeshAttribute* mesh_attribute(uint32_t mesh, const std::string& attribute) const;
 
     // How far a medium boundary with these world bounds is moved outwards.
     static float boundary_margin(const Aabb& world_bounds);

@@ -19,6 +19,8 @@ enum class TextureKind : uint8_t {
     // per-vertex one interpolated by the hit's barycentrics, a per-face one the triangle's
     // (Mitsuba 3's mesh_attribute). Only meshes have attributes.
     MeshAttribute,
+    Product,  // the product of textures `factors` (pbrt-v4's scale texture; glTF's base colour
+              // times its vertex colour)
 };
 
 // How an image texture is looked up between texels: interpolated between the four nearest
@@ -39,6 +41,7 @@ struct Texture {
     std::string attribute;   // MeshAttribute: its name ("vertex_color", "face_weight")
     TextureId even = kNone;  // Checker: the texture of even cells
     TextureId odd = kNone;   // Checker: the texture of odd cells
+    TextureId factors[2] = {kNone, kNone};  // Product: the textures multiplied
     ImageId image = kNone;   // Image: index into Scene::images
     TextureFilter filter = TextureFilter::Bilinear;  // Image
     TextureWrap wrap_u = TextureWrap::Repeat;        // Image: along u
@@ -83,8 +86,8 @@ struct Sphere;
 // Whether texture `id` (kNone: no texture) reads the surface's uv: image textures, directly or
 // as a checker's cell. The others read the point or nothing.
 bool texture_reads_uv(const Scene& scene, TextureId id);
-// The mesh attributes texture `id` (kNone: none) reads, directly or as a checker's cell,
-// appended to `names`.
+// The mesh attributes texture `id` (kNone: none) reads, directly or through the textures it
+// combines, appended to `names`.
 void texture_attributes(const Scene& scene, TextureId id, std::vector<std::string>* names);
 
 // Where a texture is looked up: the surface's texture coordinates and world point, and on a
@@ -107,7 +110,8 @@ inline Color eval_texture(const Scene& scene, TextureId id, Vec2 uv, Point3 p) {
 // false for other textures, whose gradient the caller approximates.
 bool texture_luminance_gradient(const Scene& scene, TextureId id, Vec2 uv, Vec2* gradient);
 // The texture's mean over its domain (an image's texels, a checker's two cells; noise: half its
-// colour), as Mitsuba's Texture::mean; 0 for kNone.
+// colour; a product: the product of its factors' means), as Mitsuba's Texture::mean; 0 for
+// kNone.
 Color texture_mean(const Scene& scene, TextureId id);
 // A sphere's texture coordinates at the point of outward unit normal ng: u = phi / 2 pi around
 // -x..+z.., v = theta / pi from -y (Ray Tracing: The Next Week's mapping).
