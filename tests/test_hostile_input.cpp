@@ -194,6 +194,17 @@ TEST(HostileInput, PlyInTheFormsWritersPrintLoads) {
                   std::string::npos)
             << r.err;
     }
+    // A double beyond the float range is an infinite coordinate (its triangle skipped), not an
+    // undefined conversion (UBSan's float-cast-overflow in `make sanitize`).
+    dir.write("big.ply",
+              "ply\nformat ascii 1.0\nelement vertex 4\nproperty double x\n"
+              "property double y\nproperty double z\nelement face 2\n"
+              "property list uchar int vertex_indices\nend_header\n"
+              "0 0 0\n1 0 0\n0 1 0\n1e300 -1e300 0\n3 0 1 2\n3 1 3 2\n");
+    const fs::path p = dir.write("x.json", mesh_scene("big.ply"));
+    const CliResult r = run_guarded(dir, "info '" + p.string() + "'");
+    EXPECT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.err.find("1 degenerate triangles skipped"), std::string::npos) << r.err;
 }
 
 TEST(HostileInput, BrokenPlyUnderAnotherExtensionIsRefused) {

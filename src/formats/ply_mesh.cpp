@@ -6,6 +6,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -352,10 +353,19 @@ std::vector<AttributeColumns> attributes_of(const Element& e,
     return out;
 }
 
+// A double as a float, beyond the float range an infinity (a conversion there is undefined),
+// which the mesh builder then skips with its triangles.
+float to_float(double v) {
+    constexpr double kMax = std::numeric_limits<float>::max();
+    return v > kMax    ? std::numeric_limits<float>::infinity()
+           : v < -kMax ? -std::numeric_limits<float>::infinity()
+                       : static_cast<float>(v);
+}
+
 Color attribute_value(const AttributeColumns& a, const std::vector<double>& record) {
-    if (a.columns.size() == 1) return Color(static_cast<float>(record[a.columns[0]]));
-    return {static_cast<float>(record[a.columns[0]]), static_cast<float>(record[a.columns[1]]),
-            static_cast<float>(record[a.columns[2]])};
+    if (a.columns.size() == 1) return Color(to_float(record[a.columns[0]]));
+    return {to_float(record[a.columns[0]]), to_float(record[a.columns[1]]),
+            to_float(record[a.columns[2]])};
 }
 
 }  // namespace ply
@@ -460,11 +470,12 @@ MeshFile read_ply_mesh(const std::filesystem::path& path) {
             }
             if (is_vertex) {
                 out.positions.push_back(
-                    {float(record[xyz[0]]), float(record[xyz[1]]), float(record[xyz[2]])});
+                    {to_float(record[xyz[0]]), to_float(record[xyz[1]]), to_float(record[xyz[2]])});
                 if (has_normals)
-                    out.normals.push_back(
-                        {float(record[nxyz[0]]), float(record[nxyz[1]]), float(record[nxyz[2]])});
-                if (uv[0] >= 0) out.uvs.push_back({float(record[uv[0]]), float(record[uv[1]])});
+                    out.normals.push_back({to_float(record[nxyz[0]]), to_float(record[nxyz[1]]),
+                                           to_float(record[nxyz[2]])});
+                if (uv[0] >= 0)
+                    out.uvs.push_back({to_float(record[uv[0]]), to_float(record[uv[1]])});
                 for (size_t a = 0; a < vertex_columns.size(); ++a)
                     vertex_attributes[a].values.push_back(
                         attribute_value(vertex_columns[a], record));
