@@ -687,3 +687,30 @@ TEST(MitsubaScenes, ConvertWritesJsonThatRendersBitIdentically) {
     EXPECT_EQ(read(from_xml), read(from_json));
     EXPECT_NE(read(json).find("\"group\""), std::string::npos);  // the instances
 }
+
+// Mitsuba gives a mesh whose file has no vertex normals smooth ones (unless face_normals): a
+// pyramid's apex normal is the area-weighted mean of its four faces', straight up; a base
+// corner's the mean of its two faces' (0, -2, 2) and (-2, 0, 2), z = sqrt(2/3).
+TEST(MitsubaScenes, AMeshWithoutNormalsIsShadedSmoothAsInMitsuba) {
+    TempDir dir;
+    dir.write("pyramid.obj",
+              "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nv 0 0 1\n"
+              "f 1 2 5\nf 2 3 5\nf 3 4 5\nf 4 1 5\n");
+    for (const bool face_normals : {false, true}) {
+        auto path = dir.write("a.xml", scene(std::string(R"(
+  <shape type="obj"><string name="filename" value="pyramid.obj"/>
+    <boolean name="face_normals" value=")") + (face_normals ? "true" : "false") +
+                                             R"("/>
+    <bsdf type="diffuse"/></shape>)"));
+        Scene s = load_scene(path, collecting());
+        ASSERT_EQ(s.meshes.size(), 1u);
+        EXPECT_EQ(s.meshes[0].has_normals, !face_normals);
+        if (face_normals) continue;
+        for (size_t v = 0; v < s.positions.size(); ++v)
+            if (s.positions[v].z > 0.5f) {
+                EXPECT_NEAR(s.normals[v].z, 1.0f, 1e-6f);
+            } else {
+                EXPECT_NEAR(s.normals[v].z, std::sqrt(2.0f / 3.0f), 1e-5f);
+            }
+    }
+}

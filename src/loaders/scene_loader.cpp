@@ -1381,8 +1381,10 @@ class Loader {
             std::string normals = "file";
             if (auto x = o.optional("normals")) {
                 normals = x->string();
-                if (normals != "file" && normals != "flat" && normals != "smooth")
-                    x->fail("expected \"file\", \"flat\" or \"smooth\", got " + x->describe());
+                if (normals != "file" && normals != "flat" && normals != "smooth" &&
+                    normals != "file_or_smooth")
+                    x->fail("expected \"file\", \"flat\", \"smooth\" or \"file_or_smooth\", got " +
+                            x->describe());
             }
             bool flip_v = false;  // uvs read as (u, 1 - v)
             if (auto x = o.optional("flip_v")) flip_v = x->boolean();
@@ -1422,7 +1424,8 @@ class Loader {
             if (flip_v)
                 for (Vec2& t : mesh.uvs) t.y = 1.0f - t.y;
             if (normals == "flat") mesh.normals.clear();
-            if (normals == "smooth") mesh.normals = smooth_normals(mesh.positions, mesh.indices);
+            if (normals == "smooth" || (normals == "file_or_smooth" && mesh.normals.empty()))
+                mesh.normals = smooth_normals(mesh.positions, mesh.indices);
             if (file_materials) {
                 add_mesh_parts(mesh, p, interior, to_world, file);
             } else {

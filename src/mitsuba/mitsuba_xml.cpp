@@ -1014,7 +1014,8 @@ class Translator {
                 const int index = p.integer("shape_index", 0, 0, 1 << 30);
                 if (index > 0) o["shape_index"] = index;
             }
-            if (p.boolean("face_normals", false)) o["normals"] = "flat";
+            // Mitsuba computes vertex normals for a mesh whose file has none.
+            o["normals"] = p.boolean("face_normals", false) ? "flat" : "file_or_smooth";
             // Mitsuba's v runs down an image from its top row, ours up from the bottom row: a
             // file's v is ours where Mitsuba flips it (an OBJ's by default), else flipped.
             const bool mitsuba_flips = type != "serialized" && type != "gltf" &&
