@@ -419,9 +419,8 @@ class Loader {
     // Texture `id`, read at `v` for something that is no mesh's surface, which must not read a
     // mesh attribute.
     TextureId off_meshes(TextureId id, const Value& v) const {
-        std::vector<std::string> names;
-        texture_attributes(scene_, id, &names);
-        if (!names.empty()) v.fail("a mesh attribute is read only on a mesh's surface");
+        if (texture_reads_attributes(scene_, id))
+            v.fail("a mesh attribute is read only on a mesh's surface");
         return id;
     }
 

@@ -42,11 +42,7 @@ std::vector<std::string> material_attributes(const Scene& scene, MaterialId id) 
 }
 
 const char* attribute_misuse(const Scene& scene, const Material& m) {
-    auto reads = [&](TextureId id) {
-        std::vector<std::string> names;
-        texture_attributes(scene, id, &names);
-        return !names.empty();
-    };
+    auto reads = [&](TextureId id) { return texture_reads_attributes(scene, id); };
     if (reads(m.emission)) return "emission";
     if (reads(m.normal_map)) return "normal_map";
     if (reads(m.bump_map)) return "bump_map";

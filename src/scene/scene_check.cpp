@@ -70,11 +70,7 @@ void check_scene(const Scene& scene) {
             fail("texture", i, "a mesh attribute's scale is not finite");
     }
     // Only what surface_at and surface_vertex look up at a triangle's hit knows the triangle.
-    auto reads_attributes = [&](TextureId id) {
-        std::vector<std::string> names;
-        texture_attributes(scene, id, &names);
-        return !names.empty();
-    };
+    auto reads_attributes = [&](TextureId id) { return texture_reads_attributes(scene, id); };
     auto check_texture = [&](size_t m, TextureId id, const char* field, bool required) {
         if (id == kNone && !required) return;
         if (id >= textures)

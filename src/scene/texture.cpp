@@ -196,6 +196,12 @@ void texture_attributes(const Scene& scene, TextureId id, std::vector<std::strin
         if (sub < id) texture_attributes(scene, sub, names);
 }
 
+bool texture_reads_attributes(const Scene& scene, TextureId id) {
+    std::vector<std::string> names;
+    texture_attributes(scene, id, &names);
+    return !names.empty();
+}
+
 Color eval_texture(const Scene& scene, TextureId id, const TexturePoint& at) {
     const Vec2 uv = at.uv;
     const Point3 p = at.p;

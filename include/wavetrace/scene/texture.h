@@ -89,6 +89,8 @@ bool texture_reads_uv(const Scene& scene, TextureId id);
 // The mesh attributes texture `id` (kNone: none) reads, directly or through the textures it
 // combines, appended to `names`.
 void texture_attributes(const Scene& scene, TextureId id, std::vector<std::string>* names);
+// Whether texture `id` reads any mesh attribute.
+bool texture_reads_attributes(const Scene& scene, TextureId id);
 
 // Where a texture is looked up: the surface's texture coordinates and world point, and on a
 // triangle (kNone: elsewhere) the hit's barycentric coordinates of its second and third vertex.
