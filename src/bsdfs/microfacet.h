@@ -3,9 +3,10 @@
 // masking and sampling of the visible normals. Directions are unit vectors in the shading frame
 // (z along the normal), m a microfacet normal.
 //
-// The rough conductor evaluates these in scalar code in both engines. The lane GGX of `metal`
-// (ggx-inl.h) is the isotropic case written for SIMD; its visible-normal sampling is the one
-// both use.
+// The rough conductor, dielectric and plastic evaluate these in scalar code in both engines.
+// Beckmann's are the one-lane instances of its lane formulas (beckmann-inl.h); the lane GGX of
+// `metal` (ggx-inl.h) is the isotropic case written for SIMD, and its visible-normal sampling
+// is the one both use.
 #pragma once
 
 #include "bsdfs/bsdf.h"

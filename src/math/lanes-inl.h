@@ -67,9 +67,16 @@ struct OneLane {
         return static_cast<float>(static_cast<int32_t>(bits >> 23) - 127);
     }
 
-    // 32-bit integer lanes, for table indices: Trunc of a float in [0, 2^31) toward zero,
-    // Gather of base[i] (i >= 0).
+    // 32-bit integer lanes, for table indices and exponents: Trunc of a float in (-2^31, 2^31)
+    // toward zero, Gather of base[i] (i >= 0).
     using I = int32_t;
+    // 2^e for an integer e in [-126, 127], exactly.
+    static F Pow2(I e) {
+        const uint32_t bits = static_cast<uint32_t>(e + 127) << 23;
+        float f;
+        std::memcpy(&f, &bits, sizeof f);
+        return f;
+    }
     static I SetI(int32_t x) { return x; }
     static I AddI(I a, I b) { return a + b; }
     static I SubI(I a, I b) { return a - b; }
@@ -151,6 +158,10 @@ struct FloatLanes {
     }
     static HWY_INLINE I Trunc(F x) { return hn::ConvertTo(hn::RebindToSigned<D>(), x); }
     static HWY_INLINE F ToFloat(I x) { return hn::ConvertTo(D(), x); }
+    static HWY_INLINE F Pow2(I e) {
+        const hn::RebindToSigned<D> di;
+        return hn::BitCast(D(), hn::ShiftLeft<23>(hn::Add(e, hn::Set(di, 127))));
+    }
     static HWY_INLINE F Floor(F x) { return hn::Floor(x); }
     static HWY_INLINE F Gather(const float* base, I i) { return hn::GatherIndex(D(), base, i); }
     static HWY_INLINE F SplitExponent(F x, F* m) {
@@ -396,6 +407,25 @@ HWY_INLINE typename L::F Log(typename L::F x) {
     y = y + L::Set(-2.12194440e-4f) * e;
     y = y + L::Set(-0.5f) * z;
     return f + y + L::Set(0.693359375f) * e;
+}
+
+// e^x for x <= 88: x = n log 2 + r with |r| <= log(2) / 2 (log 2 in two parts, the first exact
+// in float, so that r loses nothing), e^r from Cephes' expf polynomial (S. Moshier; relative
+// error below 2e-7), times 2^n. Below -87.3 (2^-126) it is 0: no subnormal results.
+template <class L>
+HWY_INLINE typename L::F Exp(typename L::F x) {
+    using F = typename L::F;
+    const auto underflows = x < L::Set(-87.3f);
+    x = L::Min(L::Max(x, L::Set(-87.3f)), L::Set(88.0f));
+    const typename L::I k = L::Trunc(x * L::Set(1.44269504f) + L::CopySign(L::Set(0.5f), x));
+    const F n = L::ToFloat(k);  // x / log 2 rounded to the nearest whole number
+    const F r = x - n * L::Set(0.693359375f) - n * L::Set(-2.12194440e-4f);
+    F p = L::Set(1.9875691500e-4f);
+    for (const float c :
+         {1.3981999507e-3f, 8.3334519073e-3f, 4.1665795894e-2f, 1.6666665459e-1f, 5.0000001201e-1f})
+        p = p * r + L::Set(c);
+    const F e = (p * (r * r) + r + L::Set(1.0f)) * L::Pow2(k);
+    return L::Select(underflows, L::Set(0.0f), e);
 }
 
 // log(1 + x) for x > -1, accurate for small x too: with w = 1 + x rounded, log(w) x / (w - 1)
