@@ -34,6 +34,10 @@ std::string gltf(const std::string& nodes, const std::string& roots, const std::
            top + "}";
 }
 
+// A unit quad's buffer: positions, indices and RGBA colours, white, transparent at y = -1.
+constexpr const char* kQuadWithAlpha =
+    "AACAvwAAgL8AAAAAAACAPwAAgL8AAAAAAACAPwAAgD8AAAAAAACAvwAAgD8AAAAAAAABAAIAAAACAAMAAAAAAAAAgD8AAI"
+    "A/AACAPwAAAAAAAIA/AACAPwAAgD8AAAAAAACAPwAAgD8AAIA/AACAPwAAgD8AAIA/AACAPwAAgD8=";
 
 void expect_near(Vec3 a, Vec3 b, float tol = 1e-5f) {
     EXPECT_NEAR(a.x, b.x, tol);
@@ -250,4 +254,60 @@ TEST(GltfScenes, VertexColorsMultiplyTheBaseColour) {
         }
         expect_near(eval_texture(s, albedo, TexturePoint{{}, {}, t, 0.25f, 0.25f}), base * mixed);
     }
+}
+
+// COLOR_0's alpha multiplies the base colour's (glTF 2.0, 3.7.2.1): the quad's corners at
+// y = -1 transparent, at y = 1 opaque, the base colour's alpha 0.8. With alphaMode MASK
+// (cutoff 0.5) the coverage is 0 below y = 0.25 and 1 above, where 0.8 times the interpolated
+// alpha crosses 0.5; with BLEND it is that product itself; OPAQUE ignores it.
+TEST(GltfScenes, VertexAlphaMultipliesTheBaseColoursAlpha) {
+    TempDir dir;
+    const auto write = [&](const std::string& name, const std::string& mode) {
+        return dir.write(name, R"({"asset": {"version": "2.0"}, "scene": 0,
+      "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+      "materials": [{"pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 0.8],
+                     "metallicFactor": 0}, "alphaMode": ")" +
+                                   mode + R"(", "alphaCutoff": 0.5}],
+      "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "COLOR_0": 2}, "indices": 1,
+                                  "material": 0}]}],
+      "buffers": [{"byteLength": 128, "uri": "data:application/octet-stream;base64,)" +
+                                   std::string(kQuadWithAlpha) + R"("}],
+      "bufferViews": [{"buffer": 0, "byteLength": 48}, {"buffer": 0, "byteOffset": 48, "byteLength": 12},
+                      {"buffer": 0, "byteOffset": 64, "byteLength": 64}],
+      "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3",
+                     "min": [-1, -1, 0], "max": [1, 1, 0]},
+                    {"bufferView": 1, "componentType": 5123, "count": 6, "type": "SCALAR"},
+                    {"bufferView": 2, "componentType": 5126, "count": 4, "type": "VEC4"}]})");
+    };
+    // The coverage at the point of triangle t whose barycentrics are b1, b2.
+    const auto coverage = [](const Scene& s, uint32_t t, float b1, float b2) {
+        const TextureId opacity = s.materials[s.meshes[0].material].opacity;
+        return opacity == kNone ? 1.0f
+                                : eval_texture(s, opacity, TexturePoint{{}, {}, t, b1, b2}).x;
+    };
+    // The alpha interpolated at that point, from the file's corners.
+    const auto alpha_at = [](const Scene& s, uint32_t t, float b1, float b2) {
+        const Triangle& tri = s.triangles[t];
+        const float b[3] = {1.0f - b1 - b2, b1, b2};
+        float a = 0.0f;
+        for (int k = 0; k < 3; ++k) a += b[k] * (s.positions[tri.v[k]].y > 0.0f ? 1.0f : 0.0f);
+        return a;
+    };
+    const Scene mask = load_scene(write("mask.gltf", "MASK"));
+    const Scene blend = load_scene(write("blend.gltf", "BLEND"));
+    const Scene opaque = load_scene(write("opaque.gltf", "OPAQUE"));
+    ASSERT_EQ(mask.triangles.size(), 2u);
+    int cut = 0, kept = 0;
+    for (uint32_t t = 0; t < 2; ++t)
+        for (const auto& [b1, b2] :
+             {std::pair{0.1f, 0.1f}, {0.8f, 0.1f}, {0.1f, 0.8f}, {0.3f, 0.3f}}) {
+            const float a = 0.8f * alpha_at(mask, t, b1, b2);
+            EXPECT_EQ(coverage(mask, t, b1, b2), a >= 0.5f ? 1.0f : 0.0f)
+                << t << " " << b1 << " " << b2;
+            (a >= 0.5f ? kept : cut)++;
+            EXPECT_NEAR(coverage(blend, t, b1, b2), a, 1e-6f);
+            EXPECT_EQ(coverage(opaque, t, b1, b2), 1.0f);
+        }
+    EXPECT_GT(cut, 0);
+    EXPECT_GT(kept, 0);
 }

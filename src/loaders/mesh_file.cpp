@@ -238,17 +238,22 @@ MeshFile read_mesh_file(const std::filesystem::path& path,
         }
         out.embedded.push_back(std::move(image));
     }
-    bool all_normals = true, all_uvs = true, any_colors = false;
+    bool all_normals = true, all_uvs = true, any_colors = false, any_alpha = false;
     for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
         const aiMesh* mesh = scene->mMeshes[m];
         if (!(mesh->mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;
         all_normals = all_normals && mesh->HasNormals();
         all_uvs = all_uvs && mesh->HasTextureCoords(0);
-        any_colors = any_colors || mesh->HasVertexColors(0);
+        if (!mesh->HasVertexColors(0)) continue;
+        any_colors = true;
+        for (unsigned v = 0; v < mesh->mNumVertices && !any_alpha; ++v)
+            any_alpha = mesh->mColors[0][v].a != 1.0f;
     }
-    // glTF's COLOR_0 multiplies the base colour (glTF 2.0, 3.7.2.1): an attribute of every
-    // vertex, white where a mesh has none (the specification's default).
+    // glTF's COLOR_0 multiplies the base colour and its alpha (glTF 2.0, 3.7.2.1): attributes
+    // of every vertex, white and opaque where a mesh has none (the specification's default);
+    // the alpha only where some vertex is not opaque.
     if (gltf && any_colors) out.attributes.push_back({"vertex_color", false, 3, {}});
+    if (gltf && any_alpha) out.attributes.push_back({"vertex_alpha", false, 1, {}});
     for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
         const aiMesh* mesh = scene->mMeshes[m];
         if (!(mesh->mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;
@@ -268,6 +273,7 @@ MeshFile read_mesh_file(const std::filesystem::path& path,
                 const aiColor4D c =
                     mesh->HasVertexColors(0) ? mesh->mColors[0][v] : aiColor4D(1, 1, 1, 1);
                 out.attributes[0].values.push_back({c.r, c.g, c.b});
+                if (any_alpha) out.attributes[1].values.push_back(Color(c.a));
             }
         }
         MeshPart part{out.indices.size() / 3, 0, mesh->mMaterialIndex};

@@ -1227,9 +1227,12 @@ class Loader {
         const Color base = min(fm.kd, Color(1.0f));
         m.albedo = texture(fm.map_kd, "baseColorTexture", ImageChannels::Linear, base, fm.kd_sampler);
         if (m.albedo == kNone) m.albedo = scene_.add_solid(base);
+        const auto has_attribute = [&](const char* name) {
+            return std::any_of(attributes.begin(), attributes.end(),
+                               [&](const MeshAttribute& a) { return a.name == name; });
+        };
         // glTF's vertex colours multiply the base colour.
-        if (std::any_of(attributes.begin(), attributes.end(),
-                        [](const MeshAttribute& a) { return a.name == "vertex_color"; })) {
+        if (has_attribute("vertex_color")) {
             Texture colors, product;
             colors.kind = TextureKind::MeshAttribute;
             colors.attribute = "vertex_color";
@@ -1252,7 +1255,8 @@ class Loader {
                              fm.emissive_sampler);
         if (m.emission == kNone && max_component(fm.ke) > 0.0f) m.emission = scene_.add_solid(fm.ke);
         m.two_sided = fm.double_sided;  // a double-sided surface emits from both sides
-        // Alpha: the base colour's alpha (its factor's times its texture's), as coverage. MASK
+        // Alpha: the base colour's alpha (its factor's times its texture's and its vertices'), as
+        // coverage. MASK
         // cuts at alphaCutoff; BLEND lets that share of rays through (the stochastic opacity of
         // a surface seen through many samples, as a blended one looks).
         if (fm.alpha_mode == "MASK" || fm.alpha_mode == "BLEND") {
@@ -1262,12 +1266,24 @@ class Loader {
                 where.fail(who + ": alphaCutoff must be a non-negative number");
             m.opacity = texture(fm.map_kd, "baseColorTexture", ImageChannels::Alpha, Color(alpha),
                                 fm.kd_sampler);
-            if (m.opacity != kNone)
+            if (has_attribute("vertex_alpha")) {
+                // COLOR_0's alpha multiplies the rest before the cutoff.
+                Texture vertex_alpha, product;
+                vertex_alpha.kind = TextureKind::MeshAttribute;
+                vertex_alpha.attribute = "vertex_alpha";
+                product.kind = TextureKind::Product;
+                product.factors[0] =
+                    m.opacity != kNone ? m.opacity : scene_.add_solid(Color(alpha));
+                product.factors[1] = scene_.add_texture(vertex_alpha);
+                product.cutoff = cutoff;
+                m.opacity = scene_.add_texture(product);
+            } else if (m.opacity != kNone) {
                 scene_.textures[m.opacity].cutoff = cutoff;
-            else if (cutoff >= 0.0f)
+            } else if (cutoff >= 0.0f) {
                 m.opacity = scene_.add_solid(Color(alpha >= cutoff ? 1.0f : 0.0f));
-            else if (alpha < 1.0f)
+            } else if (alpha < 1.0f) {
                 m.opacity = scene_.add_solid(Color(alpha));
+            }
         } else if (fm.alpha_mode != "OPAQUE") {
             where.fail(who + ": unknown alphaMode \"" + fm.alpha_mode + "\"");
         }

@@ -240,9 +240,12 @@ Color eval_texture(const Scene& scene, TextureId id, const TexturePoint& at) {
                 if (t.cutoff >= 0.0f) return Color(c.x >= t.cutoff ? 1.0f : 0.0f);
                 return c;
             }
-            case TextureKind::Product:
-                return eval_texture(scene, t.factors[0], at) *
-                       eval_texture(scene, t.factors[1], at);
+            case TextureKind::Product: {
+                const Color c =
+                    eval_texture(scene, t.factors[0], at) * eval_texture(scene, t.factors[1], at);
+                if (t.cutoff >= 0.0f) return Color(c.x >= t.cutoff ? 1.0f : 0.0f);
+                return c;
+            }
             case TextureKind::MeshAttribute: {
                 // check_scene has made sure that only meshes holding the attribute read it.
                 if (at.triangle == kNone) return {};

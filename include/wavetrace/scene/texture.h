@@ -47,8 +47,9 @@ struct Texture {
     TextureWrap wrap_u = TextureWrap::Repeat;        // Image: along u
     TextureWrap wrap_v = TextureWrap::Repeat;        // Image: along v
     Color factor{1.0f};      // Image: multiplied into the texels (glTF's colour factors)
-    float cutoff = -1.0f;    // Image: if >= 0, the value becomes 1 where its first channel
-                             // reaches the cutoff and 0 elsewhere (glTF's alphaMode MASK)
+    float cutoff = -1.0f;    // Image, Product: if >= 0, the value becomes 1 where its first
+                             // channel reaches the cutoff and 0 elsewhere (glTF's alphaMode
+                             // MASK)
     // Image, UvChecker: the affine map applied to the surface's (u, v) first,
     // (u', v') = (uv[0][0] u + uv[0][1] v + uv[0][2], uv[1][0] u + uv[1][1] v + uv[1][2]).
     float uv[2][3] = {{1.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}};
