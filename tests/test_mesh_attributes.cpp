@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_run.h"
 #include "temp_dir.h"
 #include "wavetrace/loaders/load_scene.h"
 #include "wavetrace/scene/scene.h"
@@ -212,4 +213,19 @@ TEST(MeshAttributes, WhatCannotReadAnAttributeIsRefused) {
         attr + R"(}},
  "objects": [{"type": "mesh", "file": "m.ply", "interior": "fog"}]})";
     refused(medium, "/media/fog/albedo: a mesh attribute is read only on a mesh's surface");
+}
+
+// `wavetrace info` names each attribute the meshes carry, where it is stored and its channels.
+TEST(MeshAttributes, InfoListsThem) {
+    TempDir dir;
+    dir.write("m.ply", binary_ply(false));
+    const auto scene = dir.write("s.json", scene_json("m.ply", "[0.5, 0.5, 0.5]"));
+    const CliResult r = run_cli(dir, "info '" + scene.string() + "'");
+    EXPECT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(
+        r.out.find("attributes   vertex_color (per vertex, 3 channels, 1 mesh), vertex_weight "
+                   "(per vertex, 1 channel, 1 mesh), face_color (per face, 3 channels, 1 "
+                   "mesh), face_weight (per face, 1 channel, 1 mesh)\n"),
+        std::string::npos)
+        << r.out;
 }

@@ -1,8 +1,11 @@
 #include <fmt/core.h>
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <iostream>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "commands.h"
 #include "wavetrace/wavetrace.h"
@@ -32,6 +35,32 @@ size_t bytes_of(const std::vector<T>& v) {
     return v.size() * sizeof(T);
 }
 
+// The meshes' attributes (Scene::mesh_attributes), one entry per name and layout, e.g.
+// "vertex_color (per vertex, 3 channels, 2 meshes)"; empty without any.
+std::string attribute_list(const Scene& scene) {
+    struct Entry {
+        const MeshAttribute* first;
+        size_t meshes;
+    };
+    std::vector<Entry> entries;
+    for (const MeshAttribute& a : scene.mesh_attributes) {
+        auto same = [&](const Entry& e) {
+            return e.first->name == a.name && e.first->per_face == a.per_face &&
+                   e.first->channels == a.channels;
+        };
+        if (auto it = std::find_if(entries.begin(), entries.end(), same); it != entries.end())
+            ++it->meshes;
+        else
+            entries.push_back({&a, 1});
+    }
+    std::string list;
+    for (const Entry& e : entries)
+        list += fmt::format("{}{} (per {}, {} channel{}, {} mesh{})", list.empty() ? "" : ", ",
+                            e.first->name, e.first->per_face ? "face" : "vertex", e.first->channels,
+                            e.first->channels == 1 ? "" : "s", e.meshes, e.meshes == 1 ? "" : "es");
+    return list;
+}
+
 }  // namespace
 
 int run_info(const InfoOptions& o) {
@@ -57,6 +86,7 @@ int run_info(const InfoOptions& o) {
     std::vector<PrimRef> emitters = collect_emitters(scene);
     size_t geometry = bytes_of(scene.spheres) + bytes_of(scene.quads) + bytes_of(scene.triangles) +
                       bytes_of(scene.positions) + bytes_of(scene.normals) + bytes_of(scene.uvs);
+    for (const MeshAttribute& a : scene.mesh_attributes) geometry += bytes_of(a.values);
     size_t texels = 0;
     for (const ImageData& img : scene.images) texels += bytes_of(img.texels);
     const Background& bg = scene.background;
@@ -69,6 +99,8 @@ int run_info(const InfoOptions& o) {
     fmt::print("primitives   {} ({} triangles, {} quads, {} spheres)\n", scene.primitive_count(),
                scene.triangles.size(), scene.quads.size(), scene.spheres.size());
     fmt::print("meshes       {} ({} vertices)\n", scene.meshes.size(), scene.positions.size());
+    if (const std::string list = attribute_list(scene); !list.empty())
+        fmt::print("attributes   {}\n", list);
     fmt::print("lights       {} emissive primitives, {} point, spot or directional; background {}\n",
                emitters.size(), scene.lights.size(), background);
     fmt::print("materials    {}, textures {}, images {}, media {}\n", scene.materials.size(),
