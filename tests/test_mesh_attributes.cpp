@@ -229,3 +229,29 @@ TEST(MeshAttributes, InfoListsThem) {
         std::string::npos)
         << r.out;
 }
+
+// An OBJ's vertex colours (`v x y z r g b`, as Blender and MeshLab write them) are the
+// `vertex_color` attribute, which a texture reads at a hit as it reads a PLY's.
+TEST(MeshAttributes, ObjVertexColoursAreAnAttribute) {
+    TempDir dir;
+    dir.write("c.obj", "v 0 0 0 1 0 0\nv 1 0 0 0 1 0\nv 1 1 0 0 0 1\nf 1 2 3\n");
+    const Scene s = load_scene(dir.write(
+        "s.json", scene_json("c.obj", R"({"type": "mesh_attribute", "name": "vertex_color"})")));
+    ASSERT_EQ(s.mesh_attributes.size(), 1u);
+    EXPECT_EQ(s.mesh_attributes[0].name, "vertex_color");
+    EXPECT_FALSE(s.mesh_attributes[0].per_face);
+    ASSERT_EQ(s.triangles.size(), 1u);
+    const TextureId albedo = s.materials[s.meshes[0].material].albedo;
+    const Color c = eval_texture(s, albedo, TexturePoint{{}, {}, 0, 0.25f, 0.5f});
+    // The corners' colours weighted by the barycentrics (0.25, 0.25, 0.5), in the file's order.
+    const Triangle& t = s.triangles[0];
+    Color expected(0.0f);
+    const float b[3] = {0.25f, 0.25f, 0.5f};
+    for (int k = 0; k < 3; ++k) {
+        const Point3 p = s.positions[t.v[k]];
+        expected += b[k] * (p.x == 0 ? Color(1, 0, 0) : p.y == 0 ? Color(0, 1, 0) : Color(0, 0, 1));
+    }
+    EXPECT_NEAR(c.x, expected.x, 1e-6f);
+    EXPECT_NEAR(c.y, expected.y, 1e-6f);
+    EXPECT_NEAR(c.z, expected.z, 1e-6f);
+}

@@ -246,13 +246,14 @@ MeshFile read_mesh_file(const std::filesystem::path& path,
         all_uvs = all_uvs && mesh->HasTextureCoords(0);
         if (!mesh->HasVertexColors(0)) continue;
         any_colors = true;
-        for (unsigned v = 0; v < mesh->mNumVertices && !any_alpha; ++v)
+        for (unsigned v = 0; gltf && v < mesh->mNumVertices && !any_alpha; ++v)
             any_alpha = mesh->mColors[0][v].a != 1.0f;
     }
-    // glTF's COLOR_0 multiplies the base colour and its alpha (glTF 2.0, 3.7.2.1): attributes
-    // of every vertex, white and opaque where a mesh has none (the specification's default);
-    // the alpha only where some vertex is not opaque.
-    if (gltf && any_colors) out.attributes.push_back({"vertex_color", false, 3, {}});
+    // Vertex colours (glTF's COLOR_0, an OBJ's `v x y z r g b`) are the `vertex_color`
+    // attribute, white where a mesh of the file has none (glTF's default); a glTF material
+    // multiplies its base colour and alpha by them (glTF 2.0, 3.7.2.1), so there the alpha is
+    // `vertex_alpha`, where some vertex is not opaque.
+    if (any_colors) out.attributes.push_back({"vertex_color", false, 3, {}});
     if (gltf && any_alpha) out.attributes.push_back({"vertex_alpha", false, 1, {}});
     for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
         const aiMesh* mesh = scene->mMeshes[m];
@@ -273,7 +274,7 @@ MeshFile read_mesh_file(const std::filesystem::path& path,
                 const aiColor4D c =
                     mesh->HasVertexColors(0) ? mesh->mColors[0][v] : aiColor4D(1, 1, 1, 1);
                 out.attributes[0].values.push_back({c.r, c.g, c.b});
-                if (any_alpha) out.attributes[1].values.push_back(Color(c.a));
+                if (gltf && any_alpha) out.attributes[1].values.push_back(Color(c.a));
             }
         }
         MeshPart part{out.indices.size() / 3, 0, mesh->mMaterialIndex};
