@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <string>
 
 #include "bsdfs/bsdf.h"
@@ -370,6 +371,33 @@ TEST(Bsdf, ConductorFresnelLimits) {
         EXPECT_NEAR(fresnel_conductor(cos_i, Color(0.0f), Color(1.0f)).x, 1.0f, 1e-6f);
     }
     EXPECT_NEAR(fresnel_conductor(0.0f, eta, k).x, 1.0f, 1e-6f);
+}
+
+// In float, against the same reflectance in double (Born & Wolf's |r_s|^2 and |r_p|^2 through
+// the complex square root of n^2 - sin^2): within 1e-6 over metals' and dielectrics' indices
+// (eta 0.05 .. 4, k 0 .. 8: silver's 0.15 + 3.6 i, chromium's 3.2 + 3.3 i, a dielectric past
+// its critical angle) and every angle but those next to a nearly lossless interface's critical
+// angle (|n^2 - sin^2| < 0.01), where the reflectance's slope in cos theta is unbounded and
+// float's rounding of cos^2 alone moves it.
+TEST(Bsdf, ConductorFresnelInFloatIsTheDoubleOne) {
+    auto exact = [](double c, double eta, double k) {
+        const std::complex<double> n(eta, k), w = std::sqrt(n * n - (1.0 - c * c));
+        const double rs = std::norm((c - w) / (c + w)),
+                     rp = std::norm((n * n * c - w) / (n * n * c + w));
+        return 0.5 * (rs + rp);
+    };
+    double worst = 0;
+    for (const float eta : {0.05f, 0.15f, 0.5f, 0.8f, 1.0f, 1.33f, 2.0f, 3.2f, 4.0f})
+        for (const float k : {0.0f, 0.01f, 0.5f, 2.0f, 3.6f, 6.15f, 8.0f})
+            for (int i = 1; i <= 1000; ++i) {
+                const float c = float(i) / 1000.0f;
+                const double x = double(eta) * eta - double(k) * k - (1.0 - double(c) * c);
+                if (k < 0.1f && std::fabs(x) < 0.01) continue;
+                const float ours = fresnel_conductor(c, Color(eta), Color(k)).x;
+                worst = std::max(worst, std::fabs(ours - exact(c, eta, k)));
+            }
+    std::printf("conductor Fresnel in float: worst absolute error %.3g\n", worst);
+    EXPECT_LT(worst, 1e-6);
 }
 
 namespace {

@@ -9,7 +9,8 @@
 //   f cos_i = R F(o.h) D(h) G2(o, i) / (4 cos_o), h = (o + i) / |o + i|, sampled by the
 //   visible normals of o, pdf = G1(o) D(h) / (4 cos_o), weight = R F(o.h) G2 / G1(o).
 // R is the reflectance texture's value (Mitsuba's specular_reflectance, 1 by default), F
-// fresnel_conductor. Both sides reflect: from behind (wo.z < 0) the lobe is mirrored
+// fresnel_conductor. The rough lobe is the one-lane instance of conductor-inl.h's lane
+// formula. Both sides reflect: from behind (wo.z < 0) the lobe is mirrored
 // below the surface, as for `metal`; wo and wi on opposite sides give 0.
 #pragma once
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "bsdfs/conductor-inl.h"
 #include "bsdfs/ggx-inl.h"
 
 namespace wavetrace {
@@ -16,30 +17,10 @@ float fresnel_dielectric(float cos_i, float eta) {
     return 0.5f * (r_par * r_par + r_perp * r_perp);
 }
 
-namespace {
-
-// One channel. With n^2 = (eta + i k)^2 - sin^2 theta = a2b2 e^(i phi) written as (a + i b)^2:
-// R_s = (a2b2 - 2 a c + c^2) / (a2b2 + 2 a c + c^2),
-// R_p = R_s (a2b2 c^2 - 2 a c s^2 + s^4) / (a2b2 c^2 + 2 a c s^2 + s^4), c = cos, s = sin.
-// In double: at k = 6, a2b2 ~ 40 and the differences lose a float's digits near normal incidence.
-float conductor_channel(double c, double eta, double k) {
-    const double c2 = c * c, s2 = 1.0 - c2;
-    const double t0 = eta * eta - k * k - s2;
-    const double a2b2 = std::sqrt(t0 * t0 + 4.0 * eta * eta * k * k);
-    const double a = std::sqrt(std::max(0.0, 0.5 * (a2b2 + t0)));
-    if (!(a2b2 + 2.0 * a * c + c2 > 0.0)) return 1.0f;  // grazing onto eta = 1, k = 0
-    const double rs = (a2b2 - 2.0 * a * c + c2) / (a2b2 + 2.0 * a * c + c2);
-    const double t1 = a2b2 * c2 + s2 * s2, t2 = 2.0 * a * c * s2;
-    const double rp = rs * (t1 - t2) / (t1 + t2);
-    return static_cast<float>(0.5 * (rs + rp));
-}
-
-}  // namespace
-
 Color fresnel_conductor(float cos_i, Color eta, Color k) {
-    const double c = std::clamp(static_cast<double>(cos_i), 0.0, 1.0);
-    return {conductor_channel(c, eta.x, k.x), conductor_channel(c, eta.y, k.y),
-            conductor_channel(c, eta.z, k.z)};
+    namespace lanes = HWY_NAMESPACE;
+    return lanes::to_vec3(
+        lanes::FresnelConductor<lanes::OneLane>(cos_i, lanes::to_lanes(eta), lanes::to_lanes(k)));
 }
 
 float schlick_weight(float cos_theta) {

@@ -11,9 +11,10 @@ namespace wavetrace {
 float fresnel_dielectric(float cos_i, float eta);
 
 // A conductor of relative complex index of refraction eta + i k, per channel: the exact
-// unpolarized reflectance (Born & Wolf, Principles of Optics, §14.2; in the form of
-// Lazányi & Szirmay-Kalos 2005, "Fresnel term approximations for metals", eqs. 2-3). At normal
-// incidence ((eta - 1)^2 + k^2) / ((eta + 1)^2 + k^2); with k = 0 it is fresnel_dielectric.
+// unpolarized reflectance (Born & Wolf, Principles of Optics, §14.2), in float through the
+// complex square root of n^2 - sin^2 (conductor-inl.h, the lane formula both engines run). At
+// normal incidence ((eta - 1)^2 + k^2) / ((eta + 1)^2 + k^2); with k = 0 it is
+// fresnel_dielectric.
 Color fresnel_conductor(float cos_i, Color eta, Color k);
 
 // Schlick's weight (1 - cos_theta)^5, cos_theta clamped to [0, 1]: the lane formula's

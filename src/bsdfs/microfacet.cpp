@@ -1,44 +1,24 @@
 #include "bsdfs/microfacet.h"
 
-#include <algorithm>
-#include <cmath>
-
-#include "bsdfs/beckmann-inl.h"
-#include "bsdfs/ggx-inl.h"
-#include "wavetrace/math/constants.h"
+#include "bsdfs/microfacet-inl.h"
 
 namespace wavetrace {
 namespace lanes = HWY_NAMESPACE;
+
 namespace {
 
-// The squared roughness along w's azimuth times sin^2 theta: au^2 wx^2 + av^2 wy^2.
-double projected_roughness2(const MicrofacetDistribution& d, Vec3 w) {
-    const double x = double(d.alpha_u) * w.x, y = double(d.alpha_v) * w.y;
-    return x * x + y * y;
+lanes::MicrofacetLanes<lanes::OneLane> one_lane(const MicrofacetDistribution& d) {
+    return {d.kind == Microfacet::Beckmann, d.alpha_u, d.alpha_v};
 }
 
 }  // namespace
 
 float MicrofacetDistribution::d(Vec3 m) const {
-    if (kind == Microfacet::Beckmann)
-        return lanes::BeckmannD<lanes::OneLane>(lanes::to_lanes(m), alpha_u, alpha_v);
-    if (m.z <= 0.0f) return 0.0f;
-    const double z2 = double(m.z) * m.z;
-    const double xu = m.x / double(alpha_u), yv = m.y / double(alpha_v);
-    const double e = xu * xu + yv * yv;  // tan^2 theta_m / alpha^2 along m's azimuth, times z2
-    const double norm = kPi * double(alpha_u) * alpha_v;
-    const double t = e + z2;
-    return static_cast<float>(1.0 / (norm * t * t));
+    return lanes::MicrofacetD(one_lane(*this), lanes::to_lanes(m));
 }
 
 float MicrofacetDistribution::lambda(Vec3 w) const {
-    if (kind == Microfacet::Beckmann)
-        return lanes::BeckmannLambda<lanes::OneLane>(lanes::to_lanes(w), alpha_u, alpha_v);
-    const double z2 = double(w.z) * w.z;
-    const double r2 = projected_roughness2(*this, w);  // 1 / a^2 = r2 / z2
-    if (r2 <= 0.0) return 0.0f;
-    if (z2 <= 0.0) return kInfinity;
-    return static_cast<float>(0.5 * (std::sqrt(1.0 + r2 / z2) - 1.0));
+    return lanes::MicrofacetLambda(one_lane(*this), lanes::to_lanes(w));
 }
 
 float MicrofacetDistribution::g1(Vec3 w) const {
@@ -56,11 +36,8 @@ float MicrofacetDistribution::visible_pdf(Vec3 wo, Vec3 m) const {
 }
 
 Vec3 MicrofacetDistribution::sample_visible(Vec3 wo, float u1, float u2) const {
-    const auto o = lanes::to_lanes(wo);
     return lanes::to_vec3(
-        kind == Microfacet::Ggx
-            ? lanes::GgxVisibleNormal<lanes::OneLane>(o, alpha_u, alpha_v, u1, u2)
-            : lanes::BeckmannVisibleNormal<lanes::OneLane>(o, alpha_u, alpha_v, u1, u2));
+        lanes::MicrofacetVisibleNormal(one_lane(*this), lanes::to_lanes(wo), u1, u2));
 }
 
 }  // namespace wavetrace

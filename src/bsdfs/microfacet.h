@@ -3,10 +3,10 @@
 // masking and sampling of the visible normals. Directions are unit vectors in the shading frame
 // (z along the normal), m a microfacet normal.
 //
-// The rough conductor, dielectric and plastic evaluate these in scalar code in both engines.
-// Beckmann's are the one-lane instances of its lane formulas (beckmann-inl.h); the lane GGX of
-// `metal` (ggx-inl.h) is the isotropic case written for SIMD, and its visible-normal sampling
-// is the one both use.
+// The one-lane instances of the lane formulas in microfacet-inl.h (GGX's in ggx-inl.h,
+// Beckmann's in beckmann-inl.h), in float: what the rough dielectric, plastic and the
+// principled BSDFs evaluate in scalar code, and the rough conductor's lane formula
+// (conductor-inl.h) in any number of lanes.
 #pragma once
 
 #include "bsdfs/bsdf.h"
