@@ -101,7 +101,7 @@ HWY_INLINE void BeckmannVisibleSlopes(typename L::F cos_theta,
         t = L::Select(active, next, t);
         active = L::AndNot(L::Or(converged, hi - lo <= tolerance), active);
     }
-    *x = L::Select(normal, ErfInv<L>(two * u1 - one), t);
+    *x = L::Any(normal) ? L::Select(normal, ErfInv<L>(two * u1 - one), t) : t;
 }
 
 // A normal drawn with the density of visible normals from o (o.z > 0), G1(o) max(0, o.m) D(m)

@@ -2,8 +2,9 @@
 // Schlick's Fresnel with the albedo as F0, visible-normal sampling), written once over lanes:
 // bsdf_eval / bsdf_pdf / bsdf_sample run the one-lane instances for both engines; the
 // wavefront's shade kernel runs them over the metal vertices of a chunk
-// (kernels/lane_kernels.cpp). Directions are in the shading frame, z along the normal. Per-target
-// header, see math/lanes-inl.h.
+// (kernels/lane_kernels.cpp). Also the anisotropic GGX distribution the other microfacet BSDFs
+// take through microfacet-inl.h. Directions are in the shading frame, z along the normal.
+// Per-target header, see math/lanes-inl.h.
 #if defined(WAVETRACE_BSDFS_GGX_INL_H_) == defined(HWY_TARGET_TOGGLE)
 #ifdef WAVETRACE_BSDFS_GGX_INL_H_
 #undef WAVETRACE_BSDFS_GGX_INL_H_
@@ -43,6 +44,35 @@ HWY_INLINE typename L::F GgxD(typename L::F hz, typename L::F alpha) {
     const F a2 = alpha * alpha;
     const F t = hz * hz * (a2 - L::Set(1.0f)) + L::Set(1.0f);
     return L::Select(hz <= L::Set(0.0f), L::Set(0.0f), a2 / (L::Set(kPi) * t * t));
+}
+
+// The anisotropic GGX distribution (the rough conductor's, dielectric's and plastic's, through
+// microfacet-inl.h): D(m) = 1 / (pi au av (mx^2/au^2 + my^2/av^2 + mz^2)^2) (Walter et al.
+// 2007); 0 for mz <= 0.
+template <class L>
+HWY_INLINE typename L::F GgxAnisotropicD(V3<typename L::F> m, typename L::F au, typename L::F av) {
+    using F = typename L::F;
+    const F xu = m.x / au, yv = m.y / av;
+    const F t = xu * xu + yv * yv + m.z * m.z;
+    return L::Select(m.z <= L::Set(0.0f), L::Set(0.0f),
+                     L::Set(1.0f) / (L::Set(kPi) * au * av * t * t));
+}
+
+// Its Smith Lambda(w) = (-1 + sqrt(1 + q)) / 2 with q = (au^2 wx^2 + av^2 wy^2) / wz^2 = alpha^2
+// tan^2 theta along w's azimuth (Heitz 2014, eq. 72), as q / (2 (1 + sqrt(1 + q))), which
+// does not cancel for small q; 0 along the normal, infinite at grazing.
+template <class L>
+HWY_INLINE typename L::F GgxAnisotropicLambda(V3<typename L::F> w,
+                                              typename L::F au,
+                                              typename L::F av) {
+    using F = typename L::F;
+    const F zero = L::Set(0.0f), one = L::Set(1.0f);
+    const F x = au * w.x, y = av * w.y;
+    const F r2 = x * x + y * y, z2 = w.z * w.z;
+    const auto grazing = z2 <= zero;
+    const F q = r2 / L::Select(grazing, one, z2);
+    const F lambda = L::Set(0.5f) * q / (one + L::Sqrt(one + q));
+    return L::Select(r2 <= zero, zero, L::Select(grazing, L::Set(kInfinity), lambda));
 }
 
 // Schlick's approximation with the albedo as the reflectance at normal incidence: Ray Tracing in

@@ -1231,16 +1231,20 @@ class Loader {
             return std::any_of(attributes.begin(), attributes.end(),
                                [&](const MeshAttribute& a) { return a.name == name; });
         };
-        // glTF's vertex colours multiply the base colour.
-        if (has_attribute("vertex_color")) {
-            Texture colors, product;
-            colors.kind = TextureKind::MeshAttribute;
-            colors.attribute = "vertex_color";
+        // Texture `factor` times the mesh attribute `name`, then cut at `cutoff` (-1: not).
+        const auto times_attribute = [&](TextureId factor, const char* name, float cutoff) {
+            Texture attribute, product;
+            attribute.kind = TextureKind::MeshAttribute;
+            attribute.attribute = name;
             product.kind = TextureKind::Product;
-            product.factors[0] = m.albedo;
-            product.factors[1] = scene_.add_texture(colors);
-            m.albedo = scene_.add_texture(product);
-        }
+            product.factors[0] = factor;
+            product.factors[1] = scene_.add_texture(attribute);
+            product.cutoff = cutoff;
+            return scene_.add_texture(product);
+        };
+        // glTF's vertex colours multiply the base colour.
+        if (has_attribute("vertex_color"))
+            m.albedo = times_attribute(m.albedo, "vertex_color", -1.0f);
         m.metallic = unit(fm.metallic, "metallicFactor");
         m.roughness = unit(fm.roughness, "roughnessFactor");
         m.metallic_roughness = texture(fm.map_metallic_roughness, "metallicRoughnessTexture",
@@ -1256,9 +1260,8 @@ class Loader {
         if (m.emission == kNone && max_component(fm.ke) > 0.0f) m.emission = scene_.add_solid(fm.ke);
         m.two_sided = fm.double_sided;  // a double-sided surface emits from both sides
         // Alpha: the base colour's alpha (its factor's times its texture's and its vertices'), as
-        // coverage. MASK
-        // cuts at alphaCutoff; BLEND lets that share of rays through (the stochastic opacity of
-        // a surface seen through many samples, as a blended one looks).
+        // coverage. MASK cuts at alphaCutoff; BLEND lets that share of rays through (the
+        // stochastic opacity of a surface seen through many samples, as a blended one looks).
         if (fm.alpha_mode == "MASK" || fm.alpha_mode == "BLEND") {
             const float alpha = unit(fm.base_alpha, "baseColorFactor's alpha");
             const float cutoff = fm.alpha_mode == "MASK" ? fm.alpha_cutoff : -1.0f;
@@ -1268,15 +1271,8 @@ class Loader {
                                 fm.kd_sampler);
             if (has_attribute("vertex_alpha")) {
                 // COLOR_0's alpha multiplies the rest before the cutoff.
-                Texture vertex_alpha, product;
-                vertex_alpha.kind = TextureKind::MeshAttribute;
-                vertex_alpha.attribute = "vertex_alpha";
-                product.kind = TextureKind::Product;
-                product.factors[0] =
-                    m.opacity != kNone ? m.opacity : scene_.add_solid(Color(alpha));
-                product.factors[1] = scene_.add_texture(vertex_alpha);
-                product.cutoff = cutoff;
-                m.opacity = scene_.add_texture(product);
+                if (m.opacity == kNone) m.opacity = scene_.add_solid(Color(alpha));
+                m.opacity = times_attribute(m.opacity, "vertex_alpha", cutoff);
             } else if (m.opacity != kNone) {
                 scene_.textures[m.opacity].cutoff = cutoff;
             } else if (cutoff >= 0.0f) {

@@ -202,6 +202,15 @@ bool texture_reads_attributes(const Scene& scene, TextureId id) {
     return !names.empty();
 }
 
+namespace {
+
+// Value c of texture t after its cutoff (Texture::cutoff), where it has one.
+Color after_cutoff(const Texture& t, Color c) {
+    return t.cutoff >= 0.0f ? Color(c.x >= t.cutoff ? 1.0f : 0.0f) : c;
+}
+
+}  // namespace
+
 Color eval_texture(const Scene& scene, TextureId id, const TexturePoint& at) {
     const Vec2 uv = at.uv;
     const Point3 p = at.p;
@@ -237,15 +246,11 @@ Color eval_texture(const Scene& scene, TextureId id, const TexturePoint& at) {
                 const Color c =
                     t.factor * scene.images[t.image].lookup(st.x, st.y, t.filter, t.wrap_u,
                                                                   t.wrap_v);
-                if (t.cutoff >= 0.0f) return Color(c.x >= t.cutoff ? 1.0f : 0.0f);
-                return c;
+                return after_cutoff(t, c);
             }
-            case TextureKind::Product: {
-                const Color c =
-                    eval_texture(scene, t.factors[0], at) * eval_texture(scene, t.factors[1], at);
-                if (t.cutoff >= 0.0f) return Color(c.x >= t.cutoff ? 1.0f : 0.0f);
-                return c;
-            }
+            case TextureKind::Product:
+                return after_cutoff(t, eval_texture(scene, t.factors[0], at) *
+                                           eval_texture(scene, t.factors[1], at));
             case TextureKind::MeshAttribute: {
                 // check_scene has made sure that only meshes holding the attribute read it.
                 if (at.triangle == kNone) return {};

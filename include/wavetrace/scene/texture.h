@@ -85,7 +85,7 @@ struct ImageData {
 struct Scene;
 struct Sphere;
 // Whether texture `id` (kNone: no texture) reads the surface's uv: image textures, directly or
-// as a checker's cell. The others read the point or nothing.
+// through the textures it combines. The others read the point or nothing.
 bool texture_reads_uv(const Scene& scene, TextureId id);
 // The mesh attributes texture `id` (kNone: none) reads, directly or through the textures it
 // combines, appended to `names`.
