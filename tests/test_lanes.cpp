@@ -40,16 +40,17 @@ Vec3 unit(float u1, float u2) {
     return sample_uniform_sphere(u1, u2);
 }
 
-// The lane vertices (is_lane_vertex) the tests cover, in thirds of their rows.
-enum class LaneKind { Lambertian, Metal, Medium };
+// The lane vertices (is_lane_vertex) the tests cover, in quarters of their rows.
+enum class LaneKind { Lambertian, Metal, Conductor, Medium };
 LaneKind lane_kind(size_t i, size_t n) {
-    return static_cast<LaneKind>(3 * i / n);
+    return static_cast<LaneKind>(4 * i / n);
 }
 
-// A Lambertian or rough metal surface vertex at p, its normals, albedo and roughness from
-// dimensions 3-9 and 21 of u: the shading normal tilted off the geometric one, so that the
-// geometric-side tests reject some directions. Or a vertex in a medium of isotropic phase
-// function, as medium_vertex() makes it.
+// A Lambertian, rough metal or rough conductor surface vertex at p, its normals, albedo and
+// roughness from dimensions 3-9 and 21 of u (a conductor's index of refraction and distribution
+// from 22-28): the shading normal tilted off the geometric one, so that the geometric-side tests
+// reject some directions. Or a vertex in a medium of isotropic phase function, as
+// medium_vertex() makes it.
 template <class Dim>
 Vertex lane_vertex_at(Point3 p, Dim u, LaneKind kind) {
     Vertex v;
@@ -62,17 +63,25 @@ Vertex lane_vertex_at(Point3 p, Dim u, LaneKind kind) {
     }
     v.ng = unit(u(3), u(4));
     v.frame = Frame::from_normal(normalize(v.ng + 0.3f * unit(u(5), u(6))));
-    const bool metal = kind == LaneKind::Metal;
-    v.bsdf.kind = metal ? MaterialKind::Metal : MaterialKind::Lambertian;
-    v.bsdf.alpha = metal ? 0.02f + 0.6f * u(21) : 0.0f;
+    if (kind == LaneKind::Lambertian) return v;
+    v.bsdf.alpha = 0.02f + 0.6f * u(21);
+    if (kind == LaneKind::Metal) {
+        v.bsdf.kind = MaterialKind::Metal;
+        return v;
+    }
+    v.bsdf.kind = MaterialKind::Conductor;
+    v.bsdf.alpha_v = v.bsdf.alpha;
+    v.bsdf.conductor_eta = {0.1f + 2.0f * u(22), 0.1f + 2.0f * u(23), 0.1f + 2.0f * u(24)};
+    v.bsdf.conductor_k = {5.0f * u(25), 5.0f * u(26), 5.0f * u(27)};
+    v.bsdf.distribution = u(28) < 0.5f ? Microfacet::Beckmann : Microfacet::Ggx;
     return v;
 }
 
-// Lambertian, rough metal and medium vertices around the lights of `scene`, quads, triangles,
-// spheres and an environment map (the vertices outside the spheres): the vector light samples give
-// next_event's shadow rays, unweighted contributions (times beta) and densities bit for bit,
-// packed in row order. Counts in *spheres the rows whose light was a sphere, in *maps those
-// whose light was the environment map.
+// Lambertian, rough metal, rough conductor and medium vertices around the lights of `scene`, quads,
+// triangles, spheres and an environment map (the vertices outside the spheres): the vector light
+// samples give next_event's shadow rays, unweighted contributions (times beta) and densities bit
+// for bit, packed in row order. Counts in *spheres the rows whose light was a sphere, in *maps
+// those whose light was the environment map.
 void expect_light_samples_are_next_event(const Scene& scene,
                                          size_t* spheres,
                                          size_t* maps = nullptr) {
@@ -128,6 +137,9 @@ void expect_light_samples_are_next_event(const Scene& scene,
                                  c.v.bsdf.alpha_v, c.v.bsdf.metallic, c.v.uv, c.v.bsdf.kind, kNone,
                                  c.beta, c.u.light_select, c.u.light_u, c.u.light_v});
             block.lobe[k] = int32_t(lane_lobe(c.v.bsdf.kind));
+            if (c.v.bsdf.kind == MaterialKind::Conductor)
+                block.conductor.set(k, c.v.bsdf.conductor_eta, c.v.bsdf.conductor_k,
+                                    c.v.bsdf.distribution);
             block.planar[k] = planar;
             block.sphere[k] = sphere;
             block.select_prob[k] = light.probability;
@@ -777,9 +789,12 @@ TEST(Lanes, HitsResolvedInLanesAreSurfaceAtOnEverySimdTarget) {
         c.ray = Ray{{u(2) * 30.0f, u(3) * 30.0f, u(4) * 30.0f}, unit(u(5), u(6)) * (0.5f + u(7))};
         c.hit = Hit{1.0f + u(8), prim, a, b};
         c.bsdf.albedo = {u(9), u(10), u(11)};
-        if (i >= n / 2) {  // rough metal rows after the Lambertian ones
-            c.bsdf.kind = MaterialKind::Metal;
-            c.bsdf.alpha = 0.02f + 0.6f * u(21);
+        if (3 * i >= n) {  // rough metal, then rough conductor rows after the Lambertian ones
+            c.bsdf.kind = 3 * i >= 2 * n ? MaterialKind::Conductor : MaterialKind::Metal;
+            c.bsdf.alpha = c.bsdf.alpha_v = 0.02f + 0.6f * u(21);
+            c.bsdf.conductor_eta = {0.2f + u(22), 0.2f + u(23), 0.2f + u(24)};
+            c.bsdf.conductor_k = {3.0f * u(25), 3.0f * u(26), 3.0f * u(27)};
+            c.bsdf.distribution = u(28) < 0.5f ? Microfacet::Beckmann : Microfacet::Ggx;
         }
         c.beta = Color(2.0f * u(12));
         c.u = {u(13), u(14), u(15), u(16), u(17), u(18), u(19)};
@@ -796,8 +811,8 @@ TEST(Lanes, HitsResolvedInLanesAreSurfaceAtOnEverySimdTarget) {
             const uint32_t index = c.hit.prim.index();
             size_t r;
             if (c.hit.prim.kind() == PrimKind::Quad) {
-                r = hits.push_quad_hit(k, c.ray.d, c.hit.u, c.hit.v, scene.quads[index], c.bsdf,
-                                       c.beta);
+                r = hits.push_quad_hit(k, c.ray.d, c.hit.u, c.hit.v, scene.quads[index], white,
+                                       c.bsdf, c.beta);
             } else {
                 const Triangle& t = scene.triangles[index];
                 const Point3 p[3] = {scene.positions[t.v[0]], scene.positions[t.v[1]],
@@ -805,8 +820,8 @@ TEST(Lanes, HitsResolvedInLanesAreSurfaceAtOnEverySimdTarget) {
                 const Normal3 nv[3] = {scene.normals[t.v[0]], scene.normals[t.v[1]],
                                        scene.normals[t.v[2]]};
                 r = hits.push_triangle_hit(k, c.ray.d, c.hit.u, c.hit.v, p,
-                                           scene.meshes[t.mesh].has_normals ? nv : nullptr, c.bsdf,
-                                           c.beta);
+                                           scene.meshes[t.mesh].has_normals ? nv : nullptr, white,
+                                           c.bsdf, c.beta);
             }
             hits.set_step(r, c.u, c.u_rr, true);
             // The scalar path: surface_at, and resolve_segment's wo = -d / |d|.

@@ -163,7 +163,7 @@ BsdfSample bsdf_sample(const BsdfParams& b, Vec3 wo, float u_lobe, float u1, flo
                 return s;
             }
             // A sample reflected below the surface is lost (valid = false).
-            const lanes::MetalSampleResult<OneLane> m =
+            const lanes::ReflectionSample<OneLane> m =
                 lanes::MetalSample<OneLane>(to_lanes(b.albedo), b.alpha, to_lanes(wo), u1, u2);
             if (!m.valid) return s;
             s.wi = to_vec3(m.wi);

@@ -94,24 +94,16 @@ HWY_INLINE V3<typename L::F> RoughConductorEval(const RoughConductor<L>& c,
     return Select3<L>(valid, f, V3<F>{zero, zero, zero});
 }
 
-template <class L>
-struct RoughConductorSampleResult {
-    typename L::M valid;       // false: wo grazing, reflected below the surface, no density
-    V3<typename L::F> wi;      // on wo's side
-    V3<typename L::F> weight;  // f |cos| / pdf
-    typename L::F pdf;
-};
-
 // A direction by the visible normals of wo mirrored above the surface; its value and density
 // from (o, i) as RoughConductorEval computes them, so that weight = eval / pdf.
 template <class L>
-HWY_INLINE RoughConductorSampleResult<L> RoughConductorSample(const RoughConductor<L>& c,
-                                                              V3<typename L::F> wo,
-                                                              typename L::F u1,
-                                                              typename L::F u2) {
+HWY_INLINE ReflectionSample<L> RoughConductorSample(const RoughConductor<L>& c,
+                                                    V3<typename L::F> wo,
+                                                    typename L::F u1,
+                                                    typename L::F u2) {
     using F = typename L::F;
     const F zero = L::Set(0.0f), one = L::Set(1.0f);
-    RoughConductorSampleResult<L> s;
+    ReflectionSample<L> s;
     const F side = SideOf<L>(wo);
     const V3<F> o = Upper<L>(wo, side);
     const V3<F> m = MicrofacetVisibleNormal<L>(c.md, o, u1, u2);

@@ -36,7 +36,7 @@ BsdfSample conductor_sample(const BsdfParams& b, Vec3 wo, float u1, float u2) {
         s.delta = s.valid = true;
         return s;
     }
-    const lanes::RoughConductorSampleResult<OneLane> r =
+    const lanes::ReflectionSample<OneLane> r =
         lanes::RoughConductorSample(rough_conductor(b), lanes::to_lanes(wo), u1, u2);
     if (!r.valid) return s;
     s.wi = lanes::to_vec3(r.wi);

@@ -148,26 +148,28 @@ HWY_INLINE V3<typename L::F> MetalEval(V3<typename L::F> albedo,
     return Select3<L>(valid, f, V3<F>{zero, zero, zero});
 }
 
+// A direction sampled from a reflecting microfacet lobe (a metal's, a conductor's).
 template <class L>
-struct MetalSampleResult {
+struct ReflectionSample {
     typename L::M valid;       // false: wo grazing, or reflected below the surface
     V3<typename L::F> wi;      // on wo's side
-    V3<typename L::F> weight;  // f |cos| / pdf = F G2 / G1(o)
+    V3<typename L::F> weight;  // f |cos| / pdf
     typename L::F pdf;
 };
 
-// A direction sampled by the visible normals, for a metal of roughness alpha > 0. The pdf and
+// A direction sampled by the visible normals, for a metal of roughness alpha > 0: weight
+// F G2 / G1(o). The pdf and
 // weight are recomputed from (o, i) as MetalEval computes them, so that they agree with it to
 // the last bit (MIS relies on it).
 template <class L>
-HWY_INLINE MetalSampleResult<L> MetalSample(V3<typename L::F> albedo,
-                                            typename L::F alpha,
-                                            V3<typename L::F> wo,
-                                            typename L::F u1,
-                                            typename L::F u2) {
+HWY_INLINE ReflectionSample<L> MetalSample(V3<typename L::F> albedo,
+                                           typename L::F alpha,
+                                           V3<typename L::F> wo,
+                                           typename L::F u1,
+                                           typename L::F u2) {
     using F = typename L::F;
     const F zero = L::Set(0.0f), one = L::Set(1.0f);
-    MetalSampleResult<L> s;
+    ReflectionSample<L> s;
     const F side = SideOf<L>(wo);
     const V3<F> o = Upper<L>(wo, side);
     const V3<F> m = GgxVisibleNormal<L>(o, alpha, alpha, u1, u2);

@@ -217,17 +217,46 @@ void ResolveSurfaceHits(VertexBlock* b) {
     }
 }
 
-// Masks of the rows of each lobe.
+// Masks of the rows of each lobe; glossy: a rough metal or a rough conductor.
 template <class D>
 struct LobeMasks {
-    hn::Mask<D> lambertian, metal, phase;
+    hn::Mask<D> lambertian, glossy, metal, conductor, phase;
 };
 template <class D>
 HWY_INLINE LobeMasks<D> LobesAt(D d, const int32_t* lobe, size_t k) {
     const hn::RebindToSigned<D> di;
     const auto l = hn::Load(di, lobe + k);
     auto is = [&](LaneLobe x) { return hn::RebindMask(d, hn::Eq(l, hn::Set(di, int32_t(x)))); };
-    return {is(LaneLobe::Lambertian), is(LaneLobe::RoughMetal), is(LaneLobe::Phase)};
+    const auto metal = is(LaneLobe::RoughMetal), conductor = is(LaneLobe::RoughConductor);
+    return {is(LaneLobe::Lambertian), hn::Or(metal, conductor), metal, conductor,
+            is(LaneLobe::Phase)};
+}
+
+// A conductor's index of refraction and distribution in rows k .., where `conductor` has a lane
+// (else zeros: no lane reads them).
+template <class D>
+struct ConductorLanes {
+    V3<hn::Vec<D>> eta, k;
+    hn::Mask<D> beckmann;
+};
+template <class D>
+HWY_INLINE ConductorLanes<D> ConductorAt(D d,
+                                         const ConductorRows& rows,
+                                         size_t k,
+                                         hn::Mask<D> conductor) {
+    if (hn::AllFalse(d, conductor)) {
+        const hn::Vec<D> zero = hn::Zero(d);
+        return {{zero, zero, zero}, {zero, zero, zero}, hn::FirstN(d, 0)};
+    }
+    const hn::RebindToSigned<D> di;
+    return {Load3(d, rows.eta, k), Load3(d, rows.k, k),
+            hn::RebindMask(d, hn::Ne(hn::Load(di, rows.beckmann + k), hn::Zero(di)))};
+}
+
+// Rows [n, padded) of a conductor's rows: row 0's.
+HWY_INLINE void PadConductorTail(ConductorRows& rows, size_t n, size_t padded) {
+    PadTail3({rows.eta, rows.k}, n, padded);
+    PadTail<int32_t>({rows.beckmann}, n, padded);
 }
 
 void StepVertices(VertexBlock* b) {
@@ -241,7 +270,10 @@ void StepVertices(VertexBlock* b) {
     PadTail3({b->p, b->ng, b->ns, b->wo, b->albedo, b->beta}, b->n, padded);
     PadTail<float>({b->u1, b->u2, b->u_rr, b->alpha, b->eta_scale}, b->n, padded);
     PadTail<int32_t>({b->lobe, b->roulette}, b->n, padded);
+    PadConductorTail(b->conductor, b->n, padded);
     for (size_t k = 0; k < b->n; k += N) {
+        const LobeMasks<D> lobes = LobesAt(d, b->lobe, k);
+        const ConductorLanes<D> conductor = ConductorAt(d, b->conductor, k, lobes.conductor);
         const StepVertex<L> v{
             Load3(d, b->p, k),
             Load3(d, b->ng, k),
@@ -249,6 +281,9 @@ void StepVertices(VertexBlock* b) {
             Load3(d, b->wo, k),
             Load3(d, b->albedo, k),
             hn::Load(d, b->alpha + k),
+            conductor.eta,
+            conductor.k,
+            conductor.beckmann,
             Load3(d, b->beta, k),
             hn::Load(d, b->u1 + k),
             hn::Load(d, b->u2 + k),
@@ -257,11 +292,12 @@ void StepVertices(VertexBlock* b) {
             hn::Load(d, b->eta_scale + k),
             b->geometric_side_test};
         // Each lane's lobe: vectors of one lobe run one step, mixed ones each of theirs.
-        const LobeMasks<D> lobes = LobesAt(d, b->lobe, k);
         // The first lobe present gives the vector's result, the others' lanes are selected in.
         const bool lambertian = !hn::AllFalse(d, lobes.lambertian),
-                   metal = !hn::AllFalse(d, lobes.metal), phase = !hn::AllFalse(d, lobes.phase);
-        StepResult<L> r = lambertian ? LambertianStep(v) : metal ? MetalStep(v) : PhaseStep(v);
+                   glossy = !hn::AllFalse(d, lobes.glossy), phase = !hn::AllFalse(d, lobes.phase);
+        StepResult<L> r = lambertian ? LambertianStep(v)
+                          : glossy   ? GlossyStep(v, lobes.conductor)
+                                     : PhaseStep(v);
         auto take = [&](hn::Mask<D> m, const StepResult<L>& s) {
             r.alive = hn::Or(hn::And(m, s.alive), hn::AndNot(m, r.alive));
             r.origin = Select3<L>(m, s.origin, r.origin);
@@ -269,8 +305,8 @@ void StepVertices(VertexBlock* b) {
             r.weight = Select3<L>(m, s.weight, r.weight);
             r.pdf = hn::IfThenElse(m, s.pdf, r.pdf);
         };
-        if (lambertian && metal) take(lobes.metal, MetalStep(v));
-        if ((lambertian || metal) && phase) take(lobes.phase, PhaseStep(v));
+        if (lambertian && glossy) take(lobes.glossy, GlossyStep(v, lobes.conductor));
+        if ((lambertian || glossy) && phase) take(lobes.phase, PhaseStep(v));
         Store3(d, r.origin, b->origin, k);
         Store3(d, r.wi, b->wi, k);
         Store3(d, r.weight, b->weight, k);
@@ -310,6 +346,7 @@ size_t SampleLights(LightSampleBlock* b,
     const size_t at = b->first;
     PadTail<float>({b->select_prob}, n, Padded(n, N));
     PadTail<int32_t>({b->lobe, b->planar, b->sphere, b->environment}, n, Padded(n, N));
+    PadConductorTail(b->conductor, n, Padded(n, N));
     size_t s = first_shadow;
     for (size_t k = 0; k < n; k += N) {
         auto column = [&](const std::vector<float>& c) {
@@ -332,13 +369,18 @@ size_t SampleLights(LightSampleBlock* b,
         if (hn::AllFalse(d, has_light)) continue;
         const LobeMasks<D> lobes = LobesAt(d, b->lobe, k);
         const F u1 = column(q.u1), u2 = column(q.u2);
+        const ConductorLanes<D> conductor = ConductorAt(d, b->conductor, k, lobes.conductor);
         const LightSampleVertex<L> v{column3(q.p_x, q.p_y, q.p_z),
                                      column3(q.ng_x, q.ng_y, q.ng_z),
                                      column3(q.ns_x, q.ns_y, q.ns_z),
                                      column3(q.wo_x, q.wo_y, q.wo_z),
                                      column3(q.albedo_x, q.albedo_y, q.albedo_z),
                                      column(q.alpha),
+                                     conductor.eta,
+                                     conductor.k,
+                                     conductor.beckmann,
                                      lobes.metal,
+                                     lobes.conductor,
                                      lobes.phase,
                                      u1,
                                      u2,
@@ -552,10 +594,14 @@ void direct_weights(Strategy strategy,
     HWY_DYNAMIC_DISPATCH(MisWeights)(heuristic, pdf_light, pdf_bsdf, n, out);
 }
 
-size_t VertexBlock::start_row(size_t entry_, HitShape shape_, const BsdfParams& bsdf, Color beta_) {
+size_t VertexBlock::start_row(
+    size_t entry_, HitShape shape_, MaterialId m, const BsdfParams& bsdf, Color beta_) {
     WT_DCHECK_LT(n, kShadeChunk);
     const size_t k = n++;
     shape[k] = int32_t(shape_);
+    material[k] = m;
+    if (bsdf.kind == MaterialKind::Conductor)
+        conductor.set(k, bsdf.conductor_eta, bsdf.conductor_k, bsdf.distribution);
     for (int a = 0; a < 3; ++a) {
         albedo[a][k] = bsdf.albedo[a];
         beta[a][k] = beta_[a];
@@ -569,7 +615,7 @@ size_t VertexBlock::start_row(size_t entry_, HitShape shape_, const BsdfParams& 
 }
 
 size_t VertexBlock::push(size_t entry_, const Vertex& v, Vec3 wo_, Color beta_) {
-    const size_t k = start_row(entry_, HitShape::Given, v.bsdf, beta_);
+    const size_t k = start_row(entry_, HitShape::Given, v.material, v.bsdf, beta_);
     for (int a = 0; a < 3; ++a) {
         p[a][k] = v.p[a];
         ng[a][k] = v.ng[a];
@@ -584,9 +630,10 @@ size_t VertexBlock::push_quad_hit(size_t entry_,
                                   float u,
                                   float v,
                                   const Quad& quad,
+                                  MaterialId m,
                                   const BsdfParams& bsdf,
                                   Color beta_) {
-    const size_t k = start_row(entry_, HitShape::Quad, bsdf, beta_);
+    const size_t k = start_row(entry_, HitShape::Quad, m, bsdf, beta_);
     hit_u[k] = u;
     hit_v[k] = v;
     flip_v[k] = quad.flip_v ? 1 : 0;
@@ -599,9 +646,14 @@ size_t VertexBlock::push_quad_hit(size_t entry_,
     return k;
 }
 
-size_t VertexBlock::push_sphere_hit(
-    size_t entry_, Vec3 d, Point3 p_, const Sphere& sphere, const BsdfParams& bsdf, Color beta_) {
-    const size_t k = start_row(entry_, HitShape::Sphere, bsdf, beta_);
+size_t VertexBlock::push_sphere_hit(size_t entry_,
+                                    Vec3 d,
+                                    Point3 p_,
+                                    const Sphere& sphere,
+                                    MaterialId m,
+                                    const BsdfParams& bsdf,
+                                    Color beta_) {
+    const size_t k = start_row(entry_, HitShape::Sphere, m, bsdf, beta_);
     hit_u[k] = sphere.radius;
     hit_v[k] = 0.0f;
     for (int a = 0; a < 3; ++a) {
@@ -619,9 +671,10 @@ size_t VertexBlock::push_triangle_hit(size_t entry_,
                                       float v,
                                       const Point3 (&vertices)[3],
                                       const Normal3* normals,
+                                      MaterialId m,
                                       const BsdfParams& bsdf,
                                       Color beta_) {
-    const size_t k = start_row(entry_, HitShape::Triangle, bsdf, beta_);
+    const size_t k = start_row(entry_, HitShape::Triangle, m, bsdf, beta_);
     hit_u[k] = u;
     hit_v[k] = v;
     for (int a = 0; a < 3; ++a) {

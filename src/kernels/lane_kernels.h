@@ -1,8 +1,8 @@
 // The wavefront's kernels that run in SIMD lanes, over a chunk of a queue: camera rays
 // (scene/camera_ray-inl.h), the uniform numbers of each vertex (sampling/sampler-inl.h), the
 // points and normals of surface hits (scene/surface_point-inl.h), the continuation
-// (shading/surface_step-inl.h) of Lambertian, rough metal and isotropic-phase vertices, their
-// light samples towards quad, triangle, sphere and environment lights
+// (shading/surface_step-inl.h) of Lambertian, rough metal, rough conductor and isotropic-phase
+// vertices, their light samples towards quad, triangle, sphere and environment lights
 // (shading/light_sample-inl.h, shading/environment_light-inl.h), and the environment's radiance
 // for rays that leave the scene. The formulas are the ones the megakernel runs in one lane;
 // these run them a vector at a time, on the best target the CPU has (Highway's dynamic
@@ -94,21 +94,41 @@ void medium_segments(MediumSegmentBlock& b, size_t n);
 // How a VertexBlock row's vertex is found: given, or resolved from its hit on a shape.
 enum class HitShape : int32_t { Given, Quad, Triangle, Sphere };
 // The BSDFs the lane formulas take (is_lane_vertex).
-enum class LaneLobe : int32_t { Lambertian, RoughMetal, Phase };
+enum class LaneLobe : int32_t { Lambertian, RoughMetal, RoughConductor, Phase };
 inline LaneLobe lane_lobe(MaterialKind kind) {
     return kind == MaterialKind::Metal       ? LaneLobe::RoughMetal
+           : kind == MaterialKind::Conductor ? LaneLobe::RoughConductor
            : kind == MaterialKind::Isotropic ? LaneLobe::Phase
                                              : LaneLobe::Lambertian;
 }
 inline MaterialKind material_kind(LaneLobe lobe) {
-    return lobe == LaneLobe::RoughMetal ? MaterialKind::Metal
-           : lobe == LaneLobe::Phase    ? MaterialKind::Isotropic
-                                        : MaterialKind::Lambertian;
+    return lobe == LaneLobe::RoughMetal       ? MaterialKind::Metal
+           : lobe == LaneLobe::RoughConductor ? MaterialKind::Conductor
+           : lobe == LaneLobe::Phase          ? MaterialKind::Isotropic
+                                              : MaterialKind::Lambertian;
 }
 
-// Vertices of a chunk that run in SIMD lanes (SoA, `n` rows): Lambertian and rough metal
-// surface vertices, and medium vertices of isotropic phase function, each given (push) or
-// resolved from its hit on a quad, a triangle or a sphere (push_*_hit, then
+// What a rough conductor row adds to its albedo (the reflectance factor) and roughness: the
+// complex index of refraction eta + i k per channel and the microfacet distribution. Only the
+// conductor rows are set; the kernels read the others as zero where no lane is a conductor.
+struct ConductorRows {
+    alignas(64) float eta[3][kShadeChunk];
+    alignas(64) float k[3][kShadeChunk];
+    alignas(64) int32_t beckmann[kShadeChunk];  // 1: Beckmann, 0: GGX
+
+    void set(size_t row, Color eta_, Color k_, Microfacet distribution) {
+        for (int a = 0; a < 3; ++a) {
+            eta[a][row] = eta_[a];
+            k[a][row] = k_[a];
+        }
+        beckmann[row] = distribution == Microfacet::Beckmann ? 1 : 0;
+    }
+    void set(size_t row, const Material& m) { set(row, m.eta, m.k, m.distribution); }
+};
+
+// Vertices of a chunk that run in SIMD lanes (SoA, `n` rows): Lambertian, rough metal and
+// rough conductor surface vertices, and medium vertices of isotropic phase function, each given
+// (push) or resolved from its hit on a quad, a triangle or a sphere (push_*_hit, then
 // resolve_surface_hits: surface_at's point and normals, resolve_segment's wo); then each row's
 // continuation, continue_path's (step_vertices). Flags are int32 rows (0 or 1), and kinds
 // int32 enums, so that a vector compare makes them masks.
@@ -130,8 +150,10 @@ struct VertexBlock {
     alignas(64) float ns[3][kShadeChunk];  // +z in a medium
     alignas(64) float wo[3][kShadeChunk];
     alignas(64) float albedo[3][kShadeChunk];
-    alignas(64) float alpha[kShadeChunk];   // rough metal: GGX alpha
+    alignas(64) float alpha[kShadeChunk];   // rough metal: GGX alpha; conductor: its alpha
     alignas(64) int32_t lobe[kShadeChunk];  // LaneLobe
+    ConductorRows conductor;                // the rough conductor rows'
+    MaterialId material[kShadeChunk];       // conductor rows: the material, for the light sample
     alignas(64) float beta[3][kShadeChunk];
     // in: the continuation's direction and roulette samples, and whether roulette applies
     alignas(64) float u1[kShadeChunk], u2[kShadeChunk], u_rr[kShadeChunk];
@@ -152,22 +174,30 @@ struct VertexBlock {
     size_t push(size_t entry, const Vertex& v, Vec3 wo, Color beta);
     // The same for a vertex to resolve from the ray direction `d` and its hit at (u, v) on a
     // quad, a triangle (p, and vertex normals n or nullptr) or a sphere (at its point
-    // p = o + t d), of the BSDF `bsdf` (Lambertian or rough metal).
+    // p = o + t d), of the BSDF `bsdf` (Lambertian, rough metal or rough conductor) of material
+    // m.
     size_t push_quad_hit(size_t entry,
                          Vec3 d,
                          float u,
                          float v,
                          const Quad& quad,
+                         MaterialId m,
                          const BsdfParams& bsdf,
                          Color beta);
-    size_t push_sphere_hit(
-        size_t entry, Vec3 d, Point3 p, const Sphere& sphere, const BsdfParams& bsdf, Color beta);
+    size_t push_sphere_hit(size_t entry,
+                           Vec3 d,
+                           Point3 p,
+                           const Sphere& sphere,
+                           MaterialId m,
+                           const BsdfParams& bsdf,
+                           Color beta);
     size_t push_triangle_hit(size_t entry,
                              Vec3 d,
                              float u,
                              float v,
                              const Point3 (&p)[3],
                              const Normal3* n,
+                             MaterialId m,
                              const BsdfParams& bsdf,
                              Color beta);
     // Row `row`'s continuation samples; roulette: whether Russian roulette applies, on the
@@ -185,7 +215,8 @@ struct VertexBlock {
     }
 
   private:
-    size_t start_row(size_t entry, HitShape shape, const BsdfParams& bsdf, Color beta);
+    size_t start_row(
+        size_t entry, HitShape shape, MaterialId m, const BsdfParams& bsdf, Color beta);
 };
 
 // Rows k < b.n pushed with a hit: their p, ng, ns, wo (surface_at's and resolve_segment's), bit
@@ -205,10 +236,12 @@ struct LightSampleBlock {
     const LightSampleQueue* queue = nullptr;
     size_t first = 0, n = 0;
     bool geometric_side_test = true;  // Scene::geometric_side_test, for every row
-    // the vertex's lobe (LaneLobe); the light, as its index among the LightSet's planar emitters
-    // or its sphere emitters (both -1: the row's light is another kind, not sampled here), and
-    // its selection probability
+    // the vertex's lobe (LaneLobe) and, for a rough conductor, its index of refraction and
+    // distribution (the queue holds its albedo and roughness); the light, as its index among the
+    // LightSet's planar emitters or its sphere emitters (both -1: the row's light is another kind,
+    // not sampled here), and its selection probability
     alignas(64) int32_t lobe[kShadeChunk];
+    ConductorRows conductor;
     alignas(64) int32_t planar[kShadeChunk], sphere[kShadeChunk];
     alignas(64) int32_t environment[kShadeChunk];  // 1: the light is the environment map
     alignas(64) float select_prob[kShadeChunk];

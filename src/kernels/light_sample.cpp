@@ -72,15 +72,16 @@ size_t light_sample(const WaveInputs& in,
             block.sphere[row] = -1;
             block.environment[row] = 0;
             const Normal3 ng = WAVETRACE_XYZ_AT(queue, ng, i);
-            block.planar[row] = planar_light_sample_at(ng, queue.kind[i], queue.alpha[i],
-                                                       queue.bump_alpha2[i], in.lights, light);
+            const bool lane = is_lane_vertex(ng, queue.kind[i], queue.alpha[i], queue.alpha_v[i],
+                                             queue.bump_alpha2[i]);
+            if (lane && queue.kind[i] == MaterialKind::Conductor)
+                block.conductor.set(row, in.scene.materials[queue.material[i]]);
+            block.planar[row] = planar_light_sample_at(lane, in.lights, light);
             if (block.planar[row] >= 0) continue;
             block.sphere[row] =
-                sphere_light_sample_at(WAVETRACE_XYZ_AT(queue, p, i), ng, queue.kind[i],
-                                       queue.alpha[i], queue.bump_alpha2[i], in.lights, light);
+                sphere_light_sample_at(WAVETRACE_XYZ_AT(queue, p, i), lane, in.lights, light);
             if (block.sphere[row] >= 0) continue;
-            if (environment_light_sample_at(ng, queue.kind[i], queue.alpha[i], queue.bump_alpha2[i],
-                                            in.lights, light)) {
+            if (environment_light_sample_at(lane, in.lights, light)) {
                 block.environment[row] = 1;
                 continue;
             }

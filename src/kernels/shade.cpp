@@ -49,21 +49,25 @@ struct LaneSurface {
     bool textured = false;
 };
 
-// The SurfaceHit material of m: Lambertian or a rough metal, of an albedo texture. False for
-// every other material (mirrors, glass, emitters, boundaries, none).
+// The SurfaceHit material of m: Lambertian, a rough metal or an isotropic rough conductor, of
+// an albedo texture. False for every other material (mirrors, glass, emitters, boundaries, none)
+// and for roughness textures.
 bool lane_material(const Scene& scene, MaterialId m, LaneSurface* out) {
     if (m == kNone) return false;
     const Material& mat = scene.materials[m];
     // One-sided materials go the scalar route, where the hit's side is known before the BSDF,
     // and so do normal and bump maps, which need the hit's tangents.
-    if (!(mat.kind == MaterialKind::Lambertian || mat.kind == MaterialKind::Metal) ||
-        mat.albedo == kNone || mat.one_sided || mat.has_normal_maps())
+    if (!(mat.kind == MaterialKind::Lambertian || mat.kind == MaterialKind::Metal ||
+          mat.kind == MaterialKind::Conductor) ||
+        mat.albedo == kNone || mat.one_sided || mat.has_normal_maps() ||
+        mat.alpha_u_texture != kNone || mat.alpha_v_texture != kNone)
         return false;
     const Texture& albedo = scene.textures[mat.albedo];
     out->material = m;
     out->textured = albedo.kind != TextureKind::Solid;
     out->bsdf = material_bsdf(mat, out->textured ? Color(0.0f) : albedo.color);
-    return mat.kind == MaterialKind::Lambertian || out->bsdf.alpha > 0.0f;  // not a mirror
+    const BsdfParams& b = out->bsdf;
+    return is_lane_vertex({0, 0, 1}, b.kind, b.alpha, b.alpha_v, 0.0f);  // not a mirror
 }
 
 // A chunk's mesh hits read a triangle record and then its vertices' positions and normals, from
@@ -281,6 +285,7 @@ void push_surface_hits(const WaveInputs& in,
         const size_t i = c.begin + row;
         const PrimRef prim = hits.prim[i];
         const BsdfParams& bsdf = c.surface[row].bsdf;
+        const MaterialId material = c.surface[row].material;
         const Color beta = out.paths.beta[i];
         size_t k;
         switch (prim.kind()) {
@@ -294,19 +299,19 @@ void push_surface_hits(const WaveInputs& in,
                     if (mesh.has_normals) n[j] = scene.normals[tri.v[j]];
                 }
                 k = c.block.push_triangle_hit(i, out.rays.dir[i], hits.u[i], hits.v[i], p,
-                                              mesh.has_normals ? n : nullptr, bsdf, beta);
+                                              mesh.has_normals ? n : nullptr, material, bsdf, beta);
                 break;
             }
             case PrimKind::Quad:
                 k = c.block.push_quad_hit(i, out.rays.dir[i], hits.u[i], hits.v[i],
-                                          scene.quads[prim.index()], bsdf, beta);
+                                          scene.quads[prim.index()], material, bsdf, beta);
                 break;
             case PrimKind::Sphere:
             default: {
                 // surface_at's point of a sphere hit: ray.at(t).
                 const Ray ray{out.rays.origin[i], out.rays.dir[i]};
                 k = c.block.push_sphere_hit(i, ray.d, ray.at(hits.t[i]),
-                                            scene.spheres[prim.index()], bsdf, beta);
+                                            scene.spheres[prim.index()], material, bsdf, beta);
                 break;
             }
         }
@@ -446,7 +451,7 @@ void queue_lane_light_samples(size_t first, size_t last, const Chunk& c, ShadeOu
         q.unbent_x[j] = q.unbent_y[j] = q.unbent_z[j] = 0.0f;
         q.bump_alpha2[j] = 0.0f;  // lane vertices have no mapped normal's shadowing
         q.kind[j] = material_kind(LaneLobe(b.lobe[k]));
-        q.material[j] = kNone;
+        q.material[j] = b.material[k];  // as append_light_sample queues it
         const VertexSamples u = c.samples.at(b.entry[k] - c.begin);
         q.u_select[j] = u.light_select;
         q.u1[j] = u.light_u;

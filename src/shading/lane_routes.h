@@ -16,61 +16,53 @@ namespace wavetrace {
 // whose direction the strategy samples from the BSDF or phase function. The wavefront runs
 // these vertices' steps in SIMD lanes, continue_path the same formula in one lane.
 bool takes_lane_step(const Estimator& config, const Vertex& v, const LightSet& lights);
-// A Lambertian or rough metal surface without a mapped normal's shadowing (bump_alpha2 0,
-// Vertex), or a medium's isotropic phase function: the vertices the lane formulas of
-// next-event estimation towards quad, triangle, sphere and environment lights and of the
-// continuation take.
-inline bool is_lane_vertex(Normal3 ng, MaterialKind kind, float alpha, float bump_alpha2) {
+// A Lambertian, rough metal or isotropic rough conductor surface without a mapped normal's
+// shadowing (bump_alpha2 0, Vertex), or a medium's isotropic phase function: the vertices the
+// lane formulas of next-event estimation towards quad, triangle, sphere and environment lights
+// and of the continuation take. (The lanes build the shading frame from the normal alone, which
+// an isotropic BSDF allows.)
+inline bool is_lane_vertex(
+    Normal3 ng, MaterialKind kind, float alpha, float alpha_v, float bump_alpha2) {
     if (ng.x == 0 && ng.y == 0 && ng.z == 0) return kind == MaterialKind::Isotropic;  // a medium
     if (bump_alpha2 != 0.0f) return false;
-    return kind == MaterialKind::Lambertian || (kind == MaterialKind::Metal && alpha > 0.0f);
+    return kind == MaterialKind::Lambertian || (kind == MaterialKind::Metal && alpha > 0.0f) ||
+           (kind == MaterialKind::Conductor && alpha > 0.0f && alpha_v == alpha);
 }
 inline bool is_lane_vertex(const Vertex& v) {
-    return is_lane_vertex(v.ng, v.bsdf.kind, v.bsdf.alpha, v.bump_alpha2);
+    return is_lane_vertex(v.ng, v.bsdf.kind, v.bsdf.alpha, v.bsdf.alpha_v, v.bump_alpha2);
 }
 
 // The light next_event samples at v in SIMD lanes (shading/light_sample-inl.h), as its index
 // among the LightSet's planar emitters, or -1: at a lane vertex (is_lane_vertex) that
 // samples_lights(), a chosen quad or triangle of constant radiance.
-inline int32_t planar_light_sample_at(Normal3 ng,
-                                      MaterialKind kind,
-                                      float alpha,
-                                      float bump_alpha2,
+inline int32_t planar_light_sample_at(bool lane_vertex,
                                       const LightSet& lights,
                                       LightChoice choice) {
-    return is_lane_vertex(ng, kind, alpha, bump_alpha2) ? lights.planar_emitter_index(choice) : -1;
+    return lane_vertex ? lights.planar_emitter_index(choice) : -1;
 }
 inline int32_t planar_light_sample_at(const Vertex& v, const LightSet& lights, LightChoice choice) {
-    return planar_light_sample_at(v.ng, v.bsdf.kind, v.bsdf.alpha, v.bump_alpha2, lights, choice);
+    return planar_light_sample_at(is_lane_vertex(v), lights, choice);
 }
 // The same for a chosen sphere of constant radiance with the vertex at p outside it
 // (shading/sphere_light-inl.h), as its index among the LightSet's sphere emitters, or -1.
 int32_t sphere_light_sample_at(Point3 p,
-                               Normal3 ng,
-                               MaterialKind kind,
-                               float alpha,
-                               float bump_alpha2,
+                               bool lane_vertex,
                                const LightSet& lights,
                                LightChoice choice);
 inline int32_t sphere_light_sample_at(const Vertex& v, const LightSet& lights, LightChoice choice) {
-    return sphere_light_sample_at(v.p, v.ng, v.bsdf.kind, v.bsdf.alpha, v.bump_alpha2, lights,
-                                  choice);
+    return sphere_light_sample_at(v.p, is_lane_vertex(v), lights, choice);
 }
 // Whether the chosen light is an environment map, sampled at a lane vertex by
 // EnvironmentLightPoint (shading/environment_light-inl.h).
-inline bool environment_light_sample_at(Normal3 ng,
-                                        MaterialKind kind,
-                                        float alpha,
-                                        float bump_alpha2,
+inline bool environment_light_sample_at(bool lane_vertex,
                                         const LightSet& lights,
                                         LightChoice choice) {
-    return is_lane_vertex(ng, kind, alpha, bump_alpha2) && lights.is_environment(choice);
+    return lane_vertex && lights.is_environment(choice);
 }
 inline bool environment_light_sample_at(const Vertex& v,
                                         const LightSet& lights,
                                         LightChoice choice) {
-    return environment_light_sample_at(v.ng, v.bsdf.kind, v.bsdf.alpha, v.bump_alpha2, lights,
-                                       choice);
+    return environment_light_sample_at(is_lane_vertex(v), lights, choice);
 }
 
 }  // namespace wavetrace

@@ -1,12 +1,12 @@
-// A light sample at a Lambertian or a rough metal surface vertex, or a vertex in a medium of
-// isotropic phase function, towards a quad or triangle light of constant radiance (the light
-// point, uniform by area, and its solid-angle density) or a point sphere_light-inl.h or
-// environment_light-inl.h found: the BSDF value and
-// density and the shadow ray; what next_event computes for such a vertex and light, written
-// once over lanes. Unweighted: the MIS weight is the caller's (the megakernel's loop, the
-// wavefront's mis_combine). The megakernel runs it with OneLane inside next_event; the
-// wavefront's light_sample kernel runs it over the queued vertices whose sample picked such a
-// light (kernels/lane_kernels.cpp). Per-target header, see math/lanes-inl.h.
+// A light sample at a Lambertian, a rough metal or a rough conductor surface vertex, or a vertex
+// in a medium of isotropic phase function, towards a quad or triangle light of constant radiance
+// (the light point, uniform by area, and its solid-angle density) or a point
+// sphere_light-inl.h or environment_light-inl.h found: the BSDF value and density and the
+// shadow ray; what next_event computes for such a vertex and light, written once over lanes.
+// Unweighted: the MIS weight is the caller's (the megakernel's loop, the wavefront's
+// mis_combine). The megakernel runs it with OneLane inside next_event; the wavefront's
+// light_sample kernel runs it over the queued vertices whose sample picked such a light
+// (kernels/lane_kernels.cpp). Per-target header, see math/lanes-inl.h.
 #if defined(WAVETRACE_SHADING_LIGHT_SAMPLE_INL_H_) == defined(HWY_TARGET_TOGGLE)
 #ifdef WAVETRACE_SHADING_LIGHT_SAMPLE_INL_H_
 #undef WAVETRACE_SHADING_LIGHT_SAMPLE_INL_H_
@@ -14,11 +14,11 @@
 #define WAVETRACE_SHADING_LIGHT_SAMPLE_INL_H_
 #endif
 
-#include "math/lanes-inl.h"
-#include "sampling/warp-inl.h"
 #include "bsdfs/diffuse-inl.h"
 #include "bsdfs/geometric_side-inl.h"
-#include "bsdfs/ggx-inl.h"
+#include "bsdfs/glossy-inl.h"
+#include "math/lanes-inl.h"
+#include "sampling/warp-inl.h"
 #include "shading/lights.h"
 #include "wavetrace/math/constants.h"
 
@@ -67,10 +67,14 @@ HWY_INLINE PlanarLightLanes<L> PlanarLightFrom(const PlanarEmitterColumns& c,
 // The vertex a light sample starts from.
 template <class L>
 struct LightSampleVertex {
-    V3<typename L::F> p, ng, ns, wo, albedo;
-    typename L::F alpha;   // metal: GGX roughness (> 0)
-    typename L::M metal;   // a rough metal; else Lambertian
-    typename L::M phase;   // in a medium (ng = 0): the isotropic phase function
+    V3<typename L::F> p, ng, ns, wo, albedo;  // conductor: albedo is the reflectance factor
+    typename L::F alpha;       // metal: GGX roughness; conductor: its roughness (> 0)
+    V3<typename L::F> eta, k;  // conductor: the complex index of refraction
+    typename L::M beckmann;    // conductor: a Beckmann distribution, else GGX
+    typename L::M metal;       // a rough metal
+    typename L::M conductor;   // a rough conductor (isotropic)
+    typename L::M phase;       // in a medium (ng = 0): the isotropic phase function
+                               // (none of the three: Lambertian)
     typename L::F u1, u2;  // the point on the light
     bool geometric_side_test = true;  // Scene::geometric_side_test
 };
@@ -183,17 +187,14 @@ HWY_INLINE VertexLightSample<L> SampleTowards(const LightSampleVertex<L>& v,
     if (v.geometric_side_test) ok = L::AndNot(CrossesGeometricSurface<L>(v.wo, r.wi, v.ng), ok);
     V3<F> f{zero, zero, zero};
     F pdf_bsdf = zero;
-    if (L::Any(L::Not(v.metal)))
+    const auto glossy = L::Or(v.metal, v.conductor);
+    if (L::Any(L::Not(glossy)))
         f = LambertianEval<L>(v.albedo, Dot(v.wo, v.ns), Dot(r.wi, v.ns), &pdf_bsdf);
-    if (L::Any(v.metal)) {
-        V3<F> s, t;
-        OrthonormalBasis<L>(v.ns, &s, &t);
-        const V3<F> lo{Dot(v.wo, s), Dot(v.wo, t), Dot(v.wo, v.ns)};
-        const V3<F> li{Dot(r.wi, s), Dot(r.wi, t), Dot(r.wi, v.ns)};
-        F pdf_metal;
-        const V3<F> f_metal = MetalEval<L>(v.albedo, v.alpha, lo, li, &pdf_metal);
-        f = Select3<L>(v.metal, f_metal, f);
-        pdf_bsdf = L::Select(v.metal, pdf_metal, pdf_bsdf);
+    if (L::Any(glossy)) {
+        const GlossyLanes<L> g{v.albedo, v.alpha, v.eta, v.k, v.beckmann, v.conductor};
+        F pdf_glossy;
+        f = Select3<L>(glossy, GlossyEval<L>(g, v.ns, v.wo, r.wi, &pdf_glossy), f);
+        pdf_bsdf = L::Select(glossy, pdf_glossy, pdf_bsdf);
     }
     if (L::Any(v.phase)) {
         F pdf_phase;

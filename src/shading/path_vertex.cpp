@@ -233,13 +233,10 @@ bool samples_lights(const Estimator& config, const Vertex& v, const LightSet& li
 }
 
 int32_t sphere_light_sample_at(Point3 p,
-                               Normal3 ng,
-                               MaterialKind kind,
-                               float alpha,
-                               float bump_alpha2,
+                               bool lane_vertex,
                                const LightSet& lights,
                                LightChoice choice) {
-    if (!is_lane_vertex(ng, kind, alpha, bump_alpha2)) return -1;
+    if (!lane_vertex) return -1;
     const int32_t k = lights.sphere_emitter_index(choice);
     if (k < 0) return -1;
     const SphereEmitterColumns& c = lights.sphere_emitter_columns();
@@ -277,7 +274,11 @@ DirectSample next_event(const Scene& scene,
                                                to_lanes(wo),
                                                to_lanes(v.bsdf.albedo),
                                                v.bsdf.alpha,
+                                               to_lanes(v.bsdf.conductor_eta),
+                                               to_lanes(v.bsdf.conductor_k),
+                                               v.bsdf.distribution == Microfacet::Beckmann,
                                                v.bsdf.kind == MaterialKind::Metal,
+                                               v.bsdf.kind == MaterialKind::Conductor,
                                                v.bsdf.kind == MaterialKind::Isotropic,
                                                u.light_u,
                                                u.light_v,
@@ -437,6 +438,9 @@ PathStep continue_path(const Scene& scene,
                                             to_lanes(wo),
                                             to_lanes(v.bsdf.albedo),
                                             v.bsdf.alpha,
+                                            to_lanes(v.bsdf.conductor_eta),
+                                            to_lanes(v.bsdf.conductor_k),
+                                            v.bsdf.distribution == Microfacet::Beckmann,
                                             to_lanes(beta),
                                             u.bsdf_u1,
                                             u.bsdf_u2,
@@ -444,10 +448,11 @@ PathStep continue_path(const Scene& scene,
                                             depth + 1 >= config.rr_depth,
                                             eta_scale,
                                             v.geometric_side_test};
+        const bool conductor = v.bsdf.kind == MaterialKind::Conductor;
         const lanes::StepResult<OneLane> r =
-            v.bsdf.kind == MaterialKind::Metal       ? lanes::MetalStep(lv)
-            : v.bsdf.kind == MaterialKind::Isotropic ? lanes::PhaseStep(lv)
-                                                     : lanes::LambertianStep(lv);
+            conductor || v.bsdf.kind == MaterialKind::Metal ? lanes::GlossyStep(lv, conductor)
+            : v.bsdf.kind == MaterialKind::Isotropic        ? lanes::PhaseStep(lv)
+                                                            : lanes::LambertianStep(lv);
         if (!r.alive) return step;
         step.weight = to_vec3(r.weight);
         step.prev = {v.p, r.pdf, lights.empty()};

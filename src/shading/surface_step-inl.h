@@ -1,6 +1,6 @@
-// The continuation of a path at a Lambertian or a (rough) metal surface vertex, or at a vertex
-// in a medium of isotropic phase function, sampled by the BSDF (cosine-weighted / GGX visible
-// normals / uniform sphere), with Russian roulette and the next ray's origin: what
+// The continuation of a path at a Lambertian, a rough metal or a rough conductor surface vertex,
+// or at a vertex in a medium of isotropic phase function, sampled by the BSDF (cosine-weighted /
+// visible normals / uniform sphere), with Russian roulette and the next ray's origin: what
 // continue_path does at such a vertex, written once over lanes. The megakernel runs
 // it with OneLane inside continue_path; the wavefront's shade kernel runs it over the surface
 // vertices of a chunk, a vector of paths at a time (kernels/lane_kernels.cpp). Per-target
@@ -12,11 +12,11 @@
 #define WAVETRACE_SHADING_SURFACE_STEP_INL_H_
 #endif
 
-#include "math/lanes-inl.h"
-#include "sampling/warp-inl.h"
 #include "bsdfs/diffuse-inl.h"
 #include "bsdfs/geometric_side-inl.h"
-#include "bsdfs/ggx-inl.h"
+#include "bsdfs/glossy-inl.h"
+#include "math/lanes-inl.h"
+#include "sampling/warp-inl.h"
 #include "wavetrace/math/constants.h"
 
 HWY_BEFORE_NAMESPACE();
@@ -55,8 +55,10 @@ template <class L>
 struct StepVertex {
     V3<typename L::F> p, ng, ns;  // position, geometric and shading normals
     V3<typename L::F> wo;         // unit, pointing away from the vertex
-    V3<typename L::F> albedo;
-    typename L::F alpha;         // metal: GGX roughness (> 0)
+    V3<typename L::F> albedo;     // conductor: the reflectance factor
+    typename L::F alpha;          // metal: GGX roughness; conductor: its roughness (> 0)
+    V3<typename L::F> eta, k;     // conductor: the complex index of refraction
+    typename L::M beckmann;       // conductor: a Beckmann distribution, else GGX
     V3<typename L::F> beta;      // path throughput before this vertex
     typename L::F u1, u2, u_rr;  // direction and Russian roulette samples
     typename L::M roulette;      // whether Russian roulette applies at this bounce
@@ -108,16 +110,13 @@ HWY_INLINE StepResult<L> LambertianStep(const StepVertex<L>& v) {
     return FinishStep(v, wi, v.albedo, pdf, L::And(wo_z != zero, pdf > zero));
 }
 
-// A rough metal (alpha > 0): a GGX visible-normal sample in the shading frame.
+// A rough metal or, in the lanes of `conductor`, a rough conductor (alpha > 0, isotropic): a
+// visible-normal sample in the shading frame.
 template <class L>
-HWY_INLINE StepResult<L> MetalStep(const StepVertex<L>& v) {
-    using F = typename L::F;
-    V3<F> s, t;
-    OrthonormalBasis<L>(v.ns, &s, &t);
-    const V3<F> lo{Dot(v.wo, s), Dot(v.wo, t), Dot(v.wo, v.ns)};
-    const MetalSampleResult<L> m = MetalSample<L>(v.albedo, v.alpha, lo, v.u1, v.u2);
-    const V3<F> wi = s * m.wi.x + t * m.wi.y + v.ns * m.wi.z;
-    return FinishStep(v, wi, m.weight, m.pdf, m.valid);
+HWY_INLINE StepResult<L> GlossyStep(const StepVertex<L>& v, typename L::M conductor) {
+    const GlossyLanes<L> g{v.albedo, v.alpha, v.eta, v.k, v.beckmann, conductor};
+    const ReflectionSample<L> m = GlossySample<L>(g, v.ns, v.wo, v.u1, v.u2);
+    return FinishStep(v, m.wi, m.weight, m.pdf, m.valid);
 }
 
 // The isotropic phase function, f = albedo / (4 pi): a uniform direction of weight albedo.
