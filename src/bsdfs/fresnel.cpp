@@ -25,7 +25,7 @@ Color fresnel_conductor(float cos_i, Color eta, Color k) {
 
 float schlick_weight(float cos_theta) {
     namespace lanes = HWY_NAMESPACE;
-    return lanes::Schlick<lanes::OneLane>(lanes::to_lanes(Color(0.0f)), cos_theta).x;
+    return lanes::SchlickWeight<lanes::OneLane>(cos_theta);
 }
 
 bool refract(Vec3 o, Vec3 m, float eta, Vec3* i) {

@@ -75,15 +75,22 @@ HWY_INLINE typename L::F GgxAnisotropicLambda(V3<typename L::F> w,
     return L::Select(r2 <= zero, zero, L::Select(grazing, L::Set(kInfinity), lambda));
 }
 
+// Schlick's weight (1 - cos theta)^5, cos theta clamped to [0, 1] (Schlick 1994).
+template <class L>
+HWY_INLINE typename L::F SchlickWeight(typename L::F cos_theta) {
+    using F = typename L::F;
+    const F one = L::Set(1.0f);
+    const F m = L::Min(L::Max(one - cos_theta, L::Set(0.0f)), one);
+    return (m * m) * (m * m) * m;
+}
+
 // Schlick's approximation with the albedo as the reflectance at normal incidence: Ray Tracing in
-// One Weekend's metal tint, made angle-dependent (Schlick 1994).
+// One Weekend's metal tint, made angle-dependent.
 template <class L>
 HWY_INLINE V3<typename L::F> Schlick(V3<typename L::F> f0, typename L::F cos_theta) {
     using F = typename L::F;
     const F one = L::Set(1.0f);
-    const F m = L::Min(L::Max(one - cos_theta, L::Set(0.0f)), one);
-    const F m5 = (m * m) * (m * m) * m;
-    return f0 + V3<F>{one - f0.x, one - f0.y, one - f0.z} * m5;
+    return f0 + V3<F>{one - f0.x, one - f0.y, one - f0.z} * SchlickWeight<L>(cos_theta);
 }
 
 // A visible normal of the GGX distribution of roughness alpha_x, alpha_y along the frame's x
