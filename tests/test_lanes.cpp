@@ -40,17 +40,18 @@ Vec3 unit(float u1, float u2) {
     return sample_uniform_sphere(u1, u2);
 }
 
-// The lane vertices (is_lane_vertex) the tests cover, in quarters of their rows.
-enum class LaneKind { Lambertian, Metal, Conductor, Medium };
+// The lane vertices (is_lane_vertex) the tests cover, in fifths of their rows.
+enum class LaneKind { Lambertian, Metal, Conductor, MetallicRoughness, Medium };
 LaneKind lane_kind(size_t i, size_t n) {
-    return static_cast<LaneKind>(4 * i / n);
+    return static_cast<LaneKind>(5 * i / n);
 }
 
-// A Lambertian, rough metal or rough conductor surface vertex at p, its normals, albedo and
-// roughness from dimensions 3-9 and 21 of u (a conductor's index of refraction and distribution
-// from 22-28): the shading normal tilted off the geometric one, so that the geometric-side tests
-// reject some directions. Or a vertex in a medium of isotropic phase function, as
-// medium_vertex() makes it.
+// A Lambertian, rough metal, rough conductor or metallic-roughness surface vertex at p, its
+// normals, albedo and roughness from dimensions 3-9 and 21 of u (a conductor's index of
+// refraction and distribution, or a metallic-roughness surface's IOR, metallic, clearcoat and
+// one-sidedness from 22-28): the shading normal tilted off the geometric one, so that the
+// geometric-side tests reject some directions. Or a vertex in a medium of isotropic phase
+// function, as medium_vertex() makes it.
 template <class Dim>
 Vertex lane_vertex_at(Point3 p, Dim u, LaneKind kind) {
     Vertex v;
@@ -69,19 +70,28 @@ Vertex lane_vertex_at(Point3 p, Dim u, LaneKind kind) {
         v.bsdf.kind = MaterialKind::Metal;
         return v;
     }
-    v.bsdf.kind = MaterialKind::Conductor;
     v.bsdf.alpha_v = v.bsdf.alpha;
+    if (kind == LaneKind::MetallicRoughness) {
+        v.bsdf.kind = MaterialKind::MetallicRoughness;
+        v.bsdf.eta = 1.2f + u(22);
+        v.bsdf.metallic = u(23) < 0.3f ? 1.0f : u(23) < 0.6f ? 0.0f : u(24);
+        v.bsdf.clearcoat = u(25) < 0.5f ? 0.0f : u(25);
+        v.bsdf.clearcoat_alpha = 0.01f + 0.3f * u(26);
+        v.bsdf.one_sided = u(27) < 0.5f;
+        return v;
+    }
+    v.bsdf.kind = MaterialKind::Conductor;
     v.bsdf.conductor_eta = {0.1f + 2.0f * u(22), 0.1f + 2.0f * u(23), 0.1f + 2.0f * u(24)};
     v.bsdf.conductor_k = {5.0f * u(25), 5.0f * u(26), 5.0f * u(27)};
     v.bsdf.distribution = u(28) < 0.5f ? Microfacet::Beckmann : Microfacet::Ggx;
     return v;
 }
 
-// Lambertian, rough metal, rough conductor and medium vertices around the lights of `scene`, quads,
-// triangles, spheres and an environment map (the vertices outside the spheres): the vector light
-// samples give next_event's shadow rays, unweighted contributions (times beta) and densities bit
-// for bit, packed in row order. Counts in *spheres the rows whose light was a sphere, in *maps
-// those whose light was the environment map.
+// Lambertian, rough metal, rough conductor, metallic-roughness and medium vertices around the
+// lights of `scene`, quads, triangles, spheres and an environment map (the vertices outside the
+// spheres): the vector light samples give next_event's shadow rays, unweighted contributions
+// (times beta) and densities bit for bit, packed in row order. Counts in *spheres the rows whose
+// light was a sphere, in *maps those whose light was the environment map.
 void expect_light_samples_are_next_event(const Scene& scene,
                                          size_t* spheres,
                                          size_t* maps = nullptr) {
@@ -137,9 +147,9 @@ void expect_light_samples_are_next_event(const Scene& scene,
                                  c.v.bsdf.alpha_v, c.v.bsdf.metallic, c.v.uv, c.v.bsdf.kind, kNone,
                                  c.beta, c.u.light_select, c.u.light_u, c.u.light_v});
             block.lobe[k] = int32_t(lane_lobe(c.v.bsdf.kind));
-            if (c.v.bsdf.kind == MaterialKind::Conductor)
-                block.conductor.set(k, c.v.bsdf.conductor_eta, c.v.bsdf.conductor_k,
-                                    c.v.bsdf.distribution);
+            if (c.v.bsdf.kind == MaterialKind::Conductor ||
+                c.v.bsdf.kind == MaterialKind::MetallicRoughness)
+                block.glossy.set(k, c.v.bsdf);
             block.planar[k] = planar;
             block.sphere[k] = sphere;
             block.select_prob[k] = light.probability;
@@ -789,8 +799,13 @@ TEST(Lanes, HitsResolvedInLanesAreSurfaceAtOnEverySimdTarget) {
         c.ray = Ray{{u(2) * 30.0f, u(3) * 30.0f, u(4) * 30.0f}, unit(u(5), u(6)) * (0.5f + u(7))};
         c.hit = Hit{1.0f + u(8), prim, a, b};
         c.bsdf.albedo = {u(9), u(10), u(11)};
-        if (3 * i >= n) {  // rough metal, then rough conductor rows after the Lambertian ones
-            c.bsdf.kind = 3 * i >= 2 * n ? MaterialKind::Conductor : MaterialKind::Metal;
+        if (3 * i >= n) {  // rough metal, then rough conductor and metallic-roughness rows
+            c.bsdf.kind = 3 * i < 2 * n ? MaterialKind::Metal
+                          : i % 2       ? MaterialKind::Conductor
+                                        : MaterialKind::MetallicRoughness;
+            c.bsdf.metallic = u(29);
+            c.bsdf.clearcoat = u(30) < 0.5f ? 0.0f : 1.0f;
+            c.bsdf.clearcoat_alpha = 0.1f;
             c.bsdf.alpha = c.bsdf.alpha_v = 0.02f + 0.6f * u(21);
             c.bsdf.conductor_eta = {0.2f + u(22), 0.2f + u(23), 0.2f + u(24)};
             c.bsdf.conductor_k = {3.0f * u(25), 3.0f * u(26), 3.0f * u(27)};

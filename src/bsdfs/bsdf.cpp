@@ -49,95 +49,43 @@ Vec3 ggx_sample_visible_normal(Vec3 wo, float alpha, float u1, float u2) {
     return to_vec3(lanes::GgxVisibleNormal<OneLane>(to_lanes(wo), alpha, alpha, u1, u2));
 }
 
-Color bsdf_eval(const BsdfParams& b, Vec3 wo, Vec3 wi) {
+Color bsdf_eval(const BsdfParams& b, Vec3 wo, Vec3 wi, float* pdf) {
+    *pdf = 0.0f;
     switch (b.kind) {
-        case MaterialKind::Lambertian: {
-            float pdf;
-            return to_vec3(lanes::LambertianEval<OneLane>(to_lanes(b.albedo), wo.z, wi.z, &pdf));
-        }
-        case MaterialKind::Metal: {
+        case MaterialKind::Lambertian:
+            return to_vec3(lanes::LambertianEval<OneLane>(to_lanes(b.albedo), wo.z, wi.z, pdf));
+        case MaterialKind::Metal:
             if (b.alpha == 0.0f) return {};
-            float pdf;
             return to_vec3(lanes::MetalEval<OneLane>(to_lanes(b.albedo), b.alpha, to_lanes(wo),
-                                                     to_lanes(wi), &pdf));
-        }
-        case MaterialKind::Isotropic: {
-            float pdf;
-            return to_vec3(lanes::PhaseEval<OneLane>(to_lanes(b.albedo), &pdf));
-        }
-        case MaterialKind::Conductor: {
-            float pdf;
-            return conductor_eval(b, wo, wi, &pdf);
-        }
-        case MaterialKind::Dielectric: {
+                                                     to_lanes(wi), pdf));
+        case MaterialKind::Isotropic:
+            return to_vec3(lanes::PhaseEval<OneLane>(to_lanes(b.albedo), pdf));
+        case MaterialKind::Conductor:
+            return conductor_eval(b, wo, wi, pdf);
+        case MaterialKind::Dielectric:
             if (b.alpha == 0.0f) return {};
-            float pdf;
-            return rough_dielectric_eval(b, wo, wi, &pdf);
-        }
-        case MaterialKind::Plastic: {
+            return rough_dielectric_eval(b, wo, wi, pdf);
+        case MaterialKind::Plastic:
             if (b.one_sided && wo.z < 0.0f) return {};
-            float pdf;
-            return plastic_eval(b, upper(wo, wo), upper(wi, wo), &pdf);
-        }
-        case MaterialKind::MetallicRoughness: {
-            float pdf;
-            return metallic_roughness_eval(b, wo, wi, &pdf);
-        }
-        case MaterialKind::Principled: {
-            float pdf;
-            return principled_eval(b, wo, wi, &pdf);
-        }
+            return plastic_eval(b, upper(wo, wo), upper(wi, wo), pdf);
+        case MaterialKind::MetallicRoughness:
+            return metallic_roughness_eval(b, wo, wi, pdf);
+        case MaterialKind::Principled:
+            return principled_eval(b, wo, wi, pdf);
         default:
             return {};  // delta lobes, emitters and interfaces do not scatter smoothly
     }
 }
 
+Color bsdf_eval(const BsdfParams& b, Vec3 wo, Vec3 wi) {
+    float pdf;
+    return bsdf_eval(b, wo, wi, &pdf);
+}
+
 float bsdf_pdf(const BsdfParams& b, Vec3 wo, Vec3 wi) {
-    switch (b.kind) {
-        case MaterialKind::Lambertian: {
-            float pdf;
-            lanes::LambertianEval<OneLane>(to_lanes(b.albedo), wo.z, wi.z, &pdf);
-            return pdf;
-        }
-        case MaterialKind::Metal: {
-            if (b.alpha == 0.0f) return 0.0f;
-            float pdf;
-            lanes::MetalEval<OneLane>(to_lanes(b.albedo), b.alpha, to_lanes(wo), to_lanes(wi),
-                                      &pdf);
-            return pdf;
-        }
-        case MaterialKind::Isotropic:
-            return lanes::PhasePdf<OneLane>();
-        case MaterialKind::Conductor: {
-            float pdf;
-            conductor_eval(b, wo, wi, &pdf);
-            return pdf;
-        }
-        case MaterialKind::Dielectric: {
-            if (b.alpha == 0.0f) return 0.0f;
-            float pdf;
-            rough_dielectric_eval(b, wo, wi, &pdf);
-            return pdf;
-        }
-        case MaterialKind::Plastic: {
-            if (b.one_sided && wo.z < 0.0f) return 0.0f;
-            float pdf;
-            plastic_eval(b, upper(wo, wo), upper(wi, wo), &pdf);
-            return pdf;
-        }
-        case MaterialKind::MetallicRoughness: {
-            float pdf;
-            metallic_roughness_eval(b, wo, wi, &pdf);
-            return pdf;
-        }
-        case MaterialKind::Principled: {
-            float pdf;
-            principled_eval(b, wo, wi, &pdf);
-            return pdf;
-        }
-        default:
-            return 0.0f;
-    }
+    float pdf;
+    bsdf_eval(b, wo, wi, &pdf);
+    return pdf;
 }
 
 BsdfSample bsdf_sample(const BsdfParams& b, Vec3 wo, float u_lobe, float u1, float u2) {

@@ -66,6 +66,8 @@ struct BsdfSample {
     bool valid = false;
 };
 
+// f |cos theta_i| of wo, wi in the shading frame, and the density of sampling wi in *pdf.
+Color bsdf_eval(const BsdfParams& b, Vec3 wo, Vec3 wi, float* pdf);
 Color bsdf_eval(const BsdfParams& b, Vec3 wo, Vec3 wi);
 float bsdf_pdf(const BsdfParams& b, Vec3 wo, Vec3 wi);
 // u_lobe picks between lobes (dielectric reflection/refraction); (u1, u2) the direction.

@@ -89,9 +89,7 @@ HWY_INLINE V3<typename L::F> RoughConductorEval(const RoughConductor<L>& c,
     const F side = SideOf<L>(wo);
     F p;
     const V3<F> f = RoughConductorUpper<L>(c, Upper<L>(wo, side), Upper<L>(wi, side), &p);
-    const auto valid = L::And(wo.z * wi.z > zero, p > zero);
-    *pdf = L::Select(valid, p, zero);
-    return Select3<L>(valid, f, V3<F>{zero, zero, zero});
+    return ValueWhere<L>(L::And(wo.z * wi.z > zero, p > zero), f, p, pdf);
 }
 
 // A direction by the visible normals of wo mirrored above the surface; its value and density

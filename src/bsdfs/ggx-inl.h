@@ -149,10 +149,10 @@ HWY_INLINE V3<typename L::F> MetalEval(V3<typename L::F> albedo,
     const F d = GgxD<L>(h.z, alpha);
     // Visible-normal density D_o(h) = G1(o) D(h) (o.h) / o.z, times the reflection Jacobian
     // 1 / (4 o.h); f cos_i = F D G2 / (4 cos_o), with the height-correlated Smith G2.
-    *pdf = L::Select(valid, GgxG1<L>(o.z, alpha) * d / (L::Set(4.0f) * o.z), zero);
+    const F p = GgxG1<L>(o.z, alpha) * d / (L::Set(4.0f) * o.z);
     const F g2 = one / (one + GgxLambda<L>(o.z, alpha) + GgxLambda<L>(i.z, alpha));
     const V3<F> f = Schlick<L>(albedo, Dot(i, h)) * (d * g2 / (L::Set(4.0f) * o.z));
-    return Select3<L>(valid, f, V3<F>{zero, zero, zero});
+    return ValueWhere<L>(valid, f, p, pdf);
 }
 
 // A direction sampled from a reflecting microfacet lobe (a metal's, a conductor's).

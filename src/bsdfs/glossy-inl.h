@@ -1,5 +1,6 @@
-// The glossy lobes of the lane vertices over lanes: a rough metal (ggx-inl.h) or a rough
-// conductor (conductor-inl.h), isotropic, each lane of its own, in world directions about the
+// The glossy lobes of lane vertices over lanes: a rough metal (ggx-inl.h), a rough conductor
+// (conductor-inl.h) or glTF's metallic-roughness without transmission
+// (metallic_roughness-inl.h), isotropic, each lane of its own, in world directions about the
 // shading normal. An isotropic lobe needs no tangent, so the frame is OrthonormalBasis(ns) and
 // nothing of the hit's dp/du. Per-target header, see math/lanes-inl.h.
 #if defined(WAVETRACE_BSDFS_GLOSSY_INL_H_) == defined(HWY_TARGET_TOGGLE)
@@ -11,21 +12,33 @@
 
 #include "bsdfs/conductor-inl.h"
 #include "bsdfs/ggx-inl.h"
+#include "bsdfs/metallic_roughness-inl.h"
 #include "math/lanes-inl.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace wavetrace {
 namespace HWY_NAMESPACE {
 
+// The BSDF of a lane vertex, each lane's own: its kind by the masks (none set: Lambertian) and
+// the parameters each kind reads.
 template <class L>
-struct GlossyLanes {
-    V3<typename L::F> albedo;  // a metal's F0; a conductor's reflectance factor
-    typename L::F alpha;       // roughness (> 0)
+struct LaneBsdf {
+    // Lambertian, metal, metallic-roughness, phase function: the colour (a metal's F0, the
+    // base colour); conductor: the reflectance factor
+    V3<typename L::F> albedo;
+    typename L::F alpha;       // the glossy lobes' roughness (> 0)
     V3<typename L::F> eta, k;  // conductor: the complex index of refraction
     typename L::M beckmann;    // conductor: a Beckmann distribution, else GGX
-    typename L::M conductor;   // the lanes of a conductor; the others are metals
+    // metallic-roughness (metallic_roughness-inl.h; no transmission in lanes)
+    typename L::F f0, metallic, clearcoat, coat_alpha;
+    typename L::M one_sided;
+    typename L::M metal, conductor, metallic_roughness, phase;
 
+    typename L::M glossy() const { return L::Or(L::Or(metal, conductor), metallic_roughness); }
     RoughConductor<L> as_conductor() const { return {albedo, eta, k, {beckmann, alpha, alpha}}; }
+    MetallicRoughnessLanes<L> as_metallic_roughness() const {
+        return {albedo, alpha, f0, metallic, L::Set(0.0f), clearcoat, coat_alpha, one_sided};
+    }
 };
 
 // The shading frame about the unit normal ns, and w in it.
@@ -40,9 +53,11 @@ struct GlossyFrame {
     V3<typename L::F> ToWorld(V3<typename L::F> w) const { return s * w.x + t * w.y + n * w.z; }
 };
 
-// f |cos theta_i| and the density of sampling wi, for world directions about ns.
+// f |cos theta_i| and the density of sampling wi, for world directions about ns, in the lanes of
+// a glossy lobe (some lane has one). Where a vector mixes lobes, the first present gives the
+// result and the others' lanes are selected in.
 template <class L>
-HWY_INLINE V3<typename L::F> GlossyEval(const GlossyLanes<L>& g,
+HWY_INLINE V3<typename L::F> GlossyEval(const LaneBsdf<L>& b,
                                         V3<typename L::F> ns,
                                         V3<typename L::F> wo,
                                         V3<typename L::F> wi,
@@ -50,37 +65,63 @@ HWY_INLINE V3<typename L::F> GlossyEval(const GlossyLanes<L>& g,
     using F = typename L::F;
     const GlossyFrame<L> frame(ns);
     const V3<F> lo = frame.ToLocal(wo), li = frame.ToLocal(wi);
-    const bool any_metal = L::Any(L::Not(g.conductor));
-    V3<F> f = any_metal ? MetalEval<L>(g.albedo, g.alpha, lo, li, pdf)
-                        : RoughConductorEval<L>(g.as_conductor(), lo, li, pdf);
-    if (any_metal && L::Any(g.conductor)) {
-        F pdf_conductor;
-        const V3<F> f_conductor = RoughConductorEval<L>(g.as_conductor(), lo, li, &pdf_conductor);
-        f = Select3<L>(g.conductor, f_conductor, f);
-        *pdf = L::Select(g.conductor, pdf_conductor, *pdf);
+    const F zero = L::Set(0.0f);
+    bool first = true;
+    V3<F> f{zero, zero, zero};
+    *pdf = zero;
+    auto take = [&](typename L::M m, V3<F> f_lobe, F pdf_lobe) {
+        f = first ? f_lobe : Select3<L>(m, f_lobe, f);
+        *pdf = first ? pdf_lobe : L::Select(m, pdf_lobe, *pdf);
+        first = false;
+    };
+    F p;
+    if (L::Any(b.metal)) {
+        const V3<F> f_metal = MetalEval<L>(b.albedo, b.alpha, lo, li, &p);
+        take(b.metal, f_metal, p);
+    }
+    if (L::Any(b.conductor)) {
+        const V3<F> f_conductor = RoughConductorEval<L>(b.as_conductor(), lo, li, &p);
+        take(b.conductor, f_conductor, p);
+    }
+    if (L::Any(b.metallic_roughness)) {
+        const V3<F> f_mr = MetallicRoughnessEval<L>(b.as_metallic_roughness(), lo, li, &p);
+        take(b.metallic_roughness, f_mr, p);
     }
     return f;
 }
 
-// A direction by the visible normals of each lane's lobe, as a world direction.
+// A direction by the visible normals of each lane's glossy lobe (a metallic-roughness one picks
+// its lobe by u_lobe, the cosine or the visible normals), as a world direction; some lane has a
+// glossy lobe.
 template <class L>
-HWY_INLINE ReflectionSample<L> GlossySample(const GlossyLanes<L>& g,
+HWY_INLINE ReflectionSample<L> GlossySample(const LaneBsdf<L>& b,
                                             V3<typename L::F> ns,
                                             V3<typename L::F> wo,
+                                            typename L::F u_lobe,
                                             typename L::F u1,
                                             typename L::F u2) {
     const GlossyFrame<L> frame(ns);
     const V3<typename L::F> lo = frame.ToLocal(wo);
-    // The first lobe present gives the vector's result, the other's lanes are selected in.
-    const bool any_metal = L::Any(L::Not(g.conductor));
-    ReflectionSample<L> s = any_metal ? MetalSample<L>(g.albedo, g.alpha, lo, u1, u2)
-                                      : RoughConductorSample<L>(g.as_conductor(), lo, u1, u2);
-    if (any_metal && L::Any(g.conductor)) {
-        const ReflectionSample<L> c = RoughConductorSample<L>(g.as_conductor(), lo, u1, u2);
-        s.valid = L::Or(L::And(g.conductor, c.valid), L::AndNot(g.conductor, s.valid));
-        s.wi = Select3<L>(g.conductor, c.wi, s.wi);
-        s.weight = Select3<L>(g.conductor, c.weight, s.weight);
-        s.pdf = L::Select(g.conductor, c.pdf, s.pdf);
+    bool first = true;
+    ReflectionSample<L> s;
+    auto take = [&](typename L::M m, const ReflectionSample<L>& r) {
+        if (first) {
+            s = r;
+        } else {
+            s.valid = L::Or(L::And(m, r.valid), L::AndNot(m, s.valid));
+            s.wi = Select3<L>(m, r.wi, s.wi);
+            s.weight = Select3<L>(m, r.weight, s.weight);
+            s.pdf = L::Select(m, r.pdf, s.pdf);
+        }
+        first = false;
+    };
+    if (L::Any(b.metal)) take(b.metal, MetalSample<L>(b.albedo, b.alpha, lo, u1, u2));
+    if (L::Any(b.conductor))
+        take(b.conductor, RoughConductorSample<L>(b.as_conductor(), lo, u1, u2));
+    if (L::Any(b.metallic_roughness)) {
+        const MetallicRoughnessSampleResult<L> r =
+            MetallicRoughnessSample<L>(b.as_metallic_roughness(), lo, u_lobe, u1, u2);
+        take(b.metallic_roughness, {r.valid, r.wi, r.weight, r.pdf});
     }
     s.wi = frame.ToWorld(s.wi);
     return s;

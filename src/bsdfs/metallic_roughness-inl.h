@@ -125,9 +125,14 @@ HWY_INLINE V3<typename L::F> MetallicRoughnessUpper(const MetallicRoughnessLanes
         f = Select3<L>(above, up, f);
         density = L::Select(above, up_pdf, density);
     }
-    const auto valid = L::And(L::Or(above, below), density > zero);
-    *pdf = L::Select(valid, density, zero);
-    return Select3<L>(valid, f, V3<F>{zero, zero, zero});
+    return ValueWhere<L>(L::And(L::Or(above, below), density > zero), f, density, pdf);
+}
+
+// Whether wo sees the surface: not at grazing, and not from behind a one-sided one.
+template <class L>
+HWY_INLINE typename L::M SeesSurface(const MetallicRoughnessLanes<L>& b, typename L::F wo_z) {
+    const typename L::F zero = L::Set(0.0f);
+    return L::Not(L::Or(wo_z == zero, L::And(b.one_sided, wo_z < zero)));
 }
 
 // The same for any wo, wi: from behind (wo.z < 0) both are mirrored, or, one-sided, nothing.
@@ -137,15 +142,12 @@ HWY_INLINE V3<typename L::F> MetallicRoughnessEval(const MetallicRoughnessLanes<
                                                    V3<typename L::F> wi,
                                                    typename L::F* pdf) {
     using F = typename L::F;
-    const F zero = L::Set(0.0f);
     const F side = SideOf<L>(wo);
     const V3<F> o = Upper<L>(wo, side);
     F p;
     const V3<F> f = MetallicRoughnessUpper<L>(b, ChooseMetallicRoughnessLobes<L>(b, o), o,
                                               Upper<L>(wi, side), &p);
-    const auto valid = L::AndNot(L::Or(wo.z == zero, L::And(b.one_sided, wo.z < zero)), p > zero);
-    *pdf = L::Select(valid, p, zero);
-    return Select3<L>(valid, f, V3<F>{zero, zero, zero});
+    return ValueWhere<L>(L::And(SeesSurface<L>(b, wo.z), p > L::Set(0.0f)), f, p, pdf);
 }
 
 template <class L>
@@ -207,12 +209,11 @@ HWY_INLINE MetallicRoughnessSampleResult<L> MetallicRoughnessSample(
     typename L::F u1,
     typename L::F u2) {
     using F = typename L::F;
-    const F zero = L::Set(0.0f);
     const F side = SideOf<L>(wo);
     const V3<F> o = Upper<L>(wo, side);
     MetallicRoughnessSampleResult<L> s = MetallicRoughnessSampleUpper<L>(
         b, ChooseMetallicRoughnessLobes<L>(b, o), o, u_lobe, u1, u2);
-    s.valid = L::AndNot(L::Or(wo.z == zero, L::And(b.one_sided, wo.z < zero)), s.valid);
+    s.valid = L::And(SeesSurface<L>(b, wo.z), s.valid);
     s.wi = Upper<L>(s.wi, side);
     return s;
 }

@@ -8,15 +8,16 @@
 #include <algorithm>
 #include <initializer_list>
 
+#include "bsdfs/metallic_roughness.h"
 #include "math/lanes-inl.h"
+#include "media/medium_flight-inl.h"
 #include "sampling/sampler-inl.h"
 #include "scene/camera_ray-inl.h"
+#include "scene/surface_point-inl.h"
 #include "shading/environment_light-inl.h"
 #include "shading/light_sample-inl.h"
-#include "media/medium_flight-inl.h"
 #include "shading/mis-inl.h"
 #include "shading/sphere_light-inl.h"
-#include "scene/surface_point-inl.h"
 #include "shading/surface_step-inl.h"
 #include "util/check.h"
 
@@ -217,46 +218,76 @@ void ResolveSurfaceHits(VertexBlock* b) {
     }
 }
 
-// Masks of the rows of each lobe; glossy: a rough metal or a rough conductor.
+// Masks of the rows of each lobe; glossy: a rough metal, a rough conductor or a
+// metallic-roughness surface.
 template <class D>
 struct LobeMasks {
-    hn::Mask<D> lambertian, glossy, metal, conductor, phase;
+    hn::Mask<D> lambertian, metal, conductor, metallic_roughness, phase, glossy;
 };
 template <class D>
 HWY_INLINE LobeMasks<D> LobesAt(D d, const int32_t* lobe, size_t k) {
     const hn::RebindToSigned<D> di;
     const auto l = hn::Load(di, lobe + k);
     auto is = [&](LaneLobe x) { return hn::RebindMask(d, hn::Eq(l, hn::Set(di, int32_t(x)))); };
-    const auto metal = is(LaneLobe::RoughMetal), conductor = is(LaneLobe::RoughConductor);
-    return {is(LaneLobe::Lambertian), hn::Or(metal, conductor), metal, conductor,
-            is(LaneLobe::Phase)};
+    const auto metal = is(LaneLobe::RoughMetal), conductor = is(LaneLobe::RoughConductor),
+               metallic_roughness = is(LaneLobe::MetallicRoughness);
+    return {is(LaneLobe::Lambertian),
+            metal,
+            conductor,
+            metallic_roughness,
+            is(LaneLobe::Phase),
+            hn::Or(hn::Or(metal, conductor), metallic_roughness)};
 }
 
-// A conductor's index of refraction and distribution in rows k .., where `conductor` has a lane
-// (else zeros: no lane reads them).
+// The BSDF of rows k .. of the given albedo and roughness: the glossy rows read where a lane of
+// the vector is of their kind (else zeros, which no lane reads).
 template <class D>
-struct ConductorLanes {
-    V3<hn::Vec<D>> eta, k;
-    hn::Mask<D> beckmann;
-};
-template <class D>
-HWY_INLINE ConductorLanes<D> ConductorAt(D d,
-                                         const ConductorRows& rows,
-                                         size_t k,
-                                         hn::Mask<D> conductor) {
-    if (hn::AllFalse(d, conductor)) {
-        const hn::Vec<D> zero = hn::Zero(d);
-        return {{zero, zero, zero}, {zero, zero, zero}, hn::FirstN(d, 0)};
-    }
+HWY_INLINE LaneBsdf<FloatLanes<D>> LaneBsdfAt(D d,
+                                              V3<hn::Vec<D>> albedo,
+                                              hn::Vec<D> alpha,
+                                              const GlossyRows& rows,
+                                              size_t k,
+                                              const LobeMasks<D>& lobes) {
     const hn::RebindToSigned<D> di;
-    return {Load3(d, rows.eta, k), Load3(d, rows.k, k),
-            hn::RebindMask(d, hn::Ne(hn::Load(di, rows.beckmann + k), hn::Zero(di)))};
+    auto flag = [&](const int32_t* row) {
+        return hn::RebindMask(d, hn::Ne(hn::Load(di, row + k), hn::Zero(di)));
+    };
+    const hn::Vec<D> zero = hn::Zero(d);
+    const hn::Mask<D> none = hn::FirstN(d, 0);
+    LaneBsdf<FloatLanes<D>> b{albedo,
+                              alpha,
+                              {zero, zero, zero},
+                              {zero, zero, zero},
+                              none,
+                              zero,
+                              zero,
+                              zero,
+                              zero,
+                              none,
+                              lobes.metal,
+                              lobes.conductor,
+                              lobes.metallic_roughness,
+                              lobes.phase};
+    if (!hn::AllFalse(d, lobes.conductor)) {
+        b.eta = Load3(d, rows.eta, k);
+        b.k = Load3(d, rows.k, k);
+        b.beckmann = flag(rows.beckmann);
+    }
+    if (!hn::AllFalse(d, lobes.metallic_roughness)) {
+        b.f0 = hn::Load(d, rows.f0 + k);
+        b.metallic = hn::Load(d, rows.metallic + k);
+        b.clearcoat = hn::Load(d, rows.clearcoat + k);
+        b.coat_alpha = hn::Load(d, rows.coat_alpha + k);
+        b.one_sided = flag(rows.one_sided);
+    }
+    return b;
 }
 
-// Rows [n, padded) of a conductor's rows: row 0's.
-HWY_INLINE void PadConductorTail(ConductorRows& rows, size_t n, size_t padded) {
+// Rows [n, padded) of the glossy rows: row 0's.
+HWY_INLINE void PadGlossyTail(GlossyRows& rows, size_t n, size_t padded) {
     PadTail3({rows.eta, rows.k}, n, padded);
-    PadTail<int32_t>({rows.beckmann}, n, padded);
+    PadTail<float>({rows.f0, rows.metallic, rows.clearcoat, rows.coat_alpha}, n, padded);
+    PadTail<int32_t>({rows.beckmann, rows.one_sided}, n, padded);
 }
 
 void StepVertices(VertexBlock* b) {
@@ -270,21 +301,18 @@ void StepVertices(VertexBlock* b) {
     PadTail3({b->p, b->ng, b->ns, b->wo, b->albedo, b->beta}, b->n, padded);
     PadTail<float>({b->u1, b->u2, b->u_rr, b->alpha, b->eta_scale}, b->n, padded);
     PadTail<int32_t>({b->lobe, b->roulette}, b->n, padded);
-    PadConductorTail(b->conductor, b->n, padded);
+    PadTail<float>({b->u_lobe}, b->n, padded);
+    PadGlossyTail(b->glossy, b->n, padded);
     for (size_t k = 0; k < b->n; k += N) {
         const LobeMasks<D> lobes = LobesAt(d, b->lobe, k);
-        const ConductorLanes<D> conductor = ConductorAt(d, b->conductor, k, lobes.conductor);
         const StepVertex<L> v{
             Load3(d, b->p, k),
             Load3(d, b->ng, k),
             Load3(d, b->ns, k),
             Load3(d, b->wo, k),
-            Load3(d, b->albedo, k),
-            hn::Load(d, b->alpha + k),
-            conductor.eta,
-            conductor.k,
-            conductor.beckmann,
+            LaneBsdfAt(d, Load3(d, b->albedo, k), hn::Load(d, b->alpha + k), b->glossy, k, lobes),
             Load3(d, b->beta, k),
+            hn::Load(d, b->u_lobe + k),
             hn::Load(d, b->u1 + k),
             hn::Load(d, b->u2 + k),
             hn::Load(d, b->u_rr + k),
@@ -295,9 +323,7 @@ void StepVertices(VertexBlock* b) {
         // The first lobe present gives the vector's result, the others' lanes are selected in.
         const bool lambertian = !hn::AllFalse(d, lobes.lambertian),
                    glossy = !hn::AllFalse(d, lobes.glossy), phase = !hn::AllFalse(d, lobes.phase);
-        StepResult<L> r = lambertian ? LambertianStep(v)
-                          : glossy   ? GlossyStep(v, lobes.conductor)
-                                     : PhaseStep(v);
+        StepResult<L> r = lambertian ? LambertianStep(v) : glossy ? GlossyStep(v) : PhaseStep(v);
         auto take = [&](hn::Mask<D> m, const StepResult<L>& s) {
             r.alive = hn::Or(hn::And(m, s.alive), hn::AndNot(m, r.alive));
             r.origin = Select3<L>(m, s.origin, r.origin);
@@ -305,7 +331,7 @@ void StepVertices(VertexBlock* b) {
             r.weight = Select3<L>(m, s.weight, r.weight);
             r.pdf = hn::IfThenElse(m, s.pdf, r.pdf);
         };
-        if (lambertian && glossy) take(lobes.glossy, GlossyStep(v, lobes.conductor));
+        if (lambertian && glossy) take(lobes.glossy, GlossyStep(v));
         if ((lambertian || glossy) && phase) take(lobes.phase, PhaseStep(v));
         Store3(d, r.origin, b->origin, k);
         Store3(d, r.wi, b->wi, k);
@@ -346,7 +372,7 @@ size_t SampleLights(LightSampleBlock* b,
     const size_t at = b->first;
     PadTail<float>({b->select_prob}, n, Padded(n, N));
     PadTail<int32_t>({b->lobe, b->planar, b->sphere, b->environment}, n, Padded(n, N));
-    PadConductorTail(b->conductor, n, Padded(n, N));
+    PadGlossyTail(b->glossy, n, Padded(n, N));
     size_t s = first_shadow;
     for (size_t k = 0; k < n; k += N) {
         auto column = [&](const std::vector<float>& c) {
@@ -369,19 +395,12 @@ size_t SampleLights(LightSampleBlock* b,
         if (hn::AllFalse(d, has_light)) continue;
         const LobeMasks<D> lobes = LobesAt(d, b->lobe, k);
         const F u1 = column(q.u1), u2 = column(q.u2);
-        const ConductorLanes<D> conductor = ConductorAt(d, b->conductor, k, lobes.conductor);
         const LightSampleVertex<L> v{column3(q.p_x, q.p_y, q.p_z),
                                      column3(q.ng_x, q.ng_y, q.ng_z),
                                      column3(q.ns_x, q.ns_y, q.ns_z),
                                      column3(q.wo_x, q.wo_y, q.wo_z),
-                                     column3(q.albedo_x, q.albedo_y, q.albedo_z),
-                                     column(q.alpha),
-                                     conductor.eta,
-                                     conductor.k,
-                                     conductor.beckmann,
-                                     lobes.metal,
-                                     lobes.conductor,
-                                     lobes.phase,
+                                     LaneBsdfAt(d, column3(q.albedo_x, q.albedo_y, q.albedo_z),
+                                                column(q.alpha), b->glossy, k, lobes),
                                      u1,
                                      u2,
                                      b->geometric_side_test};
@@ -594,14 +613,27 @@ void direct_weights(Strategy strategy,
     HWY_DYNAMIC_DISPATCH(MisWeights)(heuristic, pdf_light, pdf_bsdf, n, out);
 }
 
+void GlossyRows::set(size_t row, const BsdfParams& b) {
+    for (int a = 0; a < 3; ++a) {
+        eta[a][row] = b.conductor_eta[a];
+        k[a][row] = b.conductor_k[a];
+    }
+    beckmann[row] = b.distribution == Microfacet::Beckmann ? 1 : 0;
+    f0[row] = schlick_f0(b.eta);
+    metallic[row] = b.metallic;
+    clearcoat[row] = b.clearcoat;
+    coat_alpha[row] = b.clearcoat_alpha;
+    one_sided[row] = b.one_sided ? 1 : 0;
+}
+
 size_t VertexBlock::start_row(
     size_t entry_, HitShape shape_, MaterialId m, const BsdfParams& bsdf, Color beta_) {
     WT_DCHECK_LT(n, kShadeChunk);
     const size_t k = n++;
     shape[k] = int32_t(shape_);
     material[k] = m;
-    if (bsdf.kind == MaterialKind::Conductor)
-        conductor.set(k, bsdf.conductor_eta, bsdf.conductor_k, bsdf.distribution);
+    if (bsdf.kind == MaterialKind::Conductor || bsdf.kind == MaterialKind::MetallicRoughness)
+        glossy.set(k, bsdf);
     for (int a = 0; a < 3; ++a) {
         albedo[a][k] = bsdf.albedo[a];
         beta[a][k] = beta_[a];

@@ -1,7 +1,7 @@
 // The wavefront's kernels that run in SIMD lanes, over a chunk of a queue: camera rays
 // (scene/camera_ray-inl.h), the uniform numbers of each vertex (sampling/sampler-inl.h), the
 // points and normals of surface hits (scene/surface_point-inl.h), the continuation
-// (shading/surface_step-inl.h) of Lambertian, rough metal, rough conductor and isotropic-phase
+// (shading/surface_step-inl.h) of Lambertian, glossy (bsdfs/glossy-inl.h) and isotropic-phase
 // vertices, their light samples towards quad, triangle, sphere and environment lights
 // (shading/light_sample-inl.h, shading/environment_light-inl.h), and the environment's radiance
 // for rays that leave the scene. The formulas are the ones the megakernel runs in one lane;
@@ -94,40 +94,54 @@ void medium_segments(MediumSegmentBlock& b, size_t n);
 // How a VertexBlock row's vertex is found: given, or resolved from its hit on a shape.
 enum class HitShape : int32_t { Given, Quad, Triangle, Sphere };
 // The BSDFs the lane formulas take (is_lane_vertex).
-enum class LaneLobe : int32_t { Lambertian, RoughMetal, RoughConductor, Phase };
+enum class LaneLobe : int32_t { Lambertian, RoughMetal, RoughConductor, MetallicRoughness, Phase };
 inline LaneLobe lane_lobe(MaterialKind kind) {
-    return kind == MaterialKind::Metal       ? LaneLobe::RoughMetal
-           : kind == MaterialKind::Conductor ? LaneLobe::RoughConductor
-           : kind == MaterialKind::Isotropic ? LaneLobe::Phase
-                                             : LaneLobe::Lambertian;
+    switch (kind) {
+        case MaterialKind::Metal:
+            return LaneLobe::RoughMetal;
+        case MaterialKind::Conductor:
+            return LaneLobe::RoughConductor;
+        case MaterialKind::MetallicRoughness:
+            return LaneLobe::MetallicRoughness;
+        case MaterialKind::Isotropic:
+            return LaneLobe::Phase;
+        default:
+            return LaneLobe::Lambertian;
+    }
 }
 inline MaterialKind material_kind(LaneLobe lobe) {
-    return lobe == LaneLobe::RoughMetal       ? MaterialKind::Metal
-           : lobe == LaneLobe::RoughConductor ? MaterialKind::Conductor
-           : lobe == LaneLobe::Phase          ? MaterialKind::Isotropic
-                                              : MaterialKind::Lambertian;
+    switch (lobe) {
+        case LaneLobe::RoughMetal:
+            return MaterialKind::Metal;
+        case LaneLobe::RoughConductor:
+            return MaterialKind::Conductor;
+        case LaneLobe::MetallicRoughness:
+            return MaterialKind::MetallicRoughness;
+        case LaneLobe::Phase:
+            return MaterialKind::Isotropic;
+        default:
+            return MaterialKind::Lambertian;
+    }
 }
 
-// What a rough conductor row adds to its albedo (the reflectance factor) and roughness: the
-// complex index of refraction eta + i k per channel and the microfacet distribution. Only the
-// conductor rows are set; the kernels read the others as zero where no lane is a conductor.
-struct ConductorRows {
+// What a glossy row adds to its albedo and roughness: a rough conductor's complex index of
+// refraction and distribution, a metallic-roughness surface's Schlick F0, metallic, clearcoat
+// and its roughness, and one-sidedness. Only the rows of those kinds are set; the kernels read
+// the others as zero where no lane of a vector is of such a kind.
+struct GlossyRows {
     alignas(64) float eta[3][kShadeChunk];
     alignas(64) float k[3][kShadeChunk];
     alignas(64) int32_t beckmann[kShadeChunk];  // 1: Beckmann, 0: GGX
+    alignas(64) float f0[kShadeChunk], metallic[kShadeChunk];
+    alignas(64) float clearcoat[kShadeChunk], coat_alpha[kShadeChunk];
+    alignas(64) int32_t one_sided[kShadeChunk];
 
-    void set(size_t row, Color eta_, Color k_, Microfacet distribution) {
-        for (int a = 0; a < 3; ++a) {
-            eta[a][row] = eta_[a];
-            k[a][row] = k_[a];
-        }
-        beckmann[row] = distribution == Microfacet::Beckmann ? 1 : 0;
-    }
-    void set(size_t row, const Material& m) { set(row, m.eta, m.k, m.distribution); }
+    // Row `row` of the BSDF b, a conductor's or a metallic-roughness surface's.
+    void set(size_t row, const BsdfParams& b);
 };
 
-// Vertices of a chunk that run in SIMD lanes (SoA, `n` rows): Lambertian, rough metal and
-// rough conductor surface vertices, and medium vertices of isotropic phase function, each given
+// Vertices of a chunk that run in SIMD lanes (SoA, `n` rows): Lambertian and glossy surface
+// vertices (is_lane_bsdf), and medium vertices of isotropic phase function, each given
 // (push) or resolved from its hit on a quad, a triangle or a sphere (push_*_hit, then
 // resolve_surface_hits: surface_at's point and normals, resolve_segment's wo); then each row's
 // continuation, continue_path's (step_vertices). Flags are int32 rows (0 or 1), and kinds
@@ -150,13 +164,13 @@ struct VertexBlock {
     alignas(64) float ns[3][kShadeChunk];  // +z in a medium
     alignas(64) float wo[3][kShadeChunk];
     alignas(64) float albedo[3][kShadeChunk];
-    alignas(64) float alpha[kShadeChunk];   // rough metal: GGX alpha; conductor: its alpha
+    alignas(64) float alpha[kShadeChunk];   // the glossy lobes' roughness
     alignas(64) int32_t lobe[kShadeChunk];  // LaneLobe
-    ConductorRows conductor;                // the rough conductor rows'
-    MaterialId material[kShadeChunk];       // conductor rows: the material, for the light sample
+    GlossyRows glossy;                      // the conductor and metallic-roughness rows'
+    MaterialId material[kShadeChunk];       // the surface's, for the light sample
     alignas(64) float beta[3][kShadeChunk];
-    // in: the continuation's direction and roulette samples, and whether roulette applies
-    alignas(64) float u1[kShadeChunk], u2[kShadeChunk], u_rr[kShadeChunk];
+    // in: the continuation's lobe, direction and roulette samples, and whether roulette applies
+    alignas(64) float u_lobe[kShadeChunk], u1[kShadeChunk], u2[kShadeChunk], u_rr[kShadeChunk];
     alignas(64) int32_t roulette[kShadeChunk];
     alignas(64) float eta_scale[kShadeChunk];  // the path's (path_vertex.h), for roulette
     uint32_t entry[kShadeChunk];  // the wave entry of each row
@@ -174,8 +188,7 @@ struct VertexBlock {
     size_t push(size_t entry, const Vertex& v, Vec3 wo, Color beta);
     // The same for a vertex to resolve from the ray direction `d` and its hit at (u, v) on a
     // quad, a triangle (p, and vertex normals n or nullptr) or a sphere (at its point
-    // p = o + t d), of the BSDF `bsdf` (Lambertian, rough metal or rough conductor) of material
-    // m.
+    // p = o + t d), of the BSDF `bsdf` (is_lane_bsdf) of material m.
     size_t push_quad_hit(size_t entry,
                          Vec3 d,
                          float u,
@@ -208,6 +221,7 @@ struct VertexBlock {
                   bool applies,
                   float path_eta_scale = 1.0f) {
         eta_scale[row] = path_eta_scale;
+        u_lobe[row] = u.lobe;
         u1[row] = u.bsdf_u1;
         u2[row] = u.bsdf_u2;
         u_rr[row] = u_roulette;
@@ -236,12 +250,12 @@ struct LightSampleBlock {
     const LightSampleQueue* queue = nullptr;
     size_t first = 0, n = 0;
     bool geometric_side_test = true;  // Scene::geometric_side_test, for every row
-    // the vertex's lobe (LaneLobe) and, for a rough conductor, its index of refraction and
-    // distribution (the queue holds its albedo and roughness); the light, as its index among the
+    // the vertex's lobe (LaneLobe) and, for a conductor or a metallic-roughness surface, what
+    // the queue does not hold of its BSDF; the light, as its index among the
     // LightSet's planar emitters or its sphere emitters (both -1: the row's light is another kind,
     // not sampled here), and its selection probability
     alignas(64) int32_t lobe[kShadeChunk];
-    ConductorRows conductor;
+    GlossyRows glossy;
     alignas(64) int32_t planar[kShadeChunk], sphere[kShadeChunk];
     alignas(64) int32_t environment[kShadeChunk];  // 1: the light is the environment map
     alignas(64) float select_prob[kShadeChunk];

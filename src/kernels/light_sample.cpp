@@ -72,10 +72,19 @@ size_t light_sample(const WaveInputs& in,
             block.sphere[row] = -1;
             block.environment[row] = 0;
             const Normal3 ng = WAVETRACE_XYZ_AT(queue, ng, i);
-            const bool lane = is_lane_vertex(ng, queue.kind[i], queue.alpha[i], queue.alpha_v[i],
-                                             queue.bump_alpha2[i]);
-            if (lane && queue.kind[i] == MaterialKind::Conductor)
-                block.conductor.set(row, in.scene.materials[queue.material[i]]);
+            // A conductor's or a metallic-roughness surface's BSDF comes from its material.
+            const bool glossy_row = queue.kind[i] == MaterialKind::Conductor ||
+                                    queue.kind[i] == MaterialKind::MetallicRoughness;
+            BsdfParams bsdf;
+            if (glossy_row) {
+                bsdf = queued_vertex(in.scene, queue, i).bsdf;
+            } else {
+                bsdf.kind = queue.kind[i];
+                bsdf.alpha = queue.alpha[i];
+                bsdf.alpha_v = queue.alpha_v[i];
+            }
+            const bool lane = is_lane_vertex(ng, bsdf, queue.bump_alpha2[i]);
+            if (lane && glossy_row) block.glossy.set(row, bsdf);
             block.planar[row] = planar_light_sample_at(lane, in.lights, light);
             if (block.planar[row] >= 0) continue;
             block.sphere[row] =

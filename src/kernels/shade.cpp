@@ -49,25 +49,25 @@ struct LaneSurface {
     bool textured = false;
 };
 
-// The SurfaceHit material of m: Lambertian, a rough metal or an isotropic rough conductor, of
-// an albedo texture. False for every other material (mirrors, glass, emitters, boundaries, none)
-// and for roughness textures.
+// The SurfaceHit material of m: one the lane formulas take (is_lane_bsdf) whose albedo may be a
+// texture but nothing else varies over the surface. False for every other material (mirrors,
+// glass, emitters, boundaries, none).
 bool lane_material(const Scene& scene, MaterialId m, LaneSurface* out) {
     if (m == kNone) return false;
     const Material& mat = scene.materials[m];
     // One-sided materials go the scalar route, where the hit's side is known before the BSDF,
     // and so do normal and bump maps, which need the hit's tangents.
     if (!(mat.kind == MaterialKind::Lambertian || mat.kind == MaterialKind::Metal ||
-          mat.kind == MaterialKind::Conductor) ||
+          mat.kind == MaterialKind::Conductor || mat.kind == MaterialKind::MetallicRoughness) ||
         mat.albedo == kNone || mat.one_sided || mat.has_normal_maps() ||
-        mat.alpha_u_texture != kNone || mat.alpha_v_texture != kNone)
+        mat.alpha_u_texture != kNone || mat.alpha_v_texture != kNone ||
+        mat.metallic_roughness != kNone || mat.emission != kNone)
         return false;
     const Texture& albedo = scene.textures[mat.albedo];
     out->material = m;
     out->textured = albedo.kind != TextureKind::Solid;
     out->bsdf = material_bsdf(mat, out->textured ? Color(0.0f) : albedo.color);
-    const BsdfParams& b = out->bsdf;
-    return is_lane_vertex({0, 0, 1}, b.kind, b.alpha, b.alpha_v, 0.0f);  // not a mirror
+    return is_lane_bsdf(out->bsdf);  // not a mirror, nothing smooth or transmitting
 }
 
 // A chunk's mesh hits read a triangle record and then its vertices' positions and normals, from
@@ -442,6 +442,7 @@ void queue_lane_light_samples(size_t first, size_t last, const Chunk& c, ShadeOu
     rows(b.beta, q.beta_x, q.beta_y, q.beta_z);
     row(b.alpha, q.alpha.data() + at);
     row(b.alpha, q.alpha_v.data() + at);  // lane BSDFs are isotropic
+    row(b.glossy.metallic, q.metallic.data() + at);  // read for metallic-roughness rows only
     for (size_t k = first; k < last; ++k) {
         const size_t j = at + (k - first);
         q.path[j] = b.entry[k];

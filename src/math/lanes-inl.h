@@ -315,6 +315,18 @@ template <class L>
 HWY_INLINE V3<typename L::F> Select3(typename L::M m, V3<typename L::F> yes, V3<typename L::F> no) {
     return {L::Select(m, yes.x, no.x), L::Select(m, yes.y, no.y), L::Select(m, yes.z, no.z)};
 }
+
+// A BSDF's value f and its density p where `valid`, else 0 and density 0: the value returned,
+// the density in *pdf.
+template <class L>
+HWY_INLINE V3<typename L::F> ValueWhere(typename L::M valid,
+                                        V3<typename L::F> f,
+                                        typename L::F p,
+                                        typename L::F* pdf) {
+    const typename L::F zero = L::Set(0.0f);
+    *pdf = L::Select(valid, p, zero);
+    return Select3<L>(valid, f, V3<typename L::F>{zero, zero, zero});
+}
 template <class L>
 HWY_INLINE typename L::F MaxComponent(V3<typename L::F> a) {
     return L::Max(L::Max(a.x, a.y), a.z);

@@ -16,20 +16,34 @@ namespace wavetrace {
 // whose direction the strategy samples from the BSDF or phase function. The wavefront runs
 // these vertices' steps in SIMD lanes, continue_path the same formula in one lane.
 bool takes_lane_step(const Estimator& config, const Vertex& v, const LightSet& lights);
-// A Lambertian, rough metal or isotropic rough conductor surface without a mapped normal's
-// shadowing (bump_alpha2 0, Vertex), or a medium's isotropic phase function: the vertices the
-// lane formulas of next-event estimation towards quad, triangle, sphere and environment lights
-// and of the continuation take. (The lanes build the shading frame from the normal alone, which
-// an isotropic BSDF allows.)
-inline bool is_lane_vertex(
-    Normal3 ng, MaterialKind kind, float alpha, float alpha_v, float bump_alpha2) {
-    if (ng.x == 0 && ng.y == 0 && ng.z == 0) return kind == MaterialKind::Isotropic;  // a medium
-    if (bump_alpha2 != 0.0f) return false;
-    return kind == MaterialKind::Lambertian || (kind == MaterialKind::Metal && alpha > 0.0f) ||
-           (kind == MaterialKind::Conductor && alpha > 0.0f && alpha_v == alpha);
+// Whether the lane formulas take the surface BSDF b: Lambertian, a rough metal, an isotropic
+// rough conductor, or a metallic-roughness surface whose lobes are all rough and that transmits
+// nothing (lane vertices never cross their surface). Their glossy lobes build the shading frame
+// from the normal alone, which an isotropic BSDF allows.
+inline bool is_lane_bsdf(const BsdfParams& b) {
+    switch (b.kind) {
+        case MaterialKind::Lambertian:
+            return true;
+        case MaterialKind::Metal:
+            return b.alpha > 0.0f;
+        case MaterialKind::Conductor:
+            return b.alpha > 0.0f && b.alpha_v == b.alpha;
+        case MaterialKind::MetallicRoughness:
+            return b.alpha > 0.0f && b.alpha_v == b.alpha && b.transmission == 0.0f &&
+                   (b.clearcoat == 0.0f || b.clearcoat_alpha > 0.0f);
+        default:
+            return false;
+    }
+}
+// A surface of such a BSDF without a mapped normal's shadowing (bump_alpha2 0, Vertex), or a
+// medium's isotropic phase function (ng = 0): the vertices the lane formulas of next-event
+// estimation towards quad, triangle, sphere and environment lights and of the continuation take.
+inline bool is_lane_vertex(Normal3 ng, const BsdfParams& b, float bump_alpha2) {
+    if (ng.x == 0 && ng.y == 0 && ng.z == 0) return b.kind == MaterialKind::Isotropic;
+    return bump_alpha2 == 0.0f && is_lane_bsdf(b);
 }
 inline bool is_lane_vertex(const Vertex& v) {
-    return is_lane_vertex(v.ng, v.bsdf.kind, v.bsdf.alpha, v.bsdf.alpha_v, v.bump_alpha2);
+    return is_lane_vertex(v.ng, v.bsdf, v.bump_alpha2);
 }
 
 // The light next_event samples at v in SIMD lanes (shading/light_sample-inl.h), as its index

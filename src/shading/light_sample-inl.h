@@ -1,5 +1,5 @@
-// A light sample at a Lambertian, a rough metal or a rough conductor surface vertex, or a vertex
-// in a medium of isotropic phase function, towards a quad or triangle light of constant radiance
+// A light sample at a Lambertian or a glossy surface vertex (glossy-inl.h), or a vertex in a
+// medium of isotropic phase function, towards a quad or triangle light of constant radiance
 // (the light point, uniform by area, and its solid-angle density) or a point
 // sphere_light-inl.h or environment_light-inl.h found: the BSDF value and density and the
 // shadow ray; what next_event computes for such a vertex and light, written once over lanes.
@@ -67,15 +67,9 @@ HWY_INLINE PlanarLightLanes<L> PlanarLightFrom(const PlanarEmitterColumns& c,
 // The vertex a light sample starts from.
 template <class L>
 struct LightSampleVertex {
-    V3<typename L::F> p, ng, ns, wo, albedo;  // conductor: albedo is the reflectance factor
-    typename L::F alpha;       // metal: GGX roughness; conductor: its roughness (> 0)
-    V3<typename L::F> eta, k;  // conductor: the complex index of refraction
-    typename L::M beckmann;    // conductor: a Beckmann distribution, else GGX
-    typename L::M metal;       // a rough metal
-    typename L::M conductor;   // a rough conductor (isotropic)
-    typename L::M phase;       // in a medium (ng = 0): the isotropic phase function
-                               // (none of the three: Lambertian)
-    typename L::F u1, u2;  // the point on the light
+    V3<typename L::F> p, ng, ns, wo;
+    LaneBsdf<L> bsdf;
+    typename L::F u1, u2;             // the point on the light
     bool geometric_side_test = true;  // Scene::geometric_side_test
 };
 
@@ -187,19 +181,18 @@ HWY_INLINE VertexLightSample<L> SampleTowards(const LightSampleVertex<L>& v,
     if (v.geometric_side_test) ok = L::AndNot(CrossesGeometricSurface<L>(v.wo, r.wi, v.ng), ok);
     V3<F> f{zero, zero, zero};
     F pdf_bsdf = zero;
-    const auto glossy = L::Or(v.metal, v.conductor);
+    const auto glossy = v.bsdf.glossy();
     if (L::Any(L::Not(glossy)))
-        f = LambertianEval<L>(v.albedo, Dot(v.wo, v.ns), Dot(r.wi, v.ns), &pdf_bsdf);
+        f = LambertianEval<L>(v.bsdf.albedo, Dot(v.wo, v.ns), Dot(r.wi, v.ns), &pdf_bsdf);
     if (L::Any(glossy)) {
-        const GlossyLanes<L> g{v.albedo, v.alpha, v.eta, v.k, v.beckmann, v.conductor};
         F pdf_glossy;
-        f = Select3<L>(glossy, GlossyEval<L>(g, v.ns, v.wo, r.wi, &pdf_glossy), f);
+        f = Select3<L>(glossy, GlossyEval<L>(v.bsdf, v.ns, v.wo, r.wi, &pdf_glossy), f);
         pdf_bsdf = L::Select(glossy, pdf_glossy, pdf_bsdf);
     }
-    if (L::Any(v.phase)) {
+    if (L::Any(v.bsdf.phase)) {
         F pdf_phase;
-        f = Select3<L>(v.phase, PhaseEval<L>(v.albedo, &pdf_phase), f);
-        pdf_bsdf = L::Select(v.phase, pdf_phase, pdf_bsdf);
+        f = Select3<L>(v.bsdf.phase, PhaseEval<L>(v.bsdf.albedo, &pdf_phase), f);
+        pdf_bsdf = L::Select(v.bsdf.phase, pdf_phase, pdf_bsdf);
     }
     r.pdf_bsdf = pdf_bsdf;
     ok = L::And(ok, MaxComponent<L>(f) > zero);

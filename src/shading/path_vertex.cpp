@@ -5,6 +5,7 @@
 
 #include "bsdfs/bump_terminator.h"
 #include "bsdfs/geometric_side-inl.h"
+#include "bsdfs/metallic_roughness.h"
 #include "bsdfs/thin_dielectric.h"
 #include "media/medium_flight-inl.h"
 #include "sampling/bounce_dims.h"
@@ -27,6 +28,25 @@ namespace lanes = HWY_NAMESPACE;
 using lanes::OneLane;
 
 namespace {
+
+// The lane formulas' view of the BSDF of a lane vertex (is_lane_vertex).
+lanes::LaneBsdf<OneLane> lane_bsdf(const BsdfParams& b) {
+    using lanes::to_lanes;
+    return {to_lanes(b.albedo),
+            b.alpha,
+            to_lanes(b.conductor_eta),
+            to_lanes(b.conductor_k),
+            b.distribution == Microfacet::Beckmann,
+            schlick_f0(b.eta),
+            b.metallic,
+            b.clearcoat,
+            b.clearcoat_alpha,
+            b.one_sided,
+            b.kind == MaterialKind::Metal,
+            b.kind == MaterialKind::Conductor,
+            b.kind == MaterialKind::MetallicRoughness,
+            b.kind == MaterialKind::Isotropic};
+}
 
 // Frame::from_normal, inlined here: it runs at every vertex.
 Frame frame_from_normal(Vec3 n) {
@@ -137,8 +157,7 @@ Color eval_world(const Vertex& v, Vec3 wo, Vec3 wi, float* pdf) {
         *pdf = 0.0f;
         return {};
     }
-    *pdf = bsdf_pdf(v.bsdf, lo, li);
-    return bsdf_eval(v.bsdf, lo, li) * bump_shadowing(v.unbent, v.frame.n, v.bump_alpha2, wi);
+    return bsdf_eval(v.bsdf, lo, li, pdf) * bump_shadowing(v.unbent, v.frame.n, v.bump_alpha2, wi);
 }
 
 }  // namespace
@@ -268,21 +287,9 @@ DirectSample next_event(const Scene& scene,
     if (planar < 0 && sphere < 0 && !environment)
         return sample_direct(scene, lights, v, wo, choice, u.light_u, u.light_v);
     using lanes::to_lanes, lanes::to_vec3;
-    const lanes::LightSampleVertex<OneLane> lv{to_lanes(v.p),
-                                               to_lanes(v.ng),
-                                               to_lanes(v.frame.n),
-                                               to_lanes(wo),
-                                               to_lanes(v.bsdf.albedo),
-                                               v.bsdf.alpha,
-                                               to_lanes(v.bsdf.conductor_eta),
-                                               to_lanes(v.bsdf.conductor_k),
-                                               v.bsdf.distribution == Microfacet::Beckmann,
-                                               v.bsdf.kind == MaterialKind::Metal,
-                                               v.bsdf.kind == MaterialKind::Conductor,
-                                               v.bsdf.kind == MaterialKind::Isotropic,
-                                               u.light_u,
-                                               u.light_v,
-                                               v.geometric_side_test};
+    const lanes::LightSampleVertex<OneLane> lv{
+        to_lanes(v.p),     to_lanes(v.ng), to_lanes(v.frame.n), to_lanes(wo),
+        lane_bsdf(v.bsdf), u.light_u,      u.light_v,           v.geometric_side_test};
     const size_t k = size_t(planar >= 0 ? planar : sphere);
     auto fetch = [&](const std::vector<float>& column) { return column[k]; };
     const lanes::LightPoint<OneLane> point =
@@ -436,23 +443,18 @@ PathStep continue_path(const Scene& scene,
                                             to_lanes(v.ng),
                                             to_lanes(v.frame.n),
                                             to_lanes(wo),
-                                            to_lanes(v.bsdf.albedo),
-                                            v.bsdf.alpha,
-                                            to_lanes(v.bsdf.conductor_eta),
-                                            to_lanes(v.bsdf.conductor_k),
-                                            v.bsdf.distribution == Microfacet::Beckmann,
+                                            lane_bsdf(v.bsdf),
                                             to_lanes(beta),
+                                            u.lobe,
                                             u.bsdf_u1,
                                             u.bsdf_u2,
                                             u_roulette,
                                             depth + 1 >= config.rr_depth,
                                             eta_scale,
                                             v.geometric_side_test};
-        const bool conductor = v.bsdf.kind == MaterialKind::Conductor;
-        const lanes::StepResult<OneLane> r =
-            conductor || v.bsdf.kind == MaterialKind::Metal ? lanes::GlossyStep(lv, conductor)
-            : v.bsdf.kind == MaterialKind::Isotropic        ? lanes::PhaseStep(lv)
-                                                            : lanes::LambertianStep(lv);
+        const lanes::StepResult<OneLane> r = lv.bsdf.glossy() ? lanes::GlossyStep(lv)
+                                             : lv.bsdf.phase  ? lanes::PhaseStep(lv)
+                                                              : lanes::LambertianStep(lv);
         if (!r.alive) return step;
         step.weight = to_vec3(r.weight);
         step.prev = {v.p, r.pdf, lights.empty()};

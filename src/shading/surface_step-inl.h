@@ -1,6 +1,6 @@
-// The continuation of a path at a Lambertian, a rough metal or a rough conductor surface vertex,
-// or at a vertex in a medium of isotropic phase function, sampled by the BSDF (cosine-weighted /
-// visible normals / uniform sphere), with Russian roulette and the next ray's origin: what
+// The continuation of a path at a Lambertian or a glossy surface vertex (glossy-inl.h), or at a
+// vertex in a medium of isotropic phase function, sampled by the BSDF (cosine-weighted / each
+// glossy lobe's / uniform sphere), with Russian roulette and the next ray's origin: what
 // continue_path does at such a vertex, written once over lanes. The megakernel runs
 // it with OneLane inside continue_path; the wavefront's shade kernel runs it over the surface
 // vertices of a chunk, a vector of paths at a time (kernels/lane_kernels.cpp). Per-target
@@ -55,14 +55,11 @@ template <class L>
 struct StepVertex {
     V3<typename L::F> p, ng, ns;  // position, geometric and shading normals
     V3<typename L::F> wo;         // unit, pointing away from the vertex
-    V3<typename L::F> albedo;     // conductor: the reflectance factor
-    typename L::F alpha;          // metal: GGX roughness; conductor: its roughness (> 0)
-    V3<typename L::F> eta, k;     // conductor: the complex index of refraction
-    typename L::M beckmann;       // conductor: a Beckmann distribution, else GGX
-    V3<typename L::F> beta;      // path throughput before this vertex
-    typename L::F u1, u2, u_rr;  // direction and Russian roulette samples
-    typename L::M roulette;      // whether Russian roulette applies at this bounce
-    typename L::F eta_scale;     // the path's eta scale (path_vertex.h): roulette weighs beta by it
+    LaneBsdf<L> bsdf;
+    V3<typename L::F> beta;              // path throughput before this vertex
+    typename L::F u_lobe, u1, u2, u_rr;  // lobe, direction and Russian roulette samples
+    typename L::M roulette;              // whether Russian roulette applies at this bounce
+    typename L::F eta_scale;  // the path's eta scale (path_vertex.h): roulette weighs beta by it
     bool geometric_side_test = true;  // Scene::geometric_side_test
 };
 
@@ -107,15 +104,14 @@ HWY_INLINE StepResult<L> LambertianStep(const StepVertex<L>& v) {
     const F wi_z = h.z * L::Select(wo_z < zero, L::Neg(one), one);
     const F pdf = LambertianPdf<L>(wi_z);
     const V3<F> wi = s * h.x + t * h.y + v.ns * wi_z;
-    return FinishStep(v, wi, v.albedo, pdf, L::And(wo_z != zero, pdf > zero));
+    return FinishStep(v, wi, v.bsdf.albedo, pdf, L::And(wo_z != zero, pdf > zero));
 }
 
-// A rough metal or, in the lanes of `conductor`, a rough conductor (alpha > 0, isotropic): a
-// visible-normal sample in the shading frame.
+// A glossy lobe (LaneBsdf::glossy: a rough metal, rough conductor or metallic-roughness
+// surface): a sample of it in the shading frame.
 template <class L>
-HWY_INLINE StepResult<L> GlossyStep(const StepVertex<L>& v, typename L::M conductor) {
-    const GlossyLanes<L> g{v.albedo, v.alpha, v.eta, v.k, v.beckmann, conductor};
-    const ReflectionSample<L> m = GlossySample<L>(g, v.ns, v.wo, v.u1, v.u2);
+HWY_INLINE StepResult<L> GlossyStep(const StepVertex<L>& v) {
+    const ReflectionSample<L> m = GlossySample<L>(v.bsdf, v.ns, v.wo, v.u_lobe, v.u1, v.u2);
     return FinishStep(v, m.wi, m.weight, m.pdf, m.valid);
 }
 
@@ -123,7 +119,7 @@ HWY_INLINE StepResult<L> GlossyStep(const StepVertex<L>& v, typename L::M conduc
 template <class L>
 HWY_INLINE StepResult<L> PhaseStep(const StepVertex<L>& v) {
     const V3<typename L::F> wi = UniformSphere<L>(v.u1, v.u2);
-    return FinishStep(v, wi, v.albedo, PhasePdf<L>(), L::All());
+    return FinishStep(v, wi, v.bsdf.albedo, PhasePdf<L>(), L::All());
 }
 
 }  // namespace HWY_NAMESPACE
