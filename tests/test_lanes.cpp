@@ -11,6 +11,7 @@
 #include "kernels/lane_kernels.h"
 #include "math/erf-inl.h"
 #include "math/lanes-inl.h"
+#include "sampling/distribution-inl.h"
 #include "sampling/pixel_filter-inl.h"
 #include "sampling/sampler.h"
 #include "sampling/warp.h"
@@ -873,4 +874,60 @@ TEST(Lanes, HitsResolvedInLanesAreSurfaceAtOnEverySimdTarget) {
     }
     use_wide_simd_target(0);
     EXPECT_GT(flipped, 0u);  // interpolated normals that disagree with the face were exercised
+}
+
+// The guided search of a Distribution2D's sums finds the entry a search of all of them finds
+// (the last i with sums[i] <= u total), for rows of even, peaked, zero-padded and random weights,
+// and for u at the guide's cutpoints, next to them, at 0 and just below 1.
+TEST(Lanes, GuidedSearchFindsTheEntryOfTheFullSearch) {
+    const int nu = 37, nv = 9;
+    std::vector<float> weights(size_t(nu) * nv);
+    for (int v = 0; v < nv; ++v)
+        for (int u = 0; u < nu; ++u) {
+            const float r = sample_1d(23, uint32_t(v * nu + u), 0, 0);
+            float& w = weights[size_t(v) * nu + u];
+            switch (v % 4) {
+                case 0:
+                    w = 1.0f;
+                    break;  // even
+                case 1:
+                    w = u == 17 ? 1e6f : 1e-3f;
+                    break;  // one peak
+                case 2:
+                    w = u < 30 ? 0.0f : r;
+                    break;  // zeros, then weights
+                default:
+                    w = r * r * r * 100.0f;
+                    break;  // random
+            }
+        }
+    const Distribution2D dist(weights, nu, nv);
+    const Distribution2DTables t = dist.tables();
+    auto check = [&](const float* sums, int n, const int32_t* guide, int g) {
+        std::vector<float> us = {0.0f, 0x1.fffffep-1f};
+        for (int j = 0; j <= g; ++j) {
+            const float c = float(j) / float(g);
+            us.push_back(c);
+            us.push_back(std::nextafter(c, 0.0f));
+            if (j < g) us.push_back(std::nextafter(c, 1.0f));
+        }
+        for (uint32_t k = 0; k < 2000; ++k) us.push_back(sample_1d(29, k, 0, 0));
+        for (float u : us) {
+            if (!(u >= 0.0f && u < 1.0f)) continue;
+            const float target = u * sums[n];
+            int want = 0;
+            for (int i = 1; i < n; ++i)
+                if (sums[i] <= target) want = i;
+            float x;
+            int32_t index;
+            lanes::SampleSums<OneLane>(sums, 0, n, guide, 0, g, u, &x, &index);
+            ASSERT_EQ(index, want) << "u " << u;
+        }
+    };
+    check(t.marginal, nv, t.marginal_guide, t.gv);
+    for (int v = 0; v < nv; ++v) {
+        SCOPED_TRACE(v);
+        check(t.conditional + size_t(v) * (nu + 1), nu,
+              t.conditional_guide + size_t(v) * (t.gu + 1), t.gu);
+    }
 }

@@ -87,6 +87,9 @@ struct OneLane {
     static F ToFloat(I x) { return static_cast<float>(x); }
     static F Floor(F x) { return std::floor(x); }
     static F Gather(const float* base, I i) { return base[i]; }
+    static I GatherI(const int32_t* base, I i) { return base[i]; }
+    static I HalfI(I a) { return a >> 1; }  // a >= 0
+    static bool AnyAbove(I a, int32_t b) { return a > b; }
 
     static U64 Set64(uint64_t x) { return x; }
     static U64 Widen(U32 x) { return x; }
@@ -164,6 +167,14 @@ struct FloatLanes {
     }
     static HWY_INLINE F Floor(F x) { return hn::Floor(x); }
     static HWY_INLINE F Gather(const float* base, I i) { return hn::GatherIndex(D(), base, i); }
+    static HWY_INLINE I GatherI(const int32_t* base, I i) {
+        return hn::GatherIndex(hn::RebindToSigned<D>(), base, i);
+    }
+    static HWY_INLINE I HalfI(I a) { return hn::ShiftRight<1>(a); }  // a >= 0
+    static HWY_INLINE bool AnyAbove(I a, int32_t b) {
+        const hn::RebindToSigned<D> di;
+        return !hn::AllFalse(di, hn::Gt(a, hn::Set(di, b)));
+    }
     static HWY_INLINE F SplitExponent(F x, F* m) {
         const hn::RebindToSigned<D> di;
         const auto bits = hn::BitCast(di, x);

@@ -27,14 +27,18 @@ HWY_INLINE typename L::F EntryDensity(typename L::F before,
 }
 
 // A continuous sample in [0, 1) of the piecewise-constant density over n entries whose running
-// sums start at sums[first] (n + 1 of them, from 0): the entry i is the last with
-// sums[i] <= u sums[n], found by a branch-free binary search of ceil(log2 n) steps, the same in
-// every lane; the sample is (i + (u sums[n] - sums[i]) / (sums[i + 1] - sums[i])) / n, below 1.
+// sums start at sums[first] (n + 1 of them, from 0), with the guide of g cells that starts at
+// guide[guide_first] (Distribution2DTables): the entry i is the last with sums[i] <= u sums[n],
+// found by a binary search between the guide's entries for u's cell, as long as its widest range
+// in any lane; the sample is (i + (u sums[n] - sums[i]) / (sums[i + 1] - sums[i])) / n, below 1.
 // Returns its density, sets *index to first + i.
 template <class L>
 HWY_INLINE typename L::F SampleSums(const float* sums,
                                     typename L::I first,
                                     int n,
+                                    const int32_t* guide,
+                                    typename L::I guide_first,
+                                    int g,
                                     typename L::F u,
                                     typename L::F* x,
                                     typename L::I* index) {
@@ -42,12 +46,20 @@ HWY_INLINE typename L::F SampleSums(const float* sums,
     using I = typename L::I;
     const F total = L::Gather(sums, L::AddI(first, L::SetI(n)));
     const F target = u * total;
-    I base = first;
-    for (int size = n; size > 1;) {
-        const int half = size / 2;
-        const I mid = L::AddI(base, L::SetI(half));
+    // u g is exact (g a power of two): u lies in [cell / g, (cell + 1) / g), so its target lies
+    // between those of the cell's two cutpoints, and its entry between theirs.
+    const F u_cell = L::Select(u > L::Set(0.0f), u, L::Set(0.0f));  // cell 0 below 0, or NaN
+    const I cell = L::AddI(
+        guide_first, L::MinI(L::Trunc(u_cell * L::Set(static_cast<float>(g))), L::SetI(g - 1)));
+    const I lo = L::GatherI(guide, cell), hi = L::GatherI(guide, L::AddI(cell, L::SetI(1)));
+    I base = L::AddI(first, lo);
+    I size = L::AddI(L::SubI(hi, lo), L::SetI(1));
+    // Lanes down to one entry halve nothing: their base stays.
+    while (L::AnyAbove(size, 1)) {
+        const I half = L::HalfI(size);
+        const I mid = L::AddI(base, half);
         base = L::SelectI(L::Gather(sums, mid) <= target, mid, base);
-        size -= half;
+        size = L::SubI(size, half);
     }
     const F before = L::Gather(sums, base), after = L::Gather(sums, L::AddI(base, L::SetI(1)));
     const F within = (target - before) / (after - before);
@@ -66,9 +78,11 @@ HWY_INLINE typename L::F SampleDistribution2D(const Distribution2DTables& t,
                                               typename L::F* u,
                                               typename L::F* v) {
     typename L::I row, column;
-    const typename L::F pdf_v = SampleSums<L>(t.marginal, L::SetI(0), t.nv, u2, v, &row);
+    const typename L::F pdf_v = SampleSums<L>(t.marginal, L::SetI(0), t.nv, t.marginal_guide,
+                                              L::SetI(0), t.gv, u2, v, &row);
     const typename L::F pdf_u =
-        SampleSums<L>(t.conditional, L::MulI(row, L::SetI(t.nu + 1)), t.nu, u1, u, &column);
+        SampleSums<L>(t.conditional, L::MulI(row, L::SetI(t.nu + 1)), t.nu, t.conditional_guide,
+                      L::MulI(row, L::SetI(t.gu + 1)), t.gu, u1, u, &column);
     return pdf_v * pdf_u;
 }
 

@@ -73,6 +73,27 @@ double append_sums(std::span<const float> weights, std::vector<float>& out) {
     return sum;
 }
 
+// The cells of a guide over n entries: the largest power of two at most n / 2 (at least 1), so
+// that a cell spans about two entries where the weights are even.
+int guide_cells(int n) {
+    int g = 1;
+    while (2 * g <= n / 2) g *= 2;
+    return g;
+}
+
+// Appends the guide (Distribution2DTables) of the n + 1 running sums `sums` over g cells:
+// guide[j] is the last i in [0, n) with sums[i] <= (j / g) sums[n], that product rounded as
+// SampleSums rounds u sums[n].
+void append_guide(const float* sums, int n, int g, std::vector<int32_t>& out) {
+    const float total = sums[n];
+    int i = 0;
+    for (int j = 0; j <= g; ++j) {
+        const float target = static_cast<float>(j) * (1.0f / static_cast<float>(g)) * total;
+        while (i + 1 < n && sums[i + 1] <= target) ++i;
+        out.push_back(i);
+    }
+}
+
 }  // namespace
 
 Distribution2D::Distribution2D(std::span<const float> weights, int nu, int nv)
@@ -83,6 +104,13 @@ Distribution2D::Distribution2D(std::span<const float> weights, int nu, int nv)
         rows[v] = static_cast<float>(
             append_sums(weights.subspan(static_cast<size_t>(v) * nu, nu), conditional_));
     append_sums(rows, marginal_);
+    gu_ = guide_cells(nu);
+    gv_ = guide_cells(nv);
+    conditional_guide_.reserve(static_cast<size_t>(gu_ + 1) * nv);
+    for (int v = 0; v < nv; ++v)
+        append_guide(conditional_.data() + static_cast<size_t>(v) * (nu + 1), nu, gu_,
+                     conditional_guide_);
+    append_guide(marginal_.data(), nv, gv_, marginal_guide_);
 }
 
 }  // namespace wavetrace

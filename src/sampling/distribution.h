@@ -35,11 +35,18 @@ class Distribution1D {
 
 // The tables of a Distribution2D as sampling/distribution-inl.h reads them: cumulative sums of
 // the weights, the marginal's over rows (nv + 1 entries from 0) and each row's over its nu
-// entries (nv rows of nu + 1, each from 0), unnormalized.
+// entries (nv rows of nu + 1, each from 0), unnormalized; and a guide table for each run of sums
+// (the cutpoint method, Chen & Asau 1974): for g cells of [0, 1), g a power of two, and j in
+// [0, g], the entry the search finds for the target (j / g) total, computed in float as the
+// search computes its targets. A u in cell j = floor(u g) then finds its entry between guide[j]
+// and guide[j + 1]: the binary search runs over a few entries instead of all of them.
 struct Distribution2DTables {
     int nu = 0, nv = 0;
     const float* marginal = nullptr;
     const float* conditional = nullptr;
+    int gu = 0, gv = 0;                          // the cells of a row's guide and of the marginal's
+    const int32_t* marginal_guide = nullptr;     // gv + 1 entries
+    const int32_t* conditional_guide = nullptr;  // nv rows of gu + 1
 };
 
 // Density over [0,1)^2 proportional to a grid of positive weights (row-major, rows = v),
@@ -53,12 +60,14 @@ class Distribution2D {
     Distribution2D(std::span<const float> weights, int nu, int nv);
     bool empty() const { return marginal_.empty(); }
     Distribution2DTables tables() const {
-        return {nu_, nv_, marginal_.data(), conditional_.data()};
+        return {nu_, nv_, marginal_.data(),       conditional_.data(),
+                gu_, gv_, marginal_guide_.data(), conditional_guide_.data()};
     }
 
   private:
-    int nu_ = 0, nv_ = 0;
+    int nu_ = 0, nv_ = 0, gu_ = 0, gv_ = 0;
     std::vector<float> marginal_, conditional_;
+    std::vector<int32_t> marginal_guide_, conditional_guide_;
 };
 
 }  // namespace wavetrace
