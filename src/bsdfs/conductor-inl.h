@@ -105,7 +105,7 @@ HWY_INLINE ReflectionSample<L> RoughConductorSample(const RoughConductor<L>& c,
     const F side = SideOf<L>(wo);
     const V3<F> o = Upper<L>(wo, side);
     const V3<F> m = MicrofacetVisibleNormal<L>(c.md, o, u1, u2);
-    const V3<F> i = m * (L::Set(2.0f) * Dot(o, m)) - o;
+    const V3<F> i = Reflect<L>(o, m);
     const V3<F> f = RoughConductorUpper<L>(c, o, i, &s.pdf);
     s.valid = L::And(L::And(L::Not(wo.z == zero), i.z > zero), s.pdf > zero);
     s.weight = f * (one / L::Select(s.valid, s.pdf, one));

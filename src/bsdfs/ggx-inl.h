@@ -155,6 +155,12 @@ HWY_INLINE V3<typename L::F> MetalEval(V3<typename L::F> albedo,
     return ValueWhere<L>(valid, f, p, pdf);
 }
 
+// o reflected about the microfacet normal m: 2 (o.m) m - o.
+template <class L>
+HWY_INLINE V3<typename L::F> Reflect(V3<typename L::F> o, V3<typename L::F> m) {
+    return m * (L::Set(2.0f) * Dot(o, m)) - o;
+}
+
 // A direction sampled from a reflecting microfacet lobe (a metal's, a conductor's).
 template <class L>
 struct ReflectionSample {
@@ -180,7 +186,7 @@ HWY_INLINE ReflectionSample<L> MetalSample(V3<typename L::F> albedo,
     const F side = SideOf<L>(wo);
     const V3<F> o = Upper<L>(wo, side);
     const V3<F> m = GgxVisibleNormal<L>(o, alpha, alpha, u1, u2);
-    const V3<F> i = m * (L::Set(2.0f) * Dot(o, m)) - o;
+    const V3<F> i = Reflect<L>(o, m);
     const V3<F> h = Normalize<L>(o + i);
     const F g1 = GgxG1<L>(o.z, alpha);
     s.pdf = g1 * GgxD<L>(h.z, alpha) / (L::Set(4.0f) * o.z);

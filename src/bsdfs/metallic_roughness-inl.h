@@ -173,7 +173,7 @@ HWY_INLINE MetallicRoughnessSampleResult<L> MetallicRoughnessSampleUpper(
     typename L::F u1,
     typename L::F u2) {
     using F = typename L::F;
-    const F zero = L::Set(0.0f), two = L::Set(2.0f);
+    const F zero = L::Set(0.0f);
     MetallicRoughnessSampleResult<L> s;
     const auto coat = u_lobe < p.coat;
     const auto specular = L::AndNot(coat, u_lobe < p.coat + p.specular);
@@ -187,7 +187,7 @@ HWY_INLINE MetallicRoughnessSampleResult<L> MetallicRoughnessSampleUpper(
     if (L::Any(L::AndNot(diffuse, ok))) {
         const F a = L::Select(alpha > zero, alpha, L::Set(1.0f));
         const V3<F> n = GgxVisibleNormal<L>(o, a, a, u1, u2);
-        V3<F> r = n * (two * Dot(o, n)) - o;
+        V3<F> r = Reflect<L>(o, n);
         ok = L::AndNot(L::AndNot(diffuse, L::Not(r.z > zero)), ok);  // below the surface: lost
         r.z = L::Select(transmission, L::Neg(r.z), r.z);
         s.wi = Select3<L>(diffuse, s.wi, r);
