@@ -9,11 +9,11 @@
 
 #include "bsdfs/bsdf.h"
 #include "bsdfs/fresnel.h"
-#include "bsdfs/microfacet.h"
 #include "bsdfs/plastic.h"
 #include "bsdfs/principled.h"
 #include "bsdfs/thin_dielectric.h"
 #include "chi2.h"
+#include "microfacets/microfacet.h"
 #include "sampling/sampler.h"
 #include "sampling/warp.h"
 #include "scene/named_metals.h"

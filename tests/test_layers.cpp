@@ -17,25 +17,26 @@ namespace {
 
 // Lowest first. The public headers of include/wavetrace/<layer>/ belong to that layer.
 const std::vector<std::string> kLayers = {
-    "util",      // invariant checks
-    "math",      // small float math, SIMD lane types
-    "files",     // reading an input file whole, writing an output atomically
-    "sampling",  // the counter-based sampler, warps, tabulated distributions
-    "bsdfs",     // how surfaces and media scatter: BSDFs, Fresnel, microfacet distributions
-    "scene",     // the scene model and its builders
-    "media",     // homogeneous media: free flights, transmittance, the medium stack
-    "image",     // images: OpenImageIO in and out, comparisons
-    "film",      // per-pixel sums and film files
-    "formats",   // file formats read strictly: JSON, glTF's JSON, checks before Assimp
-    "mitsuba",   // Mitsuba XML scene files into our JSON document
-    "pbrt",      // pbrt-v4 scene files into our JSON document
-    "loaders",   // scene files and mesh files into a Scene
-    "accel",     // the BVH: build, wide layout, traversal, primitive tests
-    "shading",   // what both engines share: surfaces, lights, MIS, media, path vertices
-    "queues",    // the wavefront's structure-of-arrays queues
-    "kernels",   // the wavefront's kernels
-    "engines",   // both engines, the AOV renderer, render()
-    "embree",    // Embree as the reference intersector (tests and benchmarks only)
+    "util",         // invariant checks
+    "math",         // small float math, SIMD lane types
+    "files",        // reading an input file whole, writing an output atomically
+    "sampling",     // the counter-based sampler, warps, tabulated distributions
+    "microfacets",  // microfacet distributions: densities, Smith masking, visible normals
+    "bsdfs",        // how surfaces and media scatter: BSDFs, Fresnel, microfacet distributions
+    "scene",        // the scene model and its builders
+    "media",        // homogeneous media: free flights, transmittance, the medium stack
+    "image",        // images: OpenImageIO in and out, comparisons
+    "film",         // per-pixel sums and film files
+    "formats",      // file formats read strictly: JSON, glTF's JSON, checks before Assimp
+    "mitsuba",      // Mitsuba XML scene files into our JSON document
+    "pbrt",         // pbrt-v4 scene files into our JSON document
+    "loaders",      // scene files and mesh files into a Scene
+    "accel",        // the BVH: build, wide layout, traversal, primitive tests
+    "shading",      // what both engines share: surfaces, lights, MIS, media, path vertices
+    "queues",       // the wavefront's structure-of-arrays queues
+    "kernels",      // the wavefront's kernels
+    "engines",      // both engines, the AOV renderer, render()
+    "embree",       // Embree as the reference intersector (tests and benchmarks only)
 };
 
 int rank_of(const std::string& layer) {

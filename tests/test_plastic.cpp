@@ -8,8 +8,8 @@
 
 #include "bsdfs/bsdf.h"
 #include "bsdfs/fresnel.h"
-#include "bsdfs/microfacet.h"
 #include "bsdfs/plastic.h"
+#include "microfacets/microfacet.h"
 #include "sampling/sampler.h"
 
 using namespace wavetrace;

@@ -6,7 +6,7 @@
 #include "bsdfs/conductor.h"
 #include "bsdfs/diffuse-inl.h"
 #include "bsdfs/fresnel.h"
-#include "bsdfs/ggx-inl.h"
+#include "bsdfs/metal-inl.h"
 #include "bsdfs/metallic_roughness.h"
 #include "bsdfs/plastic.h"
 #include "bsdfs/principled.h"

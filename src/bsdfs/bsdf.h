@@ -9,6 +9,7 @@
 // delta lobes the lobe's throughput). For the isotropic phase function "cos" is 1.
 #pragma once
 
+#include "microfacets/microfacet.h"
 #include "wavetrace/bsdfs/coating.h"
 #include "wavetrace/bsdfs/material_kind.h"
 #include "wavetrace/math/vec3.h"
@@ -56,6 +57,11 @@ struct BsdfParams {
 
     bool is_delta() const;  // every lobe is a Dirac delta: never light-sampled
 };
+
+// The distribution of a rough conductor or dielectric.
+inline MicrofacetDistribution microfacet_of(const BsdfParams& b) {
+    return {b.distribution, b.alpha, b.alpha_v};
+}
 
 struct BsdfSample {
     Vec3 wi;

@@ -8,8 +8,9 @@
 #define WAVETRACE_BSDFS_CONDUCTOR_INL_H_
 #endif
 
-#include "bsdfs/microfacet-inl.h"
+#include "bsdfs/metal-inl.h"
 #include "math/lanes-inl.h"
+#include "microfacets/microfacet-inl.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace wavetrace {

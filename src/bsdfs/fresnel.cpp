@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "bsdfs/conductor-inl.h"
-#include "bsdfs/ggx-inl.h"
+#include "bsdfs/metal-inl.h"
 
 namespace wavetrace {
 

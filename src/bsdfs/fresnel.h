@@ -18,7 +18,7 @@ float fresnel_dielectric(float cos_i, float eta);
 Color fresnel_conductor(float cos_i, Color eta, Color k);
 
 // Schlick's weight (1 - cos_theta)^5, cos_theta clamped to [0, 1]: the lane formula's
-// (ggx-inl.h Schlick, F0 = 0).
+// (metal-inl.h Schlick, F0 = 0).
 float schlick_weight(float cos_theta);
 
 // Snell's law about a microfacet normal m on o's side (o.m > 0), eta the index of the side i

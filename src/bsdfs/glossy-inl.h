@@ -1,4 +1,4 @@
-// The glossy lobes of lane vertices over lanes: a rough metal (ggx-inl.h), a rough conductor
+// The glossy lobes of lane vertices over lanes: a rough metal (metal-inl.h), a rough conductor
 // (conductor-inl.h) or glTF's metallic-roughness without transmission
 // (metallic_roughness-inl.h), isotropic, each lane of its own, in world directions about the
 // shading normal. An isotropic lobe needs no tangent, so the frame is OrthonormalBasis(ns) and
@@ -11,7 +11,7 @@
 #endif
 
 #include "bsdfs/conductor-inl.h"
-#include "bsdfs/ggx-inl.h"
+#include "bsdfs/metal-inl.h"
 #include "bsdfs/metallic_roughness-inl.h"
 #include "math/lanes-inl.h"
 

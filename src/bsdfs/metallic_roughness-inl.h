@@ -10,7 +10,7 @@
 #define WAVETRACE_BSDFS_METALLIC_ROUGHNESS_INL_H_
 #endif
 
-#include "bsdfs/ggx-inl.h"
+#include "bsdfs/metal-inl.h"
 #include "math/lanes-inl.h"
 #include "sampling/warp-inl.h"
 #include "wavetrace/math/constants.h"

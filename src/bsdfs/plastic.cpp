@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "bsdfs/fresnel.h"
-#include "bsdfs/microfacet.h"
+#include "microfacets/microfacet.h"
 #include "sampling/warp.h"
 #include "wavetrace/math/constants.h"
 

@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "bsdfs/fresnel.h"
-#include "bsdfs/microfacet.h"
+#include "microfacets/microfacet.h"
 
 namespace wavetrace {
 namespace {

@@ -4,6 +4,8 @@
 
 #include <cstdint>
 
+#include "wavetrace/microfacets/microfacet_kind.h"
+
 namespace wavetrace {
 
 enum class MaterialKind : uint8_t {
@@ -26,11 +28,5 @@ enum class MaterialKind : uint8_t {
             // where the hit is found (shading/surface.h), so no BSDF of this kind is evaluated
 };
 inline constexpr int kMaterialKinds = int(MaterialKind::Blend) + 1;
-
-// The microfacet normal distributions of rough materials (bsdfs/microfacet.h).
-enum class Microfacet : uint8_t {
-    Ggx,       // Trowbridge-Reitz (Walter et al. 2007)
-    Beckmann,  // Beckmann-Spizzichino
-};
 
 }  // namespace wavetrace

@@ -4,11 +4,11 @@
 // instances). Directions are unit vectors in the shading frame, z along the normal. In float,
 // with the exponential and error functions of math/: against libm in double they agree to
 // about 1e-7 (tests/test_bsdf.cpp). Per-target header, see math/lanes-inl.h.
-#if defined(WAVETRACE_BSDFS_BECKMANN_INL_H_) == defined(HWY_TARGET_TOGGLE)
-#ifdef WAVETRACE_BSDFS_BECKMANN_INL_H_
-#undef WAVETRACE_BSDFS_BECKMANN_INL_H_
+#if defined(WAVETRACE_MICROFACETS_BECKMANN_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef WAVETRACE_MICROFACETS_BECKMANN_INL_H_
+#undef WAVETRACE_MICROFACETS_BECKMANN_INL_H_
 #else
-#define WAVETRACE_BSDFS_BECKMANN_INL_H_
+#define WAVETRACE_MICROFACETS_BECKMANN_INL_H_
 #endif
 
 #include "math/erf-inl.h"
@@ -130,4 +130,4 @@ HWY_INLINE V3<typename L::F> BeckmannVisibleNormal(
 }  // namespace wavetrace
 HWY_AFTER_NAMESPACE();
 
-#endif  // WAVETRACE_BSDFS_BECKMANN_INL_H_
+#endif  // WAVETRACE_MICROFACETS_BECKMANN_INL_H_

@@ -9,9 +9,8 @@
 // (conductor-inl.h) in any number of lanes.
 #pragma once
 
-#include "bsdfs/bsdf.h"
-#include "wavetrace/bsdfs/material_kind.h"
 #include "wavetrace/math/vec3.h"
+#include "wavetrace/microfacets/microfacet_kind.h"
 
 namespace wavetrace {
 
@@ -44,10 +43,5 @@ struct MicrofacetDistribution {
     // rotate them to wo's azimuth and unstretch.
     Vec3 sample_visible(Vec3 wo, float u1, float u2) const;
 };
-
-// The distribution of a rough conductor or dielectric.
-inline MicrofacetDistribution microfacet_of(const BsdfParams& b) {
-    return {b.distribution, b.alpha, b.alpha_v};
-}
 
 }  // namespace wavetrace

@@ -4,16 +4,16 @@
 // formulas of microfacet.h, which runs their one-lane instances. Directions are unit vectors in the
 // shading frame (z along the normal), m a microfacet normal. Per-target header, see
 // math/lanes-inl.h.
-#if defined(WAVETRACE_BSDFS_MICROFACET_INL_H_) == defined(HWY_TARGET_TOGGLE)
-#ifdef WAVETRACE_BSDFS_MICROFACET_INL_H_
-#undef WAVETRACE_BSDFS_MICROFACET_INL_H_
+#if defined(WAVETRACE_MICROFACETS_MICROFACET_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef WAVETRACE_MICROFACETS_MICROFACET_INL_H_
+#undef WAVETRACE_MICROFACETS_MICROFACET_INL_H_
 #else
-#define WAVETRACE_BSDFS_MICROFACET_INL_H_
+#define WAVETRACE_MICROFACETS_MICROFACET_INL_H_
 #endif
 
-#include "bsdfs/beckmann-inl.h"
-#include "bsdfs/ggx-inl.h"
 #include "math/lanes-inl.h"
+#include "microfacets/beckmann-inl.h"
+#include "microfacets/ggx-inl.h"
 #include "wavetrace/math/constants.h"
 
 HWY_BEFORE_NAMESPACE();
@@ -66,4 +66,4 @@ HWY_INLINE V3<typename L::F> MicrofacetVisibleNormal(const MicrofacetLanes<L>& m
 }  // namespace wavetrace
 HWY_AFTER_NAMESPACE();
 
-#endif  // WAVETRACE_BSDFS_MICROFACET_INL_H_
+#endif  // WAVETRACE_MICROFACETS_MICROFACET_INL_H_

@@ -1,6 +1,6 @@
-#include "bsdfs/microfacet.h"
+#include "microfacets/microfacet.h"
 
-#include "bsdfs/microfacet-inl.h"
+#include "microfacets/microfacet-inl.h"
 
 namespace wavetrace {
 namespace lanes = HWY_NAMESPACE;
