@@ -1,20 +1,14 @@
 #include "bsdfs/fresnel.h"
 
-#include <algorithm>
-#include <cmath>
-
 #include "bsdfs/conductor-inl.h"
+#include "bsdfs/dielectric-inl.h"
 #include "bsdfs/metal-inl.h"
 
 namespace wavetrace {
 
 float fresnel_dielectric(float cos_i, float eta) {
-    float sin2_t = std::max(0.0f, 1.0f - cos_i * cos_i) / (eta * eta);
-    if (sin2_t >= 1.0f) return 1.0f;  // total internal reflection
-    float cos_t = std::sqrt(1.0f - sin2_t);
-    float r_par = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
-    float r_perp = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
-    return 0.5f * (r_par * r_par + r_perp * r_perp);
+    namespace lanes = HWY_NAMESPACE;
+    return lanes::FresnelDielectric<lanes::OneLane>(cos_i, eta);
 }
 
 Color fresnel_conductor(float cos_i, Color eta, Color k) {
@@ -29,11 +23,11 @@ float schlick_weight(float cos_theta) {
 }
 
 bool refract(Vec3 o, Vec3 m, float eta, Vec3* i) {
-    const float cos_om = dot(o, m);
-    const float sin2_t = (1.0f - cos_om * cos_om) / (eta * eta);
-    if (sin2_t >= 1.0f) return false;
-    const float cos_t = std::sqrt(1.0f - sin2_t);
-    *i = normalize(-o / eta + (cos_om / eta - cos_t) * m);
+    namespace lanes = HWY_NAMESPACE;
+    lanes::V3<float> refracted;
+    if (!lanes::Refract<lanes::OneLane>(lanes::to_lanes(o), lanes::to_lanes(m), eta, &refracted))
+        return false;
+    *i = lanes::to_vec3(refracted);
     return true;
 }
 
