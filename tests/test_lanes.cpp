@@ -41,18 +41,18 @@ Vec3 unit(float u1, float u2) {
     return sample_uniform_sphere(u1, u2);
 }
 
-// The lane vertices (is_lane_vertex) the tests cover, in fifths of their rows.
-enum class LaneKind { Lambertian, Metal, Conductor, MetallicRoughness, Medium };
+// The lane vertices (is_lane_vertex) the tests cover, in sixths of their rows.
+enum class LaneKind { Lambertian, Metal, Conductor, Dielectric, MetallicRoughness, Medium };
 LaneKind lane_kind(size_t i, size_t n) {
-    return static_cast<LaneKind>(5 * i / n);
+    return static_cast<LaneKind>(6 * i / n);
 }
 
-// A Lambertian, rough metal, rough conductor or metallic-roughness surface vertex at p, its
-// normals, albedo and roughness from dimensions 3-9 and 21 of u (a conductor's index of
-// refraction and distribution, or a metallic-roughness surface's IOR, metallic, clearcoat and
-// one-sidedness from 22-28): the shading normal tilted off the geometric one, so that the
-// geometric-side tests reject some directions. Or a vertex in a medium of isotropic phase
-// function, as medium_vertex() makes it.
+// A Lambertian, rough metal, rough conductor, rough dielectric or metallic-roughness surface
+// vertex at p, its normals, albedo and roughness from dimensions 3-9 and 21 of u (a conductor's
+// or a dielectric's index of refraction and distribution, or a metallic-roughness surface's
+// IOR, metallic, clearcoat and one-sidedness from 22-28): the shading normal tilted off the
+// geometric one, so that the geometric-side tests reject some directions. Or a vertex in a medium
+// of isotropic phase function, as medium_vertex() makes it.
 template <class Dim>
 Vertex lane_vertex_at(Point3 p, Dim u, LaneKind kind) {
     Vertex v;
@@ -72,6 +72,12 @@ Vertex lane_vertex_at(Point3 p, Dim u, LaneKind kind) {
         return v;
     }
     v.bsdf.alpha_v = v.bsdf.alpha;
+    if (kind == LaneKind::Dielectric) {  // seen from outside or inside, of either distribution
+        v.bsdf.kind = MaterialKind::Dielectric;
+        v.bsdf.eta = 1.1f + u(22);
+        v.bsdf.distribution = u(28) < 0.5f ? Microfacet::Beckmann : Microfacet::Ggx;
+        return v;
+    }
     if (kind == LaneKind::MetallicRoughness) {
         v.bsdf.kind = MaterialKind::MetallicRoughness;
         v.bsdf.eta = 1.2f + u(22);
@@ -149,6 +155,7 @@ void expect_light_samples_are_next_event(const Scene& scene,
                                  c.beta, c.u.light_select, c.u.light_u, c.u.light_v});
             block.lobe[k] = int32_t(lane_lobe(c.v.bsdf.kind));
             if (c.v.bsdf.kind == MaterialKind::Conductor ||
+                c.v.bsdf.kind == MaterialKind::Dielectric ||
                 c.v.bsdf.kind == MaterialKind::MetallicRoughness)
                 block.glossy.set(k, c.v.bsdf);
             block.planar[k] = planar;
@@ -340,7 +347,7 @@ TEST(Lanes, LaneStepsAreContinuePathOnEverySimdTarget) {
         c.bounce = static_cast<int>(i % 5);
         cases.push_back(c);
     }
-    size_t alive = 0, dead = 0;
+    size_t alive = 0, dead = 0, transmitted = 0;
     for (int64_t target : wide_simd_targets()) {
         use_wide_simd_target(target);
         SCOPED_TRACE(wide_simd_target());
@@ -367,11 +374,14 @@ TEST(Lanes, LaneStepsAreContinuePathOnEverySimdTarget) {
             EXPECT_TRUE(same_bits(one.next.d, block_row(block.wi, k))) << "row " << k;
             EXPECT_TRUE(same_bits(one.weight, block_row(block.weight, k))) << "row " << k;
             EXPECT_TRUE(same_bits(one.prev.pdf_bsdf, block.pdf[k])) << "row " << k;
+            EXPECT_TRUE(same_bits(one.eta_scale, block.next_eta_scale[k])) << "row " << k;
+            transmitted += block.transmitted[k] != 0;
         }
     }
     use_wide_simd_target(0);
     EXPECT_GT(alive, 0u);
     EXPECT_GT(dead, 0u);  // the geometric-side test and roulette were exercised
+    EXPECT_GT(transmitted, 0u);  // refractions, which scale the eta scale
 }
 
 // Around two quad lights (one one-sided, one two-sided, of different power).
@@ -800,10 +810,12 @@ TEST(Lanes, HitsResolvedInLanesAreSurfaceAtOnEverySimdTarget) {
         c.ray = Ray{{u(2) * 30.0f, u(3) * 30.0f, u(4) * 30.0f}, unit(u(5), u(6)) * (0.5f + u(7))};
         c.hit = Hit{1.0f + u(8), prim, a, b};
         c.bsdf.albedo = {u(9), u(10), u(11)};
-        if (3 * i >= n) {  // rough metal, then rough conductor and metallic-roughness rows
+        if (3 * i >= n) {  // rough metal, then rough conductor, dielectric, metallic-roughness
             c.bsdf.kind = 3 * i < 2 * n ? MaterialKind::Metal
-                          : i % 2       ? MaterialKind::Conductor
+                          : i % 3 == 0  ? MaterialKind::Conductor
+                          : i % 3 == 1  ? MaterialKind::Dielectric
                                         : MaterialKind::MetallicRoughness;
+            c.bsdf.eta = 1.5f;
             c.bsdf.metallic = u(29);
             c.bsdf.clearcoat = u(30) < 0.5f ? 0.0f : 1.0f;
             c.bsdf.clearcoat_alpha = 0.1f;

@@ -1,8 +1,8 @@
 // The glossy lobes of lane vertices over lanes: a rough metal (metal-inl.h), a rough conductor
-// (conductor-inl.h) or glTF's metallic-roughness without transmission
-// (metallic_roughness-inl.h), isotropic, each lane of its own, in world directions about the
-// shading normal. An isotropic lobe needs no tangent, so the frame is OrthonormalBasis(ns) and
-// nothing of the hit's dp/du. Per-target header, see math/lanes-inl.h.
+// (conductor-inl.h), a rough dielectric (dielectric-inl.h) or glTF's metallic-roughness without
+// transmission (metallic_roughness-inl.h), isotropic, each lane of its own, in world directions
+// about the shading normal. An isotropic lobe needs no tangent, so the frame is
+// OrthonormalBasis(ns) and nothing of the hit's dp/du. Per-target header, see math/lanes-inl.h.
 #if defined(WAVETRACE_BSDFS_GLOSSY_INL_H_) == defined(HWY_TARGET_TOGGLE)
 #ifdef WAVETRACE_BSDFS_GLOSSY_INL_H_
 #undef WAVETRACE_BSDFS_GLOSSY_INL_H_
@@ -11,6 +11,7 @@
 #endif
 
 #include "bsdfs/conductor-inl.h"
+#include "bsdfs/dielectric-inl.h"
 #include "bsdfs/metal-inl.h"
 #include "bsdfs/metallic_roughness-inl.h"
 #include "math/lanes-inl.h"
@@ -27,14 +28,19 @@ struct LaneBsdf {
     // base colour); conductor: the reflectance factor
     V3<typename L::F> albedo;
     typename L::F alpha;       // the glossy lobes' roughness (> 0)
-    V3<typename L::F> eta, k;  // conductor: the complex index of refraction
-    typename L::M beckmann;    // conductor: a Beckmann distribution, else GGX
+    // conductor: the complex index of refraction; dielectric: eta.x, the index inside over
+    // outside (the shading normal's side)
+    V3<typename L::F> eta, k;
+    typename L::M beckmann;  // conductor, dielectric: a Beckmann distribution, else GGX
     // metallic-roughness (metallic_roughness-inl.h; no transmission in lanes)
     typename L::F f0, metallic, clearcoat, coat_alpha;
     typename L::M one_sided;
-    typename L::M metal, conductor, metallic_roughness, phase;
+    typename L::M metal, conductor, dielectric, metallic_roughness, phase;
 
-    typename L::M glossy() const { return L::Or(L::Or(metal, conductor), metallic_roughness); }
+    typename L::M glossy() const {
+        return L::Or(L::Or(L::Or(metal, conductor), dielectric), metallic_roughness);
+    }
+    MicrofacetLanes<L> as_dielectric() const { return {beckmann, alpha, alpha}; }
     RoughConductor<L> as_conductor() const { return {albedo, eta, k, {beckmann, alpha, alpha}}; }
     MetallicRoughnessLanes<L> as_metallic_roughness() const {
         return {albedo, alpha, f0, metallic, L::Set(0.0f), clearcoat, coat_alpha, one_sided};
@@ -83,6 +89,10 @@ HWY_INLINE V3<typename L::F> GlossyEval(const LaneBsdf<L>& b,
         const V3<F> f_conductor = RoughConductorEval<L>(b.as_conductor(), lo, li, &p);
         take(b.conductor, f_conductor, p);
     }
+    if (L::Any(b.dielectric)) {
+        const F f_dielectric = RoughDielectricEval<L>(b.as_dielectric(), b.eta.x, lo, li, &p);
+        take(b.dielectric, V3<F>{f_dielectric, f_dielectric, f_dielectric}, p);
+    }
     if (L::Any(b.metallic_roughness)) {
         const V3<F> f_mr = MetallicRoughnessEval<L>(b.as_metallic_roughness(), lo, li, &p);
         take(b.metallic_roughness, f_mr, p);
@@ -90,11 +100,21 @@ HWY_INLINE V3<typename L::F> GlossyEval(const LaneBsdf<L>& b,
     return f;
 }
 
-// A direction by the visible normals of each lane's glossy lobe (a metallic-roughness one picks
-// its lobe by u_lobe, the cosine or the visible normals), as a world direction; some lane has a
-// glossy lobe.
+// A sample of a glossy lobe: a reflection, or a dielectric's transmission.
 template <class L>
-HWY_INLINE ReflectionSample<L> GlossySample(const LaneBsdf<L>& b,
+struct GlossyLobeSample {
+    typename L::M valid;
+    V3<typename L::F> wi;      // a world direction
+    V3<typename L::F> weight;  // f |cos| / pdf
+    typename L::F pdf;
+    typename L::M transmitted;  // wi leaves through the shading surface (a dielectric's)
+};
+
+// A direction by the visible normals of each lane's glossy lobe (a metallic-roughness one picks
+// its lobe by u_lobe, the cosine or the visible normals; a dielectric reflects with Fresnel's
+// probability u_lobe < F), as a world direction; some lane has a glossy lobe.
+template <class L>
+HWY_INLINE GlossyLobeSample<L> GlossySample(const LaneBsdf<L>& b,
                                             V3<typename L::F> ns,
                                             V3<typename L::F> wo,
                                             typename L::F u_lobe,
@@ -102,26 +122,34 @@ HWY_INLINE ReflectionSample<L> GlossySample(const LaneBsdf<L>& b,
                                             typename L::F u2) {
     const GlossyFrame<L> frame(ns);
     const V3<typename L::F> lo = frame.ToLocal(wo);
+    const typename L::M none = L::Not(L::All());
     bool first = true;
-    ReflectionSample<L> s;
-    auto take = [&](typename L::M m, const ReflectionSample<L>& r) {
+    GlossyLobeSample<L> s;
+    auto take = [&](typename L::M m, const ReflectionSample<L>& r, typename L::M transmitted) {
         if (first) {
-            s = r;
+            s = {r.valid, r.wi, r.weight, r.pdf, transmitted};
         } else {
             s.valid = L::Or(L::And(m, r.valid), L::AndNot(m, s.valid));
             s.wi = Select3<L>(m, r.wi, s.wi);
             s.weight = Select3<L>(m, r.weight, s.weight);
             s.pdf = L::Select(m, r.pdf, s.pdf);
+            s.transmitted = L::Or(L::And(m, transmitted), L::AndNot(m, s.transmitted));
         }
         first = false;
     };
-    if (L::Any(b.metal)) take(b.metal, MetalSample<L>(b.albedo, b.alpha, lo, u1, u2));
+    if (L::Any(b.metal)) take(b.metal, MetalSample<L>(b.albedo, b.alpha, lo, u1, u2), none);
     if (L::Any(b.conductor))
-        take(b.conductor, RoughConductorSample<L>(b.as_conductor(), lo, u1, u2));
+        take(b.conductor, RoughConductorSample<L>(b.as_conductor(), lo, u1, u2), none);
+    if (L::Any(b.dielectric)) {
+        const DielectricSample<L> r =
+            RoughDielectricSample<L>(b.as_dielectric(), b.eta.x, lo, u_lobe, u1, u2);
+        take(b.dielectric, {r.valid, r.wi, V3<typename L::F>{r.weight, r.weight, r.weight}, r.pdf},
+             r.transmitted);
+    }
     if (L::Any(b.metallic_roughness)) {
         const MetallicRoughnessSampleResult<L> r =
             MetallicRoughnessSample<L>(b.as_metallic_roughness(), lo, u_lobe, u1, u2);
-        take(b.metallic_roughness, {r.valid, r.wi, r.weight, r.pdf});
+        take(b.metallic_roughness, {r.valid, r.wi, r.weight, r.pdf}, none);
     }
     s.wi = frame.ToWorld(s.wi);
     return s;

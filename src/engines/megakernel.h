@@ -89,9 +89,10 @@ Color ray_color(PathContext<Tracer>& ctx,
                 radiance +=
                     flight_weight * d.value *
                     (w * transmittance(ctx.scene, ctx.bvh, d.shadow,
-                                       ctx.shadows_walk ? shadow_media(ctx.scene, media, v.interior,
-                                                                       v.ng, seg.wo, d.shadow.d)
-                                                        : media,
+                                       ctx.shadows_walk
+                                           ? shadow_media(ctx.scene.medium_boundaries, media,
+                                                          v.interior, v.ng, seg.wo, d.shadow.d)
+                                           : media,
                                        ctx.shadows_walk, &ctx.rays));
         }
 

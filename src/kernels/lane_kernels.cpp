@@ -218,11 +218,11 @@ void ResolveSurfaceHits(VertexBlock* b) {
     }
 }
 
-// Masks of the rows of each lobe; glossy: a rough metal, a rough conductor or a
+// Masks of the rows of each lobe; glossy: a rough metal, conductor or dielectric, or a
 // metallic-roughness surface.
 template <class D>
 struct LobeMasks {
-    hn::Mask<D> lambertian, metal, conductor, metallic_roughness, phase, glossy;
+    hn::Mask<D> lambertian, metal, conductor, dielectric, metallic_roughness, phase, glossy;
 };
 template <class D>
 HWY_INLINE LobeMasks<D> LobesAt(D d, const int32_t* lobe, size_t k) {
@@ -230,13 +230,15 @@ HWY_INLINE LobeMasks<D> LobesAt(D d, const int32_t* lobe, size_t k) {
     const auto l = hn::Load(di, lobe + k);
     auto is = [&](LaneLobe x) { return hn::RebindMask(d, hn::Eq(l, hn::Set(di, int32_t(x)))); };
     const auto metal = is(LaneLobe::RoughMetal), conductor = is(LaneLobe::RoughConductor),
+               dielectric = is(LaneLobe::RoughDielectric),
                metallic_roughness = is(LaneLobe::MetallicRoughness);
     return {is(LaneLobe::Lambertian),
             metal,
             conductor,
+            dielectric,
             metallic_roughness,
             is(LaneLobe::Phase),
-            hn::Or(hn::Or(metal, conductor), metallic_roughness)};
+            hn::Or(hn::Or(hn::Or(metal, conductor), dielectric), metallic_roughness)};
 }
 
 // The BSDF of rows k .. of the given albedo and roughness: the glossy rows read where a lane of
@@ -266,9 +268,10 @@ HWY_INLINE LaneBsdf<FloatLanes<D>> LaneBsdfAt(D d,
                               none,
                               lobes.metal,
                               lobes.conductor,
+                              lobes.dielectric,
                               lobes.metallic_roughness,
                               lobes.phase};
-    if (!hn::AllFalse(d, lobes.conductor)) {
+    if (!hn::AllFalse(d, hn::Or(lobes.conductor, lobes.dielectric))) {
         b.eta = Load3(d, rows.eta, k);
         b.k = Load3(d, rows.k, k);
         b.beckmann = flag(rows.beckmann);
@@ -326,10 +329,12 @@ void StepVertices(VertexBlock* b) {
         StepResult<L> r = lambertian ? LambertianStep(v) : glossy ? GlossyStep(v) : PhaseStep(v);
         auto take = [&](hn::Mask<D> m, const StepResult<L>& s) {
             r.alive = hn::Or(hn::And(m, s.alive), hn::AndNot(m, r.alive));
+            r.transmitted = hn::Or(hn::And(m, s.transmitted), hn::AndNot(m, r.transmitted));
             r.origin = Select3<L>(m, s.origin, r.origin);
             r.wi = Select3<L>(m, s.wi, r.wi);
             r.weight = Select3<L>(m, s.weight, r.weight);
             r.pdf = hn::IfThenElse(m, s.pdf, r.pdf);
+            r.eta_scale = hn::IfThenElse(m, s.eta_scale, r.eta_scale);
         };
         if (lambertian && glossy) take(lobes.glossy, GlossyStep(v));
         if ((lambertian || glossy) && phase) take(lobes.phase, PhaseStep(v));
@@ -339,6 +344,9 @@ void StepVertices(VertexBlock* b) {
         hn::Store(r.pdf, d, b->pdf + k);
         hn::Store(hn::IfThenElseZero(hn::RebindMask(di, r.alive), hn::Set(di, 1)), di,
                   b->alive + k);
+        hn::Store(hn::IfThenElseZero(hn::RebindMask(di, r.transmitted), hn::Set(di, 1)), di,
+                  b->transmitted + k);
+        hn::Store(r.eta_scale, d, b->next_eta_scale + k);
     }
 }
 
@@ -614,8 +622,9 @@ void direct_weights(Strategy strategy,
 }
 
 void GlossyRows::set(size_t row, const BsdfParams& b) {
+    const bool dielectric = b.kind == MaterialKind::Dielectric;
     for (int a = 0; a < 3; ++a) {
-        eta[a][row] = b.conductor_eta[a];
+        eta[a][row] = dielectric ? b.eta : b.conductor_eta[a];
         k[a][row] = b.conductor_k[a];
     }
     beckmann[row] = b.distribution == Microfacet::Beckmann ? 1 : 0;
@@ -632,8 +641,10 @@ size_t VertexBlock::start_row(
     const size_t k = n++;
     shape[k] = int32_t(shape_);
     material[k] = m;
-    if (bsdf.kind == MaterialKind::Conductor || bsdf.kind == MaterialKind::MetallicRoughness)
+    if (bsdf.kind == MaterialKind::Conductor || bsdf.kind == MaterialKind::Dielectric ||
+        bsdf.kind == MaterialKind::MetallicRoughness)
         glossy.set(k, bsdf);
+    interior[k] = kNone;
     for (int a = 0; a < 3; ++a) {
         albedo[a][k] = bsdf.albedo[a];
         beta[a][k] = beta_[a];
@@ -648,6 +659,7 @@ size_t VertexBlock::start_row(
 
 size_t VertexBlock::push(size_t entry_, const Vertex& v, Vec3 wo_, Color beta_) {
     const size_t k = start_row(entry_, HitShape::Given, v.material, v.bsdf, beta_);
+    interior[k] = v.interior;
     for (int a = 0; a < 3; ++a) {
         p[a][k] = v.p[a];
         ng[a][k] = v.ng[a];

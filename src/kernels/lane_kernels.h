@@ -94,13 +94,22 @@ void medium_segments(MediumSegmentBlock& b, size_t n);
 // How a VertexBlock row's vertex is found: given, or resolved from its hit on a shape.
 enum class HitShape : int32_t { Given, Quad, Triangle, Sphere };
 // The BSDFs the lane formulas take (is_lane_vertex).
-enum class LaneLobe : int32_t { Lambertian, RoughMetal, RoughConductor, MetallicRoughness, Phase };
+enum class LaneLobe : int32_t {
+    Lambertian,
+    RoughMetal,
+    RoughConductor,
+    RoughDielectric,
+    MetallicRoughness,
+    Phase
+};
 inline LaneLobe lane_lobe(MaterialKind kind) {
     switch (kind) {
         case MaterialKind::Metal:
             return LaneLobe::RoughMetal;
         case MaterialKind::Conductor:
             return LaneLobe::RoughConductor;
+        case MaterialKind::Dielectric:
+            return LaneLobe::RoughDielectric;
         case MaterialKind::MetallicRoughness:
             return LaneLobe::MetallicRoughness;
         case MaterialKind::Isotropic:
@@ -115,6 +124,8 @@ inline MaterialKind material_kind(LaneLobe lobe) {
             return MaterialKind::Metal;
         case LaneLobe::RoughConductor:
             return MaterialKind::Conductor;
+        case LaneLobe::RoughDielectric:
+            return MaterialKind::Dielectric;
         case LaneLobe::MetallicRoughness:
             return MaterialKind::MetallicRoughness;
         case LaneLobe::Phase:
@@ -125,7 +136,8 @@ inline MaterialKind material_kind(LaneLobe lobe) {
 }
 
 // What a glossy row adds to its albedo and roughness: a rough conductor's complex index of
-// refraction and distribution, a metallic-roughness surface's Schlick F0, metallic, clearcoat
+// refraction and distribution, a rough dielectric's index (in eta, every channel) and
+// distribution, a metallic-roughness surface's Schlick F0, metallic, clearcoat
 // and its roughness, and one-sidedness. Only the rows of those kinds are set; the kernels read
 // the others as zero where no lane of a vector is of such a kind.
 struct GlossyRows {
@@ -136,7 +148,7 @@ struct GlossyRows {
     alignas(64) float clearcoat[kShadeChunk], coat_alpha[kShadeChunk];
     alignas(64) int32_t one_sided[kShadeChunk];
 
-    // Row `row` of the BSDF b, a conductor's or a metallic-roughness surface's.
+    // Row `row` of the BSDF b, a conductor's, a dielectric's or a metallic-roughness surface's.
     void set(size_t row, const BsdfParams& b);
 };
 
@@ -168,6 +180,7 @@ struct VertexBlock {
     alignas(64) int32_t lobe[kShadeChunk];  // LaneLobe
     GlossyRows glossy;                      // the conductor and metallic-roughness rows'
     MaterialId material[kShadeChunk];       // the surface's, for the light sample
+    MediumId interior[kShadeChunk];         // the surface's inside medium (path_vertex.h Vertex)
     alignas(64) float beta[3][kShadeChunk];
     // in: the continuation's lobe, direction and roulette samples, and whether roulette applies
     alignas(64) float u_lobe[kShadeChunk], u1[kShadeChunk], u2[kShadeChunk], u_rr[kShadeChunk];
@@ -176,12 +189,16 @@ struct VertexBlock {
     uint32_t entry[kShadeChunk];  // the wave entry of each row
     size_t n = 0;
     bool geometric_side_test = true;  // Scene::geometric_side_test, for every row
-    // out: the next ray, the throughput factor and the BSDF density, for rows with alive = 1
+    // out: the next ray, the throughput factor and the BSDF density, for rows with alive = 1;
+    // whether the ray leaves through the surface (a dielectric's refraction), and the path's eta
+    // scale after it
     alignas(64) float origin[3][kShadeChunk];
     alignas(64) float wi[3][kShadeChunk];
     alignas(64) float weight[3][kShadeChunk];
     alignas(64) float pdf[kShadeChunk];
     alignas(64) int32_t alive[kShadeChunk];
+    alignas(64) int32_t transmitted[kShadeChunk];
+    alignas(64) float next_eta_scale[kShadeChunk];
 
     // Appends the vertex v (is_lane_vertex) of wave entry `entry`, arriving from wo with
     // throughput beta; returns its row.

@@ -41,6 +41,28 @@ Vertex queued_vertex(const Scene& scene, const LightSampleQueue& q, size_t i) {
     return v;
 }
 
+// The lanes' shadow rays [from, to), appended in row order for the rows of b sampled in lanes,
+// hold their paths' media at the vertex; a ray that leaves through the surface (from inside a
+// rough dielectric) crosses into or out of its interior first, as next_event's (shadow_media).
+void cross_in_lane_shadows(const Scene& scene,
+                           const LightSampleQueue& q,
+                           const LightSampleBlock& b,
+                           ShadowQueue& shadows,
+                           size_t from,
+                           size_t to) {
+    size_t j = from;
+    for (size_t row = 0; row < b.n && j < to; ++row) {
+        const size_t i = b.first + row;
+        const bool in_lanes = b.planar[row] >= 0 || b.sphere[row] >= 0 || b.environment[row] != 0;
+        if (!in_lanes || shadows.path[j] != q.path[i]) continue;  // no contribution
+        shadows.media[j] = PackedMedia::pack(
+            shadow_media(scene.medium_boundaries, shadows.media[j].unpack(), q.interior[i],
+                         WAVETRACE_XYZ_AT(q, ng, i), WAVETRACE_XYZ_AT(q, wo, i),
+                         Vec3{shadows.dir_x[j], shadows.dir_y[j], shadows.dir_z[j]}));
+        ++j;
+    }
+}
+
 }  // namespace
 
 size_t light_sample(const WaveInputs& in,
@@ -72,8 +94,10 @@ size_t light_sample(const WaveInputs& in,
             block.sphere[row] = -1;
             block.environment[row] = 0;
             const Normal3 ng = WAVETRACE_XYZ_AT(queue, ng, i);
-            // A conductor's or a metallic-roughness surface's BSDF comes from its material.
+            // A conductor's, a dielectric's or a metallic-roughness surface's BSDF comes from
+            // its material.
             const bool glossy_row = queue.kind[i] == MaterialKind::Conductor ||
+                                    queue.kind[i] == MaterialKind::Dielectric ||
                                     queue.kind[i] == MaterialKind::MetallicRoughness;
             BsdfParams bsdf;
             if (glossy_row) {
@@ -121,7 +145,10 @@ size_t light_sample(const WaveInputs& in,
         }
         points.n = 0;
         // The lanes' shadow rays first, then the scalar ones: a fixed order.
-        s += sample_lights_in_lanes(block, in.lights, shadows, s);
+        const size_t lane_shadows = sample_lights_in_lanes(block, in.lights, shadows, s);
+        if (in.shadows_walk)
+            cross_in_lane_shadows(in.scene, queue, block, shadows, s, s + lane_shadows);
+        s += lane_shadows;
         for (size_t i = c; i < chunk_end; ++i) {
             const size_t row = i - c;
             if (block.planar[row] >= 0 || block.sphere[row] >= 0 || block.environment[row] != 0 ||
@@ -129,10 +156,9 @@ size_t light_sample(const WaveInputs& in,
                 continue;
             const DirectSample& d = scalar[row];
             WT_DCHECK_LT(s, shadows.capacity);
-            const PackedMedia media = PackedMedia::pack(
-                shadow_media(in.scene, queue.media[i].unpack(), queue.interior[i],
-                             WAVETRACE_XYZ_AT(queue, ng, i), WAVETRACE_XYZ_AT(queue, wo, i),
-                             d.shadow.d));
+            const PackedMedia media = PackedMedia::pack(shadow_media(
+                in.scene.medium_boundaries, queue.media[i].unpack(), queue.interior[i],
+                WAVETRACE_XYZ_AT(queue, ng, i), WAVETRACE_XYZ_AT(queue, wo, i), d.shadow.d));
             store_shadow_ray(
                 shadows, s++,
                 {d.shadow.o, d.shadow.d, d.shadow.tmax, WAVETRACE_XYZ_AT(queue, beta, i) * d.value,

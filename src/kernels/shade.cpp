@@ -51,23 +51,25 @@ struct LaneSurface {
 
 // The SurfaceHit material of m: one the lane formulas take (is_lane_bsdf) whose albedo may be a
 // texture but nothing else varies over the surface. False for every other material (mirrors,
-// glass, emitters, boundaries, none).
+// smooth glass, emitters, boundaries, none).
 bool lane_material(const Scene& scene, MaterialId m, LaneSurface* out) {
     if (m == kNone) return false;
     const Material& mat = scene.materials[m];
     // One-sided materials go the scalar route, where the hit's side is known before the BSDF,
     // and so do normal and bump maps, which need the hit's tangents.
     if (!(mat.kind == MaterialKind::Lambertian || mat.kind == MaterialKind::Metal ||
-          mat.kind == MaterialKind::Conductor || mat.kind == MaterialKind::MetallicRoughness) ||
-        mat.albedo == kNone || mat.one_sided || mat.has_normal_maps() ||
-        mat.alpha_u_texture != kNone || mat.alpha_v_texture != kNone ||
+          mat.kind == MaterialKind::Conductor || mat.kind == MaterialKind::Dielectric ||
+          mat.kind == MaterialKind::MetallicRoughness) ||
+        (mat.albedo == kNone && mat.kind != MaterialKind::Dielectric) || mat.one_sided ||
+        mat.has_normal_maps() || mat.alpha_u_texture != kNone || mat.alpha_v_texture != kNone ||
         mat.metallic_roughness != kNone || mat.emission != kNone)
         return false;
-    const Texture& albedo = scene.textures[mat.albedo];
+    // A dielectric has no albedo.
+    const Texture* albedo = mat.albedo != kNone ? &scene.textures[mat.albedo] : nullptr;
     out->material = m;
-    out->textured = albedo.kind != TextureKind::Solid;
-    out->bsdf = material_bsdf(mat, out->textured ? Color(0.0f) : albedo.color);
-    return is_lane_bsdf(out->bsdf);  // not a mirror, nothing smooth or transmitting
+    out->textured = albedo && albedo->kind != TextureKind::Solid;
+    out->bsdf = material_bsdf(mat, albedo && !out->textured ? albedo->color : Color(0.0f));
+    return is_lane_bsdf(out->bsdf);  // not a mirror, nothing smooth
 }
 
 // A chunk's mesh hits read a triangle record and then its vertices' positions and normals, from
@@ -182,8 +184,7 @@ void classify(const WaveInputs& in, const HitQueue& hits, const PathQueue& paths
 
 // Entry i goes on from its scattering vertex to one of depth `depth`: throughput, the record for
 // weighting emission the next segment finds, the next ray and the optical depth it may travel
-// in media. Vertices that sample lights never transmit, so the entry's media stay what its
-// shadow ray (which reads its path's media) needs.
+// in media.
 void advance(size_t i,
              int depth,
              float eta_scale,
@@ -300,11 +301,13 @@ void push_surface_hits(const WaveInputs& in,
                 }
                 k = c.block.push_triangle_hit(i, out.rays.dir[i], hits.u[i], hits.v[i], p,
                                               mesh.has_normals ? n : nullptr, material, bsdf, beta);
+                c.block.interior[k] = mesh.interior;
                 break;
             }
             case PrimKind::Quad:
                 k = c.block.push_quad_hit(i, out.rays.dir[i], hits.u[i], hits.v[i],
                                           scene.quads[prim.index()], material, bsdf, beta);
+                c.block.interior[k] = scene.quads[prim.index()].interior;
                 break;
             case PrimKind::Sphere:
             default: {
@@ -312,6 +315,7 @@ void push_surface_hits(const WaveInputs& in,
                 const Ray ray{out.rays.origin[i], out.rays.dir[i]};
                 k = c.block.push_sphere_hit(i, ray.d, ray.at(hits.t[i]),
                                             scene.spheres[prim.index()], material, bsdf, beta);
+                c.block.interior[k] = scene.spheres[prim.index()].interior;
                 break;
             }
         }
@@ -446,8 +450,8 @@ void queue_lane_light_samples(size_t first, size_t last, const Chunk& c, ShadeOu
     for (size_t k = first; k < last; ++k) {
         const size_t j = at + (k - first);
         q.path[j] = b.entry[k];
-        q.media[j] = out.paths.media[b.entry[k]];  // lane vertices never transmit
-        q.interior[j] = kNone;
+        q.media[j] = out.paths.media[b.entry[k]];  // before the step's crossing, if any
+        q.interior[j] = b.interior[k];
         q.frame_angle[j] = 0.0f;  // lane BSDFs are isotropic
         q.unbent_x[j] = q.unbent_y[j] = q.unbent_z[j] = 0.0f;
         q.bump_alpha2[j] = 0.0f;  // lane vertices have no mapped normal's shadowing
@@ -461,17 +465,25 @@ void queue_lane_light_samples(size_t first, size_t last, const Chunk& c, ShadeOu
     out.light_sample_end += n;
 }
 
-// The block's continuations, back to their entries.
+// The block's continuations, back to their entries; a refraction crosses into or out of the
+// surface's interior, as continue_path does.
 void write_back_steps(const WaveInputs& in, const Chunk& c, ShadeOutputs& out) {
     const VertexBlock& b = c.block;
     const bool counts_fully = in.lights.empty();  // lane vertices sample lights if any
-    for (size_t k = 0; k < b.n; ++k)
-        if (b.alive[k] != 0)
-            advance(b.entry[k], out.paths.depth[b.entry[k]] + 1, out.paths.eta_scale[b.entry[k]],
-                    block_row(b.weight, k),
-                    {block_row(b.p, k), b.pdf[k], counts_fully},
-                    Ray{block_row(b.origin, k), block_row(b.wi, k)},
-                    c.samples.next_flight[b.entry[k] - c.begin], out);
+    for (size_t k = 0; k < b.n; ++k) {
+        if (b.alive[k] == 0) continue;
+        const size_t i = b.entry[k];
+        const Vec3 wi = block_row(b.wi, k);
+        if (b.transmitted[k] != 0) {
+            MediumStack media = out.paths.media[i].unpack();
+            media.cross(b.interior[k], dot(wi, block_row(b.ng, k)) < 0.0f,
+                        in.scene.medium_boundaries);
+            out.paths.media[i] = PackedMedia::pack(media);
+        }
+        advance(i, out.paths.depth[i] + 1, b.next_eta_scale[k], block_row(b.weight, k),
+                {block_row(b.p, k), b.pdf[k], counts_fully}, Ray{block_row(b.origin, k), wi},
+                c.samples.next_flight[i - c.begin], out);
+    }
 }
 
 // The chunk's medium segments in lanes: where each path scatters on the way to its hit.

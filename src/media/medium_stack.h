@@ -5,6 +5,7 @@
 
 #include <cstdint>
 
+#include "wavetrace/math/vec3.h"
 #include "wavetrace/scene/ids.h"
 #include "wavetrace/scene/medium.h"
 
@@ -35,5 +36,17 @@ struct MediumStack {
             pop();
     }
 };
+
+// The media a light sample's shadow ray from a vertex (direction wi) starts in, the path having
+// arrived along wo in `media`: those across the vertex's surface (geometric normal ng, inside
+// medium `interior`) where wi leaves through its other side (a rough dielectric's transmission;
+// crossing as continue_path crosses), else the path's. In a medium (ng zero) the path's.
+inline MediumStack shadow_media(
+    MediumBoundaries rule, MediumStack media, MediumId interior, Normal3 ng, Vec3 wo, Vec3 wi) {
+    const float side_o = dot(wo, ng), side_i = dot(wi, ng);
+    if ((side_o < 0.0f && side_i > 0.0f) || (side_o > 0.0f && side_i < 0.0f))
+        media.cross(interior, side_i < 0.0f, rule);
+    return media;
+}
 
 }  // namespace wavetrace

@@ -17,9 +17,9 @@ namespace wavetrace {
 // these vertices' steps in SIMD lanes, continue_path the same formula in one lane.
 bool takes_lane_step(const Estimator& config, const Vertex& v, const LightSet& lights);
 // Whether the lane formulas take the surface BSDF b: Lambertian, a rough metal, an isotropic
-// rough conductor, or a metallic-roughness surface whose lobes are all rough and that transmits
-// nothing (lane vertices never cross their surface). Their glossy lobes build the shading frame
-// from the normal alone, which an isotropic BSDF allows.
+// rough conductor or dielectric, or a metallic-roughness surface whose lobes are all rough and
+// that transmits nothing. Their glossy lobes build the shading frame from the normal alone,
+// which an isotropic BSDF allows.
 inline bool is_lane_bsdf(const BsdfParams& b) {
     switch (b.kind) {
         case MaterialKind::Lambertian:
@@ -27,6 +27,7 @@ inline bool is_lane_bsdf(const BsdfParams& b) {
         case MaterialKind::Metal:
             return b.alpha > 0.0f;
         case MaterialKind::Conductor:
+        case MaterialKind::Dielectric:
             return b.alpha > 0.0f && b.alpha_v == b.alpha;
         case MaterialKind::MetallicRoughness:
             return b.alpha > 0.0f && b.alpha_v == b.alpha && b.transmission == 0.0f &&

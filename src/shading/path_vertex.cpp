@@ -32,9 +32,10 @@ namespace {
 // The lane formulas' view of the BSDF of a lane vertex (is_lane_vertex).
 lanes::LaneBsdf<OneLane> lane_bsdf(const BsdfParams& b) {
     using lanes::to_lanes;
+    const bool dielectric = b.kind == MaterialKind::Dielectric;
     return {to_lanes(b.albedo),
             b.alpha,
-            to_lanes(b.conductor_eta),
+            to_lanes(dielectric ? Color(b.eta) : b.conductor_eta),
             to_lanes(b.conductor_k),
             b.distribution == Microfacet::Beckmann,
             schlick_f0(b.eta),
@@ -44,6 +45,7 @@ lanes::LaneBsdf<OneLane> lane_bsdf(const BsdfParams& b) {
             b.one_sided,
             b.kind == MaterialKind::Metal,
             b.kind == MaterialKind::Conductor,
+            dielectric,
             b.kind == MaterialKind::MetallicRoughness,
             b.kind == MaterialKind::Isotropic};
 }
@@ -459,7 +461,9 @@ PathStep continue_path(const Scene& scene,
         step.weight = to_vec3(r.weight);
         step.prev = {v.p, r.pdf, lights.empty()};
         step.next = Ray{to_vec3(r.origin), to_vec3(r.wi)};
-        step.eta_scale = eta_scale;
+        step.eta_scale = r.eta_scale;
+        if (r.transmitted)
+            media.cross(v.interior, dot(step.next.d, v.ng) < 0.0f, scene.medium_boundaries);
         step.alive = true;
         return step;
     }

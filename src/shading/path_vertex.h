@@ -220,23 +220,6 @@ bool scatters_in_medium(const Scene& scene,
                         float* s,
                         Color* weight);
 
-
-// The media a light sample's shadow ray from vertex v (direction wi) starts in, the path
-// having arrived along wo in `media`: those across v's surface where wi leaves through its
-// other side (a rough dielectric's transmission; crossing as continue_path crosses), else the
-// path's. In a medium (ng zero) the path's.
-inline MediumStack shadow_media(const Scene& scene,
-                                MediumStack media,
-                                MediumId interior,
-                                Normal3 ng,
-                                Vec3 wo,
-                                Vec3 wi) {
-    const float side_o = dot(wo, ng), side_i = dot(wi, ng);
-    if ((side_o < 0.0f && side_i > 0.0f) || (side_o > 0.0f && side_i < 0.0f))
-        media.cross(interior, side_i < 0.0f, scene.medium_boundaries);
-    return media;
-}
-
 // The fraction of light a thin sheet lets straight through at s along unit direction dir:
 // 1 - R' (thin_dielectric.h) at the vertex's shading normal, the probability with which a
 // path passes it there.

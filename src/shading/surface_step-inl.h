@@ -66,26 +66,42 @@ struct StepVertex {
 template <class L>
 struct StepResult {
     typename L::M alive;           // false: no valid direction, or the path ended by roulette
+    typename L::M transmitted;     // wi leaves through the surface (a dielectric's refraction)
     V3<typename L::F> origin, wi;  // the next ray
     V3<typename L::F> weight;      // f |cos| / p, divided by the survival probability
     typename L::F pdf;             // BSDF density of wi (for MIS at the emitter it may hit)
+    typename L::F eta_scale;       // the path's eta scale after the vertex
 };
 
 // The part every lobe shares, for a sampled wi of throughput factor `weight` (ok: a valid
-// sample): reflection stays on wo's side of the geometric surface, so that light does not leak
-// through it where the shading normal disagrees; Russian roulette on the throughput after this
-// vertex; the origin just off the surface on wi's side.
+// sample; transmitted: wi refracted through the surface): reflection stays on wo's side of the
+// geometric surface, so that light does not leak through it where the shading normal disagrees,
+// and refraction crosses it; a refraction scales the path's eta scale by the squared relative
+// index it crossed (into the dielectric from its front: eta); Russian roulette on the throughput
+// after this vertex; the origin just off the surface on wi's side.
 template <class L>
 HWY_INLINE StepResult<L> FinishStep(const StepVertex<L>& v,
                                     V3<typename L::F> wi,
                                     V3<typename L::F> weight,
                                     typename L::F pdf,
-                                    typename L::M ok) {
+                                    typename L::M ok,
+                                    typename L::M transmitted) {
+    using F = typename L::F;
     StepResult<L> r;
     r.wi = wi;
     r.pdf = pdf;
-    if (v.geometric_side_test) ok = L::AndNot(CrossesGeometricSurface<L>(v.wo, wi, v.ng), ok);
-    const Roulette<L> rr = RussianRoulette<L>(v.beta * weight * v.eta_scale, v.u_rr, v.roulette);
+    r.transmitted = transmitted;
+    if (v.geometric_side_test) {
+        const auto crosses = CrossesGeometricSurface<L>(v.wo, wi, v.ng);
+        ok = L::AndNot(L::Or(L::AndNot(transmitted, crosses), L::AndNot(crosses, transmitted)), ok);
+    }
+    r.eta_scale = v.eta_scale;
+    if (L::Any(transmitted)) {
+        const F one = L::Set(1.0f), ior = v.bsdf.eta.x;
+        const F eta = L::Select(Dot(v.wo, v.ns) > L::Set(0.0f), ior, one / ior);
+        r.eta_scale = L::Select(transmitted, v.eta_scale * (eta * eta), v.eta_scale);
+    }
+    const Roulette<L> rr = RussianRoulette<L>(v.beta * weight * r.eta_scale, v.u_rr, v.roulette);
     r.alive = L::And(ok, rr.survives);
     r.weight = weight * rr.scale;
     r.origin = OffsetRayOrigin<L>(v.p, v.ng, wi);
@@ -104,22 +120,23 @@ HWY_INLINE StepResult<L> LambertianStep(const StepVertex<L>& v) {
     const F wi_z = h.z * L::Select(wo_z < zero, L::Neg(one), one);
     const F pdf = LambertianPdf<L>(wi_z);
     const V3<F> wi = s * h.x + t * h.y + v.ns * wi_z;
-    return FinishStep(v, wi, v.bsdf.albedo, pdf, L::And(wo_z != zero, pdf > zero));
+    return FinishStep(v, wi, v.bsdf.albedo, pdf, L::And(wo_z != zero, pdf > zero),
+                      L::Not(L::All()));
 }
 
-// A glossy lobe (LaneBsdf::glossy: a rough metal, rough conductor or metallic-roughness
-// surface): a sample of it in the shading frame.
+// A glossy lobe (LaneBsdf::glossy: a rough metal, conductor or dielectric, or a
+// metallic-roughness surface): a sample of it in the shading frame.
 template <class L>
 HWY_INLINE StepResult<L> GlossyStep(const StepVertex<L>& v) {
-    const ReflectionSample<L> m = GlossySample<L>(v.bsdf, v.ns, v.wo, v.u_lobe, v.u1, v.u2);
-    return FinishStep(v, m.wi, m.weight, m.pdf, m.valid);
+    const GlossyLobeSample<L> m = GlossySample<L>(v.bsdf, v.ns, v.wo, v.u_lobe, v.u1, v.u2);
+    return FinishStep(v, m.wi, m.weight, m.pdf, m.valid, m.transmitted);
 }
 
 // The isotropic phase function, f = albedo / (4 pi): a uniform direction of weight albedo.
 template <class L>
 HWY_INLINE StepResult<L> PhaseStep(const StepVertex<L>& v) {
     const V3<typename L::F> wi = UniformSphere<L>(v.u1, v.u2);
-    return FinishStep(v, wi, v.bsdf.albedo, PhasePdf<L>(), L::All());
+    return FinishStep(v, wi, v.bsdf.albedo, PhasePdf<L>(), L::All(), L::Not(L::All()));
 }
 
 }  // namespace HWY_NAMESPACE
