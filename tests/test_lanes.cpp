@@ -50,9 +50,9 @@ LaneKind lane_kind(size_t i, size_t n) {
 // A Lambertian, rough metal, rough conductor, rough dielectric or metallic-roughness surface
 // vertex at p, its normals, albedo and roughness from dimensions 3-9 and 21 of u (a conductor's
 // or a dielectric's index of refraction and distribution, or a metallic-roughness surface's
-// IOR, metallic, clearcoat and one-sidedness from 22-28): the shading normal tilted off the
-// geometric one, so that the geometric-side tests reject some directions. Or a vertex in a medium
-// of isotropic phase function, as medium_vertex() makes it.
+// IOR, metallic, clearcoat, one-sidedness and transmission from 22-29): the shading normal tilted
+// off the geometric one, so that the geometric-side tests reject some directions. Or a vertex in a
+// medium of isotropic phase function, as medium_vertex() makes it.
 template <class Dim>
 Vertex lane_vertex_at(Point3 p, Dim u, LaneKind kind) {
     Vertex v;
@@ -85,6 +85,7 @@ Vertex lane_vertex_at(Point3 p, Dim u, LaneKind kind) {
         v.bsdf.clearcoat = u(25) < 0.5f ? 0.0f : u(25);
         v.bsdf.clearcoat_alpha = 0.01f + 0.3f * u(26);
         v.bsdf.one_sided = u(27) < 0.5f;
+        v.bsdf.transmission = u(29) < 0.5f ? 0.0f : u(29);  // thin-walled
         return v;
     }
     v.bsdf.kind = MaterialKind::Conductor;
@@ -819,6 +820,7 @@ TEST(Lanes, HitsResolvedInLanesAreSurfaceAtOnEverySimdTarget) {
             c.bsdf.metallic = u(29);
             c.bsdf.clearcoat = u(30) < 0.5f ? 0.0f : 1.0f;
             c.bsdf.clearcoat_alpha = 0.1f;
+            c.bsdf.transmission = u(31) < 0.5f ? 0.0f : 1.0f;
             c.bsdf.alpha = c.bsdf.alpha_v = 0.02f + 0.6f * u(21);
             c.bsdf.conductor_eta = {0.2f + u(22), 0.2f + u(23), 0.2f + u(24)};
             c.bsdf.conductor_k = {3.0f * u(25), 3.0f * u(26), 3.0f * u(27)};

@@ -1,6 +1,6 @@
 // The glossy lobes of lane vertices over lanes: a rough metal (metal-inl.h), a rough conductor
-// (conductor-inl.h), a rough dielectric (dielectric-inl.h) or glTF's metallic-roughness without
-// transmission (metallic_roughness-inl.h), isotropic, each lane of its own, in world directions
+// (conductor-inl.h), a rough dielectric (dielectric-inl.h) or glTF's metallic-roughness with
+// rough lobes (metallic_roughness-inl.h), isotropic, each lane of its own, in world directions
 // about the shading normal. An isotropic lobe needs no tangent, so the frame is
 // OrthonormalBasis(ns) and nothing of the hit's dp/du. Per-target header, see math/lanes-inl.h.
 #if defined(WAVETRACE_BSDFS_GLOSSY_INL_H_) == defined(HWY_TARGET_TOGGLE)
@@ -32,8 +32,8 @@ struct LaneBsdf {
     // outside (the shading normal's side)
     V3<typename L::F> eta, k;
     typename L::M beckmann;  // conductor, dielectric: a Beckmann distribution, else GGX
-    // metallic-roughness (metallic_roughness-inl.h; no transmission in lanes)
-    typename L::F f0, metallic, clearcoat, coat_alpha;
+    // metallic-roughness (metallic_roughness-inl.h)
+    typename L::F f0, metallic, transmission, clearcoat, coat_alpha;
     typename L::M one_sided;
     typename L::M metal, conductor, dielectric, metallic_roughness, phase;
 
@@ -43,7 +43,7 @@ struct LaneBsdf {
     MicrofacetLanes<L> as_dielectric() const { return {beckmann, alpha, alpha}; }
     RoughConductor<L> as_conductor() const { return {albedo, eta, k, {beckmann, alpha, alpha}}; }
     MetallicRoughnessLanes<L> as_metallic_roughness() const {
-        return {albedo, alpha, f0, metallic, L::Set(0.0f), clearcoat, coat_alpha, one_sided};
+        return {albedo, alpha, f0, metallic, transmission, clearcoat, coat_alpha, one_sided};
     }
 };
 
@@ -100,7 +100,8 @@ HWY_INLINE V3<typename L::F> GlossyEval(const LaneBsdf<L>& b,
     return f;
 }
 
-// A sample of a glossy lobe: a reflection, or a dielectric's transmission.
+// A sample of a glossy lobe: a reflection, or a transmission (a dielectric's refraction, a
+// metallic-roughness surface's thin-walled transmission).
 template <class L>
 struct GlossyLobeSample {
     typename L::M valid;
@@ -149,7 +150,7 @@ HWY_INLINE GlossyLobeSample<L> GlossySample(const LaneBsdf<L>& b,
     if (L::Any(b.metallic_roughness)) {
         const MetallicRoughnessSampleResult<L> r =
             MetallicRoughnessSample<L>(b.as_metallic_roughness(), lo, u_lobe, u1, u2);
-        take(b.metallic_roughness, {r.valid, r.wi, r.weight, r.pdf}, none);
+        take(b.metallic_roughness, {r.valid, r.wi, r.weight, r.pdf}, r.transmitted);
     }
     s.wi = frame.ToWorld(s.wi);
     return s;

@@ -265,6 +265,7 @@ HWY_INLINE LaneBsdf<FloatLanes<D>> LaneBsdfAt(D d,
                               zero,
                               zero,
                               zero,
+                              zero,
                               none,
                               lobes.metal,
                               lobes.conductor,
@@ -279,6 +280,7 @@ HWY_INLINE LaneBsdf<FloatLanes<D>> LaneBsdfAt(D d,
     if (!hn::AllFalse(d, lobes.metallic_roughness)) {
         b.f0 = hn::Load(d, rows.f0 + k);
         b.metallic = hn::Load(d, rows.metallic + k);
+        b.transmission = hn::Load(d, rows.transmission + k);
         b.clearcoat = hn::Load(d, rows.clearcoat + k);
         b.coat_alpha = hn::Load(d, rows.coat_alpha + k);
         b.one_sided = flag(rows.one_sided);
@@ -289,7 +291,8 @@ HWY_INLINE LaneBsdf<FloatLanes<D>> LaneBsdfAt(D d,
 // Rows [n, padded) of the glossy rows: row 0's.
 HWY_INLINE void PadGlossyTail(GlossyRows& rows, size_t n, size_t padded) {
     PadTail3({rows.eta, rows.k}, n, padded);
-    PadTail<float>({rows.f0, rows.metallic, rows.clearcoat, rows.coat_alpha}, n, padded);
+    PadTail<float>({rows.f0, rows.metallic, rows.transmission, rows.clearcoat, rows.coat_alpha}, n,
+                   padded);
     PadTail<int32_t>({rows.beckmann, rows.one_sided}, n, padded);
 }
 
@@ -630,6 +633,7 @@ void GlossyRows::set(size_t row, const BsdfParams& b) {
     beckmann[row] = b.distribution == Microfacet::Beckmann ? 1 : 0;
     f0[row] = schlick_f0(b.eta);
     metallic[row] = b.metallic;
+    transmission[row] = b.transmission;
     clearcoat[row] = b.clearcoat;
     coat_alpha[row] = b.clearcoat_alpha;
     one_sided[row] = b.one_sided ? 1 : 0;

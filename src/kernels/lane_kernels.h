@@ -144,7 +144,7 @@ struct GlossyRows {
     alignas(64) float eta[3][kShadeChunk];
     alignas(64) float k[3][kShadeChunk];
     alignas(64) int32_t beckmann[kShadeChunk];  // 1: Beckmann, 0: GGX
-    alignas(64) float f0[kShadeChunk], metallic[kShadeChunk];
+    alignas(64) float f0[kShadeChunk], metallic[kShadeChunk], transmission[kShadeChunk];
     alignas(64) float clearcoat[kShadeChunk], coat_alpha[kShadeChunk];
     alignas(64) int32_t one_sided[kShadeChunk];
 

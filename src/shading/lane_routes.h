@@ -17,8 +17,8 @@ namespace wavetrace {
 // these vertices' steps in SIMD lanes, continue_path the same formula in one lane.
 bool takes_lane_step(const Estimator& config, const Vertex& v, const LightSet& lights);
 // Whether the lane formulas take the surface BSDF b: Lambertian, a rough metal, an isotropic
-// rough conductor or dielectric, or a metallic-roughness surface whose lobes are all rough and
-// that transmits nothing. Their glossy lobes build the shading frame from the normal alone,
+// rough conductor or dielectric, or a metallic-roughness surface whose lobes are all rough.
+// Their glossy lobes build the shading frame from the normal alone,
 // which an isotropic BSDF allows.
 inline bool is_lane_bsdf(const BsdfParams& b) {
     switch (b.kind) {
@@ -30,7 +30,7 @@ inline bool is_lane_bsdf(const BsdfParams& b) {
         case MaterialKind::Dielectric:
             return b.alpha > 0.0f && b.alpha_v == b.alpha;
         case MaterialKind::MetallicRoughness:
-            return b.alpha > 0.0f && b.alpha_v == b.alpha && b.transmission == 0.0f &&
+            return b.alpha > 0.0f && b.alpha_v == b.alpha &&
                    (b.clearcoat == 0.0f || b.clearcoat_alpha > 0.0f);
         default:
             return false;

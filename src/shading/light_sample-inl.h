@@ -176,12 +176,14 @@ HWY_INLINE VertexLightSample<L> SampleTowards(const LightSampleVertex<L>& v,
     r.pdf_light = l.pdf;
     auto ok = l.valid;
     // The BSDF's f |cos| and density, zero where wi leaves through the geometric surface but not
-    // through the shading surface as a dielectric's refraction, or the other way round
+    // through the shading surface as a transmission (a dielectric's, a metallic-roughness
+    // surface's), or the other way round
     // (eval_world; a reflecting lobe is zero through the shading surface); in a medium, the
     // phase function's f = albedo / (4 pi), the density of a uniform direction.
     if (v.geometric_side_test) {
         const auto crosses = CrossesGeometricSurface<L>(v.wo, r.wi, v.ng);
-        const auto transmits = L::And(v.bsdf.dielectric, Dot(v.wo, v.ns) * Dot(r.wi, v.ns) < zero);
+        const auto transmits = L::And(L::Or(v.bsdf.dielectric, v.bsdf.metallic_roughness),
+                                      Dot(v.wo, v.ns) * Dot(r.wi, v.ns) < zero);
         ok = L::AndNot(L::Or(L::AndNot(transmits, crosses), L::AndNot(crosses, transmits)), ok);
     }
     V3<F> f{zero, zero, zero};

@@ -40,6 +40,7 @@ lanes::LaneBsdf<OneLane> lane_bsdf(const BsdfParams& b) {
             b.distribution == Microfacet::Beckmann,
             schlick_f0(b.eta),
             b.metallic,
+            b.transmission,
             b.clearcoat,
             b.clearcoat_alpha,
             b.one_sided,

@@ -76,8 +76,9 @@ struct StepResult {
 // The part every lobe shares, for a sampled wi of throughput factor `weight` (ok: a valid
 // sample; transmitted: wi refracted through the surface): reflection stays on wo's side of the
 // geometric surface, so that light does not leak through it where the shading normal disagrees,
-// and refraction crosses it; a refraction scales the path's eta scale by the squared relative
-// index it crossed (into the dielectric from its front: eta); Russian roulette on the throughput
+// and a transmission crosses it; a dielectric's refraction scales the path's eta scale by the
+// squared relative index it crossed (into the dielectric from its front: eta; a thin-walled
+// transmission crosses no index); Russian roulette on the throughput
 // after this vertex; the origin just off the surface on wi's side.
 template <class L>
 HWY_INLINE StepResult<L> FinishStep(const StepVertex<L>& v,
@@ -96,10 +97,10 @@ HWY_INLINE StepResult<L> FinishStep(const StepVertex<L>& v,
         ok = L::AndNot(L::Or(L::AndNot(transmitted, crosses), L::AndNot(crosses, transmitted)), ok);
     }
     r.eta_scale = v.eta_scale;
-    if (L::Any(transmitted)) {
+    if (const auto refracted = L::And(transmitted, v.bsdf.dielectric); L::Any(refracted)) {
         const F one = L::Set(1.0f), ior = v.bsdf.eta.x;
         const F eta = L::Select(Dot(v.wo, v.ns) > L::Set(0.0f), ior, one / ior);
-        r.eta_scale = L::Select(transmitted, v.eta_scale * (eta * eta), v.eta_scale);
+        r.eta_scale = L::Select(refracted, v.eta_scale * (eta * eta), v.eta_scale);
     }
     const Roulette<L> rr = RussianRoulette<L>(v.beta * weight * r.eta_scale, v.u_rr, v.roulette);
     r.alive = L::And(ok, rr.survives);
