@@ -276,13 +276,24 @@ void push_medium_vertices(const WaveInputs& in, Chunk& c, const ShadeOutputs& ou
     }
 }
 
-// Route SurfaceHit: the hit, a row of the block, resolved there in lanes.
+// Route SurfaceHit: the hit, a row of the block, resolved there in lanes. The rows go in grouped
+// by lobe, in the order of the route within each, so that the block's vectors (and the light
+// samples queued from them) mostly hold one lobe: a vector that mixes lobes runs each lobe's
+// formulas over all its lanes.
 void push_surface_hits(const WaveInputs& in,
                        const HitQueue& hits,
                        Chunk& c,
                        const ShadeOutputs& out) {
     const Scene& scene = in.scene;
-    for (const uint8_t row : c.routes[ShadeRoute::SurfaceHit]) {
+    const std::span<const uint8_t> route = c.routes[ShadeRoute::SurfaceHit];
+    constexpr size_t kLobes = size_t(LaneLobe::Phase) + 1;
+    size_t start[kLobes + 1] = {};
+    for (const uint8_t row : route) ++start[size_t(lane_lobe(c.surface[row].bsdf.kind)) + 1];
+    for (size_t l = 0; l < kLobes; ++l) start[l + 1] += start[l];
+    uint8_t grouped[kShadeChunk];
+    for (const uint8_t row : route)
+        grouped[start[size_t(lane_lobe(c.surface[row].bsdf.kind))]++] = row;
+    for (const uint8_t row : std::span<const uint8_t>(grouped, route.size())) {
         const size_t i = c.begin + row;
         const PrimRef prim = hits.prim[i];
         const BsdfParams& bsdf = c.surface[row].bsdf;
