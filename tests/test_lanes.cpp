@@ -3,6 +3,7 @@
 // lets the two engines trace the same paths; and the shared polynomial is accurate.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -41,10 +42,11 @@ Vec3 unit(float u1, float u2) {
     return sample_uniform_sphere(u1, u2);
 }
 
-// The lane vertices (is_lane_vertex) the tests cover, in sixths of their rows.
-enum class LaneKind { Lambertian, Metal, Conductor, Dielectric, MetallicRoughness, Medium };
-LaneKind lane_kind(size_t i, size_t n) {
-    return static_cast<LaneKind>(6 * i / n);
+// The lane vertices (is_lane_vertex) the tests cover, in sixths of their rows, or sevenths with
+// the delta lobes (which take no light sample).
+enum class LaneKind { Lambertian, Metal, Conductor, Dielectric, MetallicRoughness, Medium, Delta };
+LaneKind lane_kind(size_t i, size_t n, bool with_delta = false) {
+    return static_cast<LaneKind>((with_delta ? 7 : 6) * i / n);
 }
 
 // A Lambertian, rough metal, rough conductor, rough dielectric or metallic-roughness surface
@@ -66,6 +68,15 @@ Vertex lane_vertex_at(Point3 p, Dim u, LaneKind kind) {
     v.ng = unit(u(3), u(4));
     v.frame = Frame::from_normal(normalize(v.ng + 0.3f * unit(u(5), u(6))));
     if (kind == LaneKind::Lambertian) return v;
+    if (kind == LaneKind::Delta) {  // a mirror, a smooth metal, conductor or dielectric
+        const MaterialKind kinds[] = {MaterialKind::Mirror, MaterialKind::Metal,
+                                      MaterialKind::Conductor, MaterialKind::Dielectric};
+        v.bsdf.kind = kinds[std::min(3, int(4 * u(29)))];
+        v.bsdf.eta = 1.1f + u(22);
+        v.bsdf.conductor_eta = {0.1f + 2.0f * u(22), 0.1f + 2.0f * u(23), 0.1f + 2.0f * u(24)};
+        v.bsdf.conductor_k = {5.0f * u(25), 5.0f * u(26), 5.0f * u(27)};
+        return v;
+    }
     v.bsdf.alpha = 0.02f + 0.6f * u(21);
     if (kind == LaneKind::Metal) {
         v.bsdf.kind = MaterialKind::Metal;
@@ -340,7 +351,7 @@ TEST(Lanes, LaneStepsAreContinuePathOnEverySimdTarget) {
         auto u = [&](uint32_t d) { return sample_1d(9, i, 0, d); };
         Case c;
         c.v = lane_vertex_at(Vec3{u(0) - 0.5f, u(1) - 0.5f, u(2) - 0.5f} * 100.0f, u,
-                             lane_kind(i, n));
+                             lane_kind(i, n, true));
         c.wo = unit(u(10), u(11));
         c.beta = Color(2.0f * u(12));
         c.u = {u(13), u(14), u(15), u(16), u(17), u(18), u(19)};
@@ -348,7 +359,7 @@ TEST(Lanes, LaneStepsAreContinuePathOnEverySimdTarget) {
         c.bounce = static_cast<int>(i % 5);
         cases.push_back(c);
     }
-    size_t alive = 0, dead = 0, transmitted = 0;
+    size_t alive = 0, dead = 0, transmitted = 0, delta = 0;
     for (int64_t target : wide_simd_targets()) {
         use_wide_simd_target(target);
         SCOPED_TRACE(wide_simd_target());
@@ -376,13 +387,16 @@ TEST(Lanes, LaneStepsAreContinuePathOnEverySimdTarget) {
             EXPECT_TRUE(same_bits(one.weight, block_row(block.weight, k))) << "row " << k;
             EXPECT_TRUE(same_bits(one.prev.pdf_bsdf, block.pdf[k])) << "row " << k;
             EXPECT_TRUE(same_bits(one.eta_scale, block.next_eta_scale[k])) << "row " << k;
+            EXPECT_EQ(c.v.bsdf.is_delta(), block.delta[k] != 0) << "row " << k;
             transmitted += block.transmitted[k] != 0;
+            delta += block.delta[k] != 0;
         }
     }
     use_wide_simd_target(0);
     EXPECT_GT(alive, 0u);
     EXPECT_GT(dead, 0u);  // the geometric-side test and roulette were exercised
     EXPECT_GT(transmitted, 0u);  // refractions, which scale the eta scale
+    EXPECT_GT(delta, 0u);
 }
 
 // Around two quad lights (one one-sided, one two-sided, of different power).

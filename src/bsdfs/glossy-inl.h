@@ -35,10 +35,13 @@ struct LaneBsdf {
     // metallic-roughness (metallic_roughness-inl.h)
     typename L::F f0, metallic, transmission, clearcoat, coat_alpha;
     typename L::M one_sided;
-    typename L::M metal, conductor, dielectric, metallic_roughness, phase;
+    // The kind; a delta lane (specular-inl.h) is a smooth metal, conductor or dielectric by
+    // these masks, or a mirror where none is set.
+    typename L::M metal, conductor, dielectric, metallic_roughness, phase, delta;
 
     typename L::M glossy() const {
-        return L::Or(L::Or(L::Or(metal, conductor), dielectric), metallic_roughness);
+        return L::AndNot(delta,
+                         L::Or(L::Or(L::Or(metal, conductor), dielectric), metallic_roughness));
     }
     MicrofacetLanes<L> as_dielectric() const { return {beckmann, alpha, alpha}; }
     RoughConductor<L> as_conductor() const { return {albedo, eta, k, {beckmann, alpha, alpha}}; }

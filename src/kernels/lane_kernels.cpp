@@ -222,7 +222,8 @@ void ResolveSurfaceHits(VertexBlock* b) {
 // metallic-roughness surface.
 template <class D>
 struct LobeMasks {
-    hn::Mask<D> lambertian, metal, conductor, dielectric, metallic_roughness, phase, glossy;
+    hn::Mask<D> lambertian, metal, conductor, dielectric, metallic_roughness, phase, glossy,
+        specular;
 };
 template <class D>
 HWY_INLINE LobeMasks<D> LobesAt(D d, const int32_t* lobe, size_t k) {
@@ -238,7 +239,8 @@ HWY_INLINE LobeMasks<D> LobesAt(D d, const int32_t* lobe, size_t k) {
             dielectric,
             metallic_roughness,
             is(LaneLobe::Phase),
-            hn::Or(hn::Or(hn::Or(metal, conductor), dielectric), metallic_roughness)};
+            hn::Or(hn::Or(hn::Or(metal, conductor), dielectric), metallic_roughness),
+            is(LaneLobe::Specular)};
 }
 
 // The BSDF of rows k .. of the given albedo and roughness: the glossy rows read where a lane of
@@ -271,8 +273,19 @@ HWY_INLINE LaneBsdf<FloatLanes<D>> LaneBsdfAt(D d,
                               lobes.conductor,
                               lobes.dielectric,
                               lobes.metallic_roughness,
-                              lobes.phase};
-    if (!hn::AllFalse(d, hn::Or(lobes.conductor, lobes.dielectric))) {
+                              lobes.phase,
+                              lobes.specular};
+    if (!hn::AllFalse(d, lobes.specular)) {  // a delta row's kind
+        const auto kind = hn::Load(di, rows.kind + k);
+        auto of = [&](MaterialKind x) {
+            return hn::And(lobes.specular,
+                           hn::RebindMask(d, hn::Eq(kind, hn::Set(di, int32_t(x)))));
+        };
+        b.metal = hn::Or(b.metal, of(MaterialKind::Metal));
+        b.conductor = hn::Or(b.conductor, of(MaterialKind::Conductor));
+        b.dielectric = hn::Or(b.dielectric, of(MaterialKind::Dielectric));
+    }
+    if (!hn::AllFalse(d, hn::Or(b.conductor, b.dielectric))) {
         b.eta = Load3(d, rows.eta, k);
         b.k = Load3(d, rows.k, k);
         b.beckmann = flag(rows.beckmann);
@@ -293,7 +306,7 @@ HWY_INLINE void PadGlossyTail(GlossyRows& rows, size_t n, size_t padded) {
     PadTail3({rows.eta, rows.k}, n, padded);
     PadTail<float>({rows.f0, rows.metallic, rows.transmission, rows.clearcoat, rows.coat_alpha}, n,
                    padded);
-    PadTail<int32_t>({rows.beckmann, rows.one_sided}, n, padded);
+    PadTail<int32_t>({rows.beckmann, rows.one_sided, rows.kind}, n, padded);
 }
 
 void StepVertices(VertexBlock* b) {
@@ -328,11 +341,16 @@ void StepVertices(VertexBlock* b) {
         // Each lane's lobe: vectors of one lobe run one step, mixed ones each of theirs.
         // The first lobe present gives the vector's result, the others' lanes are selected in.
         const bool lambertian = !hn::AllFalse(d, lobes.lambertian),
-                   glossy = !hn::AllFalse(d, lobes.glossy), phase = !hn::AllFalse(d, lobes.phase);
-        StepResult<L> r = lambertian ? LambertianStep(v) : glossy ? GlossyStep(v) : PhaseStep(v);
+                   glossy = !hn::AllFalse(d, lobes.glossy), phase = !hn::AllFalse(d, lobes.phase),
+                   specular = !hn::AllFalse(d, lobes.specular);
+        StepResult<L> r = lambertian ? LambertianStep(v)
+                          : glossy   ? GlossyStep(v)
+                          : phase    ? PhaseStep(v)
+                                     : SpecularStep(v);
         auto take = [&](hn::Mask<D> m, const StepResult<L>& s) {
             r.alive = hn::Or(hn::And(m, s.alive), hn::AndNot(m, r.alive));
             r.transmitted = hn::Or(hn::And(m, s.transmitted), hn::AndNot(m, r.transmitted));
+            r.delta = hn::Or(hn::And(m, s.delta), hn::AndNot(m, r.delta));
             r.origin = Select3<L>(m, s.origin, r.origin);
             r.wi = Select3<L>(m, s.wi, r.wi);
             r.weight = Select3<L>(m, s.weight, r.weight);
@@ -341,6 +359,7 @@ void StepVertices(VertexBlock* b) {
         };
         if (lambertian && glossy) take(lobes.glossy, GlossyStep(v));
         if ((lambertian || glossy) && phase) take(lobes.phase, PhaseStep(v));
+        if ((lambertian || glossy || phase) && specular) take(lobes.specular, SpecularStep(v));
         Store3(d, r.origin, b->origin, k);
         Store3(d, r.wi, b->wi, k);
         Store3(d, r.weight, b->weight, k);
@@ -349,6 +368,8 @@ void StepVertices(VertexBlock* b) {
                   b->alive + k);
         hn::Store(hn::IfThenElseZero(hn::RebindMask(di, r.transmitted), hn::Set(di, 1)), di,
                   b->transmitted + k);
+        hn::Store(hn::IfThenElseZero(hn::RebindMask(di, r.delta), hn::Set(di, 1)), di,
+                  b->delta + k);
         hn::Store(r.eta_scale, d, b->next_eta_scale + k);
     }
 }
@@ -637,6 +658,7 @@ void GlossyRows::set(size_t row, const BsdfParams& b) {
     clearcoat[row] = b.clearcoat;
     coat_alpha[row] = b.clearcoat_alpha;
     one_sided[row] = b.one_sided ? 1 : 0;
+    kind[row] = int32_t(b.kind);
 }
 
 size_t VertexBlock::start_row(
@@ -645,8 +667,9 @@ size_t VertexBlock::start_row(
     const size_t k = n++;
     shape[k] = int32_t(shape_);
     material[k] = m;
+    lobe[k] = int32_t(lane_lobe(bsdf));
     if (bsdf.kind == MaterialKind::Conductor || bsdf.kind == MaterialKind::Dielectric ||
-        bsdf.kind == MaterialKind::MetallicRoughness)
+        bsdf.kind == MaterialKind::MetallicRoughness || lobe[k] == int32_t(LaneLobe::Specular))
         glossy.set(k, bsdf);
     interior[k] = kNone;
     for (int a = 0; a < 3; ++a) {
@@ -654,7 +677,6 @@ size_t VertexBlock::start_row(
         beta[a][k] = beta_[a];
     }
     alpha[k] = bsdf.alpha;
-    lobe[k] = int32_t(lane_lobe(bsdf.kind));
     smooth[k] = 0;
     flip_v[k] = 0;
     entry[k] = static_cast<uint32_t>(entry_);

@@ -12,6 +12,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "bsdfs/lane_lobe.h"
 #include "queues/light_sample_queue.h"
 #include "queues/shadow_queue.h"
 #include "sampling/sampler.h"
@@ -93,50 +94,8 @@ void medium_segments(MediumSegmentBlock& b, size_t n);
 
 // How a VertexBlock row's vertex is found: given, or resolved from its hit on a shape.
 enum class HitShape : int32_t { Given, Quad, Triangle, Sphere };
-// The BSDFs the lane formulas take (is_lane_vertex).
-enum class LaneLobe : int32_t {
-    Lambertian,
-    RoughMetal,
-    RoughConductor,
-    RoughDielectric,
-    MetallicRoughness,
-    Phase
-};
-inline LaneLobe lane_lobe(MaterialKind kind) {
-    switch (kind) {
-        case MaterialKind::Metal:
-            return LaneLobe::RoughMetal;
-        case MaterialKind::Conductor:
-            return LaneLobe::RoughConductor;
-        case MaterialKind::Dielectric:
-            return LaneLobe::RoughDielectric;
-        case MaterialKind::MetallicRoughness:
-            return LaneLobe::MetallicRoughness;
-        case MaterialKind::Isotropic:
-            return LaneLobe::Phase;
-        default:
-            return LaneLobe::Lambertian;
-    }
-}
-inline MaterialKind material_kind(LaneLobe lobe) {
-    switch (lobe) {
-        case LaneLobe::RoughMetal:
-            return MaterialKind::Metal;
-        case LaneLobe::RoughConductor:
-            return MaterialKind::Conductor;
-        case LaneLobe::RoughDielectric:
-            return MaterialKind::Dielectric;
-        case LaneLobe::MetallicRoughness:
-            return MaterialKind::MetallicRoughness;
-        case LaneLobe::Phase:
-            return MaterialKind::Isotropic;
-        default:
-            return MaterialKind::Lambertian;
-    }
-}
-
-// What a glossy row adds to its albedo and roughness: a rough conductor's complex index of
-// refraction and distribution, a rough dielectric's index (in eta, every channel) and
+// What a glossy or a delta row adds to its albedo and roughness: its kind, a conductor's complex
+// index of refraction and distribution, a dielectric's index (in eta, every channel) and
 // distribution, a metallic-roughness surface's Schlick F0, metallic, clearcoat
 // and its roughness, and one-sidedness. Only the rows of those kinds are set; the kernels read
 // the others as zero where no lane of a vector is of such a kind.
@@ -147,8 +106,10 @@ struct GlossyRows {
     alignas(64) float f0[kShadeChunk], metallic[kShadeChunk], transmission[kShadeChunk];
     alignas(64) float clearcoat[kShadeChunk], coat_alpha[kShadeChunk];
     alignas(64) int32_t one_sided[kShadeChunk];
+    alignas(64) int32_t kind[kShadeChunk];  // MaterialKind: which a delta row's lobe is
 
-    // Row `row` of the BSDF b, a conductor's, a dielectric's or a metallic-roughness surface's.
+    // Row `row` of the BSDF b: a conductor's, a dielectric's, a metallic-roughness surface's or a
+    // delta lobe's.
     void set(size_t row, const BsdfParams& b);
 };
 
@@ -190,14 +151,15 @@ struct VertexBlock {
     size_t n = 0;
     bool geometric_side_test = true;  // Scene::geometric_side_test, for every row
     // out: the next ray, the throughput factor and the BSDF density, for rows with alive = 1;
-    // whether the ray leaves through the surface (a dielectric's refraction), and the path's eta
-    // scale after it
+    // whether the ray leaves through the surface (a transmission), whether it is a delta lobe's,
+    // and the path's eta scale after it
     alignas(64) float origin[3][kShadeChunk];
     alignas(64) float wi[3][kShadeChunk];
     alignas(64) float weight[3][kShadeChunk];
     alignas(64) float pdf[kShadeChunk];
     alignas(64) int32_t alive[kShadeChunk];
     alignas(64) int32_t transmitted[kShadeChunk];
+    alignas(64) int32_t delta[kShadeChunk];  // wi is a Dirac-delta lobe's (pdf 0)
     alignas(64) float next_eta_scale[kShadeChunk];
 
     // Appends the vertex v (is_lane_vertex) of wave entry `entry`, arriving from wo with

@@ -50,16 +50,16 @@ struct LaneSurface {
 };
 
 // The SurfaceHit material of m: one the lane formulas take (is_lane_bsdf) whose albedo may be a
-// texture but nothing else varies over the surface. False for every other material (mirrors,
-// smooth glass, emitters, boundaries, none).
+// texture but nothing else varies over the surface. False for every other material (thin
+// sheets, plastics, emitters, boundaries, none).
 bool lane_material(const Scene& scene, MaterialId m, LaneSurface* out) {
     if (m == kNone) return false;
     const Material& mat = scene.materials[m];
     // One-sided materials go the scalar route, where the hit's side is known before the BSDF,
     // and so do normal and bump maps, which need the hit's tangents.
-    if (!(mat.kind == MaterialKind::Lambertian || mat.kind == MaterialKind::Metal ||
-          mat.kind == MaterialKind::Conductor || mat.kind == MaterialKind::Dielectric ||
-          mat.kind == MaterialKind::MetallicRoughness) ||
+    if (!(mat.kind == MaterialKind::Lambertian || mat.kind == MaterialKind::Mirror ||
+          mat.kind == MaterialKind::Metal || mat.kind == MaterialKind::Conductor ||
+          mat.kind == MaterialKind::Dielectric || mat.kind == MaterialKind::MetallicRoughness) ||
         (mat.albedo == kNone && mat.kind != MaterialKind::Dielectric) || mat.one_sided ||
         mat.has_normal_maps() || mat.alpha_u_texture != kNone || mat.alpha_v_texture != kNone ||
         mat.metallic_roughness != kNone || mat.emission != kNone)
@@ -69,7 +69,7 @@ bool lane_material(const Scene& scene, MaterialId m, LaneSurface* out) {
     out->material = m;
     out->textured = albedo && albedo->kind != TextureKind::Solid;
     out->bsdf = material_bsdf(mat, albedo && !out->textured ? albedo->color : Color(0.0f));
-    return is_lane_bsdf(out->bsdf);  // not a mirror, nothing smooth
+    return is_lane_bsdf(out->bsdf);
 }
 
 // A chunk's mesh hits read a triangle record and then its vertices' positions and normals, from
@@ -279,20 +279,21 @@ void push_medium_vertices(const WaveInputs& in, Chunk& c, const ShadeOutputs& ou
 // Route SurfaceHit: the hit, a row of the block, resolved there in lanes. The rows go in grouped
 // by lobe, in the order of the route within each, so that the block's vectors (and the light
 // samples queued from them) mostly hold one lobe: a vector that mixes lobes runs each lobe's
-// formulas over all its lanes.
-void push_surface_hits(const WaveInputs& in,
-                       const HitQueue& hits,
-                       Chunk& c,
-                       const ShadeOutputs& out) {
+// formulas over all its lanes. The delta lobes' rows come last (LaneLobe::Specular): they take
+// no light sample. Returns the rows before them.
+size_t push_surface_hits(const WaveInputs& in,
+                         const HitQueue& hits,
+                         Chunk& c,
+                         const ShadeOutputs& out) {
     const Scene& scene = in.scene;
     const std::span<const uint8_t> route = c.routes[ShadeRoute::SurfaceHit];
-    constexpr size_t kLobes = size_t(LaneLobe::Phase) + 1;
+    constexpr size_t kLobes = size_t(LaneLobe::Specular) + 1;
     size_t start[kLobes + 1] = {};
-    for (const uint8_t row : route) ++start[size_t(lane_lobe(c.surface[row].bsdf.kind)) + 1];
+    for (const uint8_t row : route) ++start[size_t(lane_lobe(c.surface[row].bsdf)) + 1];
     for (size_t l = 0; l < kLobes; ++l) start[l + 1] += start[l];
+    const size_t sampling_rows = c.block.n + start[size_t(LaneLobe::Specular)];
     uint8_t grouped[kShadeChunk];
-    for (const uint8_t row : route)
-        grouped[start[size_t(lane_lobe(c.surface[row].bsdf.kind))]++] = row;
+    for (const uint8_t row : route) grouped[start[size_t(lane_lobe(c.surface[row].bsdf))]++] = row;
     for (const uint8_t row : std::span<const uint8_t>(grouped, route.size())) {
         const size_t i = c.begin + row;
         const PrimRef prim = hits.prim[i];
@@ -334,6 +335,7 @@ void push_surface_hits(const WaveInputs& in,
         c.sphere[k] = prim.kind() == PrimKind::Sphere ? prim.index() : kNone;
         set_lane_step(in, c, out.paths, k, i, c.block);
     }
+    return sampling_rows;
 }
 
 // Route Resolve, in scalar code: resolve_segment (media, emission found, boundaries, the
@@ -480,7 +482,8 @@ void queue_lane_light_samples(size_t first, size_t last, const Chunk& c, ShadeOu
 // surface's interior, as continue_path does.
 void write_back_steps(const WaveInputs& in, const Chunk& c, ShadeOutputs& out) {
     const VertexBlock& b = c.block;
-    const bool counts_fully = in.lights.empty();  // lane vertices sample lights if any
+    // Lane vertices sample lights if any, but for delta lobes, after which emission counts fully.
+    const bool no_lights = in.lights.empty();
     for (size_t k = 0; k < b.n; ++k) {
         if (b.alive[k] == 0) continue;
         const size_t i = b.entry[k];
@@ -492,8 +495,8 @@ void write_back_steps(const WaveInputs& in, const Chunk& c, ShadeOutputs& out) {
             out.paths.media[i] = PackedMedia::pack(media);
         }
         advance(i, out.paths.depth[i] + 1, b.next_eta_scale[k], block_row(b.weight, k),
-                {block_row(b.p, k), b.pdf[k], counts_fully}, Ray{block_row(b.origin, k), wi},
-                c.samples.next_flight[i - c.begin], out);
+                {block_row(b.p, k), b.pdf[k], no_lights || b.delta[k] != 0},
+                Ray{block_row(b.origin, k), wi}, c.samples.next_flight[i - c.begin], out);
     }
 }
 
@@ -552,7 +555,7 @@ ShadeCounts shade(const WaveInputs& in,
         c.block.n = 0;
         c.block.geometric_side_test = in.scene.geometric_side_test;
         cross_boundaries(in, hits, c, out);
-        push_surface_hits(in, hits, c, out);
+        const size_t sampling_rows = push_surface_hits(in, hits, c, out);
         const size_t surface_rows = c.block.n;
         push_medium_vertices(in, c, out);
         const size_t lane_rows = c.block.n;
@@ -561,7 +564,10 @@ ShadeCounts shade(const WaveInputs& in,
 
         resolve_surface_hits(c.block);
         look_up_textures(in.scene, surface_rows, c);
-        if (lane_light_samples) queue_lane_light_samples(0, lane_rows, c, out);
+        if (lane_light_samples) {
+            queue_lane_light_samples(0, sampling_rows, c, out);
+            queue_lane_light_samples(surface_rows, lane_rows, c, out);
+        }
         step_vertices(c.block);
         write_back_steps(in, c, out);
     }

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 
+#include "bsdfs/lane_lobe.h"
 #include "shading/lights.h"
 #include "shading/path_vertex.h"
 #include "wavetrace/shading/estimator.h"
@@ -16,26 +17,6 @@ namespace wavetrace {
 // whose direction the strategy samples from the BSDF or phase function. The wavefront runs
 // these vertices' steps in SIMD lanes, continue_path the same formula in one lane.
 bool takes_lane_step(const Estimator& config, const Vertex& v, const LightSet& lights);
-// Whether the lane formulas take the surface BSDF b: Lambertian, a rough metal, an isotropic
-// rough conductor or dielectric, or a metallic-roughness surface whose lobes are all rough.
-// Their glossy lobes build the shading frame from the normal alone,
-// which an isotropic BSDF allows.
-inline bool is_lane_bsdf(const BsdfParams& b) {
-    switch (b.kind) {
-        case MaterialKind::Lambertian:
-            return true;
-        case MaterialKind::Metal:
-            return b.alpha > 0.0f;
-        case MaterialKind::Conductor:
-        case MaterialKind::Dielectric:
-            return b.alpha > 0.0f && b.alpha_v == b.alpha;
-        case MaterialKind::MetallicRoughness:
-            return b.alpha > 0.0f && b.alpha_v == b.alpha &&
-                   (b.clearcoat == 0.0f || b.clearcoat_alpha > 0.0f);
-        default:
-            return false;
-    }
-}
 // A surface of such a BSDF without a mapped normal's shadowing (bump_alpha2 0, Vertex), or a
 // medium's isotropic phase function (ng = 0): the vertices the lane formulas of next-event
 // estimation towards quad, triangle, sphere and environment lights and of the continuation take.

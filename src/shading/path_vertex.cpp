@@ -48,7 +48,8 @@ lanes::LaneBsdf<OneLane> lane_bsdf(const BsdfParams& b) {
             b.kind == MaterialKind::Conductor,
             dielectric,
             b.kind == MaterialKind::MetallicRoughness,
-            b.kind == MaterialKind::Isotropic};
+            b.kind == MaterialKind::Isotropic,
+            b.is_delta()};
 }
 
 // Frame::from_normal, inlined here: it runs at every vertex.
@@ -455,12 +456,14 @@ PathStep continue_path(const Scene& scene,
                                             depth + 1 >= config.rr_depth,
                                             eta_scale,
                                             v.geometric_side_test};
-        const lanes::StepResult<OneLane> r = lv.bsdf.glossy() ? lanes::GlossyStep(lv)
-                                             : lv.bsdf.phase  ? lanes::PhaseStep(lv)
-                                                              : lanes::LambertianStep(lv);
+        const lanes::StepResult<OneLane> r = lv.bsdf.delta      ? lanes::SpecularStep(lv)
+                                             : lv.bsdf.glossy() ? lanes::GlossyStep(lv)
+                                             : lv.bsdf.phase    ? lanes::PhaseStep(lv)
+                                                                : lanes::LambertianStep(lv);
         if (!r.alive) return step;
         step.weight = to_vec3(r.weight);
-        step.prev = {v.p, r.pdf, lights.empty()};
+        // Emission found after a delta lobe counts fully: no light sample could have found it.
+        step.prev = {v.p, r.pdf, r.delta || lights.empty()};
         step.next = Ray{to_vec3(r.origin), to_vec3(r.wi)};
         step.eta_scale = r.eta_scale;
         if (r.transmitted)

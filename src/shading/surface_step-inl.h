@@ -15,6 +15,7 @@
 #include "bsdfs/diffuse-inl.h"
 #include "bsdfs/geometric_side-inl.h"
 #include "bsdfs/glossy-inl.h"
+#include "bsdfs/specular-inl.h"
 #include "math/lanes-inl.h"
 #include "sampling/warp-inl.h"
 #include "wavetrace/math/constants.h"
@@ -67,6 +68,7 @@ template <class L>
 struct StepResult {
     typename L::M alive;           // false: no valid direction, or the path ended by roulette
     typename L::M transmitted;     // wi leaves through the surface (a dielectric's refraction)
+    typename L::M delta;           // wi is a Dirac-delta lobe's (pdf 0)
     V3<typename L::F> origin, wi;  // the next ray
     V3<typename L::F> weight;      // f |cos| / p, divided by the survival probability
     typename L::F pdf;             // BSDF density of wi (for MIS at the emitter it may hit)
@@ -92,6 +94,7 @@ HWY_INLINE StepResult<L> FinishStep(const StepVertex<L>& v,
     r.wi = wi;
     r.pdf = pdf;
     r.transmitted = transmitted;
+    r.delta = L::Not(L::All());
     if (v.geometric_side_test) {
         const auto crosses = CrossesGeometricSurface<L>(v.wo, wi, v.ng);
         ok = L::AndNot(L::Or(L::AndNot(transmitted, crosses), L::AndNot(crosses, transmitted)), ok);
@@ -131,6 +134,15 @@ template <class L>
 HWY_INLINE StepResult<L> GlossyStep(const StepVertex<L>& v) {
     const GlossyLobeSample<L> m = GlossySample<L>(v.bsdf, v.ns, v.wo, v.u_lobe, v.u1, v.u2);
     return FinishStep(v, m.wi, m.weight, m.pdf, m.valid, m.transmitted);
+}
+
+// A Dirac-delta lobe (LaneBsdf::delta: a mirror, a smooth metal, conductor or dielectric).
+template <class L>
+HWY_INLINE StepResult<L> SpecularStep(const StepVertex<L>& v) {
+    const GlossyLobeSample<L> m = SpecularSample<L>(v.bsdf, v.ns, v.wo, v.u_lobe);
+    StepResult<L> r = FinishStep(v, m.wi, m.weight, m.pdf, m.valid, m.transmitted);
+    r.delta = L::All();
+    return r;
 }
 
 // The isotropic phase function, f = albedo / (4 pi): a uniform direction of weight albedo.
