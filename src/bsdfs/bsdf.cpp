@@ -1,16 +1,13 @@
 #include "bsdfs/bsdf.h"
 
-#include <algorithm>
-#include <cmath>
-
 #include "bsdfs/conductor.h"
 #include "bsdfs/diffuse-inl.h"
-#include "bsdfs/fresnel.h"
 #include "bsdfs/metal-inl.h"
 #include "bsdfs/metallic_roughness.h"
 #include "bsdfs/plastic.h"
 #include "bsdfs/principled.h"
 #include "bsdfs/rough_dielectric.h"
+#include "bsdfs/specular-inl.h"
 #include "bsdfs/thin_dielectric.h"
 #include "sampling/warp.h"
 #include "wavetrace/math/constants.h"
@@ -24,6 +21,19 @@ namespace {
 // of two-sided shading.
 Vec3 upper(Vec3 w, Vec3 side) {
     return side.z < 0.0f ? Vec3{w.x, w.y, -w.z} : w;
+}
+
+// A Dirac-delta lobe of b (mirror, smooth metal, conductor or dielectric): specular-inl.h's
+// one-lane instance.
+BsdfSample specular_sample(const BsdfParams& b, Vec3 wo, float u_lobe) {
+    const lanes::GlossyLobeSample<OneLane> l =
+        lanes::SpecularLocal<OneLane>(to_lanes(b), to_lanes(wo), u_lobe);
+    BsdfSample s;
+    s.wi = to_vec3(l.wi);
+    s.weight = to_vec3(l.weight);
+    s.transmitted = l.transmitted;
+    s.delta = s.valid = l.valid;
+    return s;
 }
 
 }  // namespace
@@ -104,12 +114,7 @@ BsdfSample bsdf_sample(const BsdfParams& b, Vec3 wo, float u_lobe, float u1, flo
             return s;
         }
         case MaterialKind::Metal: {
-            if (b.alpha == 0.0f) {
-                s.wi = {-wo.x, -wo.y, wo.z};
-                s.weight = to_vec3(lanes::Schlick<OneLane>(to_lanes(b.albedo), wo.z * side));
-                s.delta = s.valid = true;
-                return s;
-            }
+            if (b.alpha == 0.0f) return specular_sample(b, wo, u_lobe);
             // A sample reflected below the surface is lost (valid = false).
             const lanes::ReflectionSample<OneLane> m =
                 lanes::MetalSample<OneLane>(to_lanes(b.albedo), b.alpha, to_lanes(wo), u1, u2);
@@ -121,33 +126,12 @@ BsdfSample bsdf_sample(const BsdfParams& b, Vec3 wo, float u_lobe, float u1, flo
             return s;
         }
         case MaterialKind::Mirror:
-            s.wi = {-wo.x, -wo.y, wo.z};
-            s.weight = b.albedo;
-            s.delta = s.valid = true;
-            return s;
-        case MaterialKind::Dielectric: {
+            return specular_sample(b, wo, u_lobe);
+        case MaterialKind::Dielectric:
             if (b.alpha > 0.0f) return rough_dielectric_sample(b, wo, u_lobe, u1, u2);
-            // Relative IOR seen by the ray: entering from the front (wo.z > 0) goes into the
-            // material; from the back it leaves it.
-            float eta = wo.z > 0.0f ? b.eta : 1.0f / b.eta;
-            float cos_i = std::fabs(wo.z);
-            float f = fresnel_dielectric(cos_i, eta);
-            s.delta = s.valid = true;
-            if (u_lobe < f) {  // reflect with probability F: weight F / F = 1
-                s.wi = {-wo.x, -wo.y, wo.z};
-                s.weight = Color(1.0f);
-                return s;
-            }
-            float cos_t = std::sqrt(std::max(0.0f, 1.0f - (1.0f - cos_i * cos_i) / (eta * eta)));
-            // Snell: wt = -wo / eta + (cos_i / eta - cos_t) n, n on wo's side.
-            s.wi = -wo / eta + Vec3{0.0f, 0.0f, side * (cos_i / eta - cos_t)};
-            s.wi = normalize(s.wi);
-            // Radiance is compressed by eta^2 entering a denser medium (Veach 1997, §5.2).
-            s.weight = Color(1.0f / (eta * eta));
-            s.transmitted = true;
-            return s;
-        }
+            return specular_sample(b, wo, u_lobe);
         case MaterialKind::Conductor:
+            if (b.is_delta()) return specular_sample(b, wo, u_lobe);
             return conductor_sample(b, wo, u1, u2);
         case MaterialKind::ThinDielectric:
             return thin_dielectric_sample(b, wo, u_lobe);

@@ -1,9 +1,6 @@
 #include "bsdfs/conductor.h"
 
-#include <cmath>
-
 #include "bsdfs/conductor-inl.h"
-#include "bsdfs/fresnel.h"
 
 namespace wavetrace {
 namespace {
@@ -12,10 +9,8 @@ namespace lanes = HWY_NAMESPACE;
 using lanes::OneLane;
 
 lanes::RoughConductor<OneLane> rough_conductor(const BsdfParams& b) {
-    return {lanes::to_lanes(b.albedo),
-            lanes::to_lanes(b.conductor_eta),
-            lanes::to_lanes(b.conductor_k),
-            {b.distribution == Microfacet::Beckmann, b.alpha, b.alpha_v}};
+    return {lanes::to_lanes(b.albedo), lanes::to_lanes(b.conductor_eta),
+            lanes::to_lanes(b.conductor_k), lanes::to_lanes(microfacet_of(b))};
 }
 
 }  // namespace
@@ -30,12 +25,6 @@ Color conductor_eval(const BsdfParams& b, Vec3 wo, Vec3 wi, float* pdf) {
 BsdfSample conductor_sample(const BsdfParams& b, Vec3 wo, float u1, float u2) {
     BsdfSample s;
     if (wo.z == 0.0f) return s;
-    if (b.is_delta()) {
-        s.wi = {-wo.x, -wo.y, wo.z};
-        s.weight = b.albedo * fresnel_conductor(std::fabs(wo.z), b.conductor_eta, b.conductor_k);
-        s.delta = s.valid = true;
-        return s;
-    }
     const lanes::ReflectionSample<OneLane> r =
         lanes::RoughConductorSample(rough_conductor(b), lanes::to_lanes(wo), u1, u2);
     if (!r.valid) return s;

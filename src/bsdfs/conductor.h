@@ -3,7 +3,8 @@
 // kind: directions in the shading frame pointing away from the vertex; eval() includes
 // |cos theta_i|; sample()'s weight is f |cos| / pdf.
 //
-// - Smooth (alpha_u = alpha_v = 0): a mirror, weight R F(|cos theta_o|), a delta lobe.
+// - Smooth (alpha_u = alpha_v = 0): a mirror, weight R F(|cos theta_o|), a delta lobe
+//   (specular-inl.h, which bsdf_sample runs; conductor_sample takes the rough lobe only).
 // - Rough: Cook-Torrance with the microfacet distribution (Walter et al. 2007, "Microfacet
 //   Models for Refraction through Rough Surfaces", eq. 20):
 //   f cos_i = R F(o.h) D(h) G2(o, i) / (4 cos_o), h = (o + i) / |o + i|, sampled by the

@@ -19,6 +19,14 @@ HWY_BEFORE_NAMESPACE();
 namespace wavetrace {
 namespace HWY_NAMESPACE {
 
+// The relative index a direction of cosine cos_o to the normal meets at a dielectric of index
+// eta (the side below over the side above): eta from above, where it enters the material,
+// 1 / eta from below.
+template <class L>
+HWY_INLINE typename L::F SeenEta(typename L::F eta, typename L::F cos_o) {
+    return L::Select(cos_o > L::Set(0.0f), eta, L::Set(1.0f) / eta);
+}
+
 // Unpolarized Fresnel reflectance for light arriving at cos_i > 0 on a dielectric of relative
 // index eta (the mean of the s and p polarizations); 1 under total internal reflection.
 template <class L>
@@ -99,7 +107,7 @@ HWY_INLINE typename L::F RoughDielectricEval(const MicrofacetLanes<L>& md,
     const F zero = L::Set(0.0f), one = L::Set(1.0f);
     const auto below = wo.z < zero;
     const F side = L::Select(below, L::Neg(one), one);
-    const F eta_seen = L::Select(wo.z > zero, eta, one / eta);
+    const F eta_seen = SeenEta<L>(eta, wo.z);
     F p;
     const F f = RoughDielectricUpper<L>(md, eta_seen, {wo.x, wo.y, wo.z * side},
                                         {wi.x, wi.y, wi.z * side}, &p);
@@ -130,7 +138,7 @@ HWY_INLINE DielectricSample<L> RoughDielectricSample(const MicrofacetLanes<L>& m
     using F = typename L::F;
     const F zero = L::Set(0.0f), one = L::Set(1.0f);
     const F side = L::Select(wo.z < zero, L::Neg(one), one);
-    const F eta_seen = L::Select(wo.z > zero, eta, one / eta);
+    const F eta_seen = SeenEta<L>(eta, wo.z);
     const V3<F> o{wo.x, wo.y, wo.z * side};
     const V3<F> m = MicrofacetVisibleNormal<L>(md, o, u1, u2);
     const F cos_om = Dot(o, m);

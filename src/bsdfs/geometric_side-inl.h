@@ -25,6 +25,17 @@ HWY_INLINE typename L::M CrossesGeometricSurface(V3<typename L::F> wo,
     return Dot(wo, ng) * Dot(wi, ng) < L::Set(0.0f);
 }
 
+// Where a sample wi from wo fails the geometric-side test: a transmission (`transmits`) must
+// cross the geometric surface, a reflection must stay on wo's side.
+template <class L>
+HWY_INLINE typename L::M WrongGeometricSide(V3<typename L::F> wo,
+                                            V3<typename L::F> wi,
+                                            V3<typename L::F> ng,
+                                            typename L::M transmits) {
+    const typename L::M crosses = CrossesGeometricSurface<L>(wo, wi, ng);
+    return L::Or(L::AndNot(transmits, crosses), L::AndNot(crosses, transmits));
+}
+
 }  // namespace HWY_NAMESPACE
 }  // namespace wavetrace
 HWY_AFTER_NAMESPACE();

@@ -10,10 +10,13 @@
 #define WAVETRACE_BSDFS_GLOSSY_INL_H_
 #endif
 
+#include "bsdfs/bsdf.h"
 #include "bsdfs/conductor-inl.h"
 #include "bsdfs/dielectric-inl.h"
+#include "bsdfs/lane_lobe.h"
 #include "bsdfs/metal-inl.h"
 #include "bsdfs/metallic_roughness-inl.h"
+#include "bsdfs/metallic_roughness.h"
 #include "math/lanes-inl.h"
 
 HWY_BEFORE_NAMESPACE();
@@ -49,6 +52,27 @@ struct LaneBsdf {
         return {albedo, alpha, f0, metallic, transmission, clearcoat, coat_alpha, one_sided};
     }
 };
+
+// The one-lane view of a lane BSDF b (is_lane_bsdf).
+inline LaneBsdf<OneLane> to_lanes(const BsdfParams& b) {
+    return {to_lanes(b.albedo),
+            b.alpha,
+            to_lanes(lane_eta(b)),
+            to_lanes(b.conductor_k),
+            b.distribution == Microfacet::Beckmann,
+            schlick_f0(b.eta),
+            b.metallic,
+            b.transmission,
+            b.clearcoat,
+            b.clearcoat_alpha,
+            b.one_sided,
+            b.kind == MaterialKind::Metal,
+            b.kind == MaterialKind::Conductor,
+            b.kind == MaterialKind::Dielectric,
+            b.kind == MaterialKind::MetallicRoughness,
+            b.kind == MaterialKind::Isotropic,
+            b.is_delta()};
+}
 
 // The shading frame about the unit normal ns, and w in it.
 template <class L>

@@ -31,6 +31,12 @@ inline bool is_lane_bsdf(const BsdfParams& b) {
     }
 }
 
+// The index of refraction the lane formulas read (LaneBsdf::eta): a conductor's eta, a
+// dielectric's index in every channel.
+inline Color lane_eta(const BsdfParams& b) {
+    return b.kind == MaterialKind::Dielectric ? Color(b.eta) : b.conductor_eta;
+}
+
 // The lobes of the BSDFs the lane formulas take (is_lane_bsdf), as int32 rows of the
 // wavefront's lane blocks (kernels/lane_kernels.h).
 enum class LaneLobe : int32_t {

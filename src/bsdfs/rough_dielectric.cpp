@@ -6,22 +6,14 @@ namespace wavetrace {
 namespace lanes = HWY_NAMESPACE;
 using lanes::OneLane;
 
-namespace {
-
-lanes::MicrofacetLanes<OneLane> dielectric_lanes(const BsdfParams& b) {
-    return {b.distribution == Microfacet::Beckmann, b.alpha, b.alpha_v};
-}
-
-}  // namespace
-
 Color rough_dielectric_eval(const BsdfParams& b, Vec3 wo, Vec3 wi, float* pdf) {
     return Color(lanes::RoughDielectricEval<OneLane>(
-        dielectric_lanes(b), b.eta, lanes::to_lanes(wo), lanes::to_lanes(wi), pdf));
+        lanes::to_lanes(microfacet_of(b)), b.eta, lanes::to_lanes(wo), lanes::to_lanes(wi), pdf));
 }
 
 BsdfSample rough_dielectric_sample(const BsdfParams& b, Vec3 wo, float u_lobe, float u1, float u2) {
     const lanes::DielectricSample<OneLane> r = lanes::RoughDielectricSample<OneLane>(
-        dielectric_lanes(b), b.eta, lanes::to_lanes(wo), u_lobe, u1, u2);
+        lanes::to_lanes(microfacet_of(b)), b.eta, lanes::to_lanes(wo), u_lobe, u1, u2);
     BsdfSample s;
     if (!r.valid) return s;
     s.wi = lanes::to_vec3(r.wi);

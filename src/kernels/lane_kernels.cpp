@@ -646,9 +646,9 @@ void direct_weights(Strategy strategy,
 }
 
 void GlossyRows::set(size_t row, const BsdfParams& b) {
-    const bool dielectric = b.kind == MaterialKind::Dielectric;
+    const Color e = lane_eta(b);
     for (int a = 0; a < 3; ++a) {
-        eta[a][row] = dielectric ? b.eta : b.conductor_eta[a];
+        eta[a][row] = e[a];
         k[a][row] = b.conductor_k[a];
     }
     beckmann[row] = b.distribution == Microfacet::Beckmann ? 1 : 0;

@@ -14,6 +14,7 @@
 #include "math/lanes-inl.h"
 #include "microfacets/beckmann-inl.h"
 #include "microfacets/ggx-inl.h"
+#include "microfacets/microfacet.h"
 #include "wavetrace/math/constants.h"
 
 HWY_BEFORE_NAMESPACE();
@@ -25,6 +26,11 @@ struct MicrofacetLanes {
     typename L::M beckmann;          // else GGX
     typename L::F alpha_u, alpha_v;  // > 0
 };
+
+// The one-lane view of the distribution d.
+inline MicrofacetLanes<OneLane> to_lanes(const MicrofacetDistribution& d) {
+    return {d.kind == Microfacet::Beckmann, d.alpha_u, d.alpha_v};
+}
 
 // D(m): the density of microfacet normals per unit projected area (the integral of D(m) m.z
 // over the hemisphere is 1); 0 for m.z <= 0.

@@ -5,20 +5,12 @@
 namespace wavetrace {
 namespace lanes = HWY_NAMESPACE;
 
-namespace {
-
-lanes::MicrofacetLanes<lanes::OneLane> one_lane(const MicrofacetDistribution& d) {
-    return {d.kind == Microfacet::Beckmann, d.alpha_u, d.alpha_v};
-}
-
-}  // namespace
-
 float MicrofacetDistribution::d(Vec3 m) const {
-    return lanes::MicrofacetD(one_lane(*this), lanes::to_lanes(m));
+    return lanes::MicrofacetD(lanes::to_lanes(*this), lanes::to_lanes(m));
 }
 
 float MicrofacetDistribution::lambda(Vec3 w) const {
-    return lanes::MicrofacetLambda(one_lane(*this), lanes::to_lanes(w));
+    return lanes::MicrofacetLambda(lanes::to_lanes(*this), lanes::to_lanes(w));
 }
 
 float MicrofacetDistribution::g1(Vec3 w) const {
@@ -37,7 +29,7 @@ float MicrofacetDistribution::visible_pdf(Vec3 wo, Vec3 m) const {
 
 Vec3 MicrofacetDistribution::sample_visible(Vec3 wo, float u1, float u2) const {
     return lanes::to_vec3(
-        lanes::MicrofacetVisibleNormal(one_lane(*this), lanes::to_lanes(wo), u1, u2));
+        lanes::MicrofacetVisibleNormal(lanes::to_lanes(*this), lanes::to_lanes(wo), u1, u2));
 }
 
 }  // namespace wavetrace

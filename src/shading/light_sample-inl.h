@@ -181,10 +181,9 @@ HWY_INLINE VertexLightSample<L> SampleTowards(const LightSampleVertex<L>& v,
     // (eval_world; a reflecting lobe is zero through the shading surface); in a medium, the
     // phase function's f = albedo / (4 pi), the density of a uniform direction.
     if (v.geometric_side_test) {
-        const auto crosses = CrossesGeometricSurface<L>(v.wo, r.wi, v.ng);
         const auto transmits = L::And(L::Or(v.bsdf.dielectric, v.bsdf.metallic_roughness),
                                       Dot(v.wo, v.ns) * Dot(r.wi, v.ns) < zero);
-        ok = L::AndNot(L::Or(L::AndNot(transmits, crosses), L::AndNot(crosses, transmits)), ok);
+        ok = L::AndNot(WrongGeometricSide<L>(v.wo, r.wi, v.ng, transmits), ok);
     }
     V3<F> f{zero, zero, zero};
     F pdf_bsdf = zero;

@@ -5,7 +5,6 @@
 
 #include "bsdfs/bump_terminator.h"
 #include "bsdfs/geometric_side-inl.h"
-#include "bsdfs/metallic_roughness.h"
 #include "bsdfs/thin_dielectric.h"
 #include "media/medium_flight-inl.h"
 #include "sampling/bounce_dims.h"
@@ -28,29 +27,6 @@ namespace lanes = HWY_NAMESPACE;
 using lanes::OneLane;
 
 namespace {
-
-// The lane formulas' view of the BSDF of a lane vertex (is_lane_vertex).
-lanes::LaneBsdf<OneLane> lane_bsdf(const BsdfParams& b) {
-    using lanes::to_lanes;
-    const bool dielectric = b.kind == MaterialKind::Dielectric;
-    return {to_lanes(b.albedo),
-            b.alpha,
-            to_lanes(dielectric ? Color(b.eta) : b.conductor_eta),
-            to_lanes(b.conductor_k),
-            b.distribution == Microfacet::Beckmann,
-            schlick_f0(b.eta),
-            b.metallic,
-            b.transmission,
-            b.clearcoat,
-            b.clearcoat_alpha,
-            b.one_sided,
-            b.kind == MaterialKind::Metal,
-            b.kind == MaterialKind::Conductor,
-            dielectric,
-            b.kind == MaterialKind::MetallicRoughness,
-            b.kind == MaterialKind::Isotropic,
-            b.is_delta()};
-}
 
 // Frame::from_normal, inlined here: it runs at every vertex.
 Frame frame_from_normal(Vec3 n) {
@@ -150,14 +126,13 @@ bool one_sample_continuation(Strategy strategy, const Vertex& v, const LightSet&
 // would transmit it (a rough dielectric, a metallic-roughness surface with transmission).
 Color eval_world(const Vertex& v, Vec3 wo, Vec3 wi, float* pdf) {
     using lanes::to_lanes;
-    const bool crosses =
-        lanes::CrossesGeometricSurface<OneLane>(to_lanes(wo), to_lanes(wi), to_lanes(v.ng));
     Vec3 lo = v.frame.to_local(wo), li = v.frame.to_local(wi);
     const bool transmits = (v.bsdf.kind == MaterialKind::Dielectric ||
                             v.bsdf.kind == MaterialKind::MetallicRoughness ||
                             v.bsdf.kind == MaterialKind::Principled) &&
                            lo.z * li.z < 0.0f;
-    if (v.geometric_side_test && crosses != transmits) {
+    if (v.geometric_side_test &&
+        lanes::WrongGeometricSide<OneLane>(to_lanes(wo), to_lanes(wi), to_lanes(v.ng), transmits)) {
         *pdf = 0.0f;
         return {};
     }
@@ -206,11 +181,10 @@ Continuation sample_continuation(Strategy strategy,
         if (!s.valid) return c;
         c.wi = v.frame.to_world(s.wi);
         // Reflection must stay on wo's side of the geometric surface, transmission cross it.
-        if (v.on_surface() && v.geometric_side_test) {
-            const bool crosses = lanes::CrossesGeometricSurface<OneLane>(
-                lanes::to_lanes(wo), lanes::to_lanes(c.wi), lanes::to_lanes(v.ng));
-            if (crosses != s.transmitted) return c;
-        }
+        if (v.on_surface() && v.geometric_side_test &&
+            lanes::WrongGeometricSide<OneLane>(lanes::to_lanes(wo), lanes::to_lanes(c.wi),
+                                               lanes::to_lanes(v.ng), s.transmitted))
+            return c;
         c.weight = s.weight * bump_shadowing(v.unbent, v.frame.n, v.bump_alpha2, c.wi);
         c.pdf_bsdf = s.pdf;
         c.delta = s.delta;
@@ -292,8 +266,8 @@ DirectSample next_event(const Scene& scene,
         return sample_direct(scene, lights, v, wo, choice, u.light_u, u.light_v);
     using lanes::to_lanes, lanes::to_vec3;
     const lanes::LightSampleVertex<OneLane> lv{
-        to_lanes(v.p),     to_lanes(v.ng), to_lanes(v.frame.n), to_lanes(wo),
-        lane_bsdf(v.bsdf), u.light_u,      u.light_v,           v.geometric_side_test};
+        to_lanes(v.p),           to_lanes(v.ng), to_lanes(v.frame.n), to_lanes(wo),
+        lanes::to_lanes(v.bsdf), u.light_u,      u.light_v,           v.geometric_side_test};
     const size_t k = size_t(planar >= 0 ? planar : sphere);
     auto fetch = [&](const std::vector<float>& column) { return column[k]; };
     const lanes::LightPoint<OneLane> point =
@@ -447,7 +421,7 @@ PathStep continue_path(const Scene& scene,
                                             to_lanes(v.ng),
                                             to_lanes(v.frame.n),
                                             to_lanes(wo),
-                                            lane_bsdf(v.bsdf),
+                                            lanes::to_lanes(v.bsdf),
                                             to_lanes(beta),
                                             u.lobe,
                                             u.bsdf_u1,
@@ -476,8 +450,7 @@ PathStep continue_path(const Scene& scene,
     step.eta_scale = eta_scale;
     if (c.transmitted && (v.bsdf.kind == MaterialKind::Dielectric ||
                           (v.bsdf.kind == MaterialKind::Principled && !v.bsdf.principled.thin))) {
-        // The relative index the refraction crossed: into the material from its front.
-        const float eta = dot(wo, v.frame.n) > 0.0f ? v.bsdf.eta : 1.0f / v.bsdf.eta;
+        const float eta = lanes::SeenEta<OneLane>(v.bsdf.eta, dot(wo, v.frame.n));
         step.eta_scale *= eta * eta;
     }
     const lanes::Roulette<OneLane> rr = lanes::RussianRoulette<OneLane>(

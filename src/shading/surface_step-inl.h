@@ -95,14 +95,11 @@ HWY_INLINE StepResult<L> FinishStep(const StepVertex<L>& v,
     r.pdf = pdf;
     r.transmitted = transmitted;
     r.delta = L::Not(L::All());
-    if (v.geometric_side_test) {
-        const auto crosses = CrossesGeometricSurface<L>(v.wo, wi, v.ng);
-        ok = L::AndNot(L::Or(L::AndNot(transmitted, crosses), L::AndNot(crosses, transmitted)), ok);
-    }
+    if (v.geometric_side_test)
+        ok = L::AndNot(WrongGeometricSide<L>(v.wo, wi, v.ng, transmitted), ok);
     r.eta_scale = v.eta_scale;
     if (const auto refracted = L::And(transmitted, v.bsdf.dielectric); L::Any(refracted)) {
-        const F one = L::Set(1.0f), ior = v.bsdf.eta.x;
-        const F eta = L::Select(Dot(v.wo, v.ns) > L::Set(0.0f), ior, one / ior);
+        const F eta = SeenEta<L>(v.bsdf.eta.x, Dot(v.wo, v.ns));
         r.eta_scale = L::Select(refracted, v.eta_scale * (eta * eta), v.eta_scale);
     }
     const Roulette<L> rr = RussianRoulette<L>(v.beta * weight * r.eta_scale, v.u_rr, v.roulette);
