@@ -385,6 +385,57 @@ HWY_INLINE hn::Vec<D> LoadColumn(D d, const float* column, size_t k, size_t n) {
     return hn::Load(d, rows);
 }
 
+// The environment map's light points of rows [0, n), of the vectors at k where wanted(k), from
+// the columns u1(k), u2(k) and select_prob(k): EnvironmentLightPoint's, by stages. Every
+// vector's row of the map is found before any vector's column, and every column before the
+// directions and radiances, so that the vectors' cache misses (a row's guide and sums, its
+// texels) overlap where one vector's chain of dependent gathers would wait on each in turn.
+struct EnvironmentPoints {
+    alignas(64) float wi[3][kShadeChunk], radiance[3][kShadeChunk];
+    alignas(64) float pdf[kShadeChunk];
+    alignas(64) int32_t valid[kShadeChunk];
+};
+template <class D, class Wanted, class U1, class U2, class SelectProb>
+HWY_INLINE void EnvironmentPointsByStage(D d,
+                                         const EnvironmentView& e,
+                                         const Distribution2DTables& t,
+                                         size_t n,
+                                         const Wanted& wanted,
+                                         const U1& u1,
+                                         const U2& u2,
+                                         const SelectProb& select_prob,
+                                         EnvironmentPoints* out) {
+    using L = FloatLanes<D>;
+    const hn::RebindToSigned<D> di;
+    const size_t N = hn::Lanes(d);
+    HWY_ALIGN float u[kShadeChunk], v[kShadeChunk], pdf_uv[kShadeChunk];
+    HWY_ALIGN int32_t row[kShadeChunk];
+    for (size_t k = 0; k < n; k += N) {
+        if (!wanted(k)) continue;
+        hn::Vec<D> vk;
+        hn::Vec<decltype(di)> rk;
+        hn::Store(SampleMarginal<L>(t, u2(k), &vk, &rk), d, pdf_uv + k);
+        hn::Store(vk, d, v + k);
+        hn::Store(rk, di, row + k);
+    }
+    for (size_t k = 0; k < n; k += N) {
+        if (!wanted(k)) continue;
+        hn::Vec<D> uk;
+        const hn::Vec<D> pdf_u = SampleConditional<L>(t, hn::Load(di, row + k), u1(k), &uk);
+        hn::Store(hn::Mul(hn::Load(d, pdf_uv + k), pdf_u), d, pdf_uv + k);
+        hn::Store(uk, d, u + k);
+    }
+    for (size_t k = 0; k < n; k += N) {
+        if (!wanted(k)) continue;
+        const LightPoint<L> p = EnvironmentLightPointAt<L>(
+            e, hn::Load(d, u + k), hn::Load(d, v + k), hn::Load(d, pdf_uv + k), select_prob(k));
+        Store3(d, p.wi, out->wi, k);
+        Store3(d, p.radiance, out->radiance, k);
+        hn::Store(p.pdf, d, out->pdf + k);
+        hn::Store(hn::VecFromMask(di, hn::RebindMask(di, p.valid)), di, out->valid + k);
+    }
+}
+
 size_t SampleLights(LightSampleBlock* b,
                     const PlanarEmitterColumns* planars,
                     const SphereEmitterColumns* spheres,
@@ -405,6 +456,16 @@ size_t SampleLights(LightSampleBlock* b,
     PadTail<float>({b->select_prob}, n, Padded(n, N));
     PadTail<int32_t>({b->lobe, b->planar, b->sphere, b->environment}, n, Padded(n, N));
     PadGlossyTail(b->glossy, n, Padded(n, N));
+    const auto environment_at = [&](size_t k) {
+        return hn::RebindMask(d, hn::Ne(hn::Load(di, b->environment + k), hn::Zero(di)));
+    };
+    EnvironmentPoints on_map;
+    EnvironmentPointsByStage(
+        d, *environment, environment_tables, n,
+        [&](size_t k) { return !hn::AllFalse(d, environment_at(k)); },
+        [&](size_t k) { return LoadColumn(d, q.u1.data() + at, k, n); },
+        [&](size_t k) { return LoadColumn(d, q.u2.data() + at, k, n); },
+        [&](size_t k) { return hn::Load(d, b->select_prob + k); }, &on_map);
     size_t s = first_shadow;
     for (size_t k = 0; k < n; k += N) {
         auto column = [&](const std::vector<float>& c) {
@@ -421,8 +482,7 @@ size_t SampleLights(LightSampleBlock* b,
         const auto sphere = hn::Load(di, b->sphere + k);
         const auto has_planar = hn::RebindMask(d, hn::Gt(planar, hn::Set(di, -1)));
         const auto has_sphere = hn::RebindMask(d, hn::Gt(sphere, hn::Set(di, -1)));
-        const auto has_environment =
-            hn::RebindMask(d, hn::Ne(hn::Load(di, b->environment + k), hn::Zero(di)));
+        const auto has_environment = environment_at(k);
         const auto has_light = hn::Or(hn::Or(has_planar, has_sphere), has_environment);
         if (hn::AllFalse(d, has_light)) continue;
         const LobeMasks<D> lobes = LobesAt(d, b->lobe, k);
@@ -457,10 +517,12 @@ size_t SampleLights(LightSampleBlock* b,
             point = any_planar ? SelectLightPoint<L>(has_sphere, on_sphere, point) : on_sphere;
         }
         if (!hn::AllFalse(d, has_environment)) {
-            const LightPoint<L> on_map = EnvironmentLightPoint<L>(
-                *environment, environment_tables, u1, u2, select_prob);
-            point = any_planar || any_sphere ? SelectLightPoint<L>(has_environment, on_map, point)
-                                           : on_map;
+            const LightPoint<L> map{
+                hn::RebindMask(d, hn::Ne(hn::Load(di, on_map.valid + k), hn::Zero(di))),
+                Load3(d, on_map.wi, k), hn::Set(d, kInfinity), hn::Load(d, on_map.pdf + k),
+                Load3(d, on_map.radiance, k)};
+            point =
+                any_planar || any_sphere ? SelectLightPoint<L>(has_environment, map, point) : map;
         }
         const VertexLightSample<L> r = SampleTowards(v, point);
         // The rows that append, packed to the queue's next entries in row order (the rows past
@@ -507,20 +569,21 @@ void EnvironmentLightPoints(EnvironmentPointBlock* b,
                             const EnvironmentView* environment,
                             Distribution2DTables tables) {
     using D = hn::CappedTag<float, kShadeChunk>;
-    using L = FloatLanes<D>;
     const D d;
-    const size_t N = hn::Lanes(d);
     const size_t n = b->n;
     if (n == 0) return;
-    PadTail<float>({b->u1, b->u2, b->select_prob}, n, Padded(n, N));
-    for (size_t k = 0; k < n; k += N) {
-        const LightPoint<L> p =
-            EnvironmentLightPoint<L>(*environment, tables, hn::Load(d, b->u1 + k),
-                                     hn::Load(d, b->u2 + k), hn::Load(d, b->select_prob + k));
-        Store3(d, p.wi, b->wi, k);
-        Store3(d, p.radiance, b->radiance, k);
-        hn::Store(p.pdf, d, b->pdf + k);
+    PadTail<float>({b->u1, b->u2, b->select_prob}, n, Padded(n, hn::Lanes(d)));
+    EnvironmentPoints points;
+    EnvironmentPointsByStage(
+        d, *environment, tables, n, [](size_t) { return true; },
+        [&](size_t k) { return hn::Load(d, b->u1 + k); },
+        [&](size_t k) { return hn::Load(d, b->u2 + k); },
+        [&](size_t k) { return hn::Load(d, b->select_prob + k); }, &points);
+    for (int a = 0; a < 3; ++a) {
+        std::copy(points.wi[a], points.wi[a] + n, b->wi[a]);
+        std::copy(points.radiance[a], points.radiance[a] + n, b->radiance[a]);
     }
+    std::copy(points.pdf, points.pdf + n, b->pdf);
 }
 
 void EscapeRays(EscapeBlock* b,

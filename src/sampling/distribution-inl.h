@@ -69,21 +69,38 @@ HWY_INLINE typename L::F SampleSums(const float* sums,
     return EntryDensity<L>(before, after, total, n);
 }
 
-// A sample (u, v) in [0, 1)^2 of the distribution from the uniform u1, u2: v from the
-// marginal, then u from v's row. Returns the density on the unit square.
+// The two steps of a sample (u, v) in [0, 1)^2 of the distribution from the uniform u1, u2: v
+// from the marginal, its density, and the row it falls in; then u from that row, its density.
+// A caller with many samples may run the first step for all of them before the second, so that
+// their rows' cache misses overlap.
+template <class L>
+HWY_INLINE typename L::F SampleMarginal(const Distribution2DTables& t,
+                                        typename L::F u2,
+                                        typename L::F* v,
+                                        typename L::I* row) {
+    return SampleSums<L>(t.marginal, L::SetI(0), t.nv, t.marginal_guide, L::SetI(0), t.gv, u2, v,
+                         row);
+}
+template <class L>
+HWY_INLINE typename L::F SampleConditional(const Distribution2DTables& t,
+                                           typename L::I row,
+                                           typename L::F u1,
+                                           typename L::F* u) {
+    typename L::I column;
+    return SampleSums<L>(t.conditional, L::MulI(row, L::SetI(t.nu + 1)), t.nu, t.conditional_guide,
+                         L::MulI(row, L::SetI(t.gu + 1)), t.gu, u1, u, &column);
+}
+
+// Both steps; returns the density on the unit square.
 template <class L>
 HWY_INLINE typename L::F SampleDistribution2D(const Distribution2DTables& t,
                                               typename L::F u1,
                                               typename L::F u2,
                                               typename L::F* u,
                                               typename L::F* v) {
-    typename L::I row, column;
-    const typename L::F pdf_v = SampleSums<L>(t.marginal, L::SetI(0), t.nv, t.marginal_guide,
-                                              L::SetI(0), t.gv, u2, v, &row);
-    const typename L::F pdf_u =
-        SampleSums<L>(t.conditional, L::MulI(row, L::SetI(t.nu + 1)), t.nu, t.conditional_guide,
-                      L::MulI(row, L::SetI(t.gu + 1)), t.gu, u1, u, &column);
-    return pdf_v * pdf_u;
+    typename L::I row;
+    const typename L::F pdf_v = SampleMarginal<L>(t, u2, v, &row);
+    return pdf_v * SampleConditional<L>(t, row, u1, u);
 }
 
 // The entry of n that x in [0, 1) falls in (0 for x below 0 or not a number).

@@ -20,19 +20,19 @@ HWY_BEFORE_NAMESPACE();
 namespace wavetrace {
 namespace HWY_NAMESPACE {
 
-// A direction to the map from u1, u2: (u, v) from the texels' distribution, its direction, the
-// radiance there, and the solid-angle density p(u, v) / Jacobian times the selection
-// probability; valid where that density is finite and positive and radiance arrives.
+// The direction to the map at its sample (u, v) of density pdf_uv on the unit square
+// (SampleDistribution2D's), the radiance there, and the solid-angle density pdf_uv / Jacobian
+// times the selection probability; valid where that density is finite and positive and
+// radiance arrives.
 template <class L>
-HWY_INLINE LightPoint<L> EnvironmentLightPoint(const EnvironmentView& e,
-                                               const Distribution2DTables& t,
-                                               typename L::F u1,
-                                               typename L::F u2,
-                                               typename L::F select_prob) {
+HWY_INLINE LightPoint<L> EnvironmentLightPointAt(const EnvironmentView& e,
+                                                 typename L::F u,
+                                                 typename L::F v,
+                                                 typename L::F pdf_uv,
+                                                 typename L::F select_prob) {
     using F = typename L::F;
     const F zero = L::Set(0.0f);
-    F u, v, jacobian;
-    const F pdf_uv = SampleDistribution2D<L>(t, u1, u2, &u, &v);
+    F jacobian;
     LightPoint<L> r;
     r.wi = EnvironmentDirection<L>(e, u, v, &jacobian);
     r.dist = L::Set(kInfinity);
@@ -41,6 +41,19 @@ HWY_INLINE LightPoint<L> EnvironmentLightPoint(const EnvironmentView& e,
     r.valid = L::And(L::And(jacobian > zero, L::IsFinite(r.pdf)), r.pdf > zero);
     r.valid = L::And(r.valid, MaxComponent<L>(r.radiance) > zero);
     return r;
+}
+
+// A direction to the map from u1, u2: (u, v) from the texels' distribution, then as
+// EnvironmentLightPointAt.
+template <class L>
+HWY_INLINE LightPoint<L> EnvironmentLightPoint(const EnvironmentView& e,
+                                               const Distribution2DTables& t,
+                                               typename L::F u1,
+                                               typename L::F u2,
+                                               typename L::F select_prob) {
+    typename L::F u, v;
+    const typename L::F pdf_uv = SampleDistribution2D<L>(t, u1, u2, &u, &v);
+    return EnvironmentLightPointAt<L>(e, u, v, pdf_uv, select_prob);
 }
 
 // The solid-angle density with which EnvironmentLightPoint produces the direction at the map's
