@@ -184,7 +184,7 @@ struct LambertianRows {
             v.push_back(seg.vertex);
             wo.push_back(seg.wo);
             beta.push_back(Color(0.8f));
-            u.push_back(vertex_samples(Sampler{c.config.seed}, p, 0, 1));
+            u.push_back(vertex_samples(Sampler{c.config.seed}, p, 0, 1, true));
             pixel.push_back(p);
             bounce.push_back(1);
             x.push_back(float(p % uint32_t(c.config.width)));
@@ -229,11 +229,11 @@ void BM_VertexSamples(benchmark::State& st, bool lanes, SamplerKind kind) {
     SampleBlock block;
     for (auto _ : st) {
         if (lanes) {
-            draw_vertex_samples(sampler, 0, r.pixel.data(), r.bounce.data(), n, false, block);
+            draw_vertex_samples(sampler, 0, r.pixel.data(), r.bounce.data(), n, true, false, block);
             benchmark::DoNotOptimize(block);
         } else {
             for (size_t k = 0; k < n; ++k)
-                benchmark::DoNotOptimize(vertex_samples(sampler, r.pixel[k], 0, r.bounce[k]));
+                benchmark::DoNotOptimize(vertex_samples(sampler, r.pixel[k], 0, r.bounce[k], true));
         }
     }
     st.SetItemsProcessed(st.iterations() * n);

@@ -176,7 +176,7 @@ TEST(Kernels, ShadeQueuesALightSampleAndTheEmissionFoundAndContinues) {
     ASSERT_EQ(found.light_samples, 1u);
     const SurfaceHit s = surface_at(w.scene, Ray{o, {0, -1, 0}}, hit_at(w.q.hits, 0));
     const Vertex v = surface_vertex(w.scene, s, {0, 1, 0});
-    const VertexSamples u = vertex_samples(Sampler{w.config.seed}, 10, sample, 0);
+    const VertexSamples u = vertex_samples(Sampler{w.config.seed}, 10, sample, 0, true);
     const LightSampleQueue& ls = w.q.light_samples;
     EXPECT_EQ(ls.path[0], 0u);
     EXPECT_EQ(WAVETRACE_XYZ_AT(ls, p, 0), v.p);
@@ -222,7 +222,7 @@ TEST(Kernels, LightSampleAppendsTheMegakernelsShadowRay) {
     ASSERT_EQ(shadows, 1u);
     const SurfaceHit s = surface_at(w.scene, Ray{o, {0, -1, 0}}, hit_at(w.q.hits, 0));
     const Vertex v = surface_vertex(w.scene, s, {0, 1, 0});
-    const VertexSamples u = vertex_samples(Sampler{w.config.seed}, 10, sample, 0);
+    const VertexSamples u = vertex_samples(Sampler{w.config.seed}, 10, sample, 0, true);
     const DirectSample d = next_event(w.scene, *w.lights, w.config.estimator, v, {0, 1, 0}, u);
     ASSERT_TRUE(d.valid);
     EXPECT_EQ(w.q.shadows.path[0], 0u);

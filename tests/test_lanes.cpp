@@ -303,26 +303,28 @@ TEST(Lanes, VertexSamplesAreTheScalarOnesOnEverySimdTarget) {
     }
     for (int64_t target : wide_simd_targets()) {
         use_wide_simd_target(target);
-        for (SamplerKind kind :
-             {SamplerKind::Independent, SamplerKind::Sobol, SamplerKind::ZSobol}) {
-            SCOPED_TRACE(std::string(wide_simd_target()) + " " + to_string(kind));
-            const Sampler sampler{42, kind, 37, 23, 3};
-            SampleBlock block;
-            draw_vertex_samples(sampler, 17, pixel, bounce, n, true, block);
-            for (size_t k = 0; k < n; ++k) {
-                const VertexSamples one = vertex_samples(sampler, pixel[k], 17, bounce[k]);
-                const VertexSamples lanes = block.at(k);
-                ASSERT_EQ(std::memcmp(&one, &lanes, sizeof one), 0) << "row " << k;
-                ASSERT_TRUE(same_bits(
-                    one.light_select,
-                    sample_1d(sampler, pixel[k], 17, bounce_dim(bounce[k], kDimLightSelect))));
-                // The optical depth of the segment the vertex starts: segment_flight's.
-                const float u = sample_1d(sampler, pixel[k], 17,
-                                          bounce_dim(bounce[k] + 1, kDimMediumDistance));
-                ASSERT_TRUE(same_bits(block.next_flight[k], sample_free_flight(1.0f, u)))
-                    << "row " << k;
+        for (SamplerKind kind : {SamplerKind::Independent, SamplerKind::Sobol, SamplerKind::ZSobol})
+            for (bool one_sample : {true, false}) {
+                SCOPED_TRACE(std::string(wide_simd_target()) + " " + to_string(kind) +
+                             (one_sample ? " one-sample pairs" : ""));
+                const Sampler sampler{42, kind, 37, 23, 3};
+                SampleBlock block;
+                draw_vertex_samples(sampler, 17, pixel, bounce, n, one_sample, true, block);
+                for (size_t k = 0; k < n; ++k) {
+                    const VertexSamples one =
+                        vertex_samples(sampler, pixel[k], 17, bounce[k], one_sample);
+                    const VertexSamples lanes = block.at(k);
+                    ASSERT_EQ(std::memcmp(&one, &lanes, sizeof one), 0) << "row " << k;
+                    ASSERT_TRUE(same_bits(
+                        one.light_select,
+                        sample_1d(sampler, pixel[k], 17, bounce_dim(bounce[k], kDimLightSelect))));
+                    // The optical depth of the segment the vertex starts: segment_flight's.
+                    const float u = sample_1d(sampler, pixel[k], 17,
+                                              bounce_dim(bounce[k] + 1, kDimMediumDistance));
+                    ASSERT_TRUE(same_bits(block.next_flight[k], sample_free_flight(1.0f, u)))
+                        << "row " << k;
+                }
             }
-        }
     }
     use_wide_simd_target(0);
 }

@@ -175,17 +175,23 @@ TEST(Samplers, ValuesArePureFunctionsInTheUnitInterval) {
 }
 
 // The engines draw a vertex's dimensions by pairs (SampleDimPair): the same values as one at a
-// time (SampleDim, sample_1d), field by field.
+// time (SampleDim, sample_1d), field by field; the strategies that read no one-sample pair get
+// 0 there and the same values elsewhere.
 TEST(Samplers, PairsDrawnTogetherEqualEachDimensionAlone) {
-    for (SamplerKind kind : {SamplerKind::Independent, SamplerKind::Sobol, SamplerKind::ZSobol}) {
-        const Sampler s{11, kind, 64, 48, 5};
-        for (uint32_t i = 0; i < 300; ++i) {
-            const uint32_t pixel = i * 7717, sample = i % 37;
-            const int bounce = static_cast<int>(i % 9);
-            const VertexSamples v = vertex_samples(s, pixel, sample, bounce);
-            auto u = [&](BounceDim d) { return sample_1d(s, pixel, sample, bounce_dim(bounce, d)); };
-            const VertexSamples alone = vertex_samples_of(u);
-            ASSERT_EQ(std::memcmp(&v, &alone, sizeof v), 0) << to_string(kind) << " " << i;
+    for (SamplerKind kind : {SamplerKind::Independent, SamplerKind::Sobol, SamplerKind::ZSobol})
+        for (bool one_sample : {true, false}) {
+            const Sampler s{11, kind, 64, 48, 5};
+            for (uint32_t i = 0; i < 300; ++i) {
+                const uint32_t pixel = i * 7717, sample = i % 37;
+                const int bounce = static_cast<int>(i % 9);
+                const VertexSamples v = vertex_samples(s, pixel, sample, bounce, one_sample);
+                auto u = [&](BounceDim d) {
+                    if (!one_sample && one_sample_pair(d / 2)) return 0.0f;
+                    return sample_1d(s, pixel, sample, bounce_dim(bounce, d));
+                };
+                const VertexSamples alone = vertex_samples_of(u);
+                ASSERT_EQ(std::memcmp(&v, &alone, sizeof v), 0)
+                    << to_string(kind) << " " << one_sample << " " << i;
+            }
         }
-    }
 }

@@ -78,7 +78,8 @@ Color ray_color(PathContext<Tracer>& ctx,
         }
         const Vertex& v = seg.vertex;
         if (!may_continue(cfg, v, depth)) return emission;
-        VertexSamples u = vertex_samples(ctx.sampler, ctx.pixel, ctx.sample, bounce);
+        VertexSamples u = vertex_samples(ctx.sampler, ctx.pixel, ctx.sample, bounce,
+                                         reads_one_sample_pairs(cfg.strategy));
         beta = beta * flight_weight;
 
         // Next-event estimation: a shadow ray to a light sample, weighted for the strategy.

@@ -101,6 +101,7 @@ void DrawVertexSamples(const Sampler& sampler,
                        const uint32_t* pixel,
                        const uint16_t* bounce,
                        size_t n,
+                       bool one_sample,
                        bool flights,
                        SampleBlock* out) {
     using D64 = hn::ScalableTag<uint64_t>;
@@ -123,6 +124,11 @@ void DrawVertexSamples(const Sampler& sampler,
         hn::Store(SampleDim<L>(state, hn::Add(first, hn::Set(d64, kDimLightSelect))), df,
                   out->u[kDimLightSelect] + k);
         for (uint32_t d = kDimLightU; d < kBounceDims; d += 2) {
+            if (!one_sample && one_sample_pair(d / 2)) {
+                hn::Store(hn::Zero(df), df, out->u[d] + k);
+                hn::Store(hn::Zero(df), df, out->u[d + 1] + k);
+                continue;
+            }
             hn::Vec<decltype(df)> a, b;
             SampleDimPair<L>(state, hn::Add(first, hn::Set(d64, d)), &a, &b);
             hn::Store(a, df, out->u[d] + k);
@@ -658,9 +664,11 @@ void draw_vertex_samples(const Sampler& sampler,
                          const uint32_t* pixel,
                          const uint16_t* bounce,
                          size_t n,
+                         bool one_sample,
                          bool flights,
                          SampleBlock& out) {
-    HWY_DYNAMIC_DISPATCH(DrawVertexSamples)(sampler, sample, pixel, bounce, n, flights, &out);
+    HWY_DYNAMIC_DISPATCH(DrawVertexSamples)
+    (sampler, sample, pixel, bounce, n, one_sample, flights, &out);
 }
 
 void medium_segments(MediumSegmentBlock& b, size_t n) {

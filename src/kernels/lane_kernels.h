@@ -63,14 +63,15 @@ struct SampleBlock {
     }
 };
 
-// Rows k < n of `out`: vertex_samples(sampler, pixel[k], sample, bounce[k]), bit for bit, and
-// with `flights` (a scene with media) segment_flight(scene, sampler, pixel[k], sample,
-// bounce[k] + 1).
+// Rows k < n of `out`: vertex_samples(sampler, pixel[k], sample, bounce[k], one_sample), bit
+// for bit, and with `flights` (a scene with media) segment_flight(scene, sampler, pixel[k],
+// sample, bounce[k] + 1).
 void draw_vertex_samples(const Sampler& sampler,
                          uint32_t sample,
                          const uint32_t* pixel,
                          const uint16_t* bounce,
                          size_t n,
+                         bool one_sample,
                          bool flights,
                          SampleBlock& out);
 

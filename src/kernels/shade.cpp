@@ -547,7 +547,8 @@ ShadeCounts shade(const WaveInputs& in,
         c.end = std::min(end, c.begin + kShadeChunk);
         std::fill(keep.begin() + c.begin, keep.begin() + c.end, uint8_t(0));
         draw_vertex_samples(in.sampler, sample, &paths.pixel[c.begin], &paths.bounce[c.begin],
-                            c.end - c.begin, flights, c.samples);
+                            c.end - c.begin, reads_one_sample_pairs(in.estimator.strategy), flights,
+                            c.samples);
         if (media_in_lanes) trace_media(in, hits, paths, rays, c);
         if (prefetch) prefetch_chunk_vertices(in.scene, hits, c.begin, c.end, records);
         classify(in, hits, paths, c);

@@ -10,8 +10,13 @@
 
 namespace wavetrace {
 
-// u[d] = dimension bounce_dim(bounce, d) of path (pixel, sample), for d < kBounceDims.
-void draw_bounce_dims(
-    const Sampler& sampler, uint32_t pixel, uint32_t sample, int bounce, float u[kBounceDims]);
+// u[d] = dimension bounce_dim(bounce, d) of path (pixel, sample), for d < kBounceDims; without
+// one_sample, 0 in the pairs only the one-sample strategies read (one_sample_pair).
+void draw_bounce_dims(const Sampler& sampler,
+                      uint32_t pixel,
+                      uint32_t sample,
+                      int bounce,
+                      bool one_sample,
+                      float u[kBounceDims]);
 
 }  // namespace wavetrace

@@ -40,6 +40,16 @@ enum BounceDim : uint32_t {
 };
 static_assert(kCameraDims % 2 == 0 && kBounceDims % 2 == 0 && kDimLightU % 2 == 0,
               "the pairs the Sobol sampler draws together stay aligned");
+static_assert(kDimDirectionU % 2 == 0 && kDimTechnique % 2 == 0 &&
+                  kDimDirectionSelect == kDimTechnique + 1,
+              "the one-sample strategies' dimensions fill two pairs of their own");
+
+// Whether only the one-sample strategies (Strategy::Mixture and ::Light) read bounce dimension
+// pair p, dimensions 2p and 2p + 1: their light- or uniformly-sampled direction, and their
+// technique and light choice. The others' vertices leave these two pairs undrawn.
+constexpr bool one_sample_pair(uint32_t p) {
+    return p == kDimDirectionU / 2 || p == kDimTechnique / 2;
+}
 
 constexpr uint32_t bounce_dim(int bounce, BounceDim d) {
     return kCameraDims + static_cast<uint32_t>(bounce) * kBounceDims + d;

@@ -306,7 +306,13 @@ struct VertexSamples {
     ContinuationSamples continuation;
     float roulette;
 };
-VertexSamples vertex_samples(const Sampler& sampler, uint32_t pixel, uint32_t sample, int bounce);
+// Whether the strategy reads the pairs of dimensions only one-sample strategies read
+// (one_sample_pair); the others' vertices draw them not, and see 0 there.
+inline bool reads_one_sample_pairs(Strategy strategy) {
+    return strategy == Strategy::Mixture || strategy == Strategy::Light;
+}
+VertexSamples vertex_samples(
+    const Sampler& sampler, uint32_t pixel, uint32_t sample, int bounce, bool one_sample);
 // The same from u(d), the value of bounce dimension d: the one mapping of dimensions to fields,
 // for vertex_samples and for the rows the wavefront draws in SIMD lanes.
 template <class DimValue>
