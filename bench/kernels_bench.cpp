@@ -1,7 +1,7 @@
 // Micro-benchmarks of the wavefront's kernels (Google Benchmark), on waves captured from real
 // scenes: one wave of camera rays is generated and traced once, and each benchmark runs one
 // stage over that captured state, restoring its inputs between iterations. Items per second
-// are queue entries per second. The lane kernels (kernels/lane_kernels.h) are measured against
+// are queue entries per second. The lane kernels (blocks/lane_kernels.h) are measured against
 // their one-lane instances, what the megakernel runs, on the same rows: what SIMD buys per
 // formula.
 #include <benchmark/benchmark.h>
@@ -10,8 +10,8 @@
 #include <memory>
 #include <string>
 
+#include "blocks/lane_kernels.h"
 #include "kernels/kernels.h"
-#include "kernels/lane_kernels.h"
 #include "shading/lane_routes.h"
 #include "shading/path_vertex.h"
 #include "wavetrace/wavetrace.h"

@@ -9,7 +9,7 @@
 #include <cstring>
 
 #include "accel/wide_bvh.h"
-#include "kernels/lane_kernels.h"
+#include "blocks/lane_kernels.h"
 #include "math/erf-inl.h"
 #include "math/lanes-inl.h"
 #include "sampling/distribution-inl.h"

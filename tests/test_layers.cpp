@@ -34,6 +34,7 @@ const std::vector<std::string> kLayers = {
     "accel",        // the BVH: build, wide layout, traversal, primitive tests
     "shading",      // what both engines share: surfaces, lights, MIS, media, path vertices
     "queues",       // the wavefront's structure-of-arrays queues
+    "blocks",       // a chunk's lane blocks (SoA rows) and the SIMD kernels over them
     "kernels",      // the wavefront's kernels
     "engines",      // both engines, the AOV renderer, render()
     "embree",       // Embree as the reference intersector (tests and benchmarks only)

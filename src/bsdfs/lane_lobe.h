@@ -38,7 +38,7 @@ inline Color lane_eta(const BsdfParams& b) {
 }
 
 // The lobes of the BSDFs the lane formulas take (is_lane_bsdf), as int32 rows of the
-// wavefront's lane blocks (kernels/lane_kernels.h).
+// wavefront's lane blocks (blocks/lane_kernels.h).
 enum class LaneLobe : int32_t {
     Lambertian,
     RoughMetal,

@@ -2,7 +2,7 @@
 // Schlick's Fresnel with the albedo as F0, visible-normal sampling), written once over lanes:
 // bsdf_eval / bsdf_pdf / bsdf_sample run the one-lane instances for both engines; the
 // wavefront's shade kernel runs them over the metal vertices of a chunk
-// (kernels/lane_kernels.cpp). Also what the other reflecting lobes share: Schlick's
+// (blocks/lane_kernels.cpp). Also what the other reflecting lobes share: Schlick's
 // approximation, the mirror about a microfacet normal, the reflection sample. Directions are in
 // the shading frame, z along the normal. Per-target header, see math/lanes-inl.h.
 #if defined(WAVETRACE_BSDFS_METAL_INL_H_) == defined(HWY_TARGET_TOGGLE)

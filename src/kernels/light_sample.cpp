@@ -5,8 +5,8 @@
 // first.
 #include <algorithm>
 
+#include "blocks/lane_kernels.h"
 #include "kernels/kernels.h"
-#include "kernels/lane_kernels.h"
 #include "scene/material_lookup.h"
 #include "shading/lane_routes.h"
 #include "shading/path_vertex.h"

@@ -1,7 +1,7 @@
 #include <algorithm>
 
+#include "blocks/lane_kernels.h"
 #include "kernels/kernels.h"
-#include "kernels/lane_kernels.h"
 #include "shading/path_vertex.h"
 #include "util/check.h"
 

@@ -3,8 +3,8 @@
 // and written back at the end of the chunk (see kernels.h for what shade does).
 #include <algorithm>
 
+#include "blocks/lane_kernels.h"
 #include "kernels/kernels.h"
-#include "kernels/lane_kernels.h"
 #include "shading/lane_routes.h"
 #include "shading/path_vertex.h"
 #include "util/check.h"

@@ -1,7 +1,7 @@
 // A path's free flight through a homogeneous medium along one ray segment: whether it scatters
 // before the segment ends, and where; written once over lanes. scatters_in_medium (both
 // engines' resolve_segment) runs the one-lane instance; the wavefront's shade kernel runs it
-// over the segments of a chunk (kernels/lane_kernels.cpp). Per-target header, see
+// over the segments of a chunk (blocks/lane_kernels.cpp). Per-target header, see
 // math/lanes-inl.h.
 #if defined(WAVETRACE_MEDIA_MEDIUM_FLIGHT_INL_H_) == defined(HWY_TARGET_TOGGLE)
 #ifdef WAVETRACE_MEDIA_MEDIUM_FLIGHT_INL_H_

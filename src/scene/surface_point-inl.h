@@ -1,7 +1,7 @@
 // The point and normals of a hit on a quad, a triangle or a sphere: what surface_at computes for
 // such hits (the rest of a SurfaceHit, uv and material, stays there), written once over lanes.
 // surface_at runs the one-lane instance for both engines; the wavefront's shade kernel runs it
-// over the Lambertian and metal hits of a chunk (kernels/lane_kernels.cpp), so that
+// over the Lambertian and metal hits of a chunk (blocks/lane_kernels.cpp), so that
 // their vertices never go through the scalar code. Per-target header, see math/lanes-inl.h.
 #if defined(WAVETRACE_SCENE_SURFACE_POINT_INL_H_) == defined(HWY_TARGET_TOGGLE)
 #ifdef WAVETRACE_SCENE_SURFACE_POINT_INL_H_

@@ -6,7 +6,7 @@
 // Unweighted: the MIS weight is the caller's (the megakernel's loop, the wavefront's
 // mis_combine). The megakernel runs it with OneLane inside next_event; the wavefront's
 // light_sample kernel runs it over the queued vertices whose sample picked such a light
-// (kernels/lane_kernels.cpp). Per-target header, see math/lanes-inl.h.
+// (blocks/lane_kernels.cpp). Per-target header, see math/lanes-inl.h.
 #if defined(WAVETRACE_SHADING_LIGHT_SAMPLE_INL_H_) == defined(HWY_TARGET_TOGGLE)
 #ifdef WAVETRACE_SHADING_LIGHT_SAMPLE_INL_H_
 #undef WAVETRACE_SHADING_LIGHT_SAMPLE_INL_H_

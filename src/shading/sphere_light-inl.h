@@ -3,7 +3,7 @@
 // with the radiance arriving from it and the density of its direction. Written once over lanes:
 // LightSet::sample takes the point (SphereConePoint) for both engines, next_event the whole
 // sample at Lambertian and metal vertices (SphereLightPoint), and the wavefront's shade kernel
-// runs it a vector of vertices at a time (kernels/lane_kernels.cpp). Per-target header, see
+// runs it a vector of vertices at a time (blocks/lane_kernels.cpp). Per-target header, see
 // math/lanes-inl.h.
 #if defined(WAVETRACE_SHADING_SPHERE_LIGHT_INL_H_) == defined(HWY_TARGET_TOGGLE)
 #ifdef WAVETRACE_SHADING_SPHERE_LIGHT_INL_H_

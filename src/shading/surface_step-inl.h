@@ -3,7 +3,7 @@
 // glossy lobe's / uniform sphere), with Russian roulette and the next ray's origin: what
 // continue_path does at such a vertex, written once over lanes. The megakernel runs
 // it with OneLane inside continue_path; the wavefront's shade kernel runs it over the surface
-// vertices of a chunk, a vector of paths at a time (kernels/lane_kernels.cpp). Per-target
+// vertices of a chunk, a vector of paths at a time (blocks/lane_kernels.cpp). Per-target
 // header, see math/lanes-inl.h.
 #if defined(WAVETRACE_SHADING_SURFACE_STEP_INL_H_) == defined(HWY_TARGET_TOGGLE)
 #ifdef WAVETRACE_SHADING_SURFACE_STEP_INL_H_

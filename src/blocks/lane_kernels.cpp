@@ -1,6 +1,6 @@
 #undef HWY_TARGET_INCLUDE
-#define HWY_TARGET_INCLUDE "kernels/lane_kernels.cpp"
-#include "kernels/lane_kernels.h"
+#define HWY_TARGET_INCLUDE "blocks/lane_kernels.cpp"
+#include "blocks/lane_kernels.h"
 
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/highway.h>

@@ -148,7 +148,7 @@ struct VertexBlock {
     alignas(64) float u_lobe[kShadeChunk], u1[kShadeChunk], u2[kShadeChunk], u_rr[kShadeChunk];
     alignas(64) int32_t roulette[kShadeChunk];
     alignas(64) float eta_scale[kShadeChunk];  // the path's (path_vertex.h), for roulette
-    uint32_t entry[kShadeChunk];  // the wave entry of each row
+    uint32_t entry[kShadeChunk];               // the wave entry of each row
     size_t n = 0;
     bool geometric_side_test = true;  // Scene::geometric_side_test, for every row
     // out: the next ray, the throughput factor and the BSDF density, for rows with alive = 1;
