@@ -4,14 +4,19 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
+#include <fstream>
 #include <memory>
+#include <string>
+#include <type_traits>
 #include <vector>
 
 #include "accel/bvh_layout.h"
 #include "accel/intersect.h"
 #include "sampling/sampler.h"
 #include "test_paths.h"
+#include "util/huge_pages.h"
 #include "wavetrace/accel/bvh.h"
 #include "wavetrace/loaders/load_scene.h"
 #include "wavetrace/scene/camera.h"
@@ -543,4 +548,43 @@ TEST(Bvh, PacketsPayWhileTheTreeIsCacheSized) {
     const Bvh bvh = Bvh::build(grid);
     EXPECT_GT(bvh.stats().wide_bytes, size_t(16) << 20);
     EXPECT_FALSE(bvh.packets_pay());
+}
+
+namespace {
+
+// The VmFlags of the mapping that holds p (/proc/self/smaps), empty where none does.
+std::string mapping_flags(const void* p) {
+    std::ifstream smaps("/proc/self/smaps");
+    const uintptr_t a = reinterpret_cast<uintptr_t>(p);
+    bool inside = false;
+    for (std::string line; std::getline(smaps, line);) {
+        unsigned long lo = 0, hi = 0;
+        if (std::sscanf(line.c_str(), "%lx-%lx ", &lo, &hi) == 2)
+            inside = a >= lo && a < hi;
+        else if (inside && line.rfind("VmFlags:", 0) == 0)
+            return line.substr(8);
+    }
+    return "";
+}
+
+}  // namespace
+
+// Arrays of 2 MiB or more start on a huge-page boundary in a mapping advised for huge pages
+// (the "hg" flag), and keep their contents as they grow; smaller ones keep their type's
+// alignment. The wide BVH's arrays are such arrays.
+TEST(Bvh, LargeArraysAskForHugePages) {
+    std::ifstream probe("/proc/self/smaps");
+    if (!probe) GTEST_SKIP() << "no /proc/self/smaps";
+    std::vector<uint32_t, HugePageAllocator<uint32_t>> big;
+    for (uint32_t i = 0; i < (3u << 20) / 4; ++i) big.push_back(i);
+    EXPECT_EQ(reinterpret_cast<uintptr_t>(big.data()) % kHugePageBytes, 0u);
+    EXPECT_NE(mapping_flags(big.data()).find(" hg"), std::string::npos)
+        << mapping_flags(big.data());
+    for (uint32_t i = 0; i < big.size(); i += 4099) ASSERT_EQ(big[i], i);
+    std::vector<WideNode, HugePageAllocator<WideNode>> small(3);
+    EXPECT_EQ(reinterpret_cast<uintptr_t>(small.data()) % alignof(WideNode), 0u);
+    static_assert(
+        std::is_same_v<decltype(WideBvh::nodes)::allocator_type, HugePageAllocator<WideNode>>);
+    static_assert(std::is_same_v<decltype(WideBvh::triangles)::allocator_type,
+                                 HugePageAllocator<TriangleBlock>>);
 }

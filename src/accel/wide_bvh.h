@@ -12,6 +12,7 @@
 
 #include "accel/binary_bvh.h"
 #include "scene/opacity.h"
+#include "util/huge_pages.h"
 #include "wavetrace/accel/bvh.h"
 #include "wavetrace/math/ray.h"
 #include "wavetrace/scene/scene.h"
@@ -82,11 +83,14 @@ struct WideBvh {
     // The scene when any of its materials has an alpha mask: traversals then drop the hits that
     // cut_away (scene/opacity.h) cuts away. Null otherwise, and the hits are taken unseen.
     const Scene* masks = nullptr;
-    std::vector<WideNode> nodes;         // nodes[0] is the root
-    std::vector<LeafBlock> leaf_blocks;  // of the leaves of several kinds
-    std::vector<TriangleBlock> triangles;
-    std::vector<QuadBlock> quads;
-    std::vector<SphereBlock> spheres;
+    // What rays walk, in huge pages where the system lends them (util/huge_pages.h).
+    template <class T>
+    using Array = std::vector<T, HugePageAllocator<T>>;
+    Array<WideNode> nodes;         // nodes[0] is the root
+    Array<LeafBlock> leaf_blocks;  // of the leaves of several kinds
+    Array<TriangleBlock> triangles;
+    Array<QuadBlock> quads;
+    Array<SphereBlock> spheres;
 
     size_t bytes() const {
         return nodes.size() * sizeof(WideNode) + leaf_blocks.size() * sizeof(LeafBlock) +
