@@ -4,36 +4,23 @@
 #include <cmath>
 
 #include "bsdfs/fresnel.h"
+#include "bsdfs/glossy-inl.h"
 #include "bsdfs/metallic_roughness-inl.h"
 
 namespace wavetrace {
 namespace lanes = HWY_NAMESPACE;
 using lanes::OneLane;
-namespace {
-
-lanes::MetallicRoughnessLanes<OneLane> one_lane(const BsdfParams& b) {
-    return {lanes::to_lanes(b.albedo),
-            b.alpha,
-            schlick_f0(b.eta),
-            b.metallic,
-            b.transmission,
-            b.clearcoat,
-            b.clearcoat_alpha,
-            b.one_sided};
-}
-
-}  // namespace
 
 Color metallic_roughness_eval(const BsdfParams& b, Vec3 wo, Vec3 wi, float* pdf) {
     return lanes::to_vec3(
-        lanes::MetallicRoughnessEval(one_lane(b), lanes::to_lanes(wo), lanes::to_lanes(wi), pdf));
+        lanes::MetallicRoughnessEval(lanes::to_lanes(b).as_metallic_roughness(), lanes::to_lanes(wo), lanes::to_lanes(wi), pdf));
 }
 
 BsdfSample metallic_roughness_sample(const BsdfParams& b, Vec3 wo, float u_lobe, float u1,
                                      float u2) {
     BsdfSample s;
     if (wo.z == 0.0f || (b.one_sided && wo.z < 0.0f)) return s;
-    const lanes::MetallicRoughnessLanes<OneLane> mr = one_lane(b);
+    const lanes::MetallicRoughnessLanes<OneLane> mr = lanes::to_lanes(b).as_metallic_roughness();
     const float side = wo.z < 0.0f ? -1.0f : 1.0f;
     const Vec3 o{wo.x, wo.y, wo.z * side};
     const lanes::MetallicRoughnessLobes<OneLane> p =
