@@ -140,8 +140,8 @@ void BM_MisCombine(benchmark::State& st, const char* name) {
     Captured& c = scene(name);
     WaveQueues q = c.shaded;
     for (auto _ : st)
-        mis_combine(c.config.estimator, q.emissions, {0, c.found.emissions}, q.shadows,
-                    q.transmittance, {0, c.shadows}, q.paths);
+        mis_combine(c.config.estimator, mis_heuristics(c.config.estimator, *c.lights), q.emissions,
+                    {0, c.found.emissions}, q.shadows, q.transmittance, {0, c.shadows}, q.paths);
     st.SetItemsProcessed(st.iterations() * (c.shadows + c.found.emissions));
 }
 

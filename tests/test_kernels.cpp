@@ -201,7 +201,7 @@ TEST(Kernels, ShadeQueuesALightSampleAndTheEmissionFoundAndContinues) {
     ASSERT_EQ(found.emissions, 1u);
     EXPECT_EQ(w.q.emissions.path[0], 1u);
     EXPECT_EQ(w.q.emissions.radiance[0], Color(4, 3, 2));
-    EXPECT_EQ(w.q.emissions.counts_fully[0], 1);
+    EXPECT_EQ(w.q.emissions.flags[0], kCountsFully);
     EXPECT_EQ(w.q.keep[1], 0);
     EXPECT_EQ(w.q.paths.radiance[1], Color(0.0f));  // mis_combine adds it
     // The background is black: nothing, and the path ends.
@@ -258,25 +258,38 @@ TEST(Kernels, MisCombineWeightsEachContributionAndAddsItToItsPath) {
         Estimator est = w.config.estimator;
         est.strategy = st;
         est.heuristic = MisHeuristic::Power;
-        generate(*w.in, 0, 0, 0, 4, w.q.paths, w.q.rays);
+        // Light at infinity by the balance heuristic, as under a compensated environment map.
+        const MisHeuristics heuristics{MisHeuristic::Power, MisHeuristic::Balance};
+        generate(*w.in, 0, 0, 0, 6, w.q.paths, w.q.rays);
         w.q.paths.radiance[2] = Color(1.0f);
-        // Shadow rays with light and BSDF densities 2 and 1 (power heuristic: 4/5), one blocked.
+        // Shadow rays with light and BSDF densities 2 and 1 (power heuristic: 4/5), one blocked,
+        // one to infinity (balance heuristic: 2/3).
         store_shadow_ray(w.q.shadows, 0, {{}, {}, 1.0f, Color(2, 4, 8), 2.0f, 1.0f, 2});
         store_shadow_ray(w.q.shadows, 1, {{}, {}, 1.0f, Color(1, 1, 1), 2.0f, 1.0f, 0});
-        const Color tr[] = {Color(0.5f, 0.25f, 1.0f), Color(0.0f)};  // per channel
-        // Emission found by a BSDF-sampled segment (densities 1 and 3: power weight 1/10) and by
-        // a camera ray (full weight).
+        store_shadow_ray(w.q.shadows, 2, {{}, {}, kInfinity, Color(3, 3, 3), 2.0f, 1.0f, 4});
+        const Color tr[] = {Color(0.5f, 0.25f, 1.0f), Color(0.0f), Color(1.0f)};  // per channel
+        // Emission found by a BSDF-sampled segment (densities 1 and 3: power weight 1/10), by
+        // a camera ray (full weight), and by a segment that left the scene (balance: 1/4).
         w.q.emissions.store(0, {3, Color(10, 20, 30), 1.0f, 3.0f, 0});
-        w.q.emissions.store(1, {1, Color(5, 5, 5), 0.0f, 0.0f, 1});
-        mis_combine(est, w.q.emissions, {0, 2}, w.q.shadows, tr, {0, 2}, w.q.paths);
-        const float ws = st == Strategy::Mis ? mis_weight(MisHeuristic::Power, 2.0f, 1.0f) : 1.0f;
-        const float we = st == Strategy::Mis ? mis_weight(MisHeuristic::Power, 1.0f, 3.0f) : 0.0f;
-        EXPECT_NEAR(ws, st == Strategy::Mis ? 0.8f : 1.0f, 1e-6f);
+        w.q.emissions.store(1, {1, Color(5, 5, 5), 0.0f, 0.0f, kCountsFully});
+        w.q.emissions.store(2, {5, Color(8, 8, 8), 1.0f, 3.0f, kAtInfinity});
+        mis_combine(est, heuristics, w.q.emissions, {0, 3}, w.q.shadows, tr, {0, 3}, w.q.paths);
+        const bool mis = st == Strategy::Mis;
+        const float ws = mis ? mis_weight(MisHeuristic::Power, 2.0f, 1.0f) : 1.0f;
+        const float we = mis ? mis_weight(MisHeuristic::Power, 1.0f, 3.0f) : 0.0f;
+        EXPECT_NEAR(ws, mis ? 0.8f : 1.0f, 1e-6f);
+        EXPECT_NEAR(we, mis ? 0.1f : 0.0f, 1e-6f);
         EXPECT_EQ(w.q.paths.radiance[0], Color(0.0f));  // blocked
         EXPECT_EQ(w.q.paths.radiance[1], Color(5, 5, 5));
         EXPECT_EQ(w.q.paths.radiance[2],
                   Color(1.0f) + Color(2, 4, 8) * (ws * Color(0.5f, 0.25f, 1.0f)));
         EXPECT_EQ(w.q.paths.radiance[3], Color(10, 20, 30) * we);
+        const float ws_inf = mis ? mis_weight(MisHeuristic::Balance, 2.0f, 1.0f) : 1.0f;
+        const float we_inf = mis ? mis_weight(MisHeuristic::Balance, 1.0f, 3.0f) : 0.0f;
+        EXPECT_NEAR(ws_inf, mis ? 2.0f / 3.0f : 1.0f, 1e-6f);
+        EXPECT_NEAR(we_inf, mis ? 0.25f : 0.0f, 1e-6f);
+        EXPECT_EQ(w.q.paths.radiance[4], Color(3, 3, 3) * (ws_inf * Color(1.0f)));
+        EXPECT_EQ(w.q.paths.radiance[5], Color(8, 8, 8) * we_inf);
     }
 }
 

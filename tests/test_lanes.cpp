@@ -700,29 +700,35 @@ TEST(Lanes, MisWeightKeepsItsGuards) {
 
 // Camera rays of a pinhole and of a thin-lens camera: the vector ones are generate_camera_ray's.
 // mis_combine's weights of a queue's shadow rays, a vector at a time: direct_weight's, bit for
-// bit, for every strategy and heuristic, guards included (zero and infinite densities), over
-// lengths that end in a partial vector.
+// bit, for every strategy and pair of heuristics (the second for rays of infinite length),
+// guards included (zero and infinite densities), over lengths that end in a partial vector.
 TEST(Lanes, DirectWeightsAreDirectWeightOnEverySimdTarget) {
     const size_t n = 61;
-    std::vector<float> pl(n), pb(n), w(n);
+    std::vector<float> pl(n), pb(n), tmax(n), w(n);
     for (uint32_t i = 0; i < n; ++i) {
         pl[i] = i % 11 == 0 ? 0.0f : i % 13 == 0 ? kInfinity : 10.0f * sample_1d(4, i, 0, 0);
         pb[i] = i % 7 == 0 ? 0.0f : i % 17 == 0 ? kInfinity : 10.0f * sample_1d(4, i, 0, 1);
+        tmax[i] = i % 3 == 0 ? kInfinity : 1.0f + float(i);
     }
+    const MisHeuristic heuristics[] = {MisHeuristic::Power, MisHeuristic::Balance};
     for (int64_t target : wide_simd_targets()) {
         use_wide_simd_target(target);
         SCOPED_TRACE(wide_simd_target());
         for (Strategy st :
              {Strategy::Bsdf, Strategy::Light, Strategy::Mixture, Strategy::Nee, Strategy::Mis})
-            for (MisHeuristic h : {MisHeuristic::Power, MisHeuristic::Balance})
-                for (size_t m : {n, size_t(3), size_t(0)}) {
-                    std::fill(w.begin(), w.end(), -1.0f);
-                    direct_weights(st, h, pl.data(), pb.data(), m, w.data());
-                    for (size_t k = 0; k < n; ++k)
-                        ASSERT_TRUE(
-                            same_bits(w[k], k < m ? direct_weight(st, h, pl[k], pb[k]) : -1.0f))
-                            << to_string(st) << " row " << k << " of " << m;
-                }
+            for (MisHeuristic h : heuristics)
+                for (MisHeuristic at_infinity : heuristics)
+                    for (size_t m : {n, size_t(3), size_t(0)}) {
+                        std::fill(w.begin(), w.end(), -1.0f);
+                        direct_weights(st, h, at_infinity, pl.data(), pb.data(), tmax.data(), m,
+                                       w.data());
+                        for (size_t k = 0; k < n; ++k) {
+                            const MisHeuristic hk = std::isinf(tmax[k]) ? at_infinity : h;
+                            ASSERT_TRUE(same_bits(
+                                w[k], k < m ? direct_weight(st, hk, pl[k], pb[k]) : -1.0f))
+                                << to_string(st) << " row " << k << " of " << m;
+                        }
+                    }
     }
     use_wide_simd_target(0);
 }

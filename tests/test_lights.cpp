@@ -201,7 +201,8 @@ TEST(Lights, DensityIntegratesToOne) {
 
 // MIS compensation samples a map in proportion to the excess of its radiance over the mean:
 // texels below the mean keep only the floor's density, those above gain; a constant map keeps
-// its plain distribution (it has no excess).
+// its plain distribution (it has no excess). A compensated map's MIS weights are the balance
+// heuristic's.
 TEST(Lights, CompensationSamplesTheExcessOverTheMean) {
     TempDir dir;
     for (LightCase& c : cases(dir)) {
@@ -218,6 +219,14 @@ TEST(Lights, CompensationSamplesTheExcessOverTheMean) {
         EXPECT_GT(compensated.pdf_background(c.scene, dir_of(40, 10)),
                   plain.pdf_background(c.scene, dir_of(40, 10)));
         EXPECT_GT(compensated.pdf_background(c.scene, dir_of(4, 22)), 0.0f);  // the floor
+        // Its MIS weights: the balance heuristic, which the compensation is derived for.
+        Estimator mis;
+        mis.strategy = Strategy::Mis;
+        EXPECT_TRUE(compensated.environment_compensated());
+        EXPECT_FALSE(plain.environment_compensated());
+        EXPECT_EQ(mis_heuristics(mis, compensated).at_infinity, MisHeuristic::Balance);
+        EXPECT_EQ(mis_heuristics(mis, compensated).finite, MisHeuristic::Power);
+        EXPECT_EQ(mis_heuristics(mis, plain).at_infinity, MisHeuristic::Power);
     }
     Scene constant;
     Image grey(8, 4);
@@ -229,6 +238,7 @@ TEST(Lights, CompensationSamplesTheExcessOverTheMean) {
     const Vec3 w = normalize(Vec3{0.3f, 0.5f, -0.2f});
     EXPECT_EQ(LightSet(constant, true).pdf_background(constant, w),
               LightSet(constant).pdf_background(constant, w));
+    EXPECT_FALSE(LightSet(constant, true).environment_compensated());
 }
 
 TEST(Lights, SelectionFollowsPower) {
@@ -287,6 +297,18 @@ TEST(Lights, PdfOfEmissionFoundIsTheSamplersPdf) {
             const DirectSample d = next_event(c.scene, lights, mis, v, ls.wi, vs);
             ASSERT_TRUE(d.valid) << c.name << " " << i;
             EXPECT_NEAR(d.pdf_light, ls.pdf, 1e-4f * ls.pdf) << c.name << " " << i;
+            // Both techniques weigh the direction by one heuristic (the light sample's by its
+            // shadow ray's length, the emission's by the segment's end), so that their weights
+            // sum to 1 for any BSDF density.
+            const MisHeuristics h = mis_heuristics(mis, lights);
+            ASSERT_EQ(std::isinf(d.shadow.tmax), seg.at_infinity) << c.name << " " << i;
+            const float pdf_bsdf = 0.7f * ls.pdf;
+            EXPECT_NEAR(direct_weight(Strategy::Mis, h.of(std::isinf(d.shadow.tmax)), d.pdf_light,
+                                      pdf_bsdf) +
+                            emission_weight(Strategy::Mis, h.of(seg.at_infinity), false, pdf_bsdf,
+                                            seg.emission_pdf_light),
+                        1.0f, 1e-3f)
+                << c.name << " " << i;
             ++compared;
         }
         if (c.name == "quad-behind") {

@@ -612,13 +612,23 @@ void EscapeRays(EscapeBlock* b,
     }
 }
 
-void MisWeights(MisHeuristic h, const float* pdf_a, const float* pdf_b, size_t n, float* out) {
+void MisWeights(MisHeuristic finite,
+                MisHeuristic at_infinity,
+                const float* pdf_a,
+                const float* pdf_b,
+                const float* tmax,
+                size_t n,
+                float* out) {
     using D = hn::CappedTag<float, kShadeChunk>;
     using L = FloatLanes<D>;
     const D d;
     const size_t N = hn::Lanes(d);
     for (size_t k = 0; k < n; k += N) {
-        const auto w = MisWeight<L>(h, LoadColumn(d, pdf_a, k, n), LoadColumn(d, pdf_b, k, n));
+        const auto a = LoadColumn(d, pdf_a, k, n), b = LoadColumn(d, pdf_b, k, n);
+        auto w = MisWeight<L>(finite, a, b);
+        if (at_infinity != finite)
+            w = hn::IfThenElse(hn::IsInf(LoadColumn(d, tmax, k, n)),
+                               MisWeight<L>(at_infinity, a, b), w);
         if (k + N <= n) {
             hn::StoreU(w, d, out + k);
         } else {  // the tail's rows of the last vector
@@ -704,16 +714,18 @@ void escape_rays(EscapeBlock& b, const LightSet& lights, bool with_pdf) {
 }
 
 void direct_weights(Strategy strategy,
-                    MisHeuristic heuristic,
+                    MisHeuristic finite,
+                    MisHeuristic at_infinity,
                     const float* pdf_light,
                     const float* pdf_bsdf,
+                    const float* tmax,
                     size_t n,
                     float* out) {
     if (strategy != Strategy::Mis) {
         std::fill(out, out + n, 1.0f);  // direct_weight's rule
         return;
     }
-    HWY_DYNAMIC_DISPATCH(MisWeights)(heuristic, pdf_light, pdf_bsdf, n, out);
+    HWY_DYNAMIC_DISPATCH(MisWeights)(finite, at_infinity, pdf_light, pdf_bsdf, tmax, n, out);
 }
 
 void GlossyRows::set(size_t row, const BsdfParams& b) {

@@ -276,12 +276,15 @@ struct EscapeBlock {
 // Rows k < b.n of b; with_pdf: their pdf_light too (MIS weighs the radiance).
 void escape_rays(EscapeBlock& b, const LightSet& lights, bool with_pdf);
 
-// out[k] = direct_weight(strategy, heuristic, pdf_light[k], pdf_bsdf[k]) for k < n, bit for bit:
-// the MIS weights a vector at a time.
+// out[k] = direct_weight(strategy, heuristic, pdf_light[k], pdf_bsdf[k]) for k < n, bit for bit,
+// the heuristic `at_infinity` for the rows of infinite tmax[k] and `finite` for the others: the
+// MIS weights a vector at a time.
 void direct_weights(Strategy strategy,
-                    MisHeuristic heuristic,
+                    MisHeuristic finite,
+                    MisHeuristic at_infinity,
                     const float* pdf_light,
                     const float* pdf_bsdf,
+                    const float* tmax,
                     size_t n,
                     float* out);
 

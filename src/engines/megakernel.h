@@ -30,6 +30,7 @@ struct PathContext {
     const Tracer& bvh;
     const LightSet& lights;
     const Estimator& estimator;
+    MisHeuristics heuristics;  // mis_heuristics(estimator, lights)
     Sampler sampler;
     uint32_t pixel;
     uint32_t sample;
@@ -63,7 +64,9 @@ Color ray_color(PathContext<Tracer>& ctx,
         // background, or at an emitter that also reflects).
         const Color emission =
             max_component(seg.emission) > 0.0f
-                ? flight_weight * seg.emission * emission_weight(cfg, prev, seg.emission_pdf_light)
+                ? flight_weight * seg.emission *
+                      emission_weight(cfg.strategy, ctx.heuristics.of(seg.at_infinity),
+                                      prev.counts_fully, prev.pdf_bsdf, seg.emission_pdf_light)
                 : Color(0.0f);
         switch (seg.event) {
             case SegmentEvent::Cross:
@@ -85,7 +88,9 @@ Color ray_color(PathContext<Tracer>& ctx,
         // Next-event estimation: a shadow ray to a light sample, weighted for the strategy.
         Color radiance = emission;
         if (const DirectSample d = next_event(ctx.scene, ctx.lights, cfg, v, seg.wo, u); d.valid) {
-            const float w = direct_weight(cfg.strategy, cfg.heuristic, d.pdf_light, d.pdf_bsdf);
+            const float w =
+                direct_weight(cfg.strategy, ctx.heuristics.of(std::isinf(d.shadow.tmax)),
+                              d.pdf_light, d.pdf_bsdf);
             if (w > 0.0f)
                 radiance +=
                     flight_weight * d.value *
@@ -120,6 +125,7 @@ RenderStats megakernel(const Scene& scene,
     using megakernel_detail::kTile;
     auto start = std::chrono::steady_clock::now();
     LightSet lights(scene, request.estimator.strategy == Strategy::Mis);
+    const MisHeuristics heuristics = mis_heuristics(request.estimator, lights);
     CameraRays camera(scene.camera, request.width, request.height);
     const MediumStack camera_media = media_at(scene, bvh, scene.camera.look_from);
     const bool shadows_walk = wavetrace::shadows_walk(scene);
@@ -143,7 +149,7 @@ RenderStats megakernel(const Scene& scene,
                         const uint32_t pixel = static_cast<uint32_t>(y) * width + x;
                         for (uint32_t sample = first; sample < first + uint32_t(count); ++sample) {
                             megakernel_detail::PathContext<Tracer> ctx{
-                                scene,   bvh,   lights, request.estimator,
+                                scene,   bvh,   lights, request.estimator, heuristics,
                                 sampler, pixel, sample, shadows_walk};
                             Ray ray = generate_camera_ray(camera, sampler, pixel, sample, x, y);
                             Color c = megakernel_detail::ray_color(

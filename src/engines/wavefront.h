@@ -63,6 +63,7 @@ uint64_t run_wave(const WaveInputs& in,
                   Film& film) {
     WT_CHECK_LE(n, q.paths.capacity);
     uint64_t rays = 0;
+    const MisHeuristics heuristics = mis_heuristics(in.estimator, in.lights);
     generate(in, sample, first, 0, n, q.paths, q.rays);
     for (bool camera_rays = true; n > 0; camera_rays = false) {
         if (camera_rays)
@@ -78,8 +79,8 @@ uint64_t run_wave(const WaveInputs& in,
         WT_DCHECK_LE(shadows, n);  // at most one shadow ray per path per bounce
         rays += intersect_shadow(bvh, in, q.shadows, 0, shadows, q.transmittance,
                                  camera_rays ? &q.hits : nullptr);
-        mis_combine(in.estimator, q.emissions, {0, found.emissions}, q.shadows, q.transmittance,
-                    {0, shadows}, q.paths);
+        mis_combine(in.estimator, heuristics, q.emissions, {0, found.emissions}, q.shadows,
+                    q.transmittance, {0, shadows}, q.paths);
         accumulate_film(q.paths, q.keep, 0, n, film);
         const size_t left = compact(q.keep, n, q.paths, q.rays);
         WT_DCHECK_LE(left, n);
@@ -141,6 +142,7 @@ uint64_t run_wave_in_stages(const WaveInputs& in,
     WT_CHECK_LE(n, q.paths.capacity);
     auto& chunk = w.chunks;
     uint64_t rays = 0;
+    const MisHeuristics heuristics = mis_heuristics(in.estimator, in.lights);
     each_chunk(
         n, [&](size_t, size_t b, size_t e) { generate(in, sample, first, b, e, q.paths, q.rays); });
     for (bool camera_rays = true; n > 0; camera_rays = false) {
@@ -169,8 +171,8 @@ uint64_t run_wave_in_stages(const WaveInputs& in,
                                  q.transmittance, camera_rays ? &q.hits : nullptr);
         });
         each_chunk(n, [&](size_t c, size_t b, size_t) {
-            mis_combine(in.estimator, q.emissions, {b, b + chunk[c].found.emissions}, q.shadows,
-                        q.transmittance, {b, b + chunk[c].shadows}, q.paths);
+            mis_combine(in.estimator, heuristics, q.emissions, {b, b + chunk[c].found.emissions},
+                        q.shadows, q.transmittance, {b, b + chunk[c].shadows}, q.paths);
         });
         each_chunk(
             n, [&](size_t, size_t b, size_t e) { accumulate_film(q.paths, q.keep, b, e, film); });

@@ -17,6 +17,7 @@
 #include "kernels/intersect.h"         // intersect(_coherent): closest hit of rays[i] into hits[i]
 #include "kernels/intersect_shadow.h"  // intersect_shadow: transmittance along shadows[i]
 #include "kernels/wave.h"
+#include "shading/mis.h"
 
 namespace wavetrace {
 
@@ -102,8 +103,10 @@ size_t light_sample(const WaveInputs& in,
 
 // Weights and adds to their paths the emission found (entries `found` of emissions) and each
 // shadow ray's contribution times its transmittance (entries `shadowed`): the MIS weights of
-// the strategy (shading/path_vertex.h's emission_weight and direct_weight), computed only here.
+// the strategy (shading/path_vertex.h's emission_weight and direct_weight, by `heuristics`:
+// mis_heuristics'), computed only here.
 void mis_combine(const Estimator& estimator,
+                 MisHeuristics heuristics,
                  const EmissionQueue& emissions,
                  EntryRange found,
                  const ShadowQueue& shadows,

@@ -362,7 +362,9 @@ void resolve_in_scalar(const WaveInputs& in, const HitQueue& hits, Chunk& c, Sha
             WT_DCHECK_LT(out.emission_end, out.emissions.capacity);
             out.emissions.store(out.emission_end++,
                                 {static_cast<uint32_t>(i), beta * seg.emission, prev.pdf_bsdf,
-                                 seg.emission_pdf_light, uint8_t(prev.counts_fully)});
+                                 seg.emission_pdf_light,
+                                 uint8_t((prev.counts_fully ? kCountsFully : 0) |
+                                         (seg.at_infinity ? kAtInfinity : 0))});
         }
         if (seg.event != SegmentEvent::Scatter) continue;
 
@@ -408,10 +410,10 @@ void escape_in_lanes(const WaveInputs& in, Chunk& c, ShadeOutputs& out) {
         if (!(max_component(radiance) > 0.0f)) continue;
         const PreviousVertex prev = previous_vertex(out.paths, i);
         WT_DCHECK_LT(out.emission_end, out.emissions.capacity);
-        out.emissions.store(
-            out.emission_end++,
-            {static_cast<uint32_t>(i), out.paths.beta[i] * radiance, prev.pdf_bsdf,
-             mis && !prev.counts_fully ? b.pdf_light[k] : 0.0f, uint8_t(prev.counts_fully)});
+        out.emissions.store(out.emission_end++,
+                            {static_cast<uint32_t>(i), out.paths.beta[i] * radiance, prev.pdf_bsdf,
+                             mis && !prev.counts_fully ? b.pdf_light[k] : 0.0f,
+                             uint8_t((prev.counts_fully ? kCountsFully : 0) | kAtInfinity)});
     }
 }
 

@@ -9,12 +9,16 @@
 
 namespace wavetrace {
 
+// Bits of an entry's flags: the previous vertex was the camera or could not sample lights (the
+// emission counts fully); the emission is the background's, found by leaving the scene.
+enum EmissionFlags : uint8_t { kCountsFully = 1, kAtInfinity = 2 };
+
 #define WAVETRACE_EMISSION_FIELDS(F)                                                         \
     F(uint32_t, path, "entry of the path queue it belongs to")                               \
     F(Color, radiance, "beta Le: unweighted")                                                \
     F(float, pdf_bsdf, "density with which the previous vertex sampled the segment")         \
     F(float, pdf_light, "density with which its light sample would have (MIS only; else 0)") \
-    F(uint8_t, counts_fully, "previous vertex: camera, or could not sample lights")
+    F(uint8_t, flags, "EmissionFlags")
 
 WAVETRACE_SOA(EmissionQueue, WAVETRACE_EMISSION_FIELDS);
 

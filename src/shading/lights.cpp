@@ -135,6 +135,7 @@ LightSet::LightSet(const Scene& scene, bool mis_compensation) {
                 if (sum >= 0.01 * mean * static_cast<double>(w.size())) {
                     w = std::move(excess);
                     w_mean = sum / static_cast<double>(w.size());
+                    environment_compensated_ = true;
                 }
             }
             for (float& v : w) v += static_cast<float>(1e-3 * w_mean) + 1e-12f;

@@ -112,6 +112,8 @@ class LightSet {
         return has_environment() && choice.index == count_ - 1;
     }
     bool has_environment() const { return background_ && !environment_.empty(); }
+    // Whether the environment map is sampled with MIS compensation (its weights the excess).
+    bool environment_compensated() const { return environment_compensated_; }
     const EnvironmentView& environment_view() const { return environment_view_; }
     Distribution2DTables environment_tables() const { return environment_.tables(); }
 
@@ -155,6 +157,7 @@ class LightSet {
     // Over the environment image's texels: luminance (or its excess over the mean, with MIS
     // compensation) times the texel's solid angle.
     Distribution2D environment_;
+    bool environment_compensated_ = false;
     EnvironmentView environment_view_;
 };
 

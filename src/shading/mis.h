@@ -12,4 +12,15 @@ namespace wavetrace {
 // MisWeight (src/shading/mis-inl.h), which the wavefront's kernels run over SIMD lanes.
 float mis_weight(MisHeuristic h, float pdf_a, float pdf_b);
 
+// The heuristics of a render: the configured one for light at a finite distance; for light at
+// infinity (an environment map's shadow rays have no end; escaping rays find it) the balance
+// heuristic where the map is sampled with MIS compensation, the density derived as the best
+// for that heuristic, whose combination samples the two densities' mixture (Karlík et al.,
+// "MIS compensation", 2019). Directional lights are deltas: weight 1 under either.
+struct MisHeuristics {
+    MisHeuristic finite = MisHeuristic::Power;
+    MisHeuristic at_infinity = MisHeuristic::Power;
+    MisHeuristic of(bool infinite) const { return infinite ? at_infinity : finite; }
+};
+
 }  // namespace wavetrace

@@ -295,11 +295,6 @@ DirectSample next_event(const Scene& scene,
     return d;
 }
 
-float emission_weight(const Estimator& config, const PreviousVertex& prev, float pdf_light) {
-    return emission_weight(config.strategy, config.heuristic, prev.counts_fully, prev.pdf_bsdf,
-                           pdf_light);
-}
-
 bool scatters_in_medium(const Scene& scene,
                         MediumId m,
                         const Ray& ray,
@@ -360,6 +355,7 @@ SegmentResult resolve_segment(const Scene& scene,
                                                 : lights.pdf_background(scene, dir);
     };
     if (!hit.found()) {
+        r.at_infinity = true;
         if (lights.has_environment()) {  // the formula the wavefront's shade runs in lanes
             const bool with_pdf = config.strategy == Strategy::Mis && !prev.counts_fully;
             const lanes::EscapedRay<OneLane> e =

@@ -152,6 +152,13 @@ Continuation sample_continuation(Strategy strategy,
 
 // The strategies' MIS weights (Veach 1997, §9.2), the one place they are decided: the
 // megakernel calls them at each vertex, the wavefront in its mis_combine kernel.
+// The heuristics they weigh by (MisHeuristics, shading/mis.h): the configured one, and at
+// infinity the balance heuristic where the environment map is sampled with MIS compensation.
+inline MisHeuristics mis_heuristics(const Estimator& config, const LightSet& lights) {
+    return {config.heuristic,
+            lights.environment_compensated() ? MisHeuristic::Balance : config.heuristic};
+}
+
 // Weight of emission Le found by a ray whose previous vertex chose it with BSDF density
 // pdf_bsdf, when a light sample from that vertex would have had density pdf_light.
 // `counts_fully`: a camera ray, or the previous vertex could not sample lights (delta lobes).
@@ -180,8 +187,6 @@ struct PreviousVertex {
     float pdf_bsdf = 0.0f;
     bool counts_fully = true;  // camera ray, or a vertex that could not sample lights
 };
-// emission_weight for the segment that left `prev`.
-float emission_weight(const Estimator& config, const PreviousVertex& prev, float pdf_light);
 
 enum class SegmentEvent : uint8_t {
     Scatter,   // the path scatters at `vertex` (a surface or a point in a medium), after adding
@@ -199,6 +204,7 @@ struct SegmentResult {
     // The density with which the previous vertex's light sample would have found it, where the
     // MIS weight needs it (emission_weight; else 0).
     float emission_pdf_light = 0.0f;
+    bool at_infinity = false;  // Emission: the background's, found by leaving the scene
     Ray next;  // Cross: the continuing ray
     // The free flight's weight over this segment, which multiplies all the path finds from
     // here on (the emission above included): 1 but in chromatic media (chromatic_flight).
