@@ -63,7 +63,9 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
     cmd->add_option("--simd", o.simd,
                     "run every kernel on this SIMD target (Highway's name, e.g. AVX2; default: "
                     "the best this CPU runs), to measure what other CPUs get");
-    cmd->add_option("--mis-heuristic", o.heuristic, "MIS weighting heuristic")
+    cmd->add_option("--mis-heuristic", o.heuristic,
+                    "MIS weighting heuristic (an environment map sampled with MIS compensation "
+                    "is weighed by the balance heuristic either way)")
         ->check(CLI::IsMember({"balance", "power"}))
         ->capture_default_str();
     cmd->add_option("--max-depth", o.max_depth,

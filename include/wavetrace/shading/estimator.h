@@ -22,6 +22,8 @@ enum class MisHeuristic { Balance, Power };
 
 struct Estimator {
     Strategy strategy = Strategy::Mis;
+    // For lights at a finite distance; a compensated environment map's is always the balance
+    // heuristic (src/shading/mis.h).
     MisHeuristic heuristic = MisHeuristic::Power;
     int max_depth = 50;  // the most ray segments a path may have
     int rr_depth = 3;    // Russian roulette from this many scattering vertices on
