@@ -6,9 +6,10 @@
 #
 # Renders SCENE with each WAVETRACE binary at SPP samples, seeds 1..SEEDS, two threads, the
 # binaries interleaved seed by seed; prints per binary the median render time, the mean relative
-# MSE (`wavetrace compare`'s) and their efficiency. SIZE=N in the environment renders N x N (the
-# reference must be that size). A reference of our own: `wavetrace render SCENE --spp 4096
-# --sampler sobol --seed 99 -o ref.exr`.
+# MSE (`wavetrace compare`'s) and their efficiency. A WAVETRACE may carry render options after
+# commas (`build/bin/wavetrace,--sampler,independent`) to compare settings of one build.
+# SIZE=N in the environment renders N x N (the reference must be that size). A reference of our
+# own: `wavetrace render SCENE --spp 4096 --sampler sobol --seed 99 -o ref.exr`.
 set -euo pipefail
 [[ $# -ge 5 ]] || { echo "usage: $0 SCENE REFERENCE SPP SEEDS WAVETRACE..." >&2; exit 2; }
 scene=$1 ref=$2 spp=$3 seeds=$4
@@ -19,9 +20,10 @@ size=()
 [[ -n "${SIZE:-}" ]] && size=(--width "$SIZE" --height "$SIZE")
 for seed in $(seq 1 "$seeds"); do
   for i in $(seq 1 $#); do
-    bin=${!i}
-    t=$("$bin" render "$scene" "${size[@]}" --spp "$spp" --seed "$seed" --threads 2 \
-          -o "$work/out.exr" 2>&1 | sed -n 's/.* spp: \([0-9.]*\) s,.*/\1/p')
+    IFS=, read -r -a run <<<"${!i}"
+    bin=${run[0]}
+    t=$("$bin" render "$scene" "${size[@]}" "${run[@]:1}" --spp "$spp" --seed "$seed" \
+          --threads 2 -o "$work/out.exr" 2>&1 | sed -n 's/.* spp: \([0-9.]*\) s,.*/\1/p')
     # compare exits 1 when the images differ, as these do: only its figures are wanted.
     e=$({ "$bin" compare "$work/out.exr" "$ref" 2>&1 || true; } |
           sed -n 's/^rel\. MSE *\([^ ]*\).*/\1/p' | head -1)
