@@ -96,6 +96,75 @@ void DrawCameraRays(const CameraFrame* camera,
     }
 }
 
+#if HWY_TARGET != HWY_SCALAR
+// The Sobol and ZSobol samplers' rows of DrawVertexSamples, two vectors of 64-bit lanes at a
+// time: each pair's hash in 64-bit lanes (SobolPairHash), the rest of its formulas on the
+// hash's words in 32-bit lanes (WordLanes), twice as many to a vector. SampleDim's and
+// SampleDimPair's numbers, bit for bit.
+void DrawSobolVertexSamples(const Sampler& sampler,
+                            uint32_t sample,
+                            const uint32_t* px,
+                            const uint32_t* first_dim,
+                            size_t n,
+                            bool one_sample,
+                            bool flights,
+                            SampleBlock* out) {
+    using D64 = hn::ScalableTag<uint64_t>;
+    using L = HashLanes<D64>;
+    using D32 = hn::Repartition<uint32_t, D64>;
+    using W = WordLanes<D32>;
+    using F = hn::Vec<hn::Rebind<float, D32>>;
+    const D64 d64;
+    const D32 d32;
+    const hn::Rebind<uint32_t, D64> dh;  // a 64-bit vector's lane count of words
+    const hn::Rebind<float, D32> df;
+    const size_t N = hn::Lanes(d64);
+    // The low or high words of the lanes of a, then of b.
+    const auto low = [&](hn::Vec<D64> a, hn::Vec<D64> b) {
+        return hn::ConcatEven(d32, hn::BitCast(d32, b), hn::BitCast(d32, a));
+    };
+    const auto high = [&](hn::Vec<D64> a, hn::Vec<D64> b) {
+        return hn::ConcatOdd(d32, hn::BitCast(d32, b), hn::BitCast(d32, a));
+    };
+    for (size_t k = 0; k < n; k += 2 * N) {
+        const auto s0 = PathState<L>(sampler, hn::Load(dh, px + k), sample);
+        const auto s1 = PathState<L>(sampler, hn::Load(dh, px + k + N), sample);
+        const auto first0 = hn::PromoteTo(d64, hn::Load(dh, first_dim + k));
+        const auto first1 = hn::PromoteTo(d64, hn::Load(dh, first_dim + k + N));
+        const W::U64 reversed_index = sampler.kind == SamplerKind::ZSobol
+                                          ? W::ReverseBits32(low(s0.key, s1.key))
+                                          : W::Set64(ReverseBits32<OneLane>(sample));
+        // Dimensions first + d and first + d + 1 (d even) of every row.
+        const auto pair_dims = [&](uint32_t d, F* a, F* b) {
+            const auto dims = hn::Set(d64, d);
+            const auto h0 = SobolPairHash<L>(s0, hn::ShiftRight<1>(hn::Add(first0, dims)));
+            const auto h1 = SobolPairHash<L>(s1, hn::ShiftRight<1>(hn::Add(first1, dims)));
+            SobolPairDims<W>(SobolPairFromHash<W>(reversed_index, low(h0, h1), high(h0, h1)), a, b);
+        };
+        F a, b;
+        // The light choice alone, the second of its pair (the first, the medium distance,
+        // has been used); then by pairs.
+        static_assert(kDimLightSelect == 1);
+        pair_dims(0, &a, &b);
+        hn::Store(b, df, out->u[kDimLightSelect] + k);
+        for (uint32_t d = kDimLightU; d < kBounceDims; d += 2) {
+            if (!one_sample && one_sample_pair(d / 2)) {
+                hn::Store(hn::Zero(df), df, out->u[d] + k);
+                hn::Store(hn::Zero(df), df, out->u[d + 1] + k);
+                continue;
+            }
+            pair_dims(d, &a, &b);
+            hn::Store(a, df, out->u[d] + k);
+            hn::Store(b, df, out->u[d + 1] + k);
+        }
+        if (flights) {
+            pair_dims(kBounceDims, &a, &b);
+            hn::Store(OpticalDepth<W>(a), df, out->next_flight + k);
+        }
+    }
+}
+#endif
+
 void DrawVertexSamples(const Sampler& sampler,
                        uint32_t sample,
                        const uint32_t* pixel,
@@ -116,6 +185,12 @@ void DrawVertexSamples(const Sampler& sampler,
     PadRows(pixel, n, px);
     for (size_t k = 0; k < kShadeChunk; ++k)
         first_dim[k] = bounce_dim(bounce[k < n ? k : 0], BounceDim(0));
+#if HWY_TARGET != HWY_SCALAR
+    if (sampler.kind != SamplerKind::Independent) {
+        DrawSobolVertexSamples(sampler, sample, px, first_dim, n, one_sample, flights, out);
+        return;
+    }
+#endif
     for (size_t k = 0; k < n; k += N) {
         const auto state = PathState<L>(sampler, hn::Load(d32, px + k), sample);
         const auto first = hn::PromoteTo(d64, hn::Load(d32, first_dim + k));

@@ -184,6 +184,26 @@ struct FloatLanes {
     }
 };
 
+#if HWY_TARGET != HWY_SCALAR
+// The bits of every 32-bit word of x in reverse order: each nibble reversed by a 16-entry
+// byte table, the nibbles of each byte swapped, then the four bytes of each word reversed.
+template <class D>
+HWY_INLINE hn::Vec<D> ReverseWordBits(D d, hn::Vec<D> x) {
+    const hn::Repartition<uint8_t, D> d8;
+    alignas(16) static constexpr uint8_t kNibbles[16] = {0, 8, 4, 12, 2, 10, 6, 14,
+                                                         1, 9, 5, 13, 3, 11, 7, 15};
+    alignas(16) static constexpr uint8_t kBytes[16] = {3,  2,  1, 0, 7,  6,  5,  4,
+                                                       11, 10, 9, 8, 15, 14, 13, 12};
+    const auto table = hn::LoadDup128(d8, kNibbles);
+    const auto low = hn::And(hn::BitCast(d8, x), hn::Set(d8, 0x0f));
+    const auto high = hn::And(hn::BitCast(d8, hn::ShiftRight<4>(x)), hn::Set(d8, 0x0f));
+    const auto swapped = hn::Or(hn::ShiftLeft<4>(hn::BitCast(d, hn::TableLookupBytes(table, low))),
+                                hn::BitCast(d, hn::TableLookupBytes(table, high)));
+    return hn::BitCast(d,
+                       hn::TableLookupBytes(hn::BitCast(d8, swapped), hn::LoadDup128(d8, kBytes)));
+}
+#endif
+
 // 64-bit integer lanes with floats of the same lane count (half the vector width).
 template <class D64>
 struct HashLanes : FloatLanes<hn::Rebind<float, D64>> {
@@ -253,26 +273,13 @@ struct HashLanes : FloatLanes<hn::Rebind<float, D64>> {
         return hn::Add(lo, hn::ShiftLeft<32>(cross));
 #endif
     }
-    // Bits 0..31 in reverse order, of values below 2^32: each nibble reversed by a 16-entry
-    // byte table, the nibbles of each byte swapped, then the four low bytes of each lane
-    // reversed (the high four, zero, stay in place).
+    // Bits 0..31 in reverse order, of values below 2^32 (ReverseWordBits; the high word, zero,
+    // stays zero).
     static HWY_INLINE U64 ReverseBits32(U64 x) {
 #if HWY_TARGET == HWY_SCALAR
         return hn::Set(D64(), OneLane::ReverseBits32(hn::GetLane(x)));
 #else
-        const hn::Repartition<uint8_t, D64> d8;
-        alignas(16) static constexpr uint8_t kNibbles[16] = {0, 8, 4, 12, 2, 10, 6, 14,
-                                                             1, 9, 5, 13, 3, 11, 7, 15};
-        alignas(16) static constexpr uint8_t kBytes[16] = {3,  2,  1,  0,  4,  5,  6,  7,
-                                                           11, 10, 9,  8,  12, 13, 14, 15};
-        const auto table = hn::LoadDup128(d8, kNibbles);
-        const auto low = hn::And(hn::BitCast(d8, x), hn::Set(d8, 0x0f));
-        const auto high = hn::And(hn::BitCast(d8, hn::ShiftRight<4>(x)), hn::Set(d8, 0x0f));
-        const U64 swapped =
-            hn::Or(hn::ShiftLeft<4>(hn::BitCast(D64(), hn::TableLookupBytes(table, low))),
-                   hn::BitCast(D64(), hn::TableLookupBytes(table, high)));
-        return hn::BitCast(D64(), hn::TableLookupBytes(hn::BitCast(d8, swapped),
-                                                      hn::LoadDup128(d8, kBytes)));
+        return ReverseWordBits(D64(), x);
 #endif
     }
     static HWY_INLINE F SmallToFloat(U64 x) {
@@ -280,6 +287,32 @@ struct HashLanes : FloatLanes<hn::Rebind<float, D64>> {
         return hn::ConvertTo(hn::Rebind<float, D64>(), hn::BitCast(di, hn::TruncateTo(D32(), x)));
     }
 };
+
+#if HWY_TARGET != HWY_SCALAR
+// 32-bit words in 32-bit lanes, floats of the same lane count (twice HashLanes' per vector):
+// the operations the sampler's formulas apply to words below 2^32 (sampling/sampler-inl.h's
+// LaineKarras, SobolSecond, ReverseBits32, ToUnit), under HashLanes' names, so that one
+// formula serves 64-bit lanes, one lane and these. (U64 is the word vector here.)
+template <class D32>
+struct WordLanes : FloatLanes<hn::Rebind<float, D32>> {
+    using U64 = hn::Vec<D32>;
+    using typename FloatLanes<hn::Rebind<float, D32>>::F;
+
+    static HWY_INLINE U64 Set64(uint64_t x) { return hn::Set(D32(), uint32_t(x)); }
+    template <int kBits>
+    static HWY_INLINE U64 ShiftRight(U64 x) {
+        return hn::ShiftRight<kBits>(x);
+    }
+    static HWY_INLINE U64 Xor(U64 a, U64 b) { return hn::Xor(a, b); }
+    static HWY_INLINE U64 And64(U64 a, U64 b) { return hn::And(a, b); }
+    static HWY_INLINE U64 Add64(U64 a, U64 b) { return hn::Add(a, b); }
+    static HWY_INLINE U64 MulLow32(U64 a, U64 b) { return hn::Mul(a, b); }
+    static HWY_INLINE U64 ReverseBits32(U64 x) { return ReverseWordBits(D32(), x); }
+    static HWY_INLINE F SmallToFloat(U64 x) {
+        return hn::ConvertTo(hn::Rebind<float, D32>(), hn::BitCast(hn::RebindToSigned<D32>(), x));
+    }
+};
+#endif
 
 // ---- 3-vectors of lanes ----------------------------------------------------------------------
 

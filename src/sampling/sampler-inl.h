@@ -213,20 +213,35 @@ struct SobolPairState {
     typename L::U64 scramble;
 };
 
+// The hash that seeds pair `pair` of a path: its low word the nested scramble of the sample's
+// index, its high word the pair's scrambling seed. ZSobol's pair seeds depend on the seed and the
+// block, not on the pixel: all pixels draw from one scrambled sequence, whose index (its digits
+// shuffled, the path's key) the pair shuffles again as the Sobol sampler shuffles the sample
+// index: blocks stay blocks, and the pairs are decorrelated.
+template <class L>
+HWY_INLINE typename L::U64 SobolPairHash(const SampleState<L>& state, typename L::U64 pair) {
+    const bool zsobol = state.kind == SamplerKind::ZSobol;
+    return Mix64<L>(L::Add64(zsobol ? L::Set64(state.block_key) : state.key, pair));
+}
+
+// The pair's state from the bit-reversed index and the hash's two words, in any lanes of
+// words below 2^32 (W: OneLane, HashLanes or WordLanes).
+template <class W>
+HWY_INLINE SobolPairState<W> SobolPairFromHash(typename W::U64 reversed_index,
+                                               typename W::U64 low,
+                                               typename W::U64 high) {
+    return {ReverseBits32<W>(LaineKarras<W>(reversed_index, low)), high};
+}
+
 template <class L>
 HWY_INLINE SobolPairState<L> SobolPair(const SampleState<L>& state, typename L::U64 pair) {
-    // ZSobol's pair seeds depend on the seed and the block, not on the pixel: all pixels draw
-    // from one scrambled sequence, whose index (its digits shuffled, the path's key) the pair
-    // shuffles again as the Sobol sampler shuffles the sample index: blocks stay blocks, and
-    // the pairs are decorrelated.
-    const bool zsobol = state.kind == SamplerKind::ZSobol;
-    const typename L::U64 h =
-        Mix64<L>(L::Add64(zsobol ? L::Set64(state.block_key) : state.key, pair));
+    const typename L::U64 h = SobolPairHash<L>(state, pair);
     const typename L::U64 reversed_index =
-        zsobol ? ReverseBits32<L>(L::And64(state.key, L::Set64(0xffffffffULL)))
-               : L::Set64(ReverseBits32<OneLane>(state.sample));
-    return {ReverseBits32<L>(LaineKarras<L>(reversed_index, L::And64(h, L::Set64(0xffffffffULL)))),
-            L::template ShiftRight<32>(h)};
+        state.kind == SamplerKind::ZSobol
+            ? ReverseBits32<L>(L::And64(state.key, L::Set64(0xffffffffULL)))
+            : L::Set64(ReverseBits32<OneLane>(state.sample));
+    return SobolPairFromHash<L>(reversed_index, L::And64(h, L::Set64(0xffffffffULL)),
+                                L::template ShiftRight<32>(h));
 }
 
 // The Owen-scrambled fraction of Sobol bits `t` (in index order), as a float.
@@ -237,6 +252,13 @@ HWY_INLINE typename L::F ScrambledSobol(typename L::U64 t, typename L::U64 scram
 
 // The second dimension of a pair is scrambled with a seed of its own.
 constexpr uint64_t kSecondScramble = 0x9e3779b9ULL;
+
+// Both dimensions of a pair from its state.
+template <class W>
+HWY_INLINE void SobolPairDims(const SobolPairState<W>& p, typename W::F* a, typename W::F* b) {
+    *a = ScrambledSobol<W>(p.index, p.scramble);
+    *b = ScrambledSobol<W>(SobolSecond<W>(p.index), W::Xor(p.scramble, W::Set64(kSecondScramble)));
+}
 
 // Dimension `dim` of a path, a uniform float in [0, 1):
 // - Independent: a hash of the path's state and the dimension.
@@ -267,10 +289,7 @@ HWY_INLINE void SampleDimPair(const SampleState<L>& state,
                               typename L::F* a,
                               typename L::F* b) {
     if (state.kind != SamplerKind::Independent) {
-        const SobolPairState<L> p = SobolPair<L>(state, L::template ShiftRight<1>(first));
-        *a = ScrambledSobol<L>(p.index, p.scramble);
-        *b = ScrambledSobol<L>(SobolSecond<L>(p.index),
-                               L::Xor(p.scramble, L::Set64(kSecondScramble)));
+        SobolPairDims<L>(SobolPair<L>(state, L::template ShiftRight<1>(first)), a, b);
         return;
     }
     *a = SampleDim<L>(state, first);
