@@ -96,6 +96,31 @@ void DrawCameraRays(const CameraFrame* camera,
     }
 }
 
+// Rows k .. k + Lanes(df) of a SampleBlock from one vector of vertices' draws: the light
+// choice alone (its pair's medium distance has been used), then by pairs (the Sobol samplers
+// draw a pair together), zeros for the one-sample strategies' pairs where they are not drawn,
+// and with `flights` the next bounce's first dimension, its medium distance, as an optical
+// depth.
+template <class DF, class LightSelect, class Pair, class Flight>
+HWY_INLINE void StoreVertexDims(DF df,
+                                size_t k,
+                                bool one_sample,
+                                bool flights,
+                                const LightSelect& light_select,
+                                const Pair& pair,
+                                const Flight& flight,
+                                SampleBlock* out) {
+    static_assert(kDimMediumDistance == 0);
+    hn::Store(light_select(), df, out->u[kDimLightSelect] + k);
+    for (uint32_t d = kDimLightU; d < kBounceDims; d += 2) {
+        hn::Vec<DF> a = hn::Zero(df), b = hn::Zero(df);
+        if (one_sample || !one_sample_pair(d / 2)) pair(d, &a, &b);
+        hn::Store(a, df, out->u[d] + k);
+        hn::Store(b, df, out->u[d + 1] + k);
+    }
+    if (flights) hn::Store(flight(), df, out->next_flight + k);
+}
+
 #if HWY_TARGET != HWY_SCALAR
 // The Sobol and ZSobol samplers' rows of DrawVertexSamples, two vectors of 64-bit lanes at a
 // time: each pair's hash in 64-bit lanes (SobolPairHash), the rest of its formulas on the
@@ -141,26 +166,21 @@ void DrawSobolVertexSamples(const Sampler& sampler,
             const auto h1 = SobolPairHash<L>(s1, hn::ShiftRight<1>(hn::Add(first1, dims)));
             SobolPairDims<W>(SobolPairFromHash<W>(reversed_index, low(h0, h1), high(h0, h1)), a, b);
         };
-        F a, b;
-        // The light choice alone, the second of its pair (the first, the medium distance,
-        // has been used); then by pairs.
-        static_assert(kDimLightSelect == 1);
-        pair_dims(0, &a, &b);
-        hn::Store(b, df, out->u[kDimLightSelect] + k);
-        for (uint32_t d = kDimLightU; d < kBounceDims; d += 2) {
-            if (!one_sample && one_sample_pair(d / 2)) {
-                hn::Store(hn::Zero(df), df, out->u[d] + k);
-                hn::Store(hn::Zero(df), df, out->u[d + 1] + k);
-                continue;
-            }
-            pair_dims(d, &a, &b);
-            hn::Store(a, df, out->u[d] + k);
-            hn::Store(b, df, out->u[d + 1] + k);
-        }
-        if (flights) {
-            pair_dims(kBounceDims, &a, &b);
-            hn::Store(OpticalDepth<W>(a), df, out->next_flight + k);
-        }
+        static_assert(kDimLightSelect == 1);  // the second of pair 0
+        StoreVertexDims(
+            df, k, one_sample, flights,
+            [&] {
+                F a, b;
+                pair_dims(0, &a, &b);
+                return b;
+            },
+            pair_dims,
+            [&] {
+                F a, b;
+                pair_dims(kBounceDims, &a, &b);
+                return OpticalDepth<W>(a);
+            },
+            out);
     }
 }
 #endif
@@ -194,27 +214,17 @@ void DrawVertexSamples(const Sampler& sampler,
     for (size_t k = 0; k < n; k += N) {
         const auto state = PathState<L>(sampler, hn::Load(d32, px + k), sample);
         const auto first = hn::PromoteTo(d64, hn::Load(d32, first_dim + k));
-        // The light choice alone (its pair's medium distance has been used), then by pairs,
-        // which the Sobol sampler draws together.
-        hn::Store(SampleDim<L>(state, hn::Add(first, hn::Set(d64, kDimLightSelect))), df,
-                  out->u[kDimLightSelect] + k);
-        for (uint32_t d = kDimLightU; d < kBounceDims; d += 2) {
-            if (!one_sample && one_sample_pair(d / 2)) {
-                hn::Store(hn::Zero(df), df, out->u[d] + k);
-                hn::Store(hn::Zero(df), df, out->u[d + 1] + k);
-                continue;
-            }
-            hn::Vec<decltype(df)> a, b;
-            SampleDimPair<L>(state, hn::Add(first, hn::Set(d64, d)), &a, &b);
-            hn::Store(a, df, out->u[d] + k);
-            hn::Store(b, df, out->u[d + 1] + k);
-        }
-        // The next bounce's first dimension is its medium distance.
-        static_assert(kDimMediumDistance == 0);
-        if (flights)
-            hn::Store(
-                OpticalDepth<L>(SampleDim<L>(state, hn::Add(first, hn::Set(d64, kBounceDims)))), df,
-                out->next_flight + k);
+        StoreVertexDims(
+            df, k, one_sample, flights,
+            [&] { return SampleDim<L>(state, hn::Add(first, hn::Set(d64, kDimLightSelect))); },
+            [&](uint32_t d, auto* a, auto* b) {
+                SampleDimPair<L>(state, hn::Add(first, hn::Set(d64, d)), a, b);
+            },
+            [&] {
+                return OpticalDepth<L>(
+                    SampleDim<L>(state, hn::Add(first, hn::Set(d64, kBounceDims))));
+            },
+            out);
     }
 }
 
