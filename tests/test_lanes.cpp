@@ -323,6 +323,12 @@ TEST(Lanes, VertexSamplesAreTheScalarOnesOnEverySimdTarget) {
                                               bounce_dim(bounce[k] + 1, kDimMediumDistance));
                     ASSERT_TRUE(same_bits(block.next_flight[k], sample_free_flight(1.0f, u)))
                         << "row " << k;
+                    // The megakernel draws it with the vertex's pairs when it asks for it.
+                    float next_flight = -1.0f;
+                    const VertexSamples with_flight =
+                        vertex_samples(sampler, pixel[k], 17, bounce[k], one_sample, &next_flight);
+                    ASSERT_EQ(std::memcmp(&one, &with_flight, sizeof one), 0) << "row " << k;
+                    ASSERT_TRUE(same_bits(next_flight, block.next_flight[k])) << "row " << k;
                 }
             }
     }

@@ -41,7 +41,8 @@ struct PathContext {
 // Radiance arriving along `ray` (the book's ray_color). `bounce` numbers the vertex the ray
 // will reach (0 for camera rays), `depth` is that vertex's depth (path_vertex.h: thin sheets
 // passed do not count). `beta` is the path throughput so far and `eta_scale` the path's
-// (path_vertex.h), for Russian roulette.
+// (path_vertex.h), for Russian roulette. `flight` is the optical depth the ray may travel in
+// media before it scatters (segment_flight of `bounce`).
 template <Intersector Tracer>
 Color ray_color(PathContext<Tracer>& ctx,
                 Ray ray,
@@ -50,9 +51,9 @@ Color ray_color(PathContext<Tracer>& ctx,
                 MediumStack media,
                 const PreviousVertex& prev,
                 Color beta,
-                float eta_scale) {
+                float eta_scale,
+                float flight) {
     const Estimator& cfg = ctx.estimator;
-    float flight = segment_flight(ctx.scene, ctx.sampler, ctx.pixel, ctx.sample, bounce);
     Color flight_weight(1.0f);  // the segments' weights (chromatic media), from the ray's start
     for (int crossing = 0; crossing < kMaxBoundaryCrossings; ++crossing) {
         ++ctx.rays;
@@ -81,8 +82,11 @@ Color ray_color(PathContext<Tracer>& ctx,
         }
         const Vertex& v = seg.vertex;
         if (!may_continue(cfg, v, depth)) return emission;
+        // Without media no segment reads a flight (segment_flight), so none is drawn.
+        float next_flight = 0.0f;
         VertexSamples u = vertex_samples(ctx.sampler, ctx.pixel, ctx.sample, bounce,
-                                         reads_one_sample_pairs(cfg.strategy));
+                                         reads_one_sample_pairs(cfg.strategy),
+                                         ctx.scene.media.empty() ? nullptr : &next_flight);
         beta = beta * flight_weight;
 
         // Next-event estimation: a shadow ray to a light sample, weighted for the strategy.
@@ -109,7 +113,8 @@ Color ray_color(PathContext<Tracer>& ctx,
         if (!step.alive || next_depth >= cfg.max_depth) return radiance;
         const Color weight = flight_weight * step.weight;
         return radiance + weight * ray_color(ctx, step.next, bounce + 1, next_depth, media,
-                                             step.prev, beta * step.weight, step.eta_scale);
+                                             step.prev, beta * step.weight, step.eta_scale,
+                                             next_flight);
     }
     return {};
 }
@@ -154,7 +159,7 @@ RenderStats megakernel(const Scene& scene,
                             Ray ray = generate_camera_ray(camera, sampler, pixel, sample, x, y);
                             Color c = megakernel_detail::ray_color(
                                 ctx, ray, 0, 0, camera_media, PreviousVertex{ray.o}, Color(1.0f),
-                                1.0f);
+                                1.0f, segment_flight(scene, sampler, pixel, sample, 0));
                             film.add(static_cast<int>(pixel), c);
                             tile_rays += ctx.rays;
                         }

@@ -11,12 +11,15 @@
 namespace wavetrace {
 
 // u[d] = dimension bounce_dim(bounce, d) of path (pixel, sample), for d < kBounceDims; without
-// one_sample, 0 in the pairs only the one-sample strategies read (one_sample_pair).
+// one_sample, 0 in the pairs only the one-sample strategies read (one_sample_pair). With
+// next_flight, also the optical depth of the segment that leaves the vertex (segment_flight of
+// bounce + 1), drawn in the same vectors as the vertex's pairs, as the wavefront does.
 void draw_bounce_dims(const Sampler& sampler,
                       uint32_t pixel,
                       uint32_t sample,
                       int bounce,
                       bool one_sample,
-                      float u[kBounceDims]);
+                      float u[kBounceDims],
+                      float* next_flight = nullptr);
 
 }  // namespace wavetrace

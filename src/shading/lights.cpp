@@ -109,14 +109,13 @@ LightSet::LightSet(const Scene& scene, bool mis_compensation) {
             };
             std::vector<float> w(static_cast<size_t>(img.width) * img.height);
             double mean = 0, total_area = 0;
-            for (int y = 0; y < img.height; ++y) {
+            for (int y = 0; y < img.height; ++y)
                 for (int x = 0; x < img.width; ++x) {
                     float v = luminance(img.texel(x, y)) * area(y);
                     w[static_cast<size_t>(y) * img.width + x] = v;
                     mean += v;
                     total_area += area(y);
                 }
-            }
             // The mean radiance over the sphere, each texel weighted by its solid angle.
             const double mean_radiance = mean / total_area;
             mean /= static_cast<double>(w.size());

@@ -463,11 +463,15 @@ PathStep continue_path(const Scene& scene,
     return step;
 }
 
-VertexSamples vertex_samples(
-    const Sampler& sampler, uint32_t pixel, uint32_t sample, int bounce, bool one_sample) {
+VertexSamples vertex_samples(const Sampler& sampler,
+                             uint32_t pixel,
+                             uint32_t sample,
+                             int bounce,
+                             bool one_sample,
+                             float* next_flight) {
     // The vertex's pairs side by side in lanes: what the wavefront's rows draw, bit for bit.
     float u[kBounceDims];
-    draw_bounce_dims(sampler, pixel, sample, bounce, one_sample, u);
+    draw_bounce_dims(sampler, pixel, sample, bounce, one_sample, u, next_flight);
     return vertex_samples_of([&](BounceDim d) { return u[d]; });
 }
 

@@ -305,20 +305,23 @@ inline bool may_continue(const Estimator& config, const Vertex& v, int depth) {
 inline int next_depth(int bounce, int depth, const PathStep& step) {
     return step.passed_sheet && bounce - depth < kMaxSheetPasses ? depth : depth + 1;
 }
-// The uniform numbers of vertex `bounce` of path (pixel, sample), from the dimension layout
-// of sampling/sampler.h: what both engines draw, so that they trace the same paths.
+// The uniform numbers of vertex `bounce` of path (pixel, sample) (sampling/sampler.h): both
+// engines draw them alike; vertex_samples with next_flight also segment_flight of bounce + 1.
 struct VertexSamples {
     float light_select, light_u, light_v;  // next-event estimation
     ContinuationSamples continuation;
     float roulette;
 };
-// Whether the strategy reads the pairs of dimensions only one-sample strategies read
-// (one_sample_pair); the others' vertices draw them not, and see 0 there.
+// Whether the strategy reads the pairs only one-sample strategies read (one_sample_pair).
 inline bool reads_one_sample_pairs(Strategy strategy) {
     return strategy == Strategy::Mixture || strategy == Strategy::Light;
 }
-VertexSamples vertex_samples(
-    const Sampler& sampler, uint32_t pixel, uint32_t sample, int bounce, bool one_sample);
+VertexSamples vertex_samples(const Sampler& sampler,
+                             uint32_t pixel,
+                             uint32_t sample,
+                             int bounce,
+                             bool one_sample,
+                             float* next_flight = nullptr);
 // The same from u(d), the value of bounce dimension d: the one mapping of dimensions to fields,
 // for vertex_samples and for the rows the wavefront draws in SIMD lanes.
 template <class DimValue>
@@ -349,14 +352,11 @@ DirectSample next_event(const Scene& scene,
                         LightChoice light);
 // Whether next-event estimation happens at v: the strategy samples lights and v can.
 bool samples_lights(const Estimator& config, const Vertex& v, const LightSet& lights);
-// Optical depth a segment reaching vertex `bounce` may travel before scattering in a medium.
-// Without media no segment consumes it, so it is not drawn (its log1p was 5-7% of a render).
+// Optical depth a segment reaching vertex `bounce` may travel in media (0 in a scene without).
 float segment_flight(
     const Scene& scene, const Sampler& sampler, uint32_t pixel, uint32_t sample, int bounce);
-
 // The camera ray of sample `sample` of pixel (x, y), jittered over the pixel and the lens.
 Ray generate_camera_ray(
     const CameraRays& camera, const Sampler& sampler, uint32_t pixel, uint32_t sample, int x, int y);
-
 
 }  // namespace wavetrace
