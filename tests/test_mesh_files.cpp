@@ -8,6 +8,8 @@
 #include <cstring>
 #include <string>
 
+#include "bsdfs/bsdf.h"
+#include "scene/material_lookup.h"
 #include "temp_dir.h"
 #include "wavetrace/image/image.h"
 #include "wavetrace/loaders/load_scene.h"
@@ -162,7 +164,10 @@ TEST(MeshFiles, GltfMaterialsMapToMetallicRoughness) {
                                   "metallicFactor": 0.3, "roughnessFactor": 0.6},
          "extensions": {"KHR_materials_transmission": {"transmissionFactor": 0.4},
                         "KHR_materials_clearcoat": {"clearcoatFactor": 0.7,
-                                                    "clearcoatRoughnessFactor": 0.2},
+                                                    "clearcoatRoughnessFactor": 0.2,
+                                                    "clearcoatTexture": {"index": 0},
+                                                    "clearcoatRoughnessTexture": {"index": 1},
+                                                    "clearcoatNormalTexture": {"index": 2}},
                         "KHR_materials_ior": {"ior": 1.4},
                         "KHR_materials_emissive_strength": {"emissiveStrength": 4}}},
         {"name": "textured", "alphaMode": "MASK",
@@ -202,6 +207,15 @@ TEST(MeshFiles, GltfMaterialsMapToMetallicRoughness) {
     EXPECT_FLOAT_EQ(coated.transmission, 0.4f);
     EXPECT_FLOAT_EQ(coated.clearcoat, 0.7f);
     EXPECT_FLOAT_EQ(coated.clearcoat_roughness, 0.2f);
+    // The coat's textures: red times the factor, green times the roughness (the coat's alpha
+    // its square), where the vertex's BSDF is made.
+    ASSERT_NE(coated.clearcoat_map, kNone);
+    ASSERT_NE(coated.clearcoat_roughness_map, kNone);
+    BsdfParams b;
+    metallic_roughness_at(s, coated, TexturePoint{{0.5f, 0.5f}, {}}, &b);
+    EXPECT_FLOAT_EQ(b.clearcoat, 0.7f);                   // base.png is white
+    const float coat_roughness = 0.2f * 188.0f / 255.0f;  // mr.png's green, raw
+    EXPECT_NEAR(b.clearcoat_alpha, coat_roughness * coat_roughness, 1e-6f);
     ASSERT_TRUE(coated.is_emissive());
     EXPECT_EQ(s.textures[coated.emission].color, Color(4.0f, 2.0f, 0.0f));  // strength 4
     EXPECT_TRUE(coated.two_sided);
@@ -242,8 +256,10 @@ TEST(MeshFiles, GltfMaterialsMapToMetallicRoughness) {
     const Material& veil = material_of("veil");
     ASSERT_NE(veil.opacity, kNone);
     EXPECT_EQ(s.textures[veil.opacity].color, Color(0.25f));
-    EXPECT_TRUE(warnings.empty()) << warnings[0];
-    EXPECT_FALSE(warned("\"coated\""));
+    // Nothing warned about but the coat's own normal map, which a material of one shading
+    // normal cannot hold: said, with the material's name.
+    ASSERT_EQ(warnings.size(), 1u) << warnings[0];
+    EXPECT_TRUE(warned("\"coated\": ignored clearcoatNormalTexture"));
 }
 
 // A .glb holds its JSON in its first chunk: the emissive strength is read from there, and a

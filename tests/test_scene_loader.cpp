@@ -662,6 +662,14 @@ TEST(SceneLoader, MetallicRoughnessIsValidated) {
         "clearcoat_roughness": 0.05, "emission": [2, 2, 2], "two_sided": true,
         "one_sided": true})")),
               "");
+    EXPECT_EQ(load_error(dir, with(R"({"type": "metallic_roughness", "clearcoat": 1,
+        "clearcoat_texture": {"type": "uv_checker", "scale": 0.5, "even": 1, "odd": 0.5},
+        "clearcoat_roughness": 0.5, "clearcoat_roughness_texture": [0, 0.2, 0]})")),
+              "");
+    EXPECT_EQ(load_error(dir, with(R"({"type": "metallic_roughness",
+        "clearcoat_texture": [1.5, 0, 0]})")),
+              ": /materials/car/clearcoat_texture: expected a reflectance with components in "
+              "[0, 1], got [1.5,0,0]");
     EXPECT_EQ(load_error(dir, with(R"({"type": "metallic_roughness", "roughness": -0.2})")),
               ": /materials/car/roughness: expected a number in [0.0, 1.0], got -0.2");
     EXPECT_EQ(load_error(dir, with(R"({"type": "metallic_roughness", "metallic": 1.5})")),

@@ -299,7 +299,9 @@ TEST(Wavefront, AnisotropicSurfacesEqualTheMegakernel) {
 
 // Lambertian and rough metal surfaces of textured albedo (an image and a checker on quads, a
 // noise and an image on spheres) are shaded in the wavefront's lanes, their albedo looked up
-// after the block resolves the hit: the megakernel's image, as for every shipped scene.
+// after the block resolves the hit: the megakernel's image, as for every shipped scene. So is a
+// metallic-roughness sphere whose coat's weight and roughness are textures, which the light
+// samples look up again from the vertex's uv.
 TEST(Wavefront, TexturedSurfacesInLanesEqualTheMegakernel) {
     Scene scene;
     ImageData image;
@@ -332,6 +334,16 @@ TEST(Wavefront, TexturedSurfacesInLanesEqualTheMegakernel) {
     brushed.albedo = scene.add_texture(picture);
     brushed.roughness = 0.4f;
     const MaterialId metal = scene.add_material(brushed);
+    Material coated;
+    coated.kind = MaterialKind::MetallicRoughness;
+    coated.albedo = scene.add_solid({0.6f, 0.1f, 0.1f});
+    coated.metallic = 0.0f;
+    coated.roughness = 0.5f;
+    coated.clearcoat = 1.0f;
+    coated.clearcoat_roughness = 0.6f;
+    coated.clearcoat_map = scene.add_texture(checker);
+    coated.clearcoat_roughness_map = scene.add_texture(picture);
+    const MaterialId car_paint = scene.add_material(coated);
     Material light;
     light.kind = MaterialKind::DiffuseLight;
     light.emission = scene.add_solid({6, 5, 4});
@@ -341,6 +353,7 @@ TEST(Wavefront, TexturedSurfacesInLanesEqualTheMegakernel) {
     scene.add_quad({{-0.5f, 2.5f, -0.5f}, {1, 0, 0}, {0, 0, 1}, lamp, kNone});
     scene.add_sphere({{-0.6f, 0.5f, 0}, 0.5f, marble, kNone});
     scene.add_sphere({{0.7f, 0.6f, 0.3f}, 0.6f, metal, kNone});
+    scene.add_sphere({{0.1f, 0.35f, 1.0f}, 0.35f, car_paint, kNone});
     scene.camera.look_from = {0, 1.2f, 4};
     scene.camera.look_at = {0, 0.7f, 0};
     Bvh bvh = Bvh::build(scene);

@@ -27,19 +27,21 @@ struct FileMaterial {
     // glTF 2.0 files (pbr): the metallic-roughness material. kd is the base colour factor,
     // map_kd its texture, ke the emissive factor times KHR_materials_emissive_strength, ni the ior
     // (KHR_materials_ior; 1.5 if not given); the factors of pbrMetallicRoughness,
-    // KHR_materials_transmission and _clearcoat; the metallicRoughness, normal and emissive
-    // textures; alphaMode, its cutoff, doubleSided.
+    // KHR_materials_transmission and _clearcoat; the metallicRoughness, normal, emissive,
+    // clearcoat and clearcoatRoughness textures; alphaMode, its cutoff, doubleSided.
     bool pbr = false;
     float metallic = 1.0f, roughness = 1.0f, transmission = 0.0f, clearcoat = 0.0f,
           clearcoat_roughness = 0.0f;
-    std::string map_metallic_roughness, map_normal, map_emissive;
+    std::string map_metallic_roughness, map_normal, map_emissive, map_clearcoat,
+        map_clearcoat_roughness;
     // Each texture's glTF sampler: wrapS, wrapT, and magFilter (no mip maps here: minFilter
     // has nothing to choose between).
     struct Sampler {
         TextureWrap wrap_u = TextureWrap::Repeat, wrap_v = TextureWrap::Repeat;
         TextureFilter filter = TextureFilter::Bilinear;
     };
-    Sampler kd_sampler, metallic_roughness_sampler, normal_sampler, emissive_sampler;
+    Sampler kd_sampler, metallic_roughness_sampler, normal_sampler, emissive_sampler,
+        clearcoat_sampler, clearcoat_roughness_sampler;
     std::string alpha_mode = "OPAQUE";
     float base_alpha = 1.0f, alpha_cutoff = 0.5f;  // baseColorFactor's alpha; MASK's cutoff
     bool double_sided = false;

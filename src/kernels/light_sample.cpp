@@ -30,7 +30,11 @@ Vertex queued_vertex(const Scene& scene, const LightSampleQueue& q, size_t i) {
         // As the vertex's textures made them.
         v.bsdf.alpha = q.alpha[i];
         v.bsdf.alpha_v = q.alpha_v[i];
-        if (v.bsdf.kind == MaterialKind::MetallicRoughness) v.bsdf.metallic = q.metallic[i];
+        if (v.bsdf.kind == MaterialKind::MetallicRoughness) {
+            v.bsdf.metallic = q.metallic[i];
+            clearcoat_at(scene, scene.materials[v.material], {{q.uv_u[i], q.uv_v[i]}, v.p},
+                         &v.bsdf);
+        }
         if (v.bsdf.kind == MaterialKind::Principled)
             principled_at(scene, scene.materials[v.material], {q.uv_u[i], q.uv_v[i]}, v.p, &v.bsdf);
         return v;

@@ -62,7 +62,8 @@ bool lane_material(const Scene& scene, MaterialId m, LaneSurface* out) {
           mat.kind == MaterialKind::Dielectric || mat.kind == MaterialKind::MetallicRoughness) ||
         (mat.albedo == kNone && mat.kind != MaterialKind::Dielectric) || mat.one_sided ||
         mat.has_normal_maps() || mat.alpha_u_texture != kNone || mat.alpha_v_texture != kNone ||
-        mat.metallic_roughness != kNone || mat.emission != kNone)
+        mat.metallic_roughness != kNone || mat.clearcoat_map != kNone ||
+        mat.clearcoat_roughness_map != kNone || mat.emission != kNone)
         return false;
     // A dielectric has no albedo.
     const Texture* albedo = mat.albedo != kNone ? &scene.textures[mat.albedo] : nullptr;

@@ -674,6 +674,10 @@ class Loader {
         if (auto x = o.optional("clearcoat")) m.clearcoat = x->in_range(0.0f, 1.0f);
         if (auto x = o.optional("clearcoat_roughness"))
             m.clearcoat_roughness = x->in_range(0.0f, 1.0f);
+        if (auto x = o.optional("clearcoat_texture"))
+            m.clearcoat_map = read_texture(*x, Range::Reflectance);
+        if (auto x = o.optional("clearcoat_roughness_texture"))
+            m.clearcoat_roughness_map = read_texture(*x, Range::Reflectance);
         if (auto x = o.optional("emission")) m.emission = read_texture(*x, Range::Radiance);
         if (auto x = o.optional("two_sided")) m.two_sided = x->boolean();
     }
@@ -1253,6 +1257,11 @@ class Loader {
         m.transmission = unit(fm.transmission, "transmissionFactor");
         m.clearcoat = unit(fm.clearcoat, "clearcoatFactor");
         m.clearcoat_roughness = unit(fm.clearcoat_roughness, "clearcoatRoughnessFactor");
+        m.clearcoat_map = texture(fm.map_clearcoat, "clearcoatTexture", ImageChannels::Raw,
+                                  Color(1.0f), fm.clearcoat_sampler);
+        m.clearcoat_roughness_map =
+            texture(fm.map_clearcoat_roughness, "clearcoatRoughnessTexture", ImageChannels::Raw,
+                    Color(1.0f), fm.clearcoat_roughness_sampler);
         m.normal_map = texture(fm.map_normal, "normalTexture", ImageChannels::Raw, Color(1.0f),
                                fm.normal_sampler);
         m.emission = texture(fm.map_emissive, "emissiveTexture", ImageChannels::Linear, fm.ke,

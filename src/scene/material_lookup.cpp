@@ -10,8 +10,8 @@ namespace wavetrace {
 
 bool material_reads_uv(const Scene& scene, const Material& m) {
     bool reads = m.has_normal_maps();
-    for (const TextureId t :
-         {m.albedo, m.emission, m.metallic_roughness, m.alpha_u_texture, m.alpha_v_texture})
+    for (const TextureId t : {m.albedo, m.emission, m.metallic_roughness, m.clearcoat_map,
+                              m.clearcoat_roughness_map, m.alpha_u_texture, m.alpha_v_texture})
         reads = reads || texture_reads_uv(scene, t);
     if (m.kind == MaterialKind::Principled)
         m.principled.for_each([&](const char*, const TexturedNumber& w) {
@@ -46,11 +46,44 @@ const char* attribute_misuse(const Scene& scene, const Material& m) {
     if (reads(m.emission)) return "emission";
     if (reads(m.normal_map)) return "normal_map";
     if (reads(m.bump_map)) return "bump_map";
+    if (reads(m.clearcoat_map)) return "clearcoat_texture";
+    if (reads(m.clearcoat_roughness_map)) return "clearcoat_roughness_texture";
     const char* weight = nullptr;
     m.principled.for_each([&](const char* name, const TexturedNumber& w) {
         if (!weight && reads(w.texture)) weight = name;
     });
     return weight;
+}
+
+namespace {
+
+// Channel c of texture t at `at`, clamped to [0, 1].
+float channel_at(const Scene& scene, TextureId t, const TexturePoint& at, int c) {
+    return std::clamp(eval_texture(scene, t, at)[c], 0.0f, 1.0f);
+}
+
+}  // namespace
+
+void metallic_roughness_at(const Scene& scene,
+                           const Material& m,
+                           const TexturePoint& at,
+                           BsdfParams* b) {
+    if (m.metallic_roughness != kNone) {
+        const float roughness = m.roughness * channel_at(scene, m.metallic_roughness, at, 1);
+        b->alpha = b->alpha_v = roughness * roughness;
+        b->metallic = m.metallic * channel_at(scene, m.metallic_roughness, at, 2);
+    }
+    clearcoat_at(scene, m, at, b);
+}
+
+void clearcoat_at(const Scene& scene, const Material& m, const TexturePoint& at, BsdfParams* b) {
+    if (m.clearcoat_map != kNone)
+        b->clearcoat = m.clearcoat * channel_at(scene, m.clearcoat_map, at, 0);
+    if (m.clearcoat_roughness_map != kNone) {
+        const float roughness =
+            m.clearcoat_roughness * channel_at(scene, m.clearcoat_roughness_map, at, 1);
+        b->clearcoat_alpha = roughness * roughness;
+    }
 }
 
 MaterialId blend_choice(const Scene& scene, MaterialId m, const TexturePoint& at, float u) {

@@ -25,13 +25,26 @@ bool material_reads_uv(const Scene& scene, const Material& m);
 std::vector<std::string> material_attributes(const Scene& scene, MaterialId m);
 
 // The field of m that reads a mesh attribute where none may be read (its emission, normal or
-// bump map, a principled weight: they are looked up where no triangle is known), or nullptr.
+// bump map, its coat's textures, a principled weight: they are looked up where no triangle is
+// known), or nullptr.
 const char* attribute_misuse(const Scene& scene, const Material& m);
 
 // The weights of a principled material m at texture coordinates uv and point p, into b (whose
 // albedo is its base colour there): each a texture's luminance or a number, clamped to its
 // range; the main lobes' GGX alphas and the clearcoat's GTR1 alpha from them.
 void principled_at(const Scene& scene, const Material& m, Vec2 uv, Point3 p, BsdfParams* b);
+
+// The textured factors of a metallic-roughness material m at texture point `at`, into b: glTF's
+// channels, the metallicRoughnessTexture's green times `roughness` (alpha its square) and blue
+// times `metallic`, the clearcoatTexture's red times `clearcoat`, the clearcoatRoughnessTexture's
+// green times `clearcoat_roughness` (the coat's alpha its square), each clamped to [0, 1].
+void metallic_roughness_at(const Scene& scene,
+                           const Material& m,
+                           const TexturePoint& at,
+                           BsdfParams* b);
+// Its coat's part alone, which the wavefront's light samples look up again from the vertex's
+// uv and position (so the coat's textures may not read mesh attributes: attribute_misuse).
+void clearcoat_at(const Scene& scene, const Material& m, const TexturePoint& at, BsdfParams* b);
 
 // The material a hit on material m takes at texture point `at`, u uniform in
 // [0, 1): m itself unless it is a blend; a blend's second material where u < w (its weight

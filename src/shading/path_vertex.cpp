@@ -55,13 +55,8 @@ Vertex surface_vertex(const Scene& scene, const SurfaceHit& hit, Vec3 wo) {
     v.geometric_side_test = scene.geometric_side_test;
     v.bsdf = material_bsdf(
         m, m.albedo != kNone ? eval_texture(scene, m.albedo, hit.texture_point()) : Color(0.0f));
-    if (m.metallic_roughness != kNone) {
-        // glTF's channels: green scales the roughness, blue the metallic factor.
-        const Color t = eval_texture(scene, m.metallic_roughness, hit.texture_point());
-        const float roughness = m.roughness * std::clamp(t.y, 0.0f, 1.0f);
-        v.bsdf.alpha = v.bsdf.alpha_v = roughness * roughness;
-        v.bsdf.metallic = m.metallic * std::clamp(t.z, 0.0f, 1.0f);
-    }
+    if (m.kind == MaterialKind::MetallicRoughness)
+        metallic_roughness_at(scene, m, hit.texture_point(), &v.bsdf);
     auto textured_alpha = [&](TextureId t) {
         return std::clamp(eval_texture(scene, t, hit.texture_point()).x, 1e-4f, 1.0f);
     };

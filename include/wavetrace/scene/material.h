@@ -99,9 +99,11 @@ struct Material {
     // MetallicRoughness (glTF 2.0's pbrMetallicRoughness, KHR_materials_transmission and
     // _clearcoat): metallic, transmission and clearcoat factors, the clearcoat's roughness, and
     // glTF's metallicRoughnessTexture (kNone: none), whose green channel multiplies `roughness`
-    // and blue channel `metallic`.
+    // and blue channel `metallic`, its clearcoatTexture, whose red channel multiplies
+    // `clearcoat`, and its clearcoatRoughnessTexture, whose green channel multiplies
+    // `clearcoat_roughness`.
     float metallic = 1.0f, transmission = 0.0f, clearcoat = 0.0f, clearcoat_roughness = 0.0f;
-    TextureId metallic_roughness = kNone;
+    TextureId metallic_roughness = kNone, clearcoat_map = kNone, clearcoat_roughness_map = kNone;
 
     // Principled: albedo is the base colour, ior the index of refraction; the lobes' weights.
     PrincipledWeights principled;
