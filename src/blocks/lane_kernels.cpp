@@ -136,35 +136,25 @@ void DrawSobolVertexSamples(const Sampler& sampler,
                             SampleBlock* out) {
     using D64 = hn::ScalableTag<uint64_t>;
     using L = HashLanes<D64>;
-    using D32 = hn::Repartition<uint32_t, D64>;
-    using W = WordLanes<D32>;
-    using F = hn::Vec<hn::Rebind<float, D32>>;
+    using Words = SobolWords<D64>;
+    using W = Words::W;
+    using F = Words::F;
     const D64 d64;
-    const D32 d32;
     const hn::Rebind<uint32_t, D64> dh;  // a 64-bit vector's lane count of words
-    const hn::Rebind<float, D32> df;
+    const hn::Rebind<float, Words::D32> df;
     const size_t N = hn::Lanes(d64);
-    // The low or high words of the lanes of a, then of b.
-    const auto low = [&](hn::Vec<D64> a, hn::Vec<D64> b) {
-        return hn::ConcatEven(d32, hn::BitCast(d32, b), hn::BitCast(d32, a));
-    };
-    const auto high = [&](hn::Vec<D64> a, hn::Vec<D64> b) {
-        return hn::ConcatOdd(d32, hn::BitCast(d32, b), hn::BitCast(d32, a));
-    };
     for (size_t k = 0; k < n; k += 2 * N) {
         const auto s0 = PathState<L>(sampler, hn::Load(dh, px + k), sample);
         const auto s1 = PathState<L>(sampler, hn::Load(dh, px + k + N), sample);
         const auto first0 = hn::PromoteTo(d64, hn::Load(dh, first_dim + k));
         const auto first1 = hn::PromoteTo(d64, hn::Load(dh, first_dim + k + N));
-        const W::U64 reversed_index = sampler.kind == SamplerKind::ZSobol
-                                          ? W::ReverseBits32(low(s0.key, s1.key))
-                                          : W::Set64(ReverseBits32<OneLane>(sample));
+        const W::U64 reversed_index = Words::ReversedIndex(sampler.kind, sample, s0.key, s1.key);
         // Dimensions first + d and first + d + 1 (d even) of every row.
         const auto pair_dims = [&](uint32_t d, F* a, F* b) {
             const auto dims = hn::Set(d64, d);
             const auto h0 = SobolPairHash<L>(s0, hn::ShiftRight<1>(hn::Add(first0, dims)));
             const auto h1 = SobolPairHash<L>(s1, hn::ShiftRight<1>(hn::Add(first1, dims)));
-            SobolPairDims<W>(SobolPairFromHash<W>(reversed_index, low(h0, h1), high(h0, h1)), a, b);
+            Words::PairDims(reversed_index, h0, h1, a, b);
         };
         static_assert(kDimLightSelect == 1);  // the second of pair 0
         StoreVertexDims(

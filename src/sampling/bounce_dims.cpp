@@ -61,20 +61,11 @@ void DrawBounceDims(const Sampler& sampler,
 #if HWY_TARGET != HWY_SCALAR
     if (sampler.kind != SamplerKind::Independent) {
         // The pairs' hashes in 64-bit lanes, the rest of their formulas on the hashes' words in
-        // 32-bit lanes, twice as many to a vector (as DrawSobolVertexSamples).
-        using D32 = hn::Repartition<uint32_t, D64>;
-        using W = WordLanes<D32>;
-        const D32 dw;
-        const hn::Rebind<float, D32> dfw;
-        const auto low = [&](hn::Vec<D64> x, hn::Vec<D64> y) {
-            return hn::ConcatEven(dw, hn::BitCast(dw, y), hn::BitCast(dw, x));
-        };
-        const auto high = [&](hn::Vec<D64> x, hn::Vec<D64> y) {
-            return hn::ConcatOdd(dw, hn::BitCast(dw, y), hn::BitCast(dw, x));
-        };
-        const W::U64 reversed_index = sampler.kind == SamplerKind::ZSobol
-                                          ? W::ReverseBits32(low(state.key, state.key))
-                                          : W::Set64(ReverseBits32<OneLane>(sample));
+        // 32-bit lanes, twice as many to a vector (SobolWords, as DrawSobolVertexSamples).
+        using Words = SobolWords<D64>;
+        const hn::Rebind<float, Words::D32> dfw;
+        const auto reversed_index =
+            Words::ReversedIndex(sampler.kind, sample, state.key, state.key);
         const auto hash = [&](size_t k) {
             return SobolPairHash<L>(
                 state, hn::Add(hn::Set(d64, uint64_t(first / 2)), hn::LoadU(d64, drawn.pair + k)));
@@ -82,9 +73,8 @@ void DrawBounceDims(const Sampler& sampler,
         for (size_t k = 0; k < drawn.count; k += 2 * N) {
             const auto h0 = hash(k);
             const auto h1 = k + N < drawn.count ? hash(k + N) : h0;
-            hn::Vec<decltype(dfw)> va, vb;
-            SobolPairDims<W>(SobolPairFromHash<W>(reversed_index, low(h0, h1), high(h0, h1)), &va,
-                             &vb);
+            Words::F va, vb;
+            Words::PairDims(reversed_index, h0, h1, &va, &vb);
             hn::Store(va, dfw, a + k);
             hn::Store(vb, dfw, b + k);
         }

@@ -260,6 +260,41 @@ HWY_INLINE void SobolPairDims(const SobolPairState<W>& p, typename W::F* a, type
     *b = ScrambledSobol<W>(SobolSecond<W>(p.index), W::Xor(p.scramble, W::Set64(kSecondScramble)));
 }
 
+#if HWY_TARGET != HWY_SCALAR
+// The Sobol samplers' formulas past the hash on the hashes' 32-bit words (WordLanes), twice as
+// many to a vector as the 64-bit lanes the hashes take: two vectors of hashes, of keys, become
+// one of words. What the engines' lane draws share (the wavefront's rows of paths, the
+// megakernel's pairs of one path).
+template <class D64>
+struct SobolWords {
+    using D32 = hn::Repartition<uint32_t, D64>;
+    using W = WordLanes<D32>;
+    using U64 = hn::Vec<D64>;
+    using F = hn::Vec<hn::Rebind<float, D32>>;
+
+    // The low or high words of the lanes of a, then of b.
+    static HWY_INLINE typename W::U64 Low(U64 a, U64 b) {
+        return hn::ConcatEven(D32(), hn::BitCast(D32(), b), hn::BitCast(D32(), a));
+    }
+    static HWY_INLINE typename W::U64 High(U64 a, U64 b) {
+        return hn::ConcatOdd(D32(), hn::BitCast(D32(), b), hn::BitCast(D32(), a));
+    }
+    // The bit-reversed index of sample `sample` of the paths whose states' keys are key0, then
+    // key1 (ZSobol's index is the key's low word; Sobol's the sample's).
+    static HWY_INLINE typename W::U64 ReversedIndex(SamplerKind kind,
+                                                    uint32_t sample,
+                                                    U64 key0,
+                                                    U64 key1) {
+        return kind == SamplerKind::ZSobol ? W::ReverseBits32(Low(key0, key1))
+                                           : W::Set64(ReverseBits32<OneLane>(sample));
+    }
+    // Both dimensions of the pairs whose hashes (SobolPairHash) are h0, then h1.
+    static HWY_INLINE void PairDims(typename W::U64 reversed_index, U64 h0, U64 h1, F* a, F* b) {
+        SobolPairDims<W>(SobolPairFromHash<W>(reversed_index, Low(h0, h1), High(h0, h1)), a, b);
+    }
+};
+#endif
+
 // Dimension `dim` of a path, a uniform float in [0, 1):
 // - Independent: a hash of the path's state and the dimension.
 // - Sobol: dimensions (2k, 2k + 1) are the two dimensions of Sobol's (0, 2)-sequence at the

@@ -57,9 +57,10 @@ const char* attribute_misuse(const Scene& scene, const Material& m) {
 
 namespace {
 
-// Channel c of texture t at `at`, clamped to [0, 1].
-float channel_at(const Scene& scene, TextureId t, const TexturePoint& at, int c) {
-    return std::clamp(eval_texture(scene, t, at)[c], 0.0f, 1.0f);
+// Texture t at `at`, each channel clamped to [0, 1].
+Color unit_texture_at(const Scene& scene, TextureId t, const TexturePoint& at) {
+    const Color c = eval_texture(scene, t, at);
+    return {std::clamp(c.x, 0.0f, 1.0f), std::clamp(c.y, 0.0f, 1.0f), std::clamp(c.z, 0.0f, 1.0f)};
 }
 
 }  // namespace
@@ -69,19 +70,20 @@ void metallic_roughness_at(const Scene& scene,
                            const TexturePoint& at,
                            BsdfParams* b) {
     if (m.metallic_roughness != kNone) {
-        const float roughness = m.roughness * channel_at(scene, m.metallic_roughness, at, 1);
+        const Color t = unit_texture_at(scene, m.metallic_roughness, at);
+        const float roughness = m.roughness * t.y;
         b->alpha = b->alpha_v = roughness * roughness;
-        b->metallic = m.metallic * channel_at(scene, m.metallic_roughness, at, 2);
+        b->metallic = m.metallic * t.z;
     }
     clearcoat_at(scene, m, at, b);
 }
 
 void clearcoat_at(const Scene& scene, const Material& m, const TexturePoint& at, BsdfParams* b) {
     if (m.clearcoat_map != kNone)
-        b->clearcoat = m.clearcoat * channel_at(scene, m.clearcoat_map, at, 0);
+        b->clearcoat = m.clearcoat * unit_texture_at(scene, m.clearcoat_map, at).x;
     if (m.clearcoat_roughness_map != kNone) {
         const float roughness =
-            m.clearcoat_roughness * channel_at(scene, m.clearcoat_roughness_map, at, 1);
+            m.clearcoat_roughness * unit_texture_at(scene, m.clearcoat_roughness_map, at).y;
         b->clearcoat_alpha = roughness * roughness;
     }
 }
