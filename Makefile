@@ -64,7 +64,7 @@ FUZZ_SECONDS ?= 600
 
 sanitize-build: deps
 	@cmake -S . -B $(SAN_DIR) $(CLANG_CMAKE) -DWAVETRACE_SANITIZE=ON
-	@cmake --build $(SAN_DIR) -j $(JOBS) --target wavetrace_cli wavetrace_tests fuzz_scene fuzz_xml fuzz_pbrt fuzz_mesh fuzz_film fuzz_image
+	@cmake --build $(SAN_DIR) -j $(JOBS) --target wavetrace_cli wavetrace_tests fuzz_scene fuzz_xml fuzz_pbrt fuzz_mesh fuzz_film fuzz_image fuzz_volume
 
 sanitize: sanitize-build
 	@tools/check-deps.sh $(SAN_DIR)

@@ -60,7 +60,7 @@ fuzz_one() {
     echo "fuzz_$target: corpus $before -> $(ls "$root/tests/fuzz/corpus/$target" | wc -l) inputs"
   fi
 }
-targets=(scene xml pbrt mesh film image)
+targets=(scene xml pbrt mesh film image volume)
 pids=()
 for target in "${targets[@]}"; do
   ( fuzz_one "$target" ) >"$build/fuzz-$target.summary" 2>&1 &

@@ -94,7 +94,8 @@ void bind_scene(py::module_& m) {
         .value("Noise", TextureKind::Noise)
         .value("Image", TextureKind::Image)
         .value("MeshAttribute", TextureKind::MeshAttribute)
-        .value("Product", TextureKind::Product);
+        .value("Product", TextureKind::Product)
+        .value("Grid", TextureKind::Grid);
     py::enum_<TextureFilter>(m, "TextureFilter")
         .value("Bilinear", TextureFilter::Bilinear)
         .value("Nearest", TextureFilter::Nearest);

@@ -134,12 +134,13 @@ struct Chunk {
 };
 
 // Whether the lanes resolve the chunk's medium segments and lane vertices: a strategy whose
-// continuation there is the lane step (not the one-sample light/mixture choice), in grey media
-// (chromatic ones weight their flights: resolve_segment's chromatic_flight).
+// continuation there is the lane step (not the one-sample light/mixture choice), in grey
+// homogeneous media (chromatic ones weight their flights, heterogeneous ones walk a grid:
+// flight_scatters).
 bool resolves_in_lanes(const WaveInputs& in) {
     const Strategy s = in.estimator.strategy;
     for (const Medium& m : in.scene.media)
-        if (m.chromatic()) return false;
+        if (m.chromatic() || m.heterogeneous()) return false;
     return (s != Strategy::Light && s != Strategy::Mixture) || in.lights.empty();
 }
 

@@ -18,6 +18,7 @@
 #include "formats/json_reader.h"
 #include "formats/ply_write.h"
 #include "formats/serialized_mesh.h"
+#include "formats/volume_file.h"
 #include "loaders/mesh_file.h"
 #include "mitsuba/mitsuba_xml.h"
 #include "pbrt/translate.h"
@@ -498,12 +499,50 @@ class Loader {
                     t.wrap_u = t.wrap_v = mode(*x);
                 }
             }
+        } else if (type == "grid") {
+            t.kind = TextureKind::Grid;
+            t.grid = read_volume_grid(v, range, &o);
         } else {
             type_value.fail("unknown texture type \"" + type +
-                            "\" (expected solid, checker, uv_checker, noise or image)");
+                            "\" (expected solid, checker, uv_checker, noise, image or grid)");
         }
         o.finish();
         return scene_.add_texture(t);
+    }
+
+    // A volume grid: {"file": a Mitsuba .vol file, or "value": a number or a colour (one voxel),
+    // "transform": steps placing its unit cube in the world}; reflectances must not exceed 1.
+    // `in` is the object it is part of (a grid texture), else the grid is an object of its own.
+    VolumeGridId read_volume_grid(const Value& v, Range range, Object* in = nullptr) {
+        std::optional<Object> own;
+        if (!in) in = &own.emplace(v);
+        VolumeGrid g;
+        if (auto value = in->optional("value")) {
+            const Color c = range == Range::Reflectance ? value->reflectance() : value->color();
+            g.res[0] = g.res[1] = g.res[2] = 1;
+            g.channels = value->is_number() ? 1 : 3;
+            g.values =
+                value->is_number() ? std::vector<float>{c.x} : std::vector<float>{c.x, c.y, c.z};
+        } else {
+            const Value file = in->required("file");
+            const fs::path p = resolve(file);
+            try {
+                g = read_volume_file(p);
+            } catch (const std::runtime_error& e) {
+                file.fail("volume grid '" + p.string() + "' " + e.what());
+            } catch (const std::bad_alloc&) {
+                file.fail("out of memory reading volume grid '" + p.string() + "'");
+            }
+            if (range == Range::Reflectance)
+                for (const float x : g.values)
+                    if (x > 1.0f)
+                        file.fail("volume grid '" + p.string() + "' holds " + std::to_string(x) +
+                                  "; a reflectance grid's values must not exceed 1");
+        }
+        if (auto x = in->optional("transform")) g.to_local = read_transform(*x).inverse();
+        if (own) own->finish();
+        scene_.volume_grids.push_back(std::move(g));
+        return static_cast<VolumeGridId>(scene_.volume_grids.size() - 1);
     }
 
     // {"scale": s or [su, sv], "rotate": degrees, "offset": [ou, ov]}: uv scaled, then rotated
@@ -971,8 +1010,11 @@ class Loader {
             const Value albedo_value = o.required("albedo");
             TextureId albedo =
                 off_meshes(read_texture(albedo_value, Range::Reflectance), albedo_value);
+            VolumeGridId grid = kNone;
+            if (auto x = o.optional("density_grid")) grid = read_volume_grid(*x, Range::Radiance);
             o.finish();
             media_[name] = scene_.add_medium(name, sigma_t, albedo);
+            scene_.media[media_[name]].density_grid = grid;
         }
         all.finish();
     }

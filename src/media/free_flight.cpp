@@ -15,25 +15,31 @@ float sample_free_flight(float density, float u) {
 
 ChromaticFlight chromatic_flight(Color sigma_t, float seg, float& flight) {
     ChromaticFlight f;
+    const int c = draw_flight_channel(flight);
+    const float sigma = sigma_t[c];
+    const float dist = sigma > 0.0f ? flight / sigma : kInfinity;
+    if (dist < seg) {
+        f.scatters = true;
+        f.dist = dist;
+        f.weight = channel_mixture_weight(sigma_t * medium_transmittance(sigma_t, dist));
+        return f;
+    }
+    f.weight = channel_mixture_weight(medium_transmittance(sigma_t, seg));
+    if (sigma > 0.0f) flight -= sigma * seg;
+    return f;
+}
+
+int draw_flight_channel(float& flight) {
     const float u = -std::expm1(-flight);  // the uniform the depth was drawn from
     const float thirds = std::min(3.0f * u, std::nextafter(3.0f, 0.0f));
     const int c = static_cast<int>(thirds);
     flight = sample_free_flight(1.0f, thirds - float(c));
-    const float sigma = sigma_t[c];
-    const float dist = sigma > 0.0f ? flight / sigma : kInfinity;
-    if (dist < seg) {
-        const Color density = sigma_t * medium_transmittance(sigma_t, dist);
-        const float mixture = (density.x + density.y + density.z) / 3.0f;
-        f.scatters = true;
-        f.dist = dist;
-        f.weight = mixture > 0.0f ? density / mixture : Color(0.0f);
-        return f;
-    }
-    const Color tr = medium_transmittance(sigma_t, seg);
-    const float mixture = (tr.x + tr.y + tr.z) / 3.0f;
-    f.weight = mixture > 0.0f ? tr / mixture : Color(0.0f);
-    if (sigma > 0.0f) flight -= sigma * seg;
-    return f;
+    return c;
+}
+
+Color channel_mixture_weight(Color f) {
+    const float mixture = (f.x + f.y + f.z) / 3.0f;
+    return mixture > 0.0f ? f / mixture : Color(0.0f);
 }
 
 }  // namespace wavetrace

@@ -50,4 +50,10 @@ struct ChromaticFlight {
 };
 ChromaticFlight chromatic_flight(Color sigma_t, float seg, float& flight);
 
+// The channel-mixture flights' two steps, which heterogeneous media share: the channel that
+// samples this segment's distance, drawn from `flight` (replaced by the fresh depth), and the
+// weight f / mean_c(f_c) of the channels' densities (scattering) or transmittances (passing).
+int draw_flight_channel(float& flight);
+Color channel_mixture_weight(Color f);
+
 }  // namespace wavetrace

@@ -1170,7 +1170,38 @@ class Translator {
 
     static json to_json_color(Color c) { return json::array({c.x, c.y, c.z}); }
 
-    // A homogeneous medium inside a shape: our media are grey in extinction and isotropic.
+    // A <volume> as our JSON grid: a `gridvolume` (its file, placed by to_world; trilinear,
+    // clamped, over the unit cube) or a `constvolume` (its value over its to_world's unit
+    // cube, the box a heterogeneous medium is confined to).
+    json volume(const Element& v, bool bounded) {
+        const std::string type = v.attr_or("type", "");
+        Props p(v, *this);
+        json g;
+        if (type == "gridvolume") {
+            const std::string f = p.string("filename", "");
+            if (f.empty()) fail(v, "gridvolume: needs a filename");
+            g["file"] = file(v, f);
+            if (p.boolean("use_grid_bbox", false))
+                fail(v,
+                     "gridvolume: use_grid_bbox true is not supported (place the grid with "
+                     "to_world)");
+            if (const std::string f2 = p.string("filter_type", "trilinear"); f2 != "trilinear")
+                fail(v, "gridvolume: filter_type \"" + f2 + "\" is not supported (trilinear)");
+            if (const std::string w = p.string("wrap_mode", "clamp"); w != "clamp")
+                fail(v, "gridvolume: wrap_mode \"" + w + "\" is not supported (clamp)");
+        } else if (type == "constvolume") {
+            const Element* c = p.get("value");
+            g["value"] = c ? color(*c, bounded, false) : json(0.75);
+        } else {
+            fail(v, "volume \"" + type + "\" is not supported (gridvolume or constvolume)");
+        }
+        if (const Xform x = p.transform("to_world"); !x.steps.empty()) g["transform"] = x.steps;
+        p.finish({"raw", "accel"});
+        return g;
+    }
+
+    // A medium inside a shape: homogeneous, or heterogeneous over a volume (the medium is
+    // empty outside the sigma_t volume's box, as Mitsuba's); our media scatter isotropically.
     void medium(const Element& e, const std::string& role, json& o) {
         if (role != "interior") {
             warn(e, "medium \"" + role + "\": only interior media are supported; ignored");
@@ -1178,14 +1209,23 @@ class Translator {
         }
         auto it = media_names_.find(&e);
         if (it == media_names_.end()) {
-            if (e.attr_or("type", "") != "homogeneous") {
-                warn(e, "medium \"" + e.attr_or("type", "") + "\" is not supported; ignored");
+            const std::string type = e.attr_or("type", "");
+            if (type != "homogeneous" && type != "heterogeneous") {
+                warn(e, "medium \"" + type + "\" is not supported; ignored");
                 return;
             }
             Props p(e, *this);
             const double scale = p.number("scale", 1.0);
             const Element* st = p.get("sigma_t");
-            json sigma_t = st ? color(*st, false, false) : json(1.0);
+            json grid;
+            json sigma_t = json(1.0);
+            if (st && st->tag == "volume") {
+                if (type != "heterogeneous")
+                    fail(*st, "homogeneous: sigma_t must be a number or an rgb");
+                grid = volume(*st, false);
+            } else if (st) {
+                sigma_t = color(*st, false, false);
+            }
             json density;  // sigma_t x scale, per channel where it has channels
             if (sigma_t.is_array()) {
                 density = json::array();
@@ -1193,7 +1233,7 @@ class Translator {
             } else if (sigma_t.is_number()) {
                 density = sigma_t.get<double>() * scale;
             } else {
-                fail(*st, "homogeneous: sigma_t must be a number or an rgb");
+                fail(*st, type + ": sigma_t must be a number, an rgb or a volume");
             }
             for (const Element* phase : p.nested("phase"))
                 if (phase->attr_or("type", "") != "isotropic")
@@ -1201,8 +1241,20 @@ class Translator {
                                      "\": wavetrace's media scatter isotropically");
             std::string name = "medium at " + fs::path(e.place).filename().string();
             while (media_.contains(name)) name += "'";
-            media_[name] = {{"density", density},
-                            {"albedo", color_property(p, "albedo", 0.75, true)}};
+            json albedo;
+            if (const Element* a = p.get("albedo"); a && a->tag == "volume") {
+                // A grid texture; a constant's box confines nothing (an albedo is read only
+                // where the medium scatters).
+                albedo = volume(*a, true);
+                if (albedo.contains("value"))
+                    albedo = albedo["value"];
+                else
+                    albedo["type"] = "grid";
+            } else {
+                albedo = color_property(p, "albedo", 0.75, true);
+            }
+            media_[name] = {{"density", density}, {"albedo", albedo}};
+            if (!grid.is_null()) media_[name]["density_grid"] = grid;
             p.finish({"sample_emitters", "has_spectral_extinction"});
             it = media_names_.emplace(&e, name).first;
         }

@@ -62,6 +62,8 @@ void check_scene(const Scene& scene) {
         }
         if (t.kind == TextureKind::Product && (t.factors[0] >= i || t.factors[1] >= i))
             fail("texture", i, "a product's factors must be textures added before it");
+        if (t.kind == TextureKind::Grid && t.grid >= scene.volume_grids.size())
+            fail("texture", i, "names no volume grid of the scene");
         if (t.kind == TextureKind::Image &&
             (t.image >= scene.images.size() || scene.images[t.image].texels.empty()))
             fail("texture", i, "names no image of the scene");
@@ -119,6 +121,19 @@ void check_scene(const Scene& scene) {
         if (!(m.alpha_u >= 0 && m.alpha_v >= 0 && m.alpha_u <= 64 && m.alpha_v <= 64))
             fail("material", i, "alpha_u and alpha_v must be in [0, 64]");
     }
+    for (size_t i = 0; i < scene.volume_grids.size(); ++i) {
+        const VolumeGrid& g = scene.volume_grids[i];
+        uint64_t voxels = 1;
+        for (int a = 0; a < 3; ++a) {
+            if (g.res[a] < 1) fail("volume grid", i, "needs a resolution of at least 1 per axis");
+            voxels *= static_cast<uint64_t>(g.res[a]);
+        }
+        if ((g.channels != 1 && g.channels != 3) || g.values.size() != voxels * g.channels)
+            fail("volume grid", i, "needs 1 or 3 channels and a value per channel and voxel");
+        for (const float x : g.values)
+            if (!(x >= 0.0f) || !std::isfinite(x))
+                fail("volume grid", i, "values must be finite and non-negative");
+    }
     for (size_t i = 0; i < media; ++i) {
         const Medium& m = scene.media[i];
         if (m.phase >= materials || scene.materials[m.phase].kind != MaterialKind::Isotropic)
@@ -128,6 +143,8 @@ void check_scene(const Scene& scene) {
         for (int c = 0; c < 3; ++c)
             if (!(m.sigma_t[c] >= 0) || !std::isfinite(m.sigma_t[c]))
                 fail("medium", i, "sigma_t must be non-negative numbers");
+        if (m.heterogeneous() && m.density_grid >= scene.volume_grids.size())
+            fail("medium", i, "its density grid names no volume grid of the scene");
     }
     auto check_refs = [&](const char* what, size_t i, MaterialId material, MediumId interior) {
         if (material >= materials) fail(what, i, "names no material of the scene");

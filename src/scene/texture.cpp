@@ -178,6 +178,7 @@ bool texture_reads_uv(const Scene& scene, TextureId id) {
         case TextureKind::Solid:
         case TextureKind::Noise:
         case TextureKind::MeshAttribute:
+        case TextureKind::Grid:
             return false;
     }
     return false;
@@ -241,6 +242,8 @@ Color eval_texture(const Scene& scene, TextureId id, const TexturePoint& at) {
             case TextureKind::Noise:
                 return t.color *
                        (0.5f * (1.0f + std::sin(t.scale * p.z + 10.0f * perlin_turbulence(p))));
+            case TextureKind::Grid:
+                return scene.volume_grids[t.grid].lookup(p);
             case TextureKind::Image: {
                 const Vec2 st = t.map_uv(uv);
                 const Color c =
@@ -315,6 +318,14 @@ Color texture_mean(const Scene& scene, TextureId id) {
                 for (const Color& c : image.texels) sum += c;
                 return image.texels.empty() ? Color(0.0f)
                                             : t.factor * sum / float(image.texels.size());
+            }
+            case TextureKind::Grid: {  // over the voxels
+                const VolumeGrid& g = scene.volume_grids[t.grid];
+                Color sum{0.0f};
+                const int res = g.res[0] * g.res[1] * g.res[2];
+                for (int i = 0; i < res; ++i)
+                    sum += g.voxel(i % g.res[0], i / g.res[0] % g.res[1], i / g.res[0] / g.res[1]);
+                return res > 0 ? sum / float(res) : Color(0.0f);
             }
             case TextureKind::MeshAttribute: {  // over every mesh's values of that name
                 Color sum{0.0f};

@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "accel/intersector.h"
+#include "media/medium_segment.h"
 #include "shading/path_vertex.h"
 #include "wavetrace/scene/scene.h"
 #include "wavetrace/shading/surface.h"
@@ -44,7 +45,7 @@ inline std::optional<Color> transmittance_after_any_hit(const Scene& scene,
     }
     const MediumId m = media.current();
     if (m == kNone) return Color(1.0f);
-    return medium_transmittance(scene.media[m].sigma_t, (ray.tmax - ray.tmin) * length(ray.d));
+    return segment_transmittance(scene, m, ray, ray.tmin, ray.tmax);
 }
 
 // transmittance (below) by walking from closest hit to closest hit, stepping over the surfaces
@@ -58,8 +59,7 @@ Color transmittance_walk(
         Hit hit = bvh.intersect(ray);
         float end = hit.found() ? hit.t : ray.tmax;
         MediumId m = media.current();
-        if (m != kNone)
-            tr = tr * medium_transmittance(scene.media[m].sigma_t, (end - ray.tmin) * length(ray.d));
+        if (m != kNone) tr = tr * segment_transmittance(scene, m, ray, ray.tmin, end);
         if (max_component(tr) == 0.0f) return Color(0.0f);
         if (!hit.found()) return tr;
         // A surface blocks it; only one it passes needs the point, to step over it.

@@ -9,6 +9,7 @@ using TextureId = uint32_t;
 using MaterialId = uint32_t;
 using MediumId = uint32_t;
 using ImageId = uint32_t;
+using VolumeGridId = uint32_t;
 inline constexpr uint32_t kNone = 0xffffffffu;
 
 // Primitive kinds that the BVH holds side by side.

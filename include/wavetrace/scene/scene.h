@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "wavetrace/math/aabb.h"
-#include "wavetrace/sampling/sampler.h"
 #include "wavetrace/math/transform.h"
+#include "wavetrace/sampling/sampler.h"
 #include "wavetrace/scene/background.h"
 #include "wavetrace/scene/camera.h"
 #include "wavetrace/scene/ids.h"
@@ -19,6 +19,7 @@
 #include "wavetrace/scene/medium.h"
 #include "wavetrace/scene/shapes.h"
 #include "wavetrace/scene/texture.h"
+#include "wavetrace/scene/volume_grid.h"
 
 namespace wavetrace {
 
@@ -57,6 +58,7 @@ struct Scene {
     std::vector<ImageData> images;
     std::vector<Material> materials;
     std::vector<Medium> media;
+    std::vector<VolumeGrid> volume_grids;  // heterogeneous media's extinctions, grid textures
 
     std::vector<Sphere> spheres;
     std::vector<Frame> sphere_frames;  // the own frames of spheres whose transform rotates them

@@ -21,6 +21,7 @@ enum class TextureKind : uint8_t {
     MeshAttribute,
     Product,  // the product of textures `factors` (pbrt-v4's scale texture; glTF's base colour
               // times its vertex colour)
+    Grid,     // a volume grid read at the point (VolumeGrid::lookup): a medium's albedo
 };
 
 // How an image texture is looked up between texels: interpolated between the four nearest
@@ -43,6 +44,7 @@ struct Texture {
     TextureId odd = kNone;   // Checker: the texture of odd cells
     TextureId factors[2] = {kNone, kNone};  // Product: the textures multiplied
     ImageId image = kNone;   // Image: index into Scene::images
+    VolumeGridId grid = kNone;                       // Grid: index into Scene::volume_grids
     TextureFilter filter = TextureFilter::Bilinear;  // Image
     TextureWrap wrap_u = TextureWrap::Repeat;        // Image: along u
     TextureWrap wrap_v = TextureWrap::Repeat;        // Image: along v

@@ -1,0 +1,64 @@
+#include "media/medium_segment.h"
+
+#include <cmath>
+
+#include "math/lanes-inl.h"
+#include "media/free_flight.h"
+#include "media/grid_track.h"
+#include "media/medium_flight-inl.h"
+
+namespace wavetrace {
+namespace lanes = HWY_NAMESPACE;
+using lanes::OneLane;
+
+namespace {
+
+Color exp_minus(Color depth) {
+    return {std::exp(-depth.x), std::exp(-depth.y), std::exp(-depth.z)};
+}
+
+}  // namespace
+
+Color grid_transmittance(
+    const Medium& medium, const VolumeGrid& grid, Point3 o, Vec3 dir, float length) {
+    return exp_minus(grid_reach(grid, medium.sigma_t, o, dir, length, 0, kInfinity).depth);
+}
+
+bool flight_scatters(const Scene& scene,
+                     MediumId m,
+                     const Ray& ray,
+                     float t0,
+                     float dir_length,
+                     float seg,
+                     float& flight,
+                     float* s,
+                     Color* weight) {
+    const Medium& medium = scene.media[m];
+    if (!medium.heterogeneous()) {
+        if (medium.chromatic()) {
+            const ChromaticFlight f = chromatic_flight(medium.sigma_t, seg, flight);
+            *s = f.dist;
+            *weight = f.weight;
+            return f.scatters;
+        }
+        *weight = Color(1.0f);
+        return lanes::ScattersInMedium<OneLane>(seg, medium.sigma_t.x, &flight, s);
+    }
+    // As chromatic_flight, with the grid's depths and extinctions for sigma_t t and sigma_t.
+    const VolumeGrid& grid = scene.volume_grids[medium.density_grid];
+    const bool chromatic = medium.chromatic() || grid.channels == 3;
+    const int c = chromatic ? draw_flight_channel(flight) : 0;
+    const GridReach r =
+        grid_reach(grid, medium.sigma_t, ray.at(t0), ray.d / dir_length, seg, c, flight);
+    *weight = Color(1.0f);
+    if (r.reached) {
+        *s = r.dist;
+        if (chromatic) *weight = channel_mixture_weight(r.sigma * exp_minus(r.depth));
+        return true;
+    }
+    if (chromatic) *weight = channel_mixture_weight(exp_minus(r.depth));
+    flight -= r.depth[c];
+    return false;
+}
+
+}  // namespace wavetrace
