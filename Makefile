@@ -51,7 +51,7 @@ CLANG_CMAKE = -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
 # other Compare tests here too). The suites named
 # here must live in tests/CMakeLists.txt's WAVETRACE_SANITIZED_TEST_SOURCES.
 SAN_TESTS ?= Check*:SceneLoader.*:MitsubaScenes.*:PbrtScenes.*:Cli.*:Hostile*:Bvh.*:Triangle.*:Sphere.*:Quad.*:MeshFiles.*:MeshAttributes.*:Wavefront.*:Megakernel.*:Kernels.*:Lanes.*:Films.*:CompareImages.*:-Cli.WavefrontMemoryDoesNotGrowWithSamples:Megakernel.StrategiesAgree:Megakernel.MisEarnsItsName:Wavefront.EqualsTheMegakernelOnMitsubasScenes:PbrtScenes.BitterlisCornellBoxRendersTungstensImageMean:Cli.CompareTellsNoiseFromADifferentImage
-# Sized so that the six targets, side by side on CI's two cores, end together in about 2
+# Sized so that the seven targets, side by side on CI's two cores, end together in about 2
 # minutes on a slow machine (a Zen 1; the millions each target has had are in
 # docs/fuzzing.md). An XML execution loads a dozen shapes, meshes and images, a mesh execution
 # goes through Assimp, and an image execution decodes up to 2^14 texels per byte of file:

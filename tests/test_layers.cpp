@@ -24,7 +24,7 @@ const std::vector<std::string> kLayers = {
     "microfacets",  // microfacet distributions: densities, Smith masking, visible normals
     "bsdfs",        // how surfaces and media scatter: BSDFs, Fresnel, microfacet distributions
     "scene",        // the scene model and its builders
-    "media",        // homogeneous media: free flights, transmittance, the medium stack
+    "media",        // media: free flights, transmittance, grid tracking, the medium stack
     "image",        // images: OpenImageIO in and out, comparisons
     "film",         // per-pixel sums and film files
     "formats",      // file formats read strictly: JSON, glTF's JSON, checks before Assimp
