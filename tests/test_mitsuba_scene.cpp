@@ -741,17 +741,32 @@ TEST(MitsubaScenes, HeterogeneousMediaMapTheirVolumes) {
                   .find("must not exceed 1"),
               std::string::npos);
     EXPECT_NE(
-        error_of(
-            medium(grid_volume + R"(<boolean name="use_grid_bbox" value="true"/></volume>)", ""))
-            .find("m.xml:3: gridvolume: use_grid_bbox true is not supported"),
+        error_of(medium(grid_volume + R"(<string name="filter_type" value="cubic"/></volume>)", ""))
+            .find("m.xml:3: gridvolume: filter_type \"cubic\""),
         std::string::npos);
     EXPECT_NE(
-        error_of(medium(grid_volume + R"(<string name="wrap_mode" value="repeat"/></volume>)", ""))
-            .find("wrap_mode \"repeat\""),
+        error_of(medium(grid_volume + R"(<string name="wrap_mode" value="border"/></volume>)", ""))
+            .find("wrap_mode \"border\""),
         std::string::npos);
     EXPECT_NE(error_of(medium(R"(<volume name="sigma_t" type="gridvolume"/>)", ""))
                   .find("needs a filename"),
               std::string::npos);
+    // The file's box (x from 2 to 6 here), mapped onto the unit cube before to_world; the
+    // filter and the wrap mode.
+    std::string boxed = grid;
+    const float box[6] = {2, 0, 0, 6, 1, 1};
+    boxed.replace(24, 24, reinterpret_cast<const char*>(box), 24);
+    dir.write("g.vol", boxed);
+    s = load_scene(medium(grid_volume + R"(<boolean name="use_grid_bbox" value="true"/>
+      <string name="filter_type" value="nearest"/><string name="wrap_mode" value="mirror"/>
+      </volume>)",
+                          ""),
+                   collecting());
+    const VolumeGrid& b = s.volume_grids[s.media[0].density_grid];
+    EXPECT_TRUE(b.nearest);
+    EXPECT_EQ(b.wrap, TextureWrap::Mirror);
+    EXPECT_EQ(b.lookup({2.5f, 0.0f, 0.0f}).x, 0.25f);  // local x 3: the box's first half
+    EXPECT_EQ(b.lookup({4.5f, 0.0f, 0.0f}).x, 0.5f);   // (a.vol's 0.5 written over the 4)
 }
 
 // Mitsuba gives a mesh whose file has no vertex normals smooth ones (unless face_normals): a

@@ -57,8 +57,19 @@ Vec3 random_direction(std::mt19937& rng) {
 TEST(VolumeGrids, OpticalDepthIsTheIntegralOfTheInterpolation) {
     std::mt19937 rng(7);
     const Color scale{1.0f, 0.5f, 2.0f};
-    for (int channels : {1, 3}) {
-        const VolumeGrid g = random_grid(5, 4, 3, channels, rng);
+    struct Mode {
+        int channels;
+        bool nearest;
+        TextureWrap wrap;
+    };
+    for (const Mode mode :
+         {Mode{1, false, TextureWrap::Clamp}, Mode{3, false, TextureWrap::Clamp},
+          Mode{3, false, TextureWrap::Repeat}, Mode{1, false, TextureWrap::Mirror},
+          Mode{3, true, TextureWrap::Clamp}, Mode{1, true, TextureWrap::Repeat}}) {
+        const int channels = mode.channels;
+        VolumeGrid g = random_grid(5, 4, 3, channels, rng);
+        g.nearest = mode.nearest;
+        g.wrap = mode.wrap;
         int crossing = 0;
         for (int ray = 0; ray < 40; ++ray) {
             // From a point around the box through another: most rays cross it, some miss.
@@ -73,7 +84,8 @@ TEST(VolumeGrids, OpticalDepthIsTheIntegralOfTheInterpolation) {
             if (max_component(numeric) > 0.0f) ++crossing;
             for (int c = 0; c < 3; ++c)
                 EXPECT_NEAR(exact[c], numeric[c], 2e-3f * numeric[c] + 1e-5f)
-                    << "channels " << channels << " ray " << ray << " channel " << c;
+                    << "channels " << channels << " nearest " << mode.nearest << " wrap "
+                    << int(mode.wrap) << " ray " << ray << " channel " << c;
         }
         EXPECT_GT(crossing, 20);
     }
@@ -135,6 +147,19 @@ TEST(VolumeGrids, VolFilesAreReadStrictly) {
     EXPECT_EQ(g.lookup_local({0.75f, 0.5f, 0.5f}).x, 4.0f);
     EXPECT_EQ(g.lookup_local({3.0f, -2.0f, 9.0f}).y, 5.0f);
     EXPECT_NEAR(g.lookup_local({0.5f, 0.5f, 0.5f}).y, 3.5f, 1e-6f);
+    // Beyond the grid, repeated (x 1.25 is 0.25) or mirrored (x 1.25 is 0.75, -0.25 is 0.25).
+    VolumeGrid w = g;
+    w.wrap = TextureWrap::Repeat;
+    EXPECT_EQ(w.lookup_local({1.25f, 0.5f, 0.5f}).x, g.lookup_local({0.25f, 0.5f, 0.5f}).x);
+    // Between the last centre and the edge, interpolated towards the first voxel.
+    EXPECT_NEAR(w.lookup_local({0.875f, 0.5f, 0.5f}).x, 0.75f * 4.0f + 0.25f * 1.0f, 1e-6f);
+    w.wrap = TextureWrap::Mirror;
+    EXPECT_EQ(w.lookup_local({1.25f, 0.5f, 0.5f}).x, g.lookup_local({0.75f, 0.5f, 0.5f}).x);
+    EXPECT_EQ(w.lookup_local({-0.25f, 0.5f, 0.5f}).x, g.lookup_local({0.25f, 0.5f, 0.5f}).x);
+    // Nearest: each voxel's value over its cell.
+    w.nearest = true;
+    EXPECT_EQ(w.lookup_local({0.49f, 0.5f, 0.5f}).x, 1.0f);
+    EXPECT_EQ(w.lookup_local({0.51f, 0.5f, 0.5f}).x, 4.0f);
 
     auto error_of = [&](const std::string& bytes) {
         try {

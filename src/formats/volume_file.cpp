@@ -26,7 +26,7 @@ int32_t grid_int_at(const std::string& bytes, size_t at) {
 
 }  // namespace
 
-VolumeGrid read_volume_file(const std::filesystem::path& path) {
+VolumeGrid read_volume_file(const std::filesystem::path& path, Aabb* bounds) {
     check_input_file(path, kMaxImageFileBytes, "volume grids");
     const std::string bytes = read_input_file(path);
     if (bytes.size() < kGridHeaderBytes)
@@ -63,6 +63,11 @@ VolumeGrid read_volume_file(const std::filesystem::path& path) {
                  std::to_string(g.res[2]) + " voxels, " + std::to_string(g.channels) +
                  " channels) claims " +
                  (voxels > bytes.size() ? "far more" : std::to_string(count * 4)));
+    if (bounds) {
+        float b[6];
+        std::memcpy(b, bytes.data() + 24, sizeof b);
+        *bounds = Aabb{{b[0], b[1], b[2]}, {b[3], b[4], b[5]}};
+    }
     g.values.resize(count);
     std::memcpy(g.values.data(), bytes.data() + kGridHeaderBytes, payload);
     for (size_t i = 0; i < g.values.size(); ++i)

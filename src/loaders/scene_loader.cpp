@@ -484,19 +484,12 @@ class Loader {
                 else x->fail("expected \"bilinear\" or \"nearest\", got \"" + f + "\"");
             }
             if (auto x = o.optional("wrap")) {  // one mode, or [along u, along v]
-                auto mode = [](const Value& m) {
-                    const std::string w = m.string();
-                    if (w == "repeat") return TextureWrap::Repeat;
-                    if (w == "mirror") return TextureWrap::Mirror;
-                    if (w == "clamp") return TextureWrap::Clamp;
-                    m.fail("expected \"repeat\", \"mirror\" or \"clamp\", got \"" + w + "\"");
-                };
                 if (x->is_array()) {
                     if (x->size() != 2) x->fail("expected a wrap mode or two, [along u, along v]");
-                    t.wrap_u = mode((*x)[0]);
-                    t.wrap_v = mode((*x)[1]);
+                    t.wrap_u = wrap_mode((*x)[0]);
+                    t.wrap_v = wrap_mode((*x)[1]);
                 } else {
-                    t.wrap_u = t.wrap_v = mode(*x);
+                    t.wrap_u = t.wrap_v = wrap_mode(*x);
                 }
             }
         } else if (type == "grid") {
@@ -510,13 +503,23 @@ class Loader {
         return scene_.add_texture(t);
     }
 
+    static TextureWrap wrap_mode(const Value& m) {
+        const std::string w = m.string();
+        if (w == "repeat") return TextureWrap::Repeat;
+        if (w == "mirror") return TextureWrap::Mirror;
+        if (w == "clamp") return TextureWrap::Clamp;
+        m.fail("expected \"repeat\", \"mirror\" or \"clamp\", got \"" + w + "\"");
+    }
+
     // A volume grid: {"file": a Mitsuba .vol file, or "value": a number or a colour (one voxel),
-    // "transform": steps placing its unit cube in the world}; reflectances must not exceed 1.
-    // `in` is the object it is part of (a grid texture), else the grid is an object of its own.
+    // "transform": steps placing its unit cube in the world, "filter", "wrap", "file_bounds"};
+    // reflectances must not exceed 1. `in` is the object it is part of (a grid texture), else
+    // the grid is an object of its own.
     VolumeGridId read_volume_grid(const Value& v, Range range, Object* in = nullptr) {
         std::optional<Object> own;
         if (!in) in = &own.emplace(v);
         VolumeGrid g;
+        Aabb bounds;
         if (auto value = in->optional("value")) {
             const Color c = range == Range::Reflectance ? value->reflectance() : value->color();
             g.res[0] = g.res[1] = g.res[2] = 1;
@@ -527,7 +530,7 @@ class Loader {
             const Value file = in->required("file");
             const fs::path p = resolve(file);
             try {
-                g = read_volume_file(p);
+                g = read_volume_file(p, &bounds);
             } catch (const std::runtime_error& e) {
                 file.fail("volume grid '" + p.string() + "' " + e.what());
             } catch (const std::bad_alloc&) {
@@ -540,6 +543,25 @@ class Loader {
                                   "; a reflectance grid's values must not exceed 1");
         }
         if (auto x = in->optional("transform")) g.to_local = read_transform(*x).inverse();
+        // The box the file states, in the grid's frame, mapped onto the unit cube.
+        if (auto x = in->optional("file_bounds"); x && x->boolean()) {
+            const Vec3 size = bounds.hi - bounds.lo;
+            if (!(size.x > 0 && size.y > 0 && size.z > 0) || !is_finite(bounds.lo) ||
+                !is_finite(size))
+                x->fail("the grid file's bounding box is empty or not finite");
+            const Transform to_unit = Transform::scale({1 / size.x, 1 / size.y, 1 / size.z}) *
+                                      Transform::translate(-bounds.lo);
+            if (!to_unit.is_well_conditioned(kMaxCoordinate))
+                x->fail("the grid file's bounding box scales beyond [1e-7, 1e7]");
+            g.to_local = to_unit * g.to_local;
+        }
+        if (auto x = in->optional("filter")) {
+            const std::string f = x->string();
+            if (f != "trilinear" && f != "nearest")
+                x->fail("expected \"trilinear\" or \"nearest\", got \"" + f + "\"");
+            g.nearest = f == "nearest";
+        }
+        if (auto x = in->optional("wrap")) g.wrap = wrap_mode(*x);
         if (own) own->finish();
         scene_.volume_grids.push_back(std::move(g));
         return static_cast<VolumeGridId>(scene_.volume_grids.size() - 1);

@@ -20,10 +20,13 @@ struct Cubic {
 };
 
 // The extinction along x in [0, L) inside one cell, whose lower corner voxel is (i, j, k)
-// (indices clamped by VolumeGrid::voxel: a cell beyond the outer centres is constant along that
-// axis), where the fractions within the cell are f + df x. Trilinear interpolation as nested
-// lerps, each multiplying in one linear factor: along z, then y, then x.
+// (indices wrapped by VolumeGrid::voxel: with clamping, a cell beyond the outer centres is
+// constant along that axis), where the fractions within the cell are f + df x. Trilinear
+// interpolation as nested lerps, each multiplying in one linear factor: along z, then y, then
+// x; a nearest-filtered grid's cell is its voxel's constant.
 Cubic cell_cubic(const VolumeGrid& g, const int idx[3], const float f[3], const float df[3]) {
+    if (g.nearest)
+        return {{g.voxel(idx[0], idx[1], idx[2]), Color(0.0f), Color(0.0f), Color(0.0f)}};
     Color lz[2][2][2];  // [dx][dy] -> linear in x: {constant, slope}
     for (int dx = 0; dx < 2; ++dx)
         for (int dy = 0; dy < 2; ++dy) {
@@ -88,12 +91,13 @@ GridReach grid_reach(
         s1 = std::min(s1, tb);
     }
     if (!(s0 < s1)) return r;
-    // Index space, voxel centres at integers: u(s) = u0 + du s. The walk visits the cells
-    // between consecutive integers of each axis in the order the ray crosses them.
+    // Index space, voxel centres at integers (nearest: voxel i spans [i, i + 1)): u(s) = u0 +
+    // du s. The walk visits the cells between consecutive integers of each axis in the order
+    // the ray crosses them.
     float u0[3], du[3], next[3];
     int idx[3], step[3];
     for (int a = 0; a < 3; ++a) {
-        u0[a] = ol[a] * g.res[a] - 0.5f;
+        u0[a] = ol[a] * g.res[a] - (g.nearest ? 0.0f : 0.5f);
         du[a] = dl[a] * g.res[a];
         const float u = std::fmin(std::fmax(u0[a] + du[a] * s0, -1.0f), float(g.res[a]));
         if (du[a] > 0.0f) {

@@ -1170,9 +1170,10 @@ class Translator {
 
     static json to_json_color(Color c) { return json::array({c.x, c.y, c.z}); }
 
-    // A <volume> as our JSON grid: a `gridvolume` (its file, placed by to_world; trilinear,
-    // clamped, over the unit cube) or a `constvolume` (its value over its to_world's unit
-    // cube, the box a heterogeneous medium is confined to).
+    // A <volume> as our JSON grid: a `gridvolume` (its file over the unit cube, or over the
+    // file's box with use_grid_bbox, placed by to_world; its filter and wrap mode) or a
+    // `constvolume` (its value over its to_world's unit cube, the box a heterogeneous medium is
+    // confined to).
     json volume(const Element& v, bool bounded) {
         const std::string type = v.attr_or("type", "");
         Props p(v, *this);
@@ -1181,14 +1182,17 @@ class Translator {
             const std::string f = p.string("filename", "");
             if (f.empty()) fail(v, "gridvolume: needs a filename");
             g["file"] = file(v, f);
-            if (p.boolean("use_grid_bbox", false))
+            if (p.boolean("use_grid_bbox", false)) g["file_bounds"] = true;
+            const std::string filter = p.string("filter_type", "trilinear");
+            if (filter != "trilinear" && filter != "nearest")
                 fail(v,
-                     "gridvolume: use_grid_bbox true is not supported (place the grid with "
-                     "to_world)");
-            if (const std::string f2 = p.string("filter_type", "trilinear"); f2 != "trilinear")
-                fail(v, "gridvolume: filter_type \"" + f2 + "\" is not supported (trilinear)");
-            if (const std::string w = p.string("wrap_mode", "clamp"); w != "clamp")
-                fail(v, "gridvolume: wrap_mode \"" + w + "\" is not supported (clamp)");
+                     "gridvolume: filter_type \"" + filter + "\" (expected trilinear or nearest)");
+            if (filter == "nearest") g["filter"] = filter;
+            const std::string wrap = p.string("wrap_mode", "clamp");
+            if (wrap != "clamp" && wrap != "repeat" && wrap != "mirror")
+                fail(v,
+                     "gridvolume: wrap_mode \"" + wrap + "\" (expected clamp, repeat or mirror)");
+            if (wrap != "clamp") g["wrap"] = wrap;
         } else if (type == "constvolume") {
             const Element* c = p.get("value");
             g["value"] = c ? color(*c, bounded, false) : json(0.75);

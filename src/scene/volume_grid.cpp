@@ -4,27 +4,51 @@
 #include <cmath>
 
 namespace wavetrace {
+namespace {
+
+// Index i of an axis of n voxels brought into [0, n).
+int wrap_index(int i, int n, TextureWrap wrap) {
+    switch (wrap) {
+        case TextureWrap::Clamp:
+            return std::clamp(i, 0, n - 1);
+        case TextureWrap::Repeat:
+            return ((i % n) + n) % n;
+        case TextureWrap::Mirror: {
+            const int m = ((i % (2 * n)) + 2 * n) % (2 * n);  // period 2n: 0..n-1, n-1..0
+            return m < n ? m : 2 * n - 1 - m;
+        }
+    }
+    return 0;
+}
+
+}  // namespace
 
 Color VolumeGrid::voxel(int i, int j, int k) const {
-    i = std::clamp(i, 0, res[0] - 1);
-    j = std::clamp(j, 0, res[1] - 1);
-    k = std::clamp(k, 0, res[2] - 1);
+    i = wrap_index(i, res[0], wrap);
+    j = wrap_index(j, res[1], wrap);
+    k = wrap_index(k, res[2], wrap);
     const size_t at = ((static_cast<size_t>(k) * res[1] + j) * res[0] + i) * channels;
     return channels == 1 ? Color(values[at]) : Color(values[at], values[at + 1], values[at + 2]);
 }
 
 Color VolumeGrid::lookup_local(Point3 q) const {
-    // Index space: voxel centres at integers.
-    const float u[3] = {q.x * res[0] - 0.5f, q.y * res[1] - 0.5f, q.z * res[2] - 0.5f};
     int base[3];
     float f[3];
     for (int a = 0; a < 3; ++a) {
-        // Far outside (or NaN), clamp before the conversion to int can overflow.
-        const float x = std::fmin(std::fmax(u[a], -1.0f), float(res[a]));
+        // Repeat and mirror first bring the point into one period; then clamp far outside (or
+        // NaN) before the conversion to int can overflow.
+        float x = q[a];
+        if (wrap == TextureWrap::Repeat) x -= std::floor(x);
+        if (wrap == TextureWrap::Mirror)
+            x = 1.0f - std::fabs(1.0f - (x - 2.0f * std::floor(0.5f * x)));
+        // Index space: voxel centres at integers (trilinear), cells [i, i + 1) (nearest).
+        x = x * res[a] - (nearest ? 0.0f : 0.5f);
+        x = std::fmin(std::fmax(x, -1.0f), float(res[a]));
         const float fl = std::floor(x);
         base[a] = static_cast<int>(fl);
         f[a] = x - fl;
     }
+    if (nearest) return voxel(base[0], base[1], base[2]);
     Color c{0.0f};
     for (int dz = 0; dz < 2; ++dz)
         for (int dy = 0; dy < 2; ++dy)
