@@ -10,9 +10,6 @@
 
 namespace wavetrace {
 
-namespace {
-
-// Texel index i of a row or column of n, wrapped.
 int wrap_index(int64_t i, int n, TextureWrap wrap) {
     switch (wrap) {
         case TextureWrap::Clamp:
@@ -26,6 +23,8 @@ int wrap_index(int64_t i, int n, TextureWrap wrap) {
             return static_cast<int>(((i % n) + n) % n);
     }
 }
+
+namespace {
 
 // The four texels about (u, v) and its place between their centres (tx, ty in [0, 1)), as
 // the bilinear filter reads them.

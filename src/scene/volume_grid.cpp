@@ -1,27 +1,8 @@
 #include "wavetrace/scene/volume_grid.h"
 
-#include <algorithm>
 #include <cmath>
 
 namespace wavetrace {
-namespace {
-
-// Index i of an axis of n voxels brought into [0, n).
-int wrap_index(int i, int n, TextureWrap wrap) {
-    switch (wrap) {
-        case TextureWrap::Clamp:
-            return std::clamp(i, 0, n - 1);
-        case TextureWrap::Repeat:
-            return ((i % n) + n) % n;
-        case TextureWrap::Mirror: {
-            const int m = ((i % (2 * n)) + 2 * n) % (2 * n);  // period 2n: 0..n-1, n-1..0
-            return m < n ? m : 2 * n - 1 - m;
-        }
-    }
-    return 0;
-}
-
-}  // namespace
 
 Color VolumeGrid::voxel(int i, int j, int k) const {
     i = wrap_index(i, res[0], wrap);

@@ -32,6 +32,8 @@ enum class TextureFilter : uint8_t { Bilinear, Nearest };
 // mirrored at every edge (period two images), or its edge texels extended (Mitsuba's
 // wrap_mode, pbrt-v4's wrap, glTF's wrapS and wrapT: REPEAT, MIRRORED_REPEAT, CLAMP_TO_EDGE).
 enum class TextureWrap : uint8_t { Repeat, Mirror, Clamp };
+// Index i of a row of n texels (or of a volume grid's voxels) brought into [0, n).
+int wrap_index(int64_t i, int n, TextureWrap wrap);
 
 // A texture is a plain record; which fields matter depends on `kind`.
 struct Texture {
