@@ -6,6 +6,7 @@
 // the image Tungsten renders of it.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -390,9 +391,12 @@ WorldBegin
 Texture "a" "spectrum" "imagemap" "string filename" "t.exr" "string filter" "point"
   "string wrap" "clamp"
 Texture "b" "spectrum" "imagemap" "string filename" "t.exr" "string filter" "ewa"
+Texture "c" "spectrum" "imagemap" "string filename" "t.exr" "string wrap" "black"
 Material "diffuse" "texture reflectance" "a"
 Shape "sphere"
 Material "diffuse" "texture reflectance" "b"
+Shape "sphere"
+Material "diffuse" "texture reflectance" "c"
 Shape "sphere"
 )");
     Scene s = load_scene(path, collecting());
@@ -402,8 +406,12 @@ Shape "sphere"
             images.emplace_back(t.filter, t.wrap_u);
             EXPECT_EQ(t.wrap_v, t.wrap_u);
         }
-    const std::vector<std::pair<TextureFilter, TextureWrap>> expected = {
-        {TextureFilter::Nearest, TextureWrap::Clamp}, {TextureFilter::Bilinear, TextureWrap::Repeat}};
+    std::vector<std::pair<TextureFilter, TextureWrap>> expected = {
+        {TextureFilter::Nearest, TextureWrap::Clamp},
+        {TextureFilter::Bilinear, TextureWrap::Repeat},
+        {TextureFilter::Bilinear, TextureWrap::Black}};
+    std::sort(images.begin(), images.end());
+    std::sort(expected.begin(), expected.end());
     EXPECT_EQ(images, expected);
     ASSERT_EQ(warnings.size(), 1u);
     EXPECT_NE(warnings[0].find("filter \"ewa\" is not supported; bilinear is used"),
@@ -530,6 +538,44 @@ AttributeEnd
     ASSERT_EQ(s.spheres.size(), 1u);
     EXPECT_EQ(s.spheres[0].interior, MediumId{0});
     EXPECT_TRUE(s.is_boundary(s.spheres[0].material));
+}
+
+// A uniformgrid medium: its density samples over p0..p1 in the medium's space, trilinear
+// between them and 0 half a sample beyond the outermost (pbrt-v4's SampledGrid).
+TEST(PbrtScenes, UniformGridMediaAreDensityGrids) {
+    TempDir dir;
+    auto scene = [&](const std::string& density) {
+        return dir.write("a.pbrt", R"(
+Camera "perspective"
+WorldBegin
+AttributeBegin
+  Translate 10 0 0
+  MakeNamedMedium "smoke" "string type" "uniformgrid" "integer nx" 2 "integer ny" 1 "integer nz" 1
+    "float density" )" + density + R"( "point3 p0" [0 0 0] "point3 p1" [4 1 1]
+    "rgb sigma_a" [1 1 1] "rgb sigma_s" [3 3 3] "float scale" 0.5
+AttributeEnd
+AttributeBegin
+  MediumInterface "smoke" ""
+  Material "interface"
+  Shape "sphere" "float radius" 20
+AttributeEnd
+)");
+    };
+    Scene s = load_scene(scene("[2 6]"), collecting());
+    ASSERT_EQ(s.media.size(), 1u);
+    ASSERT_TRUE(s.media[0].heterogeneous());
+    EXPECT_NEAR(s.media[0].sigma_t.x, 2.0f, 1e-6f);  // (1 + 3) x 0.5
+    EXPECT_NEAR(s.textures[s.materials[s.media[0].phase].albedo].color.x, 0.75f, 1e-6f);  // 3 / 4
+    const VolumeGrid& g = s.volume_grids[s.media[0].density_grid];
+    EXPECT_EQ(g.wrap, TextureWrap::Black);
+    // Samples at x 11 and 13 (the box 10..14): 2 and 6, 4 halfway, 1 at the box's face.
+    EXPECT_NEAR(g.lookup({11.0f, 0.5f, 0.5f}).x, 2.0f, 1e-5f);
+    EXPECT_NEAR(g.lookup({12.0f, 0.5f, 0.5f}).x, 4.0f, 1e-5f);
+    EXPECT_NEAR(g.lookup({10.0f, 0.5f, 0.5f}).x, 1.0f, 1e-5f);
+    EXPECT_NE(error_of(scene("[2 6 7]"))
+                  .find("a.pbrt:6: medium \"smoke\": density needs nx ny nz = 2 values, got 3"),
+              std::string::npos)
+        << error_of(scene("[2 6 7]"));
 }
 
 // Loop subdivision of an octahedron: every level quadruples the faces, the mesh stays closed

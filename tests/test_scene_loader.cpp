@@ -302,7 +302,8 @@ TEST(SceneLoader, NegativeAndZeroSizesAreRejected) {
     write_image(dir.path() / "t.exr", Image(2, 2));
     EXPECT_EQ(load_error(dir, std::string("{") + kCamera + R"(, "materials": {"m": {"type":
  "lambertian", "albedo": {"type": "image", "file": "t.exr", "wrap": "tile"}}}, "objects": []})"),
-              ": /materials/m/albedo/wrap: expected \"repeat\", \"mirror\" or \"clamp\", got \"tile\"");
+              ": /materials/m/albedo/wrap: expected \"repeat\", \"mirror\", \"clamp\" or "
+              "\"black\", got \"tile\"");
 }
 
 // Disks and cylinders: tessellated where and as they are asked for, and read strictly.

@@ -136,8 +136,13 @@ TEST(Texture, FiltersAndWrapModesActOnTexels) {
     // Past the right edge: between texels 4 and 5 (at u = 1.25): 2.5 mirrored, 3 clamped.
     EXPECT_FLOAT_EQ(at(1.25f, F::Bilinear, W::Mirror), 2.5f);
     EXPECT_FLOAT_EQ(at(1.25f, F::Bilinear, W::Clamp), 3.0f);
+    // Black: nothing beyond the image; half of texel 0 at its edge.
+    EXPECT_EQ(at(-0.1f, F::Nearest, W::Black), 0.0f);
+    EXPECT_EQ(at(1.1f, F::Nearest, W::Black), 0.0f);
+    EXPECT_FLOAT_EQ(at(1.0f, F::Bilinear, W::Black), 1.5f);
     // Inside, away from the edges, every wrap agrees.
-    for (W w : {W::Repeat, W::Mirror, W::Clamp}) EXPECT_FLOAT_EQ(at(0.5f, F::Bilinear, w), 1.5f);
+    for (W w : {W::Repeat, W::Mirror, W::Clamp, W::Black})
+        EXPECT_FLOAT_EQ(at(0.5f, F::Bilinear, w), 1.5f);
 }
 
 // The two axes wrap each by its own mode (glTF's wrapS and wrapT): a 2 x 2 image whose columns

@@ -65,7 +65,8 @@ TEST(VolumeGrids, OpticalDepthIsTheIntegralOfTheInterpolation) {
     for (const Mode mode :
          {Mode{1, false, TextureWrap::Clamp}, Mode{3, false, TextureWrap::Clamp},
           Mode{3, false, TextureWrap::Repeat}, Mode{1, false, TextureWrap::Mirror},
-          Mode{3, true, TextureWrap::Clamp}, Mode{1, true, TextureWrap::Repeat}}) {
+          Mode{3, true, TextureWrap::Clamp}, Mode{1, true, TextureWrap::Repeat},
+          Mode{3, false, TextureWrap::Black}}) {
         const int channels = mode.channels;
         VolumeGrid g = random_grid(5, 4, 3, channels, rng);
         g.nearest = mode.nearest;

@@ -102,7 +102,8 @@ void bind_scene(py::module_& m) {
     py::enum_<TextureWrap>(m, "TextureWrap")
         .value("Repeat", TextureWrap::Repeat)
         .value("Mirror", TextureWrap::Mirror)
-        .value("Clamp", TextureWrap::Clamp);
+        .value("Clamp", TextureWrap::Clamp)
+        .value("Black", TextureWrap::Black);
     py::class_<Texture> texture(m, "Texture", "A texture record; which fields matter depends on kind.");
     keyword_init(texture);
     texture.def_readwrite("kind", &Texture::kind)

@@ -136,7 +136,7 @@ struct Chunk {
 // Whether the lanes resolve the chunk's medium segments and lane vertices: a strategy whose
 // continuation there is the lane step (not the one-sample light/mixture choice), in grey
 // homogeneous media (chromatic ones weight their flights, heterogeneous ones walk a grid:
-// flight_scatters).
+// grid_flight).
 bool resolves_in_lanes(const WaveInputs& in) {
     const Strategy s = in.estimator.strategy;
     for (const Medium& m : in.scene.media)

@@ -508,11 +508,13 @@ class Loader {
         if (w == "repeat") return TextureWrap::Repeat;
         if (w == "mirror") return TextureWrap::Mirror;
         if (w == "clamp") return TextureWrap::Clamp;
-        m.fail("expected \"repeat\", \"mirror\" or \"clamp\", got \"" + w + "\"");
+        if (w == "black") return TextureWrap::Black;
+        m.fail("expected \"repeat\", \"mirror\", \"clamp\" or \"black\", got \"" + w + "\"");
     }
 
-    // A volume grid: {"file": a Mitsuba .vol file, or "value": a number or a colour (one voxel),
-    // "transform": steps placing its unit cube in the world, "filter", "wrap", "file_bounds"};
+    // A volume grid: {"file": a Mitsuba .vol file, "value": a number or a colour (one voxel), or
+    // "resolution" and "values"; "transform": steps placing its unit cube in the world,
+    // "filter", "wrap", "file_bounds"};
     // reflectances must not exceed 1. `in` is the object it is part of (a grid texture), else
     // the grid is an object of its own.
     VolumeGridId read_volume_grid(const Value& v, Range range, Object* in = nullptr) {
@@ -520,7 +522,26 @@ class Loader {
         if (!in) in = &own.emplace(v);
         VolumeGrid g;
         Aabb bounds;
-        if (auto value = in->optional("value")) {
+        if (auto values = in->optional("values")) {
+            // Inline voxels (a pbrt-v4 grid medium's density), x fastest.
+            const Value resolution = in->required("resolution");
+            if (resolution.size() != 3) resolution.fail("expected [nx, ny, nz]");
+            uint64_t voxels = 1;
+            for (size_t a = 0; a < 3; ++a) {
+                g.res[a] = resolution[a].integer(1, 1 << 20);
+                voxels *= static_cast<uint64_t>(g.res[a]);
+            }
+            const size_t n = values->size();
+            g.channels = n == voxels ? 1 : 3;
+            if (n != voxels && n != 3 * voxels)
+                values->fail("expected " + std::to_string(voxels) + " or " +
+                             std::to_string(3 * voxels) +
+                             " numbers (one or three per voxel), got " + std::to_string(n));
+            g.values.resize(n);
+            for (size_t i = 0; i < n; ++i)
+                g.values[i] = range == Range::Reflectance ? (*values)[i].in_range(0.0f, 1.0f)
+                                                          : (*values)[i].non_negative();
+        } else if (auto value = in->optional("value")) {
             const Color c = range == Range::Reflectance ? value->reflectance() : value->color();
             g.res[0] = g.res[1] = g.res[2] = 1;
             g.channels = value->is_number() ? 1 : 3;

@@ -2,15 +2,10 @@
 
 #include <cmath>
 
-#include "math/lanes-inl.h"
 #include "media/free_flight.h"
 #include "media/grid_track.h"
-#include "media/medium_flight-inl.h"
 
 namespace wavetrace {
-namespace lanes = HWY_NAMESPACE;
-using lanes::OneLane;
-
 namespace {
 
 Color exp_minus(Color depth) {
@@ -24,26 +19,15 @@ Color grid_transmittance(
     return exp_minus(grid_reach(grid, medium.sigma_t, o, dir, length, 0, kInfinity).depth);
 }
 
-bool flight_scatters(const Scene& scene,
-                     MediumId m,
-                     const Ray& ray,
-                     float t0,
-                     float dir_length,
-                     float seg,
-                     float& flight,
-                     float* s,
-                     Color* weight) {
-    const Medium& medium = scene.media[m];
-    if (!medium.heterogeneous()) {
-        if (medium.chromatic()) {
-            const ChromaticFlight f = chromatic_flight(medium.sigma_t, seg, flight);
-            *s = f.dist;
-            *weight = f.weight;
-            return f.scatters;
-        }
-        *weight = Color(1.0f);
-        return lanes::ScattersInMedium<OneLane>(seg, medium.sigma_t.x, &flight, s);
-    }
+bool grid_flight(const Scene& scene,
+                 const Medium& medium,
+                 const Ray& ray,
+                 float t0,
+                 float dir_length,
+                 float seg,
+                 float& flight,
+                 float* s,
+                 Color* weight) {
     // As chromatic_flight, with the grid's depths and extinctions for sigma_t t and sigma_t.
     const VolumeGrid& grid = scene.volume_grids[medium.density_grid];
     const bool chromatic = medium.chromatic() || grid.channels == 3;

@@ -13,7 +13,9 @@
 namespace wavetrace {
 
 // The transmittance of a heterogeneous medium from o along unit direction dir for `length`.
-Color grid_transmittance(
+// (Both grid functions stay out of line: inlined, their walk would crowd the homogeneous
+// media's hot paths.)
+[[gnu::noinline]] Color grid_transmittance(
     const Medium& medium, const VolumeGrid& grid, Point3 o, Vec3 dir, float length);
 
 // Transmittance per channel of the part [t0, t1] of a ray (t1 infinite: nothing ends it) in
@@ -27,20 +29,21 @@ inline Color segment_transmittance(
                               ray.d / len, (t1 - t0) * len);
 }
 
-// The free flight over the part of a ray from t0 on, of world length seg (infinite: it hits
-// nothing), for a ray whose direction has length dir_length, with the optical depth `flight`
-// still to travel: true when the path scatters first, at world distance *s from ray.at(t0);
-// else the depth the segment crosses is spent from `flight`. *weight multiplies the path's
-// throughput: 1 where the sampling density is the transmittance's own (grey media), the
-// channel mixture's weight in chromatic ones.
-bool flight_scatters(const Scene& scene,
-                     MediumId m,
-                     const Ray& ray,
-                     float t0,
-                     float dir_length,
-                     float seg,
-                     float& flight,
-                     float* s,
-                     Color* weight);
+// The free flight through a heterogeneous medium over the part of a ray from t0 on, of world
+// length seg (infinite: it hits nothing), for a ray whose direction has length dir_length,
+// with the optical depth `flight` still to travel: true when the path scatters first, at
+// world distance *s from ray.at(t0); else the depth the segment crosses is spent from
+// `flight`. *weight multiplies the path's throughput: 1 for a grey grid (the sampling density
+// is the transmittance's own), the channel mixture's weight in a chromatic one. (Homogeneous
+// media: chromatic_flight, and the grey flight of medium_flight-inl.h.)
+[[gnu::noinline]] bool grid_flight(const Scene& scene,
+                                   const Medium& medium,
+                                   const Ray& ray,
+                                   float t0,
+                                   float dir_length,
+                                   float seg,
+                                   float& flight,
+                                   float* s,
+                                   Color* weight);
 
 }  // namespace wavetrace

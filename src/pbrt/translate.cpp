@@ -857,7 +857,8 @@ class Translator {
             if (scale != 1) t["factor"] = scale;
             if (p.boolean("invert", false)) warn(place, "Texture: invert is not supported; ignored");
             const std::string wrap = p.string("wrap", "repeat");
-            if (wrap == "clamp") t["wrap"] = "clamp";
+            if (wrap == "clamp" || wrap == "black")
+                t["wrap"] = wrap;
             else if (wrap != "repeat")
                 warn(place, "Texture: wrap \"" + wrap + "\" is not supported; repeat is used");
             // pbrt-v4's filters: point (the texel), bilinear, and the mip-mapped trilinear and
@@ -1298,7 +1299,7 @@ class Translator {
         const std::string name = string_arg("MakeNamedMedium");
         PbrtParams p = params("MakeNamedMedium \"" + name + "\"");
         const std::string type = p.string("type", "");
-        if (type != "homogeneous") {
+        if (type != "homogeneous" && type != "uniformgrid") {
             warn(place, "medium \"" + type + "\" is not supported; \"" + name + "\" is left out");
             for (PbrtParam& q : p.list) q.used = true;
             skipped_media_.insert(name);
@@ -1309,8 +1310,10 @@ class Translator {
             PbrtParam* q = p.get(n);
             return q ? spectrum(*q, false, false) : fallback;
         };
-        const Color sa = rgb("sigma_a", Color(0.0011f, 0.0024f, 0.014f));
-        const Color ss = rgb("sigma_s", Color(2.55f, 3.21f, 3.77f));
+        // pbrt-v4's defaults: measured ones for a homogeneous medium, 1 for a grid.
+        const bool grid = type == "uniformgrid";
+        const Color sa = rgb("sigma_a", grid ? Color(1.0f) : Color(0.0011f, 0.0024f, 0.014f));
+        const Color ss = rgb("sigma_s", grid ? Color(1.0f) : Color(2.55f, 3.21f, 3.77f));
         const double scale = p.number("scale", 1);
         const Color st = sa + ss;
         if (!(std::max({st.x, st.y, st.z}) * scale > 0))
@@ -1323,8 +1326,35 @@ class Translator {
         auto ratio = [](float s, float t) { return t > 0 ? std::min(s / t, 1.0f) : 0.0f; };
         media_[name] = {{"density", density},
                         {"albedo", json::array({ratio(ss.x, st.x), ratio(ss.y, st.y), ratio(ss.z, st.z)})}};
+        if (grid) media_[name]["density_grid"] = density_grid(p, place, name);
         media_names_.insert(name);
         p.finish(pwarn(), {"Lescale", "temperature", "temperaturescale"});
+    }
+
+    // A uniformgrid medium's density: nx x ny x nz samples, x fastest, trilinear between them
+    // and 0 half a sample beyond the outermost (pbrt-v4's SampledGrid), over the box p0..p1 of
+    // the medium's space (the transform at MakeNamedMedium); the medium is empty outside it.
+    json density_grid(PbrtParams& p, const std::string& place, const std::string& name) {
+        const int nx = p.integer("nx", 1, 1, 1 << 20), ny = p.integer("ny", 1, 1, 1 << 20),
+                  nz = p.integer("nz", 1, 1, 1 << 20);
+        const std::vector<double>* d = p.numbers("density", 1);
+        const uint64_t voxels = uint64_t(nx) * uint64_t(ny) * uint64_t(nz);
+        if (!d || d->size() != voxels)
+            fail(place, "medium \"" + name +
+                            "\": density needs nx ny nz = " + std::to_string(voxels) +
+                            " values, got " + std::to_string(d ? d->size() : 0));
+        const std::array<double, 3> p0 = p.triple("p0", {0, 0, 0}), p1 = p.triple("p1", {1, 1, 1});
+        const V3 size{p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]};
+        if (!(size[0] > 0 && size[1] > 0 && size[2] > 0))
+            fail(place, "medium \"" + name + "\": p1 must exceed p0 along every axis");
+        if (p.get("temperature") || p.get("Lescale"))
+            warn(place, "medium: emission is not supported; ignored");
+        return {{"resolution", {nx, ny, nz}},
+                {"values", *d},
+                {"wrap", "black"},
+                {"transform", json::array({json{{"scale", to_json(size)}},
+                                           json{{"translate", json::array({p0[0], p0[1], p0[2]})}},
+                                           matrix_step(state().ctm)[0]})}};
     }
 
     // ---- shapes ----

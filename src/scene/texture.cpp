@@ -14,6 +14,8 @@ int wrap_index(int64_t i, int n, TextureWrap wrap) {
     switch (wrap) {
         case TextureWrap::Clamp:
             return static_cast<int>(std::clamp<int64_t>(i, 0, n - 1));
+        case TextureWrap::Black:
+            return i >= 0 && i < n ? static_cast<int>(i) : -1;
         case TextureWrap::Mirror: {
             const int64_t m = ((i % (2 * int64_t(n))) + 2 * int64_t(n)) % (2 * int64_t(n));
             return static_cast<int>(m < n ? m : 2 * int64_t(n) - 1 - m);
@@ -65,13 +67,13 @@ Color ImageData::lookup(
     if (filter == TextureFilter::Nearest) {
         const float x = std::clamp(u * float(width), -lim, lim);
         const float y = std::clamp((1.0f - v) * float(height), -lim, lim);
-        return texel(wrap_index(int64_t(std::floor(x)), width, wrap_u),
-                     wrap_index(int64_t(std::floor(y)), height, wrap_v));
+        return texel_or_black(wrap_index(int64_t(std::floor(x)), width, wrap_u),
+                              wrap_index(int64_t(std::floor(y)), height, wrap_v));
     }
     const BilinearCell c = bilinear_cell(u, v, width, height, wrap_u, wrap_v, lim);
     const float tx = c.tx, ty = c.ty;
-    return (1 - ty) * ((1 - tx) * texel(c.x0, c.y0) + tx * texel(c.x1, c.y0)) +
-           ty * ((1 - tx) * texel(c.x0, c.y1) + tx * texel(c.x1, c.y1));
+    return (1 - ty) * ((1 - tx) * texel_or_black(c.x0, c.y0) + tx * texel_or_black(c.x1, c.y0)) +
+           ty * ((1 - tx) * texel_or_black(c.x0, c.y1) + tx * texel_or_black(c.x1, c.y1));
 }
 
 Vec2 ImageData::luminance_gradient(float u,
@@ -82,7 +84,7 @@ Vec2 ImageData::luminance_gradient(float u,
                                    TextureWrap wrap_v) const {
     if (filter == TextureFilter::Nearest) return {0.0f, 0.0f};
     const BilinearCell c = bilinear_cell(u, v, width, height, wrap_u, wrap_v, kCoordinateLimit);
-    auto l = [&](int x, int y) { return luminance(factor * texel(x, y)); };
+    auto l = [&](int x, int y) { return luminance(factor * texel_or_black(x, y)); };
     const float l00 = l(c.x0, c.y0), l10 = l(c.x1, c.y0), l01 = l(c.x0, c.y1), l11 = l(c.x1, c.y1);
     // x = u W - 1/2 and y = (1 - v) H - 1/2 inside the cell: d/du = W d/dx, d/dv = -H d/dy.
     const float ddx = (1 - c.ty) * (l10 - l00) + c.ty * (l11 - l01);

@@ -8,6 +8,7 @@ Color VolumeGrid::voxel(int i, int j, int k) const {
     i = wrap_index(i, res[0], wrap);
     j = wrap_index(j, res[1], wrap);
     k = wrap_index(k, res[2], wrap);
+    if (i < 0 || j < 0 || k < 0) return Color(0.0f);  // black beyond the grid
     const size_t at = ((static_cast<size_t>(k) * res[1] + j) * res[0] + i) * channels;
     return channels == 1 ? Color(values[at]) : Color(values[at], values[at + 1], values[at + 2]);
 }

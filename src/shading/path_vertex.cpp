@@ -6,6 +6,7 @@
 #include "bsdfs/bump_terminator.h"
 #include "bsdfs/geometric_side-inl.h"
 #include "bsdfs/thin_dielectric.h"
+#include "media/medium_flight-inl.h"
 #include "media/medium_segment.h"
 #include "sampling/bounce_dims.h"
 #include "sampling/sampler-inl.h"
@@ -301,7 +302,16 @@ bool scatters_in_medium(const Scene& scene,
     *weight = Color(1.0f);
     if (m == kNone) return false;
     const float seg = hit.found() ? (hit.t - ray.tmin) * dir_length : kInfinity;
-    return flight_scatters(scene, m, ray, ray.tmin, dir_length, seg, flight, s, weight);
+    const Medium& medium = scene.media[m];
+    if (medium.heterogeneous())
+        return grid_flight(scene, medium, ray, ray.tmin, dir_length, seg, flight, s, weight);
+    if (medium.chromatic()) {
+        const ChromaticFlight f = chromatic_flight(medium.sigma_t, seg, flight);
+        *s = f.dist;
+        *weight = f.weight;
+        return f.scatters;
+    }
+    return lanes::ScattersInMedium<OneLane>(seg, medium.sigma_t.x, &flight, s);
 }
 
 float sheet_transmittance(const Scene& scene, const SurfaceHit& s, Vec3 dir) {

@@ -29,10 +29,12 @@ enum class TextureKind : uint8_t {
 // imagemap filter "point", glTF's NEAREST).
 enum class TextureFilter : uint8_t { Bilinear, Nearest };
 // What an image texture holds outside [0, 1]^2, applied to texel indices: the image repeated,
-// mirrored at every edge (period two images), or its edge texels extended (Mitsuba's
-// wrap_mode, pbrt-v4's wrap, glTF's wrapS and wrapT: REPEAT, MIRRORED_REPEAT, CLAMP_TO_EDGE).
-enum class TextureWrap : uint8_t { Repeat, Mirror, Clamp };
-// Index i of a row of n texels (or of a volume grid's voxels) brought into [0, n).
+// mirrored at every edge (period two images), its edge texels extended (Mitsuba's wrap_mode,
+// pbrt-v4's wrap, glTF's wrapS and wrapT: REPEAT, MIRRORED_REPEAT, CLAMP_TO_EDGE), or black
+// texels all around (pbrt-v4's wrap "black"; its grid media's samples beyond the grid).
+enum class TextureWrap : uint8_t { Repeat, Mirror, Clamp, Black };
+// Index i of a row of n texels (or of a volume grid's voxels) brought into [0, n); -1 for a
+// black texel beyond the row.
 int wrap_index(int64_t i, int n, TextureWrap wrap);
 
 // A texture is a plain record; which fields matter depends on `kind`.
@@ -72,6 +74,8 @@ struct ImageData {
     std::vector<Color> texels;
 
     Color texel(int x, int y) const { return texels[static_cast<size_t>(y) * width + x]; }
+    // A texel, or black at index -1 (wrap_index's black beyond the image).
+    Color texel_or_black(int x, int y) const { return x < 0 || y < 0 ? Color(0.0f) : texel(x, y); }
     // The image at (u, v), u running left to right and v bottom to top (OpenGL convention):
     // texel centres sit at half-integer coordinates of (u W, (1 - v) H).
     Color lookup(float u, float v, TextureFilter filter, TextureWrap wrap_u, TextureWrap wrap_v) const;

@@ -4,7 +4,7 @@
 // at its centre ((i + 0.5) / nx, (j + 0.5) / ny, (k + 0.5) / nz) and values between centres
 // are interpolated trilinearly (`filter_type` trilinear), or each voxel's value fills its cell
 // (nearest); indices beyond the grid are clamped to its edge, repeat it, or mirror it
-// (`wrap_mode`).
+// (`wrap_mode`), or read black (pbrt-v4's grid media).
 #pragma once
 
 #include <cstddef>
