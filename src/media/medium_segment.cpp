@@ -19,21 +19,18 @@ Color grid_transmittance(
     return exp_minus(grid_reach(grid, medium.sigma_t, o, dir, length, 0, kInfinity).depth);
 }
 
-bool grid_flight(const Scene& scene,
-                 const Medium& medium,
-                 const Ray& ray,
-                 float t0,
-                 float dir_length,
+bool grid_flight(const Medium& medium,
+                 const VolumeGrid& grid,
+                 Point3 o,
+                 Vec3 dir,
                  float seg,
                  float& flight,
                  float* s,
                  Color* weight) {
     // As chromatic_flight, with the grid's depths and extinctions for sigma_t t and sigma_t.
-    const VolumeGrid& grid = scene.volume_grids[medium.density_grid];
     const bool chromatic = medium.chromatic() || grid.channels == 3;
     const int c = chromatic ? draw_flight_channel(flight) : 0;
-    const GridReach r =
-        grid_reach(grid, medium.sigma_t, ray.at(t0), ray.d / dir_length, seg, c, flight);
+    const GridReach r = grid_reach(grid, medium.sigma_t, o, dir, seg, c, flight);
     *weight = Color(1.0f);
     if (r.reached) {
         *s = r.dist;

@@ -29,18 +29,16 @@ inline Color segment_transmittance(
                               ray.d / len, (t1 - t0) * len);
 }
 
-// The free flight through a heterogeneous medium over the part of a ray from t0 on, of world
-// length seg (infinite: it hits nothing), for a ray whose direction has length dir_length,
-// with the optical depth `flight` still to travel: true when the path scatters first, at
-// world distance *s from ray.at(t0); else the depth the segment crosses is spent from
+// The free flight through a heterogeneous medium from o along unit direction dir for `seg`
+// (infinite: it hits nothing), with the optical depth `flight` still to travel: true when the
+// path scatters first, at distance *s from o; else the depth the segment crosses is spent from
 // `flight`. *weight multiplies the path's throughput: 1 for a grey grid (the sampling density
 // is the transmittance's own), the channel mixture's weight in a chromatic one. (Homogeneous
 // media: chromatic_flight, and the grey flight of medium_flight-inl.h.)
-[[gnu::noinline]] bool grid_flight(const Scene& scene,
-                                   const Medium& medium,
-                                   const Ray& ray,
-                                   float t0,
-                                   float dir_length,
+[[gnu::noinline]] bool grid_flight(const Medium& medium,
+                                   const VolumeGrid& grid,
+                                   Point3 o,
+                                   Vec3 dir,
                                    float seg,
                                    float& flight,
                                    float* s,

@@ -304,7 +304,8 @@ bool scatters_in_medium(const Scene& scene,
     const float seg = hit.found() ? (hit.t - ray.tmin) * dir_length : kInfinity;
     const Medium& medium = scene.media[m];
     if (medium.heterogeneous())
-        return grid_flight(scene, medium, ray, ray.tmin, dir_length, seg, flight, s, weight);
+        return grid_flight(medium, scene.volume_grids[medium.density_grid], ray.at(ray.tmin),
+                           ray.d / dir_length, seg, flight, s, weight);
     if (medium.chromatic()) {
         const ChromaticFlight f = chromatic_flight(medium.sigma_t, seg, flight);
         *s = f.dist;
