@@ -280,11 +280,26 @@ void fill(LambertianRows& r, LightSampleQueue& queue, LightSampleBlock& block) {
     block.n = r.v.size();
     for (size_t k = 0; k < r.v.size(); ++k) {
         const Vertex& v = r.v[k];
-        store_queued_vertex(
-            queue, k,
-            {uint32_t(k), v.p, v.ng, v.frame.n, v.frame_angle, v.unbent, v.bump_alpha2, r.wo[k],
-             v.bsdf.albedo, v.bsdf.alpha, v.bsdf.alpha_v, v.bsdf.metallic, v.uv, v.bsdf.kind, kNone,
-             r.beta[k], r.u[k].light_select, r.u[k].light_u, r.u[k].light_v});
+        store_queued_vertex(queue, k, {uint32_t(k),
+                                       v.p,
+                                       v.ng,
+                                       v.frame.n,
+                                       v.frame_angle,
+                                       v.unbent,
+                                       v.bump_alpha2,
+                                       r.wo[k],
+                                       v.bsdf.albedo,
+                                       v.bsdf.alpha,
+                                       v.bsdf.alpha_v,
+                                       v.bsdf.metallic,
+                                       v.bsdf.coat_normal,
+                                       v.uv,
+                                       v.bsdf.kind,
+                                       kNone,
+                                       r.beta[k],
+                                       r.u[k].light_select,
+                                       r.u[k].light_u,
+                                       r.u[k].light_v});
         const LightChoice light = r.c.lights->select(r.u[k].light_select);
         block.lobe[k] = int32_t(LaneLobe::Lambertian);
         block.planar[k] = r.c.lights->planar_emitter_index(light);

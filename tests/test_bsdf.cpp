@@ -90,6 +90,11 @@ BsdfParams metallic_roughness(float metallic, float alpha, float transmission = 
     b.clearcoat_alpha = clearcoat_alpha;
     return b;
 }
+// ... with its coat about a normal of its own (glTF's clearcoatNormalTexture).
+BsdfParams coat_normal(BsdfParams b, Vec3 n) {
+    b.coat_normal = normalize(n);
+    return b;
+}
 
 // Mitsuba's principled BSDF of base colour (0.8, 0.6, 0.4), index 1.5 (thin: a sheet); the
 // alphas as the material gives them.
@@ -187,6 +192,19 @@ std::vector<Case> smooth_cases() {
         {"gltf-smooth-transmission-coat", metallic_roughness(0.0f, 0.0f, 0.5f, 1.0f, 0.0f),
          oblique},
         {"gltf-smooth-base-rough-coat", metallic_roughness(0.4f, 0.0f, 0.0f, 0.8f, 0.09f), below},
+        // A coat normal apart from the shading normal: toward wo, away from it (o.N_c small),
+        // from behind, and a smooth coat (a delta of its own).
+        {"gltf-coat-normal",
+         coat_normal(metallic_roughness(0.0f, 0.3f, 0.0f, 1.0f, 0.05f), {0.4f, -0.1f, 0.9f}),
+         oblique},
+        {"gltf-coat-normal-away",
+         coat_normal(metallic_roughness(0.2f, 0.4f, 0.3f, 0.9f, 0.2f), {-0.6f, 0.3f, 0.75f}),
+         oblique},
+        {"gltf-coat-normal-below",
+         coat_normal(metallic_roughness(0.5f, 0.25f, 0.0f, 1.0f, 0.1f), {0.3f, 0.5f, 0.8f}), below},
+        {"gltf-coat-normal-smooth",
+         coat_normal(metallic_roughness(0.0f, 0.36f, 0.0f, 1.0f, 0.0f), {0.2f, 0.2f, 0.95f}),
+         grazing},
         // Mitsuba's principled: samples drawn outside their own lobe are lost.
         {"principled-base", principled(0.5f, 0.0f, 0.0f), oblique},
         {"principled-metal-aniso", principled(0.3f, 0.7f, 0.0f, 0.8f), oblique},

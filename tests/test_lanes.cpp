@@ -161,10 +161,26 @@ void expect_light_samples_are_next_event(const Scene& scene,
             environment_rows += map;
             block.environment[k] = map ? 1 : 0;
             store_queued_vertex(queue, k,
-                                {uint32_t(k), c.v.p, c.v.ng, c.v.frame.n, c.v.frame_angle,
-                                 c.v.unbent, c.v.bump_alpha2, c.wo, c.v.bsdf.albedo, c.v.bsdf.alpha,
-                                 c.v.bsdf.alpha_v, c.v.bsdf.metallic, c.v.uv, c.v.bsdf.kind, kNone,
-                                 c.beta, c.u.light_select, c.u.light_u, c.u.light_v});
+                                {uint32_t(k),
+                                 c.v.p,
+                                 c.v.ng,
+                                 c.v.frame.n,
+                                 c.v.frame_angle,
+                                 c.v.unbent,
+                                 c.v.bump_alpha2,
+                                 c.wo,
+                                 c.v.bsdf.albedo,
+                                 c.v.bsdf.alpha,
+                                 c.v.bsdf.alpha_v,
+                                 c.v.bsdf.metallic,
+                                 c.v.bsdf.coat_normal,
+                                 c.v.uv,
+                                 c.v.bsdf.kind,
+                                 kNone,
+                                 c.beta,
+                                 c.u.light_select,
+                                 c.u.light_u,
+                                 c.u.light_v});
             block.lobe[k] = int32_t(lane_lobe(c.v.bsdf.kind));
             if (c.v.bsdf.kind == MaterialKind::Conductor ||
                 c.v.bsdf.kind == MaterialKind::Dielectric ||

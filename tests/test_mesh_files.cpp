@@ -137,8 +137,8 @@ TEST(MeshFiles, GltfLoads) {
 
 // glTF materials become metallic_roughness with the file's factors (pbrMetallicRoughness,
 // KHR_materials_ior, _transmission, _clearcoat, emissive), the textures beside the file as image
-// textures times their factors, alpha modes as opacity; a texture embedded in the file (here a
-// data URI) is decoded from memory.
+// textures times their factors (the coat's normal map its own), alpha modes as opacity; a texture
+// embedded in the file (here a data URI) is decoded from memory.
 TEST(MeshFiles, GltfMaterialsMapToMetallicRoughness) {
     TempDir dir;
     Image base(2, 2), mr(2, 2);
@@ -162,7 +162,8 @@ TEST(MeshFiles, GltfMaterialsMapToMetallicRoughness) {
         {"name": "coated", "doubleSided": true, "emissiveFactor": [1, 0.5, 0],
          "pbrMetallicRoughness": {"baseColorFactor": [0.8, 0.6, 0.4, 1],
                                   "metallicFactor": 0.3, "roughnessFactor": 0.6},
-         "extensions": {"KHR_materials_transmission": {"transmissionFactor": 0.4},
+         "extensions": {"KHR_materials_transmission": {"transmissionFactor": 0.4,
+                                                       "transmissionTexture": {"index": 1}},
                         "KHR_materials_clearcoat": {"clearcoatFactor": 0.7,
                                                     "clearcoatRoughnessFactor": 0.2,
                                                     "clearcoatTexture": {"index": 0},
@@ -208,11 +209,15 @@ TEST(MeshFiles, GltfMaterialsMapToMetallicRoughness) {
     EXPECT_FLOAT_EQ(coated.clearcoat, 0.7f);
     EXPECT_FLOAT_EQ(coated.clearcoat_roughness, 0.2f);
     // The coat's textures: red times the factor, green times the roughness (the coat's alpha
-    // its square), where the vertex's BSDF is made.
+    // its square), where the vertex's BSDF is made; so the transmission's red.
     ASSERT_NE(coated.clearcoat_map, kNone);
     ASSERT_NE(coated.clearcoat_roughness_map, kNone);
+    ASSERT_NE(coated.clearcoat_normal_map, kNone);
+    ASSERT_NE(coated.transmission_map, kNone);
     BsdfParams b;
+    b.transmission = coated.transmission;
     metallic_roughness_at(s, coated, TexturePoint{{0.5f, 0.5f}, {}}, &b);
+    EXPECT_FLOAT_EQ(b.transmission, 0.0f);                // mr.png's red is 0
     EXPECT_FLOAT_EQ(b.clearcoat, 0.7f);                   // base.png is white
     const float coat_roughness = 0.2f * 188.0f / 255.0f;  // mr.png's green, raw
     EXPECT_NEAR(b.clearcoat_alpha, coat_roughness * coat_roughness, 1e-6f);
@@ -256,10 +261,9 @@ TEST(MeshFiles, GltfMaterialsMapToMetallicRoughness) {
     const Material& veil = material_of("veil");
     ASSERT_NE(veil.opacity, kNone);
     EXPECT_EQ(s.textures[veil.opacity].color, Color(0.25f));
-    // Nothing warned about but the coat's own normal map, which a material of one shading
-    // normal cannot hold: said, with the material's name.
-    ASSERT_EQ(warnings.size(), 1u) << warnings[0];
-    EXPECT_TRUE(warned("\"coated\": ignored clearcoatNormalTexture"));
+    // Nothing is warned about: every texture found its place.
+    EXPECT_TRUE(warnings.empty()) << warnings[0];
+    EXPECT_FALSE(warned("ignored"));
 }
 
 // A .glb holds its JSON in its first chunk: the emissive strength is read from there, and a

@@ -1,7 +1,8 @@
 // glTF's metallic-roughness material against the specification's own formulas (Appendix B, the
-// transmission and clearcoat extensions), and its limits: a smooth white metal is a mirror, an
-// index-matched thin wall at normal incidence lets everything through, the model is reciprocal
-// without a clearcoat. Its sampling is tested with every BSDF's in test_bsdf.cpp.
+// transmission and clearcoat extensions, the coat about a normal of its own), and its limits: a
+// smooth white metal is a mirror, an index-matched thin wall at normal incidence lets everything
+// through, the model is reciprocal without a clearcoat. Its sampling is tested with every BSDF's
+// in test_bsdf.cpp.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -52,7 +53,9 @@ double v_ggx(double alpha, double n_l, double n_v) {
                 (n_v + std::sqrt(a2 + (1 - a2) * n_v * n_v)));
 }
 
-// f |cos_i| for V = wo, L = wi above the surface or (thin-walled transmission) below it.
+// f |cos_i| for V = wo, L = wi above the surface or (thin-walled transmission) below it. The
+// coat lies about its normal N_c (KHR_materials_clearcoat's clearcoatNormal); where V or L is
+// behind N_c it reflects nothing (wavetrace's rule where the extension takes |N_c.V|).
 Color spec_eval(const BsdfParams& b, Vec3 wo, Vec3 wi) {
     const double f0 = std::pow((b.eta - 1.0) / (b.eta + 1.0), 2);
     const bool transmitted = wi.z < 0;
@@ -74,16 +77,23 @@ Color spec_eval(const BsdfParams& b, Vec3 wo, Vec3 wi) {
             metal = 0;
         }
         double material = (1 - b.metallic) * dielectric + b.metallic * metal;
-        if (b.clearcoat > 0) {
-            const double fc = 0.04 + 0.96 * std::pow(1 - std::fabs(double(wo.z)), 5);
-            const double coat = transmitted ? 0
-                                            : d_ggx(b.clearcoat_alpha, h.z) *
-                                                  v_ggx(b.clearcoat_alpha, l.z, wo.z);
+        const Vec3 nc = b.coat_normal_or_z();
+        const double v_c = dot(wo, nc), l_c = dot(l, nc);
+        if (b.clearcoat > 0 && v_c > 0) {
+            const double fc = 0.04 + 0.96 * std::pow(1 - std::fabs(v_c), 5);
+            const double coat = transmitted || l_c <= 0 ? 0
+                                                        : d_ggx(b.clearcoat_alpha, dot(h, nc)) *
+                                                              v_ggx(b.clearcoat_alpha, l_c, v_c);
             material = (1 - b.clearcoat * fc) * material + b.clearcoat * fc * coat;
         }
         out[c] = material * std::fabs(double(wi.z));
     }
     return {float(out[0]), float(out[1]), float(out[2])};
+}
+
+BsdfParams with_coat_normal(BsdfParams b, Vec3 n) {
+    b.coat_normal = normalize(n);
+    return b;
 }
 
 std::vector<BsdfParams> materials() {
@@ -93,7 +103,10 @@ std::vector<BsdfParams> materials() {
             gltf(base, 0.4f, 0.8f, 1.33f),
             gltf(base, 0.0f, 0.4f, 1.5f, 0.7f),
             gltf(base, 0.3f, 0.6f, 2.0f, 1.0f, 0.8f, 0.25f),
-            gltf(Color(0.0f), 0.0f, 0.2f, 1.5f, 0.0f, 1.0f, 0.5f)};
+            gltf(Color(0.0f), 0.0f, 0.2f, 1.5f, 0.0f, 1.0f, 0.5f),
+            with_coat_normal(gltf(base, 0.3f, 0.6f, 2.0f, 1.0f, 0.8f, 0.25f), {0.3f, -0.2f, 0.9f}),
+            with_coat_normal(gltf(Color(0.0f), 0.0f, 0.2f, 1.5f, 0.0f, 1.0f, 0.5f),
+                             {-0.8f, 0.1f, 0.6f})};
 }
 
 std::vector<Vec3> directions() {
@@ -118,13 +131,17 @@ TEST(MetallicRoughness, EvaluatesTheSpecificationsFormulas) {
         }
 }
 
+// Seen from behind, the surface is its front mirrored through the tangent plane, with the
+// coat's normal negated (-N_c is the back's): mirrored, that is N_c's tangential part negated.
 TEST(MetallicRoughness, IsTheSameFromBothSides) {
     for (const BsdfParams& b : materials())
         for (Vec3 wo : directions())
             for (Vec3 wi : directions()) {
                 const Vec3 wo_b{wo.x, wo.y, -wo.z}, wi_b{wi.x, wi.y, -wi.z};
-                EXPECT_EQ(bsdf_eval(b, wo, wi), bsdf_eval(b, wo_b, wi_b));
-                EXPECT_EQ(bsdf_pdf(b, wo, wi), bsdf_pdf(b, wo_b, wi_b));
+                BsdfParams back = b;
+                back.coat_normal = {-b.coat_normal.x, -b.coat_normal.y, b.coat_normal.z};
+                EXPECT_EQ(bsdf_eval(b, wo, wi), bsdf_eval(back, wo_b, wi_b));
+                EXPECT_EQ(bsdf_pdf(b, wo, wi), bsdf_pdf(back, wo_b, wi_b));
             }
     BsdfParams one_sided = materials()[0];
     one_sided.one_sided = true;
@@ -217,4 +234,42 @@ TEST(MetallicRoughness, WhiteMetalCreatesNoEnergy) {
                 const double mean = sum / n, se = std::sqrt((sum2 / n - mean * mean) / n);
                 EXPECT_LT(mean, 1.0 + 4 * se) << roughness << " " << clearcoat << " " << wo.z;
             }
+}
+
+// A smooth coat about a normal of its own reflects about that normal, with the weight of its
+// share, k Fc / p_coat: the mean over many samples of the coat-only material (a black base,
+// whose specular lobe is smooth too) is k Fc along the coat's mirror direction plus the base's
+// Fd (1 - k Fc) along the shading normal's.
+TEST(MetallicRoughness, SmoothCoatReflectsAboutItsOwnNormal) {
+    BsdfParams b = with_coat_normal(gltf(Color(0.0f), 0.0f, 0.0f, 1.5f, 0.0f, 1.0f, 0.0f),
+                                    {0.2f, 0.1f, 0.95f});
+    const Vec3 wo = normalize(Vec3{0.3f, -0.4f, 0.8f}), nc = b.coat_normal;
+    const Vec3 coat_mirror = 2.0f * dot(wo, nc) * nc - wo, base_mirror{-wo.x, -wo.y, wo.z};
+    const float fc = 0.04f + 0.96f * std::pow(1.0f - dot(wo, nc), 5.0f);
+    const float fd = 0.04f + 0.96f * std::pow(1.0f - wo.z, 5.0f);
+    const uint32_t n = 20'000;
+    double coat = 0, coat2 = 0, base = 0, base2 = 0;
+    for (uint32_t i = 0; i < n; ++i) {
+        const BsdfSample s = bsdf_sample(b, wo, u(9, i, 0), u(9, i, 1), u(9, i, 2));
+        ASSERT_TRUE(s.valid && s.delta);
+        const double w = s.weight.x;
+        if (length(s.wi - coat_mirror) < 1e-5f) {
+            coat += w;
+            coat2 += w * w;
+        } else {
+            EXPECT_LT(length(s.wi - base_mirror), 1e-6f);
+            base += w;
+            base2 += w * w;
+        }
+    }
+    auto se = [&](double sum, double sum2) {
+        return std::sqrt((sum2 / n - (sum / n) * (sum / n)) / n);
+    };
+    EXPECT_NEAR(coat / n, fc, 4 * se(coat, coat2) + 1e-6);
+    EXPECT_NEAR(base / n, fd * (1 - fc), 4 * se(base, base2) + 1e-6);
+    // From behind, mirrored as the rest.
+    const BsdfSample back = bsdf_sample(b, {wo.x, wo.y, -wo.z}, 0.0f, 0.5f, 0.5f);
+    ASSERT_TRUE(back.valid);
+    const Vec3 nc_back{-nc.x, -nc.y, -nc.z}, wo_back{wo.x, wo.y, -wo.z};
+    EXPECT_LT(length(back.wi - (2.0f * dot(wo_back, nc_back) * nc_back - wo_back)), 1e-5f);
 }

@@ -1,6 +1,7 @@
-// Tangent frames, normal maps and bump maps (scene/hit_geometry.h, shading/normal_maps.h): the
+// Tangent frames, normal maps and bump maps (scene/hit_geometry.h, scene/normal_maps.h): the
 // tangents follow the uv mapping, a flat normal map changes nothing, a tilted one and a height
-// ramp tilt the normal as their formulas say, and both engines agree on a mapped scene (the
+// ramp tilt the normal as their formulas say, a clearcoat keeps a normal of its own, and both
+// engines agree on a mapped scene (the
 // engine-equality tests run scenes/materials.json, whose earth sphere is bump-mapped and whose
 // tiles are normal-mapped).
 #include <gtest/gtest.h>
@@ -8,9 +9,10 @@
 #include <cmath>
 
 #include "bsdfs/bump_terminator.h"
+#include "bsdfs/lane_lobe.h"
 #include "scene/hit_geometry.h"
+#include "scene/normal_maps.h"
 #include "shading/lights.h"
-#include "shading/normal_maps.h"
 #include "shading/path_vertex.h"
 #include "temp_dir.h"
 #include "wavetrace/loaders/load_scene.h"
@@ -39,6 +41,10 @@ Scene quad_scene(Scene s, Material m) {
 SurfaceHit hit_quad(const Scene& s, float u, float v) {
     Hit h{1.0f, PrimRef::make(PrimKind::Quad, 0), u, v};
     return surface_at(s, Ray{{u, v, 1}, {0, 0, -1}}, h);
+}
+
+MappedPoint mapped(const SurfaceHit& h) {
+    return {h.p, h.ng, h.ns, h.uv, h.dpdu, h.dpdv};
 }
 
 }  // namespace
@@ -135,7 +141,8 @@ TEST(NormalMaps, NormalMapTiltsInTheTangentFrame) {
         m.normal_map = s.add_solid(rgb);
         s = quad_scene(s, m);
         const SurfaceHit h = hit_quad(s, 0.3f, 0.6f);
-        expect_near(mapped_normal(s, s.materials[0], h, {0, 0, 1}), expected, 1e-6f, "normal map");
+        expect_near(mapped_normal(s, s.materials[0], mapped(h), {0, 0, 1}), expected, 1e-6f,
+                    "normal map");
     }
 }
 
@@ -156,8 +163,8 @@ TEST(NormalMaps, BumpRampTiltsAgainstItsSlope) {
     s.add_quad({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, s.add_material(m)});
     // Between texel centres the bilinear ramp rises by 1/64 per 1/64 of u: slope 0.1.
     const SurfaceHit h = hit_quad(s, 0.4f, 0.5f);
-    expect_near(mapped_normal(s, s.materials[0], h, {0, 0, 1}), normalize(Vec3{-0.1f, 0, 1}), 1e-4f,
-                "bump");
+    expect_near(mapped_normal(s, s.materials[0], mapped(h), {0, 0, 1}),
+                normalize(Vec3{-0.1f, 0, 1}), 1e-4f, "bump");
     // A quad without maps has no tangents computed, and its normal stays.
     Scene plain = quad_scene(Scene{}, Material{});
     const SurfaceHit p = hit_quad(plain, 0.4f, 0.5f);
@@ -241,10 +248,10 @@ TEST(NormalMaps, InvalidNormalsAreMirroredWhereAsked) {
         const Vec3 tilted = normalize(Vec3{0.9f, 0, 1}), mirrored = normalize(Vec3{-0.9f, 0, 1});
         const Vec3 grazing_back = normalize(Vec3{-1, 0, 0.3f});  // below the tilted normal
         ASSERT_LT(dot(grazing_back, tilted), 0.0f);
-        expect_near(mapped_normal(s, s.materials[0], h, grazing_back), flip ? mirrored : tilted,
-                    1e-6f, flip ? "flipped" : "kept");
-        expect_near(mapped_normal(s, s.materials[0], h, normalize(Vec3{1, 0, 0.3f})), tilted, 1e-6f,
-                    "facing");
+        expect_near(mapped_normal(s, s.materials[0], mapped(h), grazing_back),
+                    flip ? mirrored : tilted, 1e-6f, flip ? "flipped" : "kept");
+        expect_near(mapped_normal(s, s.materials[0], mapped(h), normalize(Vec3{1, 0, 0.3f})),
+                    tilted, 1e-6f, "facing");
     }
 }
 
@@ -289,4 +296,43 @@ TEST(NormalMaps, BumpShadowingIsEstevezMasking) {
     const float plain = direct(false);
     ASSERT_GT(plain, 0.0f);
     EXPECT_NEAR(direct(true) / plain, 2 / (1 + std::sqrt(1 + alpha2 * 3)), 1e-5f);
+}
+
+// KHR_materials_clearcoat: without a clearcoatNormalTexture the coat keeps the unperturbed
+// normal under a normal-mapped base; with one it tilts by that map in the same tangent frame.
+// The vertex holds the coat's normal in its shading frame; (0, 0, 1) where nothing is mapped.
+TEST(NormalMaps, ClearcoatKeepsANormalOfItsOwn) {
+    const Vec3 wo{0, 0, 1};
+    auto vertex = [&](const Scene& s) { return surface_vertex(s, hit_quad(s, 0.3f, 0.6f), wo); };
+    Material coated;
+    coated.kind = MaterialKind::MetallicRoughness;
+    coated.roughness = 0.5f;
+    coated.clearcoat = 1.0f;
+    coated.clearcoat_roughness = 0.1f;
+    {
+        const Scene s = quad_scene(Scene{}, coated);
+        EXPECT_TRUE(vertex(s).bsdf.coat_along_normal());
+    }
+    {
+        Scene s;
+        Material m = coated;
+        m.normal_map = s.add_solid(Color(0.75f, 0.5f, 1.0f));  // the base tilts towards +u
+        s = quad_scene(s, m);
+        const Vertex v = vertex(s);
+        expect_near(v.frame.n, normalize(Vec3{0.5f, 0, 1}), 1e-6f, "base");
+        expect_near(v.frame.to_world(v.bsdf.coat_normal), {0, 0, 1}, 1e-6f, "coat unmapped");
+        EXPECT_FALSE(is_lane_bsdf(v.bsdf));  // the lanes' coats lie along the shading normal
+    }
+    {
+        Scene s;
+        Material m = coated;
+        m.normal_map = s.add_solid(Color(0.75f, 0.5f, 1.0f));
+        m.clearcoat_normal_map = s.add_solid(Color(0.5f, 0.25f, 1.0f));  // towards -v
+        s = quad_scene(s, m);
+        const Vertex v = vertex(s);
+        expect_near(coat_normal(s, s.materials[0], mapped(hit_quad(s, 0.3f, 0.6f))),
+                    normalize(Vec3{0, -0.5f, 1}), 1e-6f, "coat map");
+        expect_near(v.frame.to_world(v.bsdf.coat_normal), normalize(Vec3{0, -0.5f, 1}), 1e-6f,
+                    "coat mapped");
+    }
 }

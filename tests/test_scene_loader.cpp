@@ -665,8 +665,14 @@ TEST(SceneLoader, MetallicRoughnessIsValidated) {
               "");
     EXPECT_EQ(load_error(dir, with(R"({"type": "metallic_roughness", "clearcoat": 1,
         "clearcoat_texture": {"type": "uv_checker", "scale": 0.5, "even": 1, "odd": 0.5},
-        "clearcoat_roughness": 0.5, "clearcoat_roughness_texture": [0, 0.2, 0]})")),
+        "clearcoat_roughness": 0.5, "clearcoat_roughness_texture": [0, 0.2, 0],
+        "transmission": 1, "transmission_texture": [0.5, 0, 0],
+        "clearcoat_normal_map": [0.5, 0.6, 1]})")),
               "");
+    EXPECT_EQ(load_error(dir, with(R"({"type": "metallic_roughness",
+        "transmission_texture": [0, 2, 0]})")),
+              ": /materials/car/transmission_texture: expected a reflectance with components in "
+              "[0, 1], got [0,2,0]");
     EXPECT_EQ(load_error(dir, with(R"({"type": "metallic_roughness",
         "clearcoat_texture": [1.5, 0, 0]})")),
               ": /materials/car/clearcoat_texture: expected a reflectance with components in "

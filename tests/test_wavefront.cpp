@@ -307,7 +307,9 @@ TEST(Wavefront, AnisotropicSurfacesEqualTheMegakernel) {
 // noise and an image on spheres) are shaded in the wavefront's lanes, their albedo looked up
 // after the block resolves the hit: the megakernel's image, as for every shipped scene. So is a
 // metallic-roughness sphere whose coat's weight and roughness are textures, which the light
-// samples look up again from the vertex's uv.
+// samples look up again from the vertex's uv, and one whose transmission is a texture and whose
+// coat has a normal map of its own over a normal-mapped base (the coat's normal travels in the
+// light-sample queue).
 TEST(Wavefront, TexturedSurfacesInLanesEqualTheMegakernel) {
     Scene scene;
     ImageData image;
@@ -350,6 +352,13 @@ TEST(Wavefront, TexturedSurfacesInLanesEqualTheMegakernel) {
     coated.clearcoat_map = scene.add_texture(checker);
     coated.clearcoat_roughness_map = scene.add_texture(picture);
     const MaterialId car_paint = scene.add_material(coated);
+    Material ribbed = coated;
+    ribbed.transmission = 0.7f;
+    ribbed.transmission_map = scene.add_texture(checker);
+    ribbed.normal_map = scene.add_solid({0.7f, 0.5f, 1.0f});
+    ribbed.clearcoat_normal_map = scene.add_solid({0.5f, 0.25f, 1.0f});
+    ribbed.clearcoat_roughness = 0.3f;
+    const MaterialId ribbed_paint = scene.add_material(ribbed);
     Material light;
     light.kind = MaterialKind::DiffuseLight;
     light.emission = scene.add_solid({6, 5, 4});
@@ -360,6 +369,7 @@ TEST(Wavefront, TexturedSurfacesInLanesEqualTheMegakernel) {
     scene.add_sphere({{-0.6f, 0.5f, 0}, 0.5f, marble, kNone});
     scene.add_sphere({{0.7f, 0.6f, 0.3f}, 0.6f, metal, kNone});
     scene.add_sphere({{0.1f, 0.35f, 1.0f}, 0.35f, car_paint, kNone});
+    scene.add_sphere({{-1.0f, 0.3f, 1.1f}, 0.3f, ribbed_paint, kNone});
     scene.camera.look_from = {0, 1.2f, 4};
     scene.camera.look_at = {0, 0.7f, 0};
     Bvh bvh = Bvh::build(scene);

@@ -48,14 +48,22 @@ struct BsdfParams {
     const CoatingTable* coating = nullptr;
     // MetallicRoughness (bsdfs/metallic_roughness.h): albedo is the base colour, alpha the GGX
     // roughness^2, eta the index of refraction giving F0; metallic, transmission and clearcoat
-    // in [0, 1], the clearcoat's GGX alpha; one_sided as for Plastic.
+    // in [0, 1], the clearcoat's GGX alpha and its normal (unit, in the shading frame, on the
+    // side of its z; zero: the shading normal, so that a vertex's zeroed state says it);
+    // one_sided as for Plastic.
     float metallic = 0.0f, transmission = 0.0f, clearcoat = 0.0f, clearcoat_alpha = 0.0f;
+    Vec3 coat_normal{0.0f};
     // Principled (bsdfs/principled.h): albedo is the base colour, eta the index of refraction of
     // the surface's inside over its front's, metallic, transmission (spec_trans) and clearcoat
     // as for MetallicRoughness, clearcoat_alpha the GTR1 alpha; the other lobes here.
     PrincipledLobes principled;
 
     bool is_delta() const;  // every lobe is a Dirac delta: never light-sampled
+    // Whether a metallic-roughness coat lies along the shading normal, and its normal.
+    bool coat_along_normal() const { return coat_normal.x == 0.0f && coat_normal.y == 0.0f; }
+    Vec3 coat_normal_or_z() const {
+        return coat_along_normal() ? Vec3{0.0f, 0.0f, 1.0f} : coat_normal;
+    }
 };
 
 // The distribution of a rough conductor or dielectric.

@@ -49,7 +49,11 @@ struct LaneBsdf {
     MicrofacetLanes<L> as_dielectric() const { return {beckmann, alpha, alpha}; }
     RoughConductor<L> as_conductor() const { return {albedo, eta, k, {beckmann, alpha, alpha}}; }
     MetallicRoughnessLanes<L> as_metallic_roughness() const {
-        return {albedo, alpha, f0, metallic, transmission, clearcoat, coat_alpha, one_sided};
+        // A lane vertex's coat lies along the shading normal (is_lane_bsdf).
+        const typename L::F zero = L::Set(0.0f);
+        return {albedo,       alpha,     f0,         metallic,
+                transmission, clearcoat, coat_alpha, {zero, zero, L::Set(1.0f)},
+                one_sided};
     }
 };
 

@@ -12,8 +12,8 @@ namespace wavetrace {
 
 // Whether the lane formulas take the surface BSDF b: Lambertian, a mirror, a metal, an isotropic
 // conductor or dielectric (smooth: a Dirac-delta lobe, specular-inl.h; rough: a glossy lobe), or
-// a metallic-roughness surface whose lobes are all rough. They build the shading frame from the
-// normal alone, which an isotropic BSDF allows.
+// a metallic-roughness surface whose lobes are all rough and whose coat lies along the shading
+// normal. They build the shading frame from the normal alone, which an isotropic BSDF allows.
 inline bool is_lane_bsdf(const BsdfParams& b) {
     switch (b.kind) {
         case MaterialKind::Lambertian:
@@ -25,7 +25,7 @@ inline bool is_lane_bsdf(const BsdfParams& b) {
             return b.alpha_v == b.alpha;
         case MaterialKind::MetallicRoughness:
             return b.alpha > 0.0f && b.alpha_v == b.alpha &&
-                   (b.clearcoat == 0.0f || b.clearcoat_alpha > 0.0f);
+                   (b.clearcoat == 0.0f || (b.clearcoat_alpha > 0.0f && b.coat_along_normal()));
         default:
             return false;
     }

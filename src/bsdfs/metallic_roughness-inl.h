@@ -26,8 +26,20 @@ struct MetallicRoughnessLanes {
     typename L::F f0;          // the dielectric's Schlick F0, from its IOR (schlick_f0)
     typename L::F metallic, transmission, clearcoat;
     typename L::F coat_alpha;  // the clearcoat's GGX alpha (0: smooth)
+    V3<typename L::F> coat_n;  // the clearcoat's normal (unit; (0, 0, 1): the shading normal)
     typename L::M one_sided;   // black from behind
 };
+
+// The material as o's side sees it (side -1: from behind, where both directions are mirrored
+// through the surface, Upper): the coat's normal seen from behind is -coat_n, and mirrored
+// that is coat_n with its tangential part negated.
+template <class L>
+HWY_INLINE MetallicRoughnessLanes<L> SeenFrom(const MetallicRoughnessLanes<L>& b,
+                                              typename L::F side) {
+    MetallicRoughnessLanes<L> s = b;
+    s.coat_n = {b.coat_n.x * side, b.coat_n.y * side, b.coat_n.z};
+    return s;
+}
 
 // The probabilities of the lobes for o (o.z > 0), in proportion to their shares of the light
 // at V.h = N.V; they sum to 1, or are all 0 where nothing is reflected.
@@ -41,12 +53,14 @@ HWY_INLINE typename L::F Mean3(V3<typename L::F> a) {
     return (a.x + a.y + a.z) / L::Set(3.0f);
 }
 
-// The clearcoat's Fresnel at the view direction, 0.04 + 0.96 s(N.V) (0 without a clearcoat).
+// The clearcoat's Fresnel at the view direction, 0.04 + 0.96 s(N_c.V) of its normal N_c, for
+// oc = N_c.V (0 without a clearcoat, and where V lies behind N_c: the coat reflects nothing
+// there).
 template <class L>
-HWY_INLINE typename L::F CoatFresnel(const MetallicRoughnessLanes<L>& b, typename L::F oz) {
+HWY_INLINE typename L::F CoatFresnel(const MetallicRoughnessLanes<L>& b, typename L::F oc) {
     const typename L::F zero = L::Set(0.0f);
-    return L::Select(b.clearcoat > zero, L::Set(0.04f) + L::Set(0.96f) * SchlickWeight<L>(oz),
-                     zero);
+    return L::Select(L::And(b.clearcoat > zero, oc > zero),
+                     L::Set(0.04f) + L::Set(0.96f) * SchlickWeight<L>(oc), zero);
 }
 
 template <class L>
@@ -58,7 +72,7 @@ HWY_INLINE MetallicRoughnessLobes<L> ChooseMetallicRoughnessLobes(
     const F fd = b.f0 + (one - b.f0) * s;
     const F fm =
         Mean3<L>(b.albedo + V3<F>{one - b.albedo.x, one - b.albedo.y, one - b.albedo.z} * s);
-    const F fc = CoatFresnel<L>(b, o.z), base = one - b.clearcoat * fc;
+    const F fc = CoatFresnel<L>(b, Dot(o, b.coat_n)), base = one - b.clearcoat * fc;
     const F m = b.metallic, c = Mean3<L>(b.albedo);
     MetallicRoughnessLobes<L> p;
     p.coat = b.clearcoat * fc;
@@ -80,7 +94,10 @@ HWY_INLINE MetallicRoughnessLobes<L> ChooseMetallicRoughnessLobes(
 // f cos_i of the lobes that are not deltas, and their density weighted by the lobe
 // probabilities p, for o above the surface (o.z > 0) and i on either side: above, the diffuse,
 // specular and clearcoat lobes; below, the thin-walled transmission, whose half vector is that
-// of i mirrored through the surface. 0 and density 0 where no lobe has a density.
+// of i mirrored through the surface. 0 and density 0 where no lobe has a density. The coat's
+// lobe lies about its own normal N_c: D(h.N_c) G1(o.N_c) G1(i.N_c) / (4 (o.N_c) (i.N_c)) times
+// cos_i = i.z; its density, that of the visible normals about N_c, counts every i above the
+// surface that they reach, also where i.N_c <= 0 and the lobe's value is 0.
 template <class L>
 HWY_INLINE V3<typename L::F> MetallicRoughnessUpper(const MetallicRoughnessLanes<L>& b,
                                                     const MetallicRoughnessLobes<L>& p,
@@ -90,7 +107,8 @@ HWY_INLINE V3<typename L::F> MetallicRoughnessUpper(const MetallicRoughnessLanes
     using F = typename L::F;
     const F zero = L::Set(0.0f), one = L::Set(1.0f), four_cos = L::Set(4.0f) * o.z;
     const F m = b.metallic;
-    const F fc = CoatFresnel<L>(b, o.z), base = one - b.clearcoat * fc;
+    const F oc = Dot(o, b.coat_n);
+    const F fc = CoatFresnel<L>(b, oc), base = one - b.clearcoat * fc;
     const auto above = i.z > zero;
     const auto rough = b.alpha > zero;
     const auto below = L::And(L::And(i.z < zero, rough), b.transmission > zero);
@@ -114,13 +132,21 @@ HWY_INLINE V3<typename L::F> MetallicRoughnessUpper(const MetallicRoughnessLanes
         const F dielectric = (one - m) * fd;
         up = up + (V3<F>{dielectric, dielectric, dielectric} + fm * m) * (base * spec);
         up_pdf = up_pdf + p.specular * spec_pdf;
-        const auto coated = L::And(b.clearcoat > zero, b.coat_alpha > zero);
+        // fc > 0: a coat that o sees (oc > 0).
+        const auto coated = L::And(fc > zero, b.coat_alpha > zero);
         if (L::Any(coated)) {
             const F a = L::Select(coated, b.coat_alpha, one);
-            const F dc = L::Select(coated, GgxD<L>(h.z, a), zero), gc_o = GgxG1<L>(o.z, a);
-            const F coat = b.clearcoat * fc * dc * gc_o * GgxG1<L>(im.z, a) / four_cos;
+            const F ic = Dot(i, b.coat_n), hc = Dot(h, b.coat_n);
+            const auto lit = L::And(coated, ic > zero);
+            // Where N_c is the shading normal, i.z / ic = 1 and this is D G1 G1 / (4 o.z).
+            const F ic_lit = L::Select(lit, ic, one),
+                    four_oc = L::Set(4.0f) * L::Select(coated, oc, one);
+            const F dc = L::Select(coated, GgxD<L>(hc, a), zero), gc_o = GgxG1<L>(oc, a);
+            const F coat = L::Select(
+                lit, b.clearcoat * fc * dc * gc_o * GgxG1<L>(ic_lit, a) * (i.z / ic_lit) / four_oc,
+                zero);
             up = up + V3<F>{coat, coat, coat};
-            up_pdf = up_pdf + p.coat * gc_o * dc / four_cos;
+            up_pdf = up_pdf + p.coat * gc_o * dc / four_oc;
         }
         f = Select3<L>(above, up, f);
         density = L::Select(above, up_pdf, density);
@@ -144,8 +170,9 @@ HWY_INLINE V3<typename L::F> MetallicRoughnessEval(const MetallicRoughnessLanes<
     using F = typename L::F;
     const F side = SideOf<L>(wo);
     const V3<F> o = Upper<L>(wo, side);
+    const MetallicRoughnessLanes<L> seen = SeenFrom<L>(b, side);
     F p;
-    const V3<F> f = MetallicRoughnessUpper<L>(b, ChooseMetallicRoughnessLobes<L>(b, o), o,
+    const V3<F> f = MetallicRoughnessUpper<L>(seen, ChooseMetallicRoughnessLobes<L>(seen, o), o,
                                               Upper<L>(wi, side), &p);
     return ValueWhere<L>(L::And(SeesSurface<L>(b, wo.z), p > L::Set(0.0f)), f, p, pdf);
 }
@@ -186,7 +213,16 @@ HWY_INLINE MetallicRoughnessSampleResult<L> MetallicRoughnessSampleUpper(
     s.wi = CosineHemisphere<L>(u1, u2);
     if (L::Any(L::AndNot(diffuse, ok))) {
         const F a = L::Select(alpha > zero, alpha, L::Set(1.0f));
-        const V3<F> n = GgxVisibleNormal<L>(o, a, a, u1, u2);
+        // The coat's visible normals about its own normal (o.N_c > 0 where it is chosen), in a
+        // frame of which N_c is z.
+        const auto tilted = L::And(coat, L::Not(L::And(b.coat_n.x == zero, b.coat_n.y == zero)));
+        V3<F> cs, ct, ol = o;
+        if (L::Any(tilted)) {
+            OrthonormalBasis<L>(b.coat_n, &cs, &ct);
+            ol = Select3<L>(tilted, V3<F>{Dot(o, cs), Dot(o, ct), Dot(o, b.coat_n)}, o);
+        }
+        V3<F> n = GgxVisibleNormal<L>(ol, a, a, u1, u2);
+        if (L::Any(tilted)) n = Select3<L>(tilted, cs * n.x + ct * n.y + b.coat_n * n.z, n);
         V3<F> r = Reflect<L>(o, n);
         ok = L::AndNot(L::AndNot(diffuse, L::Not(r.z > zero)), ok);  // below the surface: lost
         r.z = L::Select(transmission, L::Neg(r.z), r.z);
@@ -211,8 +247,9 @@ HWY_INLINE MetallicRoughnessSampleResult<L> MetallicRoughnessSample(
     using F = typename L::F;
     const F side = SideOf<L>(wo);
     const V3<F> o = Upper<L>(wo, side);
+    const MetallicRoughnessLanes<L> seen = SeenFrom<L>(b, side);
     MetallicRoughnessSampleResult<L> s = MetallicRoughnessSampleUpper<L>(
-        b, ChooseMetallicRoughnessLobes<L>(b, o), o, u_lobe, u1, u2);
+        seen, ChooseMetallicRoughnessLobes<L>(seen, o), o, u_lobe, u1, u2);
     s.valid = L::And(SeesSurface<L>(b, wo.z), s.valid);
     s.wi = Upper<L>(s.wi, side);
     return s;

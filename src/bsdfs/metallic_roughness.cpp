@@ -11,17 +11,29 @@ namespace wavetrace {
 namespace lanes = HWY_NAMESPACE;
 using lanes::OneLane;
 
+namespace {
+
+// The lanes' view of b with its coat's normal, which the lane vertices' leave along the
+// shading normal.
+lanes::MetallicRoughnessLanes<OneLane> one_lane(const BsdfParams& b) {
+    lanes::MetallicRoughnessLanes<OneLane> mr = lanes::to_lanes(b).as_metallic_roughness();
+    mr.coat_n = lanes::to_lanes(b.coat_normal_or_z());
+    return mr;
+}
+
+}  // namespace
+
 Color metallic_roughness_eval(const BsdfParams& b, Vec3 wo, Vec3 wi, float* pdf) {
     return lanes::to_vec3(
-        lanes::MetallicRoughnessEval(lanes::to_lanes(b).as_metallic_roughness(), lanes::to_lanes(wo), lanes::to_lanes(wi), pdf));
+        lanes::MetallicRoughnessEval(one_lane(b), lanes::to_lanes(wo), lanes::to_lanes(wi), pdf));
 }
 
 BsdfSample metallic_roughness_sample(const BsdfParams& b, Vec3 wo, float u_lobe, float u1,
                                      float u2) {
     BsdfSample s;
     if (wo.z == 0.0f || (b.one_sided && wo.z < 0.0f)) return s;
-    const lanes::MetallicRoughnessLanes<OneLane> mr = lanes::to_lanes(b).as_metallic_roughness();
     const float side = wo.z < 0.0f ? -1.0f : 1.0f;
+    const lanes::MetallicRoughnessLanes<OneLane> mr = lanes::SeenFrom(one_lane(b), side);
     const Vec3 o{wo.x, wo.y, wo.z * side};
     const lanes::MetallicRoughnessLobes<OneLane> p =
         lanes::ChooseMetallicRoughnessLobes(mr, lanes::to_lanes(o));
@@ -30,9 +42,22 @@ BsdfSample metallic_roughness_sample(const BsdfParams& b, Vec3 wo, float u_lobe,
     const bool transmission = !coat && !specular && !diffuse && p.transmission > 0.0f;
     const float f0 = mr.f0, m = b.metallic;
     const float sn = schlick_weight(o.z), fd = f0 + (1.0f - f0) * sn;
-    const float fc = lanes::CoatFresnel(mr, o.z), base = 1.0f - b.clearcoat * fc;
-    // Smooth lobes: every delta reflection (a smooth specular lobe, a smooth coat) shares the
-    // mirror direction, so its weight is their summed value over their summed probability.
+    const Vec3 nc = lanes::to_vec3(mr.coat_n);
+    const float oc = dot(o, nc);
+    const float fc = lanes::CoatFresnel(mr, oc), base = 1.0f - b.clearcoat * fc;
+    // A smooth coat about a normal of its own: its mirror direction, of weight k Fc / p.coat.
+    const bool coat_apart = !b.coat_along_normal();
+    if (coat && b.clearcoat_alpha == 0.0f && coat_apart) {
+        const Vec3 i = 2.0f * oc * nc - o;
+        if (!(i.z > 0.0f)) return s;  // below the surface: lost
+        s.wi = {i.x, i.y, i.z * side};
+        s.weight = Color(b.clearcoat * fc / p.coat);
+        s.delta = s.valid = true;
+        return s;
+    }
+    // Smooth lobes: every delta reflection (a smooth specular lobe, a smooth coat along the
+    // shading normal) shares the mirror direction, so its weight is their summed value over
+    // their summed probability.
     if ((specular && b.alpha == 0.0f) || (coat && b.clearcoat_alpha == 0.0f)) {
         Color value(0.0f);
         float prob = 0.0f;
@@ -41,7 +66,7 @@ BsdfSample metallic_roughness_sample(const BsdfParams& b, Vec3 wo, float u_lobe,
             value += (Color((1.0f - m) * fd) + fm * m) * base;
             prob += p.specular;
         }
-        if (b.clearcoat_alpha == 0.0f) {
+        if (b.clearcoat_alpha == 0.0f && !coat_apart) {
             value += Color(p.coat > 0.0f ? b.clearcoat * fc : 0.0f);
             prob += p.coat;
         }

@@ -15,10 +15,14 @@
 // where t is the transmission and specular_T the thin-walled microfacet BTDF: the specular lobe
 // with L mirrored through the surface, h_T = normalize(V + L - 2 (N.L) N), no refraction (a
 // surface of two back-to-back interfaces; KHR_materials_transmission's implementation notes).
-// The clearcoat of weight k and roughness alpha_c lies on top:
-//   coated = (1 - k Fc) material + k Fc specular(alpha_c),  Fc = 0.04 + 0.96 s(N.V),
+// The clearcoat of weight k and roughness alpha_c lies on top, about a normal N_c of its own
+// (KHR_materials_clearcoat's clearcoatNormal; BsdfParams::coat_normal, by default N):
+//   coated = (1 - k Fc) material + k Fc specular(alpha_c, N_c),  Fc = 0.04 + 0.96 s(N_c.V),
 // its Fresnel taken at the view direction as KHR_materials_clearcoat's fresnel_coat does, so
-// the coated material is not reciprocal (the rest is).
+// the coated material is not reciprocal (the rest is). specular(alpha_c, N_c) is the specular
+// lobe with N_c for N in D, G1 and the cosines of its denominator; where V or L lies behind N_c
+// the coat reflects nothing (Fc = 0 for V: the extension's |N_c.V| would reflect off a coat
+// facing away). From behind, N_c is mirrored with the rest, its tangential part negated.
 //
 // fresnel_mix weighs the diffuse lobe by 1 - Fd(V.h) pair by pair, not by what the specular lobe
 // takes from V, so the dielectric part is not energy-conserving at grazing views (a white,

@@ -32,8 +32,8 @@ struct FileMaterial {
     bool pbr = false;
     float metallic = 1.0f, roughness = 1.0f, transmission = 0.0f, clearcoat = 0.0f,
           clearcoat_roughness = 0.0f;
-    std::string map_metallic_roughness, map_normal, map_emissive, map_clearcoat,
-        map_clearcoat_roughness;
+    std::string map_metallic_roughness, map_normal, map_emissive, map_transmission, map_clearcoat,
+        map_clearcoat_roughness, map_clearcoat_normal;
     // Each texture's glTF sampler: wrapS, wrapT, and magFilter (no mip maps here: minFilter
     // has nothing to choose between).
     struct Sampler {
@@ -41,7 +41,8 @@ struct FileMaterial {
         TextureFilter filter = TextureFilter::Bilinear;
     };
     Sampler kd_sampler, metallic_roughness_sampler, normal_sampler, emissive_sampler,
-        clearcoat_sampler, clearcoat_roughness_sampler;
+        transmission_sampler, clearcoat_sampler, clearcoat_roughness_sampler,
+        clearcoat_normal_sampler;
     std::string alpha_mode = "OPAQUE";
     float base_alpha = 1.0f, alpha_cutoff = 0.5f;  // baseColorFactor's alpha; MASK's cutoff
     bool double_sided = false;

@@ -32,8 +32,9 @@ Vertex queued_vertex(const Scene& scene, const LightSampleQueue& q, size_t i) {
         v.bsdf.alpha_v = q.alpha_v[i];
         if (v.bsdf.kind == MaterialKind::MetallicRoughness) {
             v.bsdf.metallic = q.metallic[i];
-            clearcoat_at(scene, scene.materials[v.material], {{q.uv_u[i], q.uv_v[i]}, v.p},
-                         &v.bsdf);
+            v.bsdf.coat_normal = WAVETRACE_XYZ_AT(q, coat_n, i);
+            transmission_and_coat_at(scene, scene.materials[v.material],
+                                     {{q.uv_u[i], q.uv_v[i]}, v.p}, &v.bsdf);
         }
         if (v.bsdf.kind == MaterialKind::Principled)
             principled_at(scene, scene.materials[v.material], {q.uv_u[i], q.uv_v[i]}, v.p, &v.bsdf);

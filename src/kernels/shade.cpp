@@ -62,8 +62,8 @@ bool lane_material(const Scene& scene, MaterialId m, LaneSurface* out) {
           mat.kind == MaterialKind::Dielectric || mat.kind == MaterialKind::MetallicRoughness) ||
         (mat.albedo == kNone && mat.kind != MaterialKind::Dielectric) || mat.one_sided ||
         mat.has_normal_maps() || mat.alpha_u_texture != kNone || mat.alpha_v_texture != kNone ||
-        mat.metallic_roughness != kNone || mat.clearcoat_map != kNone ||
-        mat.clearcoat_roughness_map != kNone || mat.emission != kNone)
+        mat.metallic_roughness != kNone || mat.transmission_map != kNone ||
+        mat.clearcoat_map != kNone || mat.clearcoat_roughness_map != kNone || mat.emission != kNone)
         return false;
     // A dielectric has no albedo.
     const Texture* albedo = mat.albedo != kNone ? &scene.textures[mat.albedo] : nullptr;
@@ -234,9 +234,28 @@ void append_light_sample(size_t path,
                          ShadeOutputs& out) {
     WT_DCHECK_LT(out.light_sample_end, out.light_samples.capacity);
     store_queued_vertex(out.light_samples, out.light_sample_end++,
-                        {static_cast<uint32_t>(path), p, ng, ns, frame_angle, unbent, bump_alpha2,
-                         wo, bsdf.albedo, bsdf.alpha, bsdf.alpha_v, bsdf.metallic, uv, bsdf.kind,
-                         material, beta, u.light_select, u.light_u, u.light_v, media, interior});
+                        {static_cast<uint32_t>(path),
+                         p,
+                         ng,
+                         ns,
+                         frame_angle,
+                         unbent,
+                         bump_alpha2,
+                         wo,
+                         bsdf.albedo,
+                         bsdf.alpha,
+                         bsdf.alpha_v,
+                         bsdf.metallic,
+                         bsdf.coat_normal,
+                         uv,
+                         bsdf.kind,
+                         material,
+                         beta,
+                         u.light_select,
+                         u.light_u,
+                         u.light_v,
+                         media,
+                         interior});
 }
 
 // Route Cross: the ray goes on past the boundary, with the optical depth left after the segment.
@@ -472,6 +491,8 @@ void queue_lane_light_samples(size_t first, size_t last, const Chunk& c, ShadeOu
         q.frame_angle[j] = 0.0f;  // lane BSDFs are isotropic
         q.unbent_x[j] = q.unbent_y[j] = q.unbent_z[j] = 0.0f;
         q.bump_alpha2[j] = 0.0f;  // lane vertices have no mapped normal's shadowing
+        // nor a coat apart from the shading normal
+        q.coat_n_x[j] = q.coat_n_y[j] = q.coat_n_z[j] = 0.0f;
         q.kind[j] = material_kind(LaneLobe(b.lobe[k]));
         q.material[j] = b.material[k];  // as append_light_sample queues it
         const VertexSamples u = c.samples.at(b.entry[k] - c.begin);

@@ -121,17 +121,17 @@ void read_gltf_material(const aiMaterial& m, FileMaterial& out) {
     out.normal_sampler = texture_sampler(m, aiTextureType_NORMALS, 0);
     out.map_emissive = texture_path(m, aiTextureType_EMISSIVE);
     out.emissive_sampler = texture_sampler(m, aiTextureType_EMISSIVE, 0);
+    out.map_transmission = texture_path(m, AI_MATKEY_TRANSMISSION_TEXTURE);
+    out.transmission_sampler = texture_sampler(m, AI_MATKEY_TRANSMISSION_TEXTURE);
     out.map_clearcoat = texture_path(m, AI_MATKEY_CLEARCOAT_TEXTURE);
     out.clearcoat_sampler = texture_sampler(m, AI_MATKEY_CLEARCOAT_TEXTURE);
     out.map_clearcoat_roughness = texture_path(m, AI_MATKEY_CLEARCOAT_ROUGHNESS_TEXTURE);
     out.clearcoat_roughness_sampler = texture_sampler(m, AI_MATKEY_CLEARCOAT_ROUGHNESS_TEXTURE);
-    // The coat's own normal map has no place in a material of one shading normal.
-    if (!texture_path(m, AI_MATKEY_CLEARCOAT_NORMAL_TEXTURE).empty())
-        out.other_maps.push_back("clearcoatNormalTexture");
+    out.map_clearcoat_normal = texture_path(m, AI_MATKEY_CLEARCOAT_NORMAL_TEXTURE);
+    out.clearcoat_normal_sampler = texture_sampler(m, AI_MATKEY_CLEARCOAT_NORMAL_TEXTURE);
     const std::pair<aiTextureType, const char*> others[] = {
         {aiTextureType_AMBIENT_OCCLUSION, "occlusionTexture"},
         {aiTextureType_LIGHTMAP, "occlusionTexture"},
-        {aiTextureType_TRANSMISSION, "transmissionTexture"},
         {aiTextureType_SHEEN, "sheen"}};
     for (const auto& [type, key] : others)
         if (m.GetTextureCount(type) > 0 &&

@@ -753,6 +753,8 @@ class Loader {
             m.metallic_roughness = read_texture(*x, Range::Reflectance);
         if (auto x = o.optional("ior")) m.ior = read_ior(*x);
         if (auto x = o.optional("transmission")) m.transmission = x->in_range(0.0f, 1.0f);
+        if (auto x = o.optional("transmission_texture"))
+            m.transmission_map = read_texture(*x, Range::Reflectance);
         if (auto x = o.optional("clearcoat")) m.clearcoat = x->in_range(0.0f, 1.0f);
         if (auto x = o.optional("clearcoat_roughness"))
             m.clearcoat_roughness = x->in_range(0.0f, 1.0f);
@@ -760,6 +762,8 @@ class Loader {
             m.clearcoat_map = read_texture(*x, Range::Reflectance);
         if (auto x = o.optional("clearcoat_roughness_texture"))
             m.clearcoat_roughness_map = read_texture(*x, Range::Reflectance);
+        if (auto x = o.optional("clearcoat_normal_map"))
+            m.clearcoat_normal_map = read_texture(*x, Range::Reflectance);
         if (auto x = o.optional("emission")) m.emission = read_texture(*x, Range::Radiance);
         if (auto x = o.optional("two_sided")) m.two_sided = x->boolean();
     }
@@ -993,7 +997,7 @@ class Loader {
         }
         // An alpha mask, for any surface (scene/opacity.h).
         if (auto x = o.optional("opacity")) m.opacity = read_texture(*x, Range::Reflectance);
-        // Normal and bump maps, for any surface (shading/normal_maps.h).
+        // Normal and bump maps, for any surface (scene/normal_maps.h).
         if (auto x = o.optional("normal_map")) m.normal_map = read_texture(*x, Range::Reflectance);
         if (auto x = o.optional("bump_map")) m.bump_map = read_texture(*x, Range::Radiance);
         if (auto x = o.optional("bump_scale")) m.bump_scale = x->number();
@@ -1340,6 +1344,8 @@ class Loader {
                                        ImageChannels::Raw, Color(1.0f), fm.metallic_roughness_sampler);
         m.ior = fm.ni;
         m.transmission = unit(fm.transmission, "transmissionFactor");
+        m.transmission_map = texture(fm.map_transmission, "transmissionTexture", ImageChannels::Raw,
+                                     Color(1.0f), fm.transmission_sampler);
         m.clearcoat = unit(fm.clearcoat, "clearcoatFactor");
         m.clearcoat_roughness = unit(fm.clearcoat_roughness, "clearcoatRoughnessFactor");
         m.clearcoat_map = texture(fm.map_clearcoat, "clearcoatTexture", ImageChannels::Raw,
@@ -1349,6 +1355,9 @@ class Loader {
                     Color(1.0f), fm.clearcoat_roughness_sampler);
         m.normal_map = texture(fm.map_normal, "normalTexture", ImageChannels::Raw, Color(1.0f),
                                fm.normal_sampler);
+        m.clearcoat_normal_map =
+            texture(fm.map_clearcoat_normal, "clearcoatNormalTexture", ImageChannels::Raw,
+                    Color(1.0f), fm.clearcoat_normal_sampler);
         m.emission = texture(fm.map_emissive, "emissiveTexture", ImageChannels::Linear, fm.ke,
                              fm.emissive_sampler);
         if (m.emission == kNone && max_component(fm.ke) > 0.0f) m.emission = scene_.add_solid(fm.ke);

@@ -30,6 +30,7 @@ namespace wavetrace {
     F(float, alpha, "the BSDF's roughness (alpha_u) at the vertex")                     \
     F(float, alpha_v, "... across dp/du (textures may vary both)")                      \
     F(float, metallic, "metallic-roughness: metallic (a texture may vary both)")        \
+    WAVETRACE_XYZ_FIELD(F, coat_n, "... and its coat's normal in the shading frame")    \
     F(float, uv_u, "principled: texture coordinates, where its weights are looked up")  \
     F(float, uv_v, "")                                                                  \
     F(MaterialKind, kind, "the BSDF's kind")                                            \
@@ -55,6 +56,7 @@ struct QueuedVertex {
     Color albedo;
     float alpha, alpha_v;
     float metallic;
+    Vec3 coat_n;
     Vec2 uv;
     MaterialKind kind;
     MaterialId material;
@@ -65,12 +67,13 @@ struct QueuedVertex {
 };
 
 inline void store_queued_vertex(LightSampleQueue& q, size_t i, const QueuedVertex& v) {
-    q.store(i, {v.path,     v.p.x,      v.p.y,         v.p.z,      v.ng.x,        v.ng.y,
-                v.ng.z,     v.ns.x,     v.ns.y,        v.ns.z,     v.frame_angle, v.unbent.x,
-                v.unbent.y, v.unbent.z, v.bump_alpha2, v.wo.x,     v.wo.y,        v.wo.z,
-                v.albedo.x, v.albedo.y, v.albedo.z,    v.alpha,    v.alpha_v,     v.metallic,
-                v.uv.x,     v.uv.y,     v.kind,        v.material, v.beta.x,      v.beta.y,
-                v.beta.z,   v.u_select, v.u1,          v.u2,       v.media,       v.interior});
+    q.store(
+        i, {v.path,        v.p.x,     v.p.y,      v.p.z,         v.ng.x,     v.ng.y,     v.ng.z,
+            v.ns.x,        v.ns.y,    v.ns.z,     v.frame_angle, v.unbent.x, v.unbent.y, v.unbent.z,
+            v.bump_alpha2, v.wo.x,    v.wo.y,     v.wo.z,        v.albedo.x, v.albedo.y, v.albedo.z,
+            v.alpha,       v.alpha_v, v.metallic, v.coat_n.x,    v.coat_n.y, v.coat_n.z, v.uv.x,
+            v.uv.y,        v.kind,    v.material, v.beta.x,      v.beta.y,   v.beta.z,   v.u_select,
+            v.u1,          v.u2,      v.media,    v.interior});
 }
 
 }  // namespace wavetrace

@@ -10,8 +10,9 @@ namespace wavetrace {
 
 bool material_reads_uv(const Scene& scene, const Material& m) {
     bool reads = m.has_normal_maps();
-    for (const TextureId t : {m.albedo, m.emission, m.metallic_roughness, m.clearcoat_map,
-                              m.clearcoat_roughness_map, m.alpha_u_texture, m.alpha_v_texture})
+    for (const TextureId t :
+         {m.albedo, m.emission, m.metallic_roughness, m.clearcoat_map, m.clearcoat_roughness_map,
+          m.alpha_u_texture, m.alpha_v_texture, m.transmission_map})
         reads = reads || texture_reads_uv(scene, t);
     if (m.kind == MaterialKind::Principled)
         m.principled.for_each([&](const char*, const TexturedNumber& w) {
@@ -46,6 +47,8 @@ const char* attribute_misuse(const Scene& scene, const Material& m) {
     if (reads(m.emission)) return "emission";
     if (reads(m.normal_map)) return "normal_map";
     if (reads(m.bump_map)) return "bump_map";
+    if (reads(m.clearcoat_normal_map)) return "clearcoat_normal_map";
+    if (reads(m.transmission_map)) return "transmission_texture";
     if (reads(m.clearcoat_map)) return "clearcoat_texture";
     if (reads(m.clearcoat_roughness_map)) return "clearcoat_roughness_texture";
     const char* weight = nullptr;
@@ -75,10 +78,15 @@ void metallic_roughness_at(const Scene& scene,
         b->alpha = b->alpha_v = roughness * roughness;
         b->metallic = m.metallic * t.z;
     }
-    clearcoat_at(scene, m, at, b);
+    transmission_and_coat_at(scene, m, at, b);
 }
 
-void clearcoat_at(const Scene& scene, const Material& m, const TexturePoint& at, BsdfParams* b) {
+void transmission_and_coat_at(const Scene& scene,
+                              const Material& m,
+                              const TexturePoint& at,
+                              BsdfParams* b) {
+    if (m.transmission_map != kNone)
+        b->transmission = m.transmission * unit_texture_at(scene, m.transmission_map, at).x;
     if (m.clearcoat_map != kNone)
         b->clearcoat = m.clearcoat * unit_texture_at(scene, m.clearcoat_map, at).x;
     if (m.clearcoat_roughness_map != kNone) {

@@ -36,15 +36,20 @@ void principled_at(const Scene& scene, const Material& m, Vec2 uv, Point3 p, Bsd
 
 // The textured factors of a metallic-roughness material m at texture point `at`, into b: glTF's
 // channels, the metallicRoughnessTexture's green times `roughness` (alpha its square) and blue
-// times `metallic`, the clearcoatTexture's red times `clearcoat`, the clearcoatRoughnessTexture's
-// green times `clearcoat_roughness` (the coat's alpha its square), each clamped to [0, 1].
+// times `metallic`, the transmissionTexture's red times `transmission`, the clearcoatTexture's
+// red times `clearcoat`, the clearcoatRoughnessTexture's green times `clearcoat_roughness` (the
+// coat's alpha its square), each clamped to [0, 1].
 void metallic_roughness_at(const Scene& scene,
                            const Material& m,
                            const TexturePoint& at,
                            BsdfParams* b);
-// Its coat's part alone, which the wavefront's light samples look up again from the vertex's
-// uv and position (so the coat's textures may not read mesh attributes: attribute_misuse).
-void clearcoat_at(const Scene& scene, const Material& m, const TexturePoint& at, BsdfParams* b);
+// Its transmission's and coat's part alone, which the wavefront's light samples look up again
+// from the vertex's uv and position (so these textures may not read mesh attributes:
+// attribute_misuse).
+void transmission_and_coat_at(const Scene& scene,
+                              const Material& m,
+                              const TexturePoint& at,
+                              BsdfParams* b);
 
 // The material a hit on material m takes at texture point `at`, u uniform in
 // [0, 1): m itself unless it is a blend; a blend's second material where u < w (its weight

@@ -84,11 +84,13 @@ void check_scene(const Scene& scene) {
         check_texture(i, m.albedo, "albedo", reads_albedo(m.kind));
         check_texture(i, m.emission, "emission", m.kind == MaterialKind::DiffuseLight);
         check_texture(i, m.metallic_roughness, "metallic_roughness", false);
+        check_texture(i, m.transmission_map, "transmission_texture", false);
         check_texture(i, m.clearcoat_map, "clearcoat_texture", false);
         check_texture(i, m.clearcoat_roughness_map, "clearcoat_roughness_texture", false);
         check_texture(i, m.opacity, "opacity", false);
         check_texture(i, m.normal_map, "normal_map", false);
         check_texture(i, m.bump_map, "bump_map", false);
+        check_texture(i, m.clearcoat_normal_map, "clearcoat_normal_map", false);
         check_texture(i, m.alpha_u_texture, "alpha_u_texture", false);
         check_texture(i, m.alpha_v_texture, "alpha_v_texture", false);
         m.principled.for_each([&](const char* name, const TexturedNumber& w) {

@@ -14,11 +14,11 @@
 #include "sampling/warp.h"
 #include "scene/camera_ray-inl.h"
 #include "scene/material_lookup.h"
+#include "scene/normal_maps.h"
 #include "shading/environment_light-inl.h"
 #include "shading/lane_routes.h"
 #include "shading/light_sample-inl.h"
 #include "shading/mis-inl.h"
-#include "shading/normal_maps.h"
 #include "shading/sphere_light-inl.h"
 #include "shading/surface_step-inl.h"
 #include "wavetrace/scene/scene.h"
@@ -28,6 +28,19 @@ namespace lanes = HWY_NAMESPACE;
 using lanes::OneLane;
 
 namespace {
+
+MappedPoint mapped_point(const SurfaceHit& hit) {
+    return {hit.p, hit.ng, hit.ns, hit.uv, hit.dpdu, hit.dpdv};
+}
+
+// The coat's normal at the hit in the shading frame f; out of line, so that the vertices
+// without one do not carry its code.
+[[gnu::noinline]] Vec3 coat_in_frame(const Scene& scene,
+                                     const Material& m,
+                                     const SurfaceHit& hit,
+                                     const Frame& f) {
+    return f.to_local(coat_normal(scene, m, mapped_point(hit)));
+}
 
 // Frame::from_normal, inlined here: it runs at every vertex.
 Frame frame_from_normal(Vec3 n) {
@@ -45,7 +58,7 @@ Vertex surface_vertex(const Scene& scene, const SurfaceHit& hit, Vec3 wo) {
     const Material& m = scene.materials[hit.material];
     Normal3 n = hit.ns;
     if (m.has_normal_maps()) {
-        n = mapped_normal(scene, m, hit, wo);
+        n = mapped_normal(scene, m, mapped_point(hit), wo);
         if (m.bump_shadowing) {
             v.unbent = hit.ns;
             v.bump_alpha2 = bump_shadowing_alpha2(hit.ns, n);
@@ -76,6 +89,9 @@ Vertex surface_vertex(const Scene& scene, const SurfaceHit& hit, Vec3 wo) {
             v.frame = rotated_frame(n, v.frame_angle);
         }
     }
+    // A coat under a mapped normal keeps its own (scene/normal_maps.h).
+    if (m.kind == MaterialKind::MetallicRoughness && m.clearcoat > 0.0f && m.has_normal_maps())
+        v.bsdf.coat_normal = coat_in_frame(scene, m, hit, v.frame);
     // A one-sided surface seen from behind reflects nothing: its albedo (a conductor's
     // reflectance) is 0 there.
     if (m.one_sided && !hit.front_face) v.bsdf.albedo = Color(0.0f);

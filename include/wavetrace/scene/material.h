@@ -99,11 +99,12 @@ struct Material {
     // MetallicRoughness (glTF 2.0's pbrMetallicRoughness, KHR_materials_transmission and
     // _clearcoat): metallic, transmission and clearcoat factors, the clearcoat's roughness, and
     // glTF's metallicRoughnessTexture (kNone: none), whose green channel multiplies `roughness`
-    // and blue channel `metallic`, its clearcoatTexture, whose red channel multiplies
-    // `clearcoat`, and its clearcoatRoughnessTexture, whose green channel multiplies
-    // `clearcoat_roughness`.
+    // and blue channel `metallic`, its transmissionTexture, whose red channel multiplies
+    // `transmission`, its clearcoatTexture, whose red channel multiplies `clearcoat`, and its
+    // clearcoatRoughnessTexture, whose green channel multiplies `clearcoat_roughness`.
     float metallic = 1.0f, transmission = 0.0f, clearcoat = 0.0f, clearcoat_roughness = 0.0f;
-    TextureId metallic_roughness = kNone, clearcoat_map = kNone, clearcoat_roughness_map = kNone;
+    TextureId metallic_roughness = kNone, transmission_map = kNone, clearcoat_map = kNone,
+              clearcoat_roughness_map = kNone;
 
     // Principled: albedo is the base colour, ior the index of refraction; the lobes' weights.
     PrincipledWeights principled;
@@ -120,9 +121,12 @@ struct Material {
     TextureId opacity = kNone;
     // Any surface material: a normal map (a raw image: tangent-space normals as 2 rgb - 1) or a
     // bump map (heights, scaled by bump_scale) perturbing the shading normal
-    // (src/shading/normal_maps.h); kNone: none.
+    // (src/scene/normal_maps.h); kNone: none. MetallicRoughness: glTF's clearcoatNormalTexture,
+    // the coat's own normal map over the unperturbed shading normal (without one the coat keeps
+    // that normal, not normal_map's).
     TextureId normal_map = kNone;
     TextureId bump_map = kNone;
+    TextureId clearcoat_normal_map = kNone;
     float bump_scale = 1.0f;
     // Mitsuba 3's two corrections of a mapped normal (both off by default here, on in its
     // `normalmap` and `bumpmap`): a mapped normal facing away from the viewer is mirrored about
@@ -130,7 +134,9 @@ struct Material {
     // Estevez et al. 2019 derive (bump_shadowing; src/bsdfs/bump_terminator.h).
     bool flip_invalid_normals = false;
     bool bump_shadowing = false;
-    bool has_normal_maps() const { return normal_map != kNone || bump_map != kNone; }
+    bool has_normal_maps() const {
+        return normal_map != kNone || bump_map != kNone || clearcoat_normal_map != kNone;
+    }
     // Whether its roughness may differ along dp/du (alpha_u) and across it (alpha_v).
     bool anisotropic() const {
         if (kind == MaterialKind::Principled)

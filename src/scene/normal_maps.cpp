@@ -1,4 +1,4 @@
-#include "shading/normal_maps.h"
+#include "scene/normal_maps.h"
 
 #include <cmath>
 
@@ -19,7 +19,7 @@ bool usable(Vec3 v) {
     return length_squared(v) > 1e-24f && is_finite(v);
 }
 
-Normal3 bumped(const Scene& scene, const Material& m, const SurfaceHit& hit, Normal3 n) {
+Normal3 bumped(const Scene& scene, const Material& m, const MappedPoint& hit, Normal3 n) {
     const Vec3 tu = in_plane(hit.dpdu, n), tv = in_plane(hit.dpdv, n);
     auto h = [&](float du, float dv) {
         return m.bump_scale *
@@ -39,13 +39,14 @@ Normal3 bumped(const Scene& scene, const Material& m, const SurfaceHit& hit, Nor
     return dot(b, n) < 0.0f ? -b : b;  // the side the unperturbed normal faces
 }
 
-Normal3 normal_mapped(const Scene& scene, const Material& m, const SurfaceHit& hit, Normal3 n) {
+// n tilted by the normal map `map`.
+Normal3 normal_mapped(const Scene& scene, TextureId map, const MappedPoint& hit, Normal3 n) {
     Vec3 t = in_plane(hit.dpdu, n);
     if (!usable(t)) return n;
     t = normalize(t);
     Vec3 b = cross(n, t);
     if (dot(b, hit.dpdv) < 0.0f) b = -b;
-    const Color c = eval_texture(scene, m.normal_map, hit.uv, hit.p);
+    const Color c = eval_texture(scene, map, hit.uv, hit.p);
     const Vec3 local = 2.0f * c - Vec3(1.0f);
     const Vec3 w = local.x * t + local.y * b + local.z * n;
     return usable(w) ? normalize(w) : n;
@@ -53,14 +54,20 @@ Normal3 normal_mapped(const Scene& scene, const Material& m, const SurfaceHit& h
 
 }  // namespace
 
-Normal3 mapped_normal(const Scene& scene, const Material& m, const SurfaceHit& hit, Vec3 wo) {
+Normal3 mapped_normal(const Scene& scene, const Material& m, const MappedPoint& hit, Vec3 wo) {
     Normal3 n = hit.ns;
     if (m.bump_map != kNone) n = bumped(scene, m, hit, n);
-    if (m.normal_map != kNone) n = normal_mapped(scene, m, hit, n);
+    if (m.normal_map != kNone) n = normal_mapped(scene, m.normal_map, hit, n);
     if (dot(n, hit.ng) < 0.0f) n = -n;
     if (m.flip_invalid_normals && dot(wo, hit.ns) * dot(wo, n) <= 0.0f)
         n = 2.0f * dot(n, hit.ns) * hit.ns - n;
     return n;
+}
+
+Normal3 coat_normal(const Scene& scene, const Material& m, const MappedPoint& hit) {
+    if (m.clearcoat_normal_map == kNone) return hit.ns;
+    const Normal3 n = normal_mapped(scene, m.clearcoat_normal_map, hit, hit.ns);
+    return dot(n, hit.ng) < 0.0f ? -n : n;
 }
 
 }  // namespace wavetrace

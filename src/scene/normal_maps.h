@@ -1,5 +1,5 @@
 // Normal and bump maps: the shading normal a material's maps give a surface point, in both
-// engines (surface_vertex). The tangent frame is the hit's dp/du and dp/dv
+// engines (shading's surface_vertex). The tangent frame is the hit's dp/du and dp/dv
 // (scene/hit_geometry.h) made orthonormal about the interpolated shading normal n:
 //   T = normalize(dp/du - (n . dp/du) n),  B = +-(n x T), the sign that of dp/dv . (n x T),
 // so that B follows increasing v also where a mesh's uvs are mirrored (glTF's tangent w).
@@ -23,17 +23,33 @@
 // mirrored about n0, 2 (n . n0) n0 - n (Schuessler et al. 2017 flip such normals to keep the
 // surface reflecting); and the BSDF is scaled by Estevez et al.'s bump-terminator shadowing
 // (bsdfs/bump_terminator.h).
+//
+// glTF's clearcoat (KHR_materials_clearcoat) has a normal of its own: its clearcoatNormalTexture
+// as a normal map in the same tangent frame over the unperturbed n, or, without one, n itself
+// ("no normal mapping is applied to the clear coat layer, even if normal mapping is applied to
+// the base material"), turned to the side of the geometric normal as above.
 #pragma once
 
 #include "wavetrace/math/vec3.h"
 #include "wavetrace/scene/material.h"
-#include "wavetrace/shading/surface.h"
 
 namespace wavetrace {
 
 struct Scene;
 
-// The shading normal at the hit, seen from direction wo (unit, away from the surface).
-Normal3 mapped_normal(const Scene& scene, const Material& m, const SurfaceHit& hit, Vec3 wo);
+// What the maps read of a surface point: where it is, its geometric normal and interpolated
+// shading normal (unit, on the same side), texture coordinates, and dp/du, dp/dv.
+struct MappedPoint {
+    Point3 p;
+    Normal3 ng, ns;
+    Vec2 uv;
+    Vec3 dpdu, dpdv;
+};
+
+// The shading normal at the point, seen from direction wo (unit, away from the surface).
+Normal3 mapped_normal(const Scene& scene, const Material& m, const MappedPoint& at, Vec3 wo);
+
+// A metallic-roughness material's clearcoat normal at the point.
+Normal3 coat_normal(const Scene& scene, const Material& m, const MappedPoint& at);
 
 }  // namespace wavetrace
