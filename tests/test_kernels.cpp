@@ -401,11 +401,11 @@ TEST(Kernels, PackedMediaRoundTrip) {
 }
 
 // The queues' bytes per path in flight, from the declarations (docs/architecture.md counts
-// them): 106 for the path, its ray and its hit, 145 for a light sample, 60 for a shadow ray, 25
+// them): 106 for the path, its ray and its hit, 157 for a light sample, 60 for a shadow ray, 25
 // for emission found, 14 of per-entry scratch. A budget, so that a field added is a decision
-// (the last: a light sample's texture coordinates, where a principled material's eleven
-// weights are looked up again rather than carried).
-TEST(Kernels, QueuesTakeAtMost350BytesPerPath) {
-    EXPECT_LE(wavefront_bytes_per_path(), 350u);
+// (the last: a metallic-roughness coat's own normal, which a normal map at the hit gives and
+// the light sample cannot look up again without the hit's tangents).
+TEST(Kernels, QueuesTakeAtMost362BytesPerPath) {
+    EXPECT_LE(wavefront_bytes_per_path(), 362u);
     EXPECT_EQ(wavefront_bytes_per_path(), WaveQueues::bytes_per_path());
 }
