@@ -578,6 +578,61 @@ AttributeEnd
         << error_of(scene("[2 6 7]"));
 }
 
+// An rgbgrid medium: (sigma_a + sigma_s) x scale per channel as a three-channel density grid,
+// sigma_s / sigma_t as a grid texture for the albedo, over the same box; a coefficient left out
+// is 1 (pbrt-v4's RGBGridMedium).
+TEST(PbrtScenes, RgbGridMediaAreThreeChannelGrids) {
+    TempDir dir;
+    auto scene = [&](const std::string& coefficients) {
+        return dir.write("a.pbrt", R"(
+Camera "perspective"
+WorldBegin
+AttributeBegin
+  Translate 10 0 0
+  MakeNamedMedium "dye" "string type" "rgbgrid" "integer nx" 2 "integer ny" 1 "integer nz" 1
+    "point3 p0" [0 0 0] "point3 p1" [4 1 1] "float scale" 0.5 )" +
+                                       coefficients + R"(
+AttributeEnd
+AttributeBegin
+  MediumInterface "dye" ""
+  Material "interface"
+  Shape "sphere" "float radius" 20
+AttributeEnd
+)");
+    };
+    Scene s = load_scene(
+        scene(R"("rgb sigma_a" [1 2 3  0.5 0.5 0.5] "rgb sigma_s" [3 2 1  1.5 1.5 1.5])"),
+        collecting());
+    ASSERT_EQ(s.media.size(), 1u);
+    ASSERT_TRUE(s.media[0].heterogeneous());
+    const VolumeGrid& g = s.volume_grids[s.media[0].density_grid];
+    EXPECT_EQ(g.channels, 3);
+    EXPECT_EQ(g.wrap, TextureWrap::Black);
+    const Color near = s.media[0].sigma_t * g.lookup({11.0f, 0.5f, 0.5f});
+    const Color far = s.media[0].sigma_t * g.lookup({13.0f, 0.5f, 0.5f});
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(near[c], 2.0f, 1e-5f) << c;  // (sigma_a + sigma_s) x 0.5
+        EXPECT_NEAR(far[c], 1.0f, 1e-5f) << c;
+    }
+    const TextureId albedo = s.materials[s.media[0].phase].albedo;
+    ASSERT_EQ(s.textures[albedo].kind, TextureKind::Grid);
+    const Color a = eval_texture(s, albedo, {0.0f, 0.0f}, {11.0f, 0.5f, 0.5f});
+    EXPECT_NEAR(a.x, 0.75f, 1e-5f);
+    EXPECT_NEAR(a.y, 0.5f, 1e-5f);
+    EXPECT_NEAR(a.z, 0.25f, 1e-5f);
+    // sigma_a left out is 1: (1 + 3) x 0.5 in the first sample's red.
+    Scene only_s = load_scene(scene(R"("rgb sigma_s" [3 2 1  1.5 1.5 1.5])"), collecting());
+    EXPECT_NEAR((only_s.media[0].sigma_t *
+                 only_s.volume_grids[only_s.media[0].density_grid].lookup({11.0f, 0.5f, 0.5f}))
+                    .x,
+                2.0f, 1e-5f);
+    EXPECT_NE(error_of(scene(R"("rgb sigma_a" [1 2 3])"))
+                  .find("a.pbrt:7: medium \"dye\": sigma_a needs 3 nx ny nz = 6 values, got 3"),
+              std::string::npos)
+        << error_of(scene(R"("rgb sigma_a" [1 2 3])"));
+    EXPECT_NE(error_of(scene("")).find("an rgbgrid needs sigma_a or sigma_s"), std::string::npos);
+}
+
 // Loop subdivision of an octahedron: every level quadruples the faces, the mesh stays closed
 // (each edge shared by two triangles), and the limit surface lies within the control hull
 // and, by the octahedron's symmetry, keeps its six tips on the axes.

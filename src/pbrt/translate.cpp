@@ -1299,10 +1299,14 @@ class Translator {
         const std::string name = string_arg("MakeNamedMedium");
         PbrtParams p = params("MakeNamedMedium \"" + name + "\"");
         const std::string type = p.string("type", "");
-        if (type != "homogeneous" && type != "uniformgrid") {
+        if (type != "homogeneous" && type != "uniformgrid" && type != "rgbgrid") {
             warn(place, "medium \"" + type + "\" is not supported; \"" + name + "\" is left out");
             for (PbrtParam& q : p.list) q.used = true;
             skipped_media_.insert(name);
+            return;
+        }
+        if (type == "rgbgrid") {
+            rgb_grid_medium(p, place, name);
             return;
         }
         if (p.get("preset")) warn(place, "medium: presets are not supported; sigma_a and sigma_s are used");
@@ -1335,26 +1339,86 @@ class Translator {
     // and 0 half a sample beyond the outermost (pbrt-v4's SampledGrid), over the box p0..p1 of
     // the medium's space (the transform at MakeNamedMedium); the medium is empty outside it.
     json density_grid(PbrtParams& p, const std::string& place, const std::string& name) {
-        const int nx = p.integer("nx", 1, 1, 1 << 20), ny = p.integer("ny", 1, 1, 1 << 20),
-                  nz = p.integer("nz", 1, 1, 1 << 20);
+        json g = grid_frame(p, place, name);
+        const uint64_t voxels = grid_voxels(g);
         const std::vector<double>* d = p.numbers("density", 1);
-        const uint64_t voxels = uint64_t(nx) * uint64_t(ny) * uint64_t(nz);
         if (!d || d->size() != voxels)
             fail(place, "medium \"" + name +
                             "\": density needs nx ny nz = " + std::to_string(voxels) +
                             " values, got " + std::to_string(d ? d->size() : 0));
+        if (p.get("temperature") || p.get("Lescale"))
+            warn(place, "medium: emission is not supported; ignored");
+        g["values"] = *d;
+        return g;
+    }
+
+    // A grid medium's samples without their values: nx x ny x nz of them over p0..p1, black
+    // beyond, placed by the transform at MakeNamedMedium.
+    json grid_frame(PbrtParams& p, const std::string& place, const std::string& name) {
+        const int nx = p.integer("nx", 1, 1, 1 << 20), ny = p.integer("ny", 1, 1, 1 << 20),
+                  nz = p.integer("nz", 1, 1, 1 << 20);
         const std::array<double, 3> p0 = p.triple("p0", {0, 0, 0}), p1 = p.triple("p1", {1, 1, 1});
         const V3 size{p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]};
         if (!(size[0] > 0 && size[1] > 0 && size[2] > 0))
             fail(place, "medium \"" + name + "\": p1 must exceed p0 along every axis");
-        if (p.get("temperature") || p.get("Lescale"))
-            warn(place, "medium: emission is not supported; ignored");
         return {{"resolution", {nx, ny, nz}},
-                {"values", *d},
                 {"wrap", "black"},
                 {"transform", json::array({json{{"scale", to_json(size)}},
                                            json{{"translate", json::array({p0[0], p0[1], p0[2]})}},
                                            matrix_step(state().ctm)[0]})}};
+    }
+    static uint64_t grid_voxels(const json& g) {
+        const json& r = g["resolution"];
+        return r[0].get<uint64_t>() * r[1].get<uint64_t>() * r[2].get<uint64_t>();
+    }
+
+    // An rgbgrid medium (pbrt-v4's RGBGridMedium): sigma_a and sigma_s as rgb samples of one
+    // grid (either may be left out: 1 there), times `scale`. Its extinction becomes a
+    // three-channel density grid and its albedo sigma_s / sigma_t a grid texture over the same
+    // box. pbrt interpolates sigma_a and sigma_s and divides; here the albedo's samples are
+    // interpolated, which is the same where it does not change between neighbouring samples.
+    void rgb_grid_medium(PbrtParams& p, const std::string& place, const std::string& name) {
+        json grid = grid_frame(p, place, name);
+        const uint64_t voxels = grid_voxels(grid);
+        auto samples = [&](const char* n) -> const std::vector<double>* {
+            PbrtParam* q = p.get(n);
+            if (!q) return nullptr;
+            if (q->type != "rgb")
+                fail(q->place, "\"" + q->name + "\" of an rgbgrid should be rgb values");
+            const std::vector<double>* v = p.numbers(n, 3);
+            if (v->size() != 3 * voxels)
+                fail(q->place, "medium \"" + name + "\": " + n +
+                                   " needs 3 nx ny nz = " + std::to_string(3 * voxels) +
+                                   " values, got " + std::to_string(v->size()));
+            return v;
+        };
+        const std::vector<double>*sa = samples("sigma_a"), *ss = samples("sigma_s");
+        if (!sa && !ss) fail(place, "medium \"" + name + "\": an rgbgrid needs sigma_a or sigma_s");
+        const double scale = p.number("scale", 1);
+        if (!(scale >= 0)) fail(place, "medium \"" + name + "\": scale must not be negative");
+        std::vector<double> extinction(3 * voxels), albedo(3 * voxels);
+        double most = 0;
+        for (size_t i = 0; i < 3 * voxels; ++i) {
+            const double a = sa ? (*sa)[i] : 1, s = ss ? (*ss)[i] : 1;
+            if (!(a >= 0 && s >= 0))
+                fail(place, "medium \"" + name + "\": sigma_a and sigma_s must not be negative");
+            extinction[i] = (a + s) * scale;
+            albedo[i] = a + s > 0 ? std::min(s / (a + s), 1.0) : 0.0;
+            most = std::max(most, extinction[i]);
+        }
+        if (!(most > 0)) fail(place, "medium \"" + name + "\": its extinction is zero");
+        if (p.number("g", 0) != 0)
+            warn(place, "medium: g is not supported; scattering is isotropic");
+        if (p.get("Le") || p.get("Lescale"))
+            warn(place, "medium: emission (Le) is not supported; ignored");
+        json albedo_grid = grid;
+        albedo_grid["type"] = "grid";
+        albedo_grid["values"] = std::move(albedo);
+        grid["values"] = std::move(extinction);
+        media_[name] = {
+            {"density", 1}, {"albedo", std::move(albedo_grid)}, {"density_grid", std::move(grid)}};
+        media_names_.insert(name);
+        p.finish(pwarn());
     }
 
     // ---- shapes ----
