@@ -138,7 +138,7 @@ TEST(MeshFiles, GltfLoads) {
 // glTF materials become metallic_roughness with the file's factors (pbrMetallicRoughness,
 // KHR_materials_ior, _transmission, _clearcoat, emissive), the textures beside the file as image
 // textures times their factors (the coat's normal map its own), alpha modes as opacity; a texture
-// embedded in the file (here a data URI) is decoded from memory.
+// embedded in the file (here a data URI) is decoded from memory; extensions not read are named.
 TEST(MeshFiles, GltfMaterialsMapToMetallicRoughness) {
     TempDir dir;
     Image base(2, 2), mr(2, 2);
@@ -152,7 +152,8 @@ TEST(MeshFiles, GltfMaterialsMapToMetallicRoughness) {
     dir.write("two.gltf", R"({
       "asset": {"version": "2.0"},
       "extensionsUsed": ["KHR_materials_transmission", "KHR_materials_clearcoat",
-                         "KHR_materials_ior", "KHR_materials_emissive_strength"],
+                         "KHR_materials_ior", "KHR_materials_emissive_strength",
+                         "KHR_materials_sheen", "KHR_texture_transform"],
       "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
       "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "material": 0},
                                  {"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "material": 1},
@@ -178,7 +179,10 @@ TEST(MeshFiles, GltfMaterialsMapToMetallicRoughness) {
          "normalTexture": {"index": 2}},
         {"name": "leaf", "alphaMode": "MASK", "alphaCutoff": 0.6,
          "pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 0.7],
-                                  "baseColorTexture": {"index": 3}}},
+                                  "baseColorTexture": {"index": 3, "extensions":
+                                      {"KHR_texture_transform": {"scale": [2, 2]}}}},
+         "extensions": {"KHR_materials_sheen": {"sheenColorFactor": [1, 0, 0]}},
+         "extras": {"extensions": {"not_one": {}}}},
         {"name": "veil", "alphaMode": "BLEND",
          "pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 0.25]}}],
       "textures": [{"source": 0}, {"source": 1}, {"source": 2}, {"source": 3}],
@@ -261,10 +265,14 @@ TEST(MeshFiles, GltfMaterialsMapToMetallicRoughness) {
     const Material& veil = material_of("veil");
     ASSERT_NE(veil.opacity, kNone);
     EXPECT_EQ(s.textures[veil.opacity].color, Color(0.25f));
-    // Every texture found its place; the one warning is for the coat over an emission, which
-    // the extension darkens and wavetrace does not.
-    ASSERT_EQ(warnings.size(), 1u) << warnings[0];
+    // Every texture found its place; the warnings are for the coat over an emission, which the
+    // extension darkens and wavetrace does not, and for the extensions not read (a material's,
+    // a texture's; not what `extras` holds).
+    ASSERT_EQ(warnings.size(), 2u) << warnings[0];
     EXPECT_TRUE(warned("\"coated\": ignored the clearcoat's darkening of the emission"));
+    EXPECT_TRUE(warned("\"leaf\": ignored KHR_materials_sheen, KHR_texture_transform"))
+        << warnings[0] << "\n"
+        << warnings[1];
 }
 
 // A .glb holds its JSON in its first chunk: the emissive strength is read from there, and a

@@ -1,5 +1,6 @@
 #include "formats/gltf_json.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -361,6 +362,50 @@ std::vector<float> gltf_emissive_strengths(const json_reader::json& doc) {
             }
         }
         out.push_back(strength);
+    }
+    return out;
+}
+
+namespace {
+
+// The extension names of `j`'s "extensions" objects at any depth into `names` (once each), but
+// those of `read` at the top.
+void unread_extensions(const json_reader::json& j,
+                       const std::vector<std::string>& read,
+                       std::vector<std::string>* names) {
+    if (j.is_array()) {
+        for (const auto& e : j) unread_extensions(e, {}, names);
+        return;
+    }
+    if (!j.is_object()) return;
+    for (const auto& [key, value] : j.items()) {
+        if (key == "extensions" && value.is_object()) {
+            for (const auto& [name, ext] : value.items()) {
+                if (std::find(read.begin(), read.end(), name) == read.end() &&
+                    std::find(names->begin(), names->end(), name) == names->end())
+                    names->push_back(name);
+                unread_extensions(ext, {}, names);
+            }
+        } else if (key != "extras") {
+            unread_extensions(value, {}, names);
+        }
+    }
+}
+
+}  // namespace
+
+std::vector<std::vector<std::string>> gltf_unread_material_extensions(
+    const json_reader::json& doc) {
+    static const std::vector<std::string> kRead = {
+        "KHR_materials_emissive_strength", "KHR_materials_ior", "KHR_materials_transmission",
+        "KHR_materials_clearcoat"};
+    std::vector<std::vector<std::string>> out;
+    const auto materials = doc.find("materials");
+    if (materials == doc.end() || !materials->is_array()) return out;
+    for (const auto& m : *materials) {
+        std::vector<std::string> names;
+        unread_extensions(m, kRead, &names);
+        out.push_back(std::move(names));
     }
     return out;
 }

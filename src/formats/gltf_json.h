@@ -28,6 +28,12 @@ json_reader::Document check_gltf(const std::filesystem::path& path, bool binary)
 // not give one. Throws std::runtime_error for a strength that is negative or not finite.
 std::vector<float> gltf_emissive_strengths(const json_reader::json& doc);
 
+// Per material of `doc`, in the file's order: the extensions it uses that wavetrace does not
+// read, each named once in the order met (a material's own but KHR_materials_emissive_strength,
+// _ior, _transmission and _clearcoat, e.g. KHR_materials_sheen; any of its textures', e.g.
+// KHR_texture_transform), so that none is dropped without a word.
+std::vector<std::vector<std::string>> gltf_unread_material_extensions(const json_reader::json& doc);
+
 // A perspective or orthographic camera where a node puts it, in world space: glTF cameras look
 // along their node's -z with +y up.
 struct GltfCamera {

@@ -129,10 +129,11 @@ void read_gltf_material(const aiMaterial& m, FileMaterial& out) {
     out.clearcoat_roughness_sampler = texture_sampler(m, AI_MATKEY_CLEARCOAT_ROUGHNESS_TEXTURE);
     out.map_clearcoat_normal = texture_path(m, AI_MATKEY_CLEARCOAT_NORMAL_TEXTURE);
     out.clearcoat_normal_sampler = texture_sampler(m, AI_MATKEY_CLEARCOAT_NORMAL_TEXTURE);
+    // (Extensions that are not read, KHR_materials_sheen's textures among them, are named from
+    // the file's JSON: gltf_unread_material_extensions.)
     const std::pair<aiTextureType, const char*> others[] = {
         {aiTextureType_AMBIENT_OCCLUSION, "occlusionTexture"},
-        {aiTextureType_LIGHTMAP, "occlusionTexture"},
-        {aiTextureType_SHEEN, "sheen"}};
+        {aiTextureType_LIGHTMAP, "occlusionTexture"}};
     for (const auto& [type, key] : others)
         if (m.GetTextureCount(type) > 0 &&
             std::find(out.other_maps.begin(), out.other_maps.end(), key) == out.other_maps.end())
@@ -232,6 +233,9 @@ MeshFile read_mesh_file(const std::filesystem::path& path,
         const std::vector<float> strengths = gltf_emissive_strengths(gltf_doc.root);
         for (size_t m = 0; m < strengths.size() && m < out.materials.size(); ++m)
             out.materials[m].ke *= strengths[m];
+        const auto unread = gltf_unread_material_extensions(gltf_doc.root);
+        for (size_t m = 0; m < unread.size() && m < out.materials.size(); ++m)
+            for (const std::string& name : unread[m]) out.materials[m].other_maps.push_back(name);
     }
     if (out.materials.empty()) out.materials.push_back(FileMaterial{"(none)"});
     for (unsigned t = 0; t < scene->mNumTextures; ++t) {
