@@ -180,7 +180,8 @@ TEST(MeshFiles, GltfMaterialsMapToMetallicRoughness) {
         {"name": "leaf", "alphaMode": "MASK", "alphaCutoff": 0.6,
          "pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 0.7],
                                   "baseColorTexture": {"index": 3, "extensions":
-                                      {"KHR_texture_transform": {"scale": [2, 2]}}}},
+                                      {"KHR_texture_transform": {"offset": [0.5, 0],
+                                          "rotation": 1.5707963, "scale": [2, 3]}}}},
          "extensions": {"KHR_materials_sheen": {"sheenColorFactor": [1, 0, 0]}},
          "extras": {"extensions": {"not_one": {}}}},
         {"name": "veil", "alphaMode": "BLEND",
@@ -254,13 +255,21 @@ TEST(MeshFiles, GltfMaterialsMapToMetallicRoughness) {
     // MASK over a base colour texture without alpha: solid wherever alpha 1 >= 0.5.
     ASSERT_NE(textured.opacity, kNone);
     EXPECT_EQ(eval_texture(s, textured.opacity, {0.3f, 0.6f}, {}), Color(1.0f));
-    // MASK at 0.6 over texels of alpha 1 and 0 (left, right) times 0.7: solid left, a hole right.
+    // MASK at 0.6 over texels of alpha 1 and 0 (left, right) times 0.7: solid left, a hole right,
+    // through KHR_texture_transform: in glTF's uv (v down) u' = 0.5 + 3 v, v' = -2 u (a quarter
+    // turn of the scaled uv, then the offset), so in the mesh's (v up, as Assimp flips it)
+    // u' = 3.5 - 3 v, v' = 1 + 2 u: u' = 2.75 at v = 0.25 (the right texel), 2.25 at v = 5/12
+    // (the left one).
     const Material& leaf = material_of("leaf");
     ASSERT_NE(leaf.opacity, kNone);
-    EXPECT_EQ(eval_texture(s, leaf.opacity, {0.25f, 0.5f}, {}), Color(1.0f));
-    EXPECT_EQ(eval_texture(s, leaf.opacity, {0.75f, 0.5f}, {}), Color(0.0f));
+    const Texture& moved = s.textures[leaf.albedo];
+    const float expected_uv[2][3] = {{0, -3, 3.5f}, {2, 0, 1}};
+    for (int r = 0; r < 2; ++r)
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(moved.uv[r][c], expected_uv[r][c], 1e-6f);
+    EXPECT_EQ(eval_texture(s, leaf.opacity, {0.5f, 5.0f / 12.0f}, {}), Color(1.0f));
+    EXPECT_EQ(eval_texture(s, leaf.opacity, {0.5f, 0.25f}, {}), Color(0.0f));
     // The alpha is coverage, not colour: the base colour keeps its texels' RGB.
-    EXPECT_NEAR(eval_texture(s, leaf.albedo, {0.75f, 0.5f}, {}).x, 0.578f, 1e-3f);
+    EXPECT_NEAR(eval_texture(s, leaf.albedo, {0.5f, 0.25f}, {}).x, 0.578f, 1e-3f);
     // BLEND: a quarter of the rays stop.
     const Material& veil = material_of("veil");
     ASSERT_NE(veil.opacity, kNone);
@@ -270,13 +279,13 @@ TEST(MeshFiles, GltfMaterialsMapToMetallicRoughness) {
     // a texture's; not what `extras` holds).
     ASSERT_EQ(warnings.size(), 2u) << warnings[0];
     EXPECT_TRUE(warned("\"coated\": ignored the clearcoat's darkening of the emission"));
-    EXPECT_TRUE(warned("\"leaf\": ignored KHR_materials_sheen, KHR_texture_transform"))
-        << warnings[0] << "\n"
-        << warnings[1];
+    EXPECT_TRUE(warned("\"leaf\": ignored KHR_materials_sheen")) << warnings[0] << "\n"
+                                                                 << warnings[1];
 }
 
 // A .glb holds its JSON in its first chunk: the emissive strength is read from there, and a
-// container whose chunk overruns the file, or a negative strength, is refused with a reason.
+// container whose chunk overruns the file, a negative strength or a texture transform of a
+// string, is refused with a reason.
 // A glTF texture's sampler: wrapS and wrapT each its own wrap, magFilter NEAREST the nearest
 // texel; a texture without a sampler repeats and is filtered bilinearly (glTF's default wrap).
 TEST(MeshFiles, GltfSamplersSetEachTexturesWrapAndFilter) {
@@ -380,6 +389,20 @@ TEST(MeshFiles, GlbEmissiveStrengthAndBrokenContainers) {
     dir.write("overrun.glb", overrun);
     EXPECT_NE(error("overrun.glb").find("overrun.glb"), std::string::npos) << error("overrun.glb");
     EXPECT_NE(error("overrun.glb"), "");
+    // A texture transform that is not numbers, named by its JSON pointer.
+    std::string moved = json("1");
+    moved.replace(moved.find("\"emissiveFactor\""), 0,
+                  R"("emissiveTexture": {"index": 0, "extensions": {"KHR_texture_transform":
+                       {"scale": [1, "x"]}}}, )");
+    moved.replace(
+        moved.find("\"buffers\""), 0,
+        R"("textures": [{"source": 0}], "images": [{"uri": "data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAIAAAACCAIAAAD91JpzAAAAEElEQVR4nGNoaPgPRAwQCgA19gf9SShDzAAAAABJRU5ErkJggg=="}], )");
+    dir.write("moved.gltf", moved);
+    EXPECT_NE(error("moved.gltf")
+                  .find("/materials/0/emissiveTexture/extensions/"
+                        "KHR_texture_transform/scale/1: expected a number"),
+              std::string::npos)
+        << error("moved.gltf");
 }
 
 // Materials from an OBJ's MTL file: each key maps as docs/scene-format.md says, one scene mesh

@@ -368,13 +368,16 @@ std::vector<float> gltf_emissive_strengths(const json_reader::json& doc) {
 
 namespace {
 
+const char* const kTextureTransform = "KHR_texture_transform";
+
 // The extension names of `j`'s "extensions" objects at any depth into `names` (once each), but
-// those of `read` at the top.
+// those of `read` at the top and KHR_texture_transform below it.
 void unread_extensions(const json_reader::json& j,
                        const std::vector<std::string>& read,
                        std::vector<std::string>* names) {
+    static const std::vector<std::string> kReadBelow = {kTextureTransform};
     if (j.is_array()) {
-        for (const auto& e : j) unread_extensions(e, {}, names);
+        for (const auto& e : j) unread_extensions(e, kReadBelow, names);
         return;
     }
     if (!j.is_object()) return;
@@ -384,15 +387,72 @@ void unread_extensions(const json_reader::json& j,
                 if (std::find(read.begin(), read.end(), name) == read.end() &&
                     std::find(names->begin(), names->end(), name) == names->end())
                     names->push_back(name);
-                unread_extensions(ext, {}, names);
+                unread_extensions(ext, kReadBelow, names);
             }
         } else if (key != "extras") {
-            unread_extensions(value, {}, names);
+            unread_extensions(value, kReadBelow, names);
         }
     }
 }
 
+// The transforms of the textures (keys ending in "Texture") in `j`, at any depth.
+void texture_transforms(const json_reader::json& j,
+                        const std::string& pointer,
+                        std::vector<std::pair<std::string, GltfUvTransform>>* out) {
+    if (!j.is_object()) return;
+    for (const auto& [key, value] : j.items()) {
+        if (key == "extras" || !value.is_object()) continue;
+        const std::string at = pointer + "/" + key;
+        const bool texture = key.size() > 7 && key.compare(key.size() - 7, 7, "Texture") == 0;
+        if (texture && value.contains("extensions") && value["extensions"].is_object() &&
+            value["extensions"].contains(kTextureTransform)) {
+            const auto& x = value["extensions"][kTextureTransform];
+            const std::string where = at + "/extensions/" + kTextureTransform;
+            if (!x.is_object()) throw std::runtime_error(where + ": expected an object");
+            auto number = [&](const json_reader::json& v, const std::string& name) {
+                const double d = v.is_number() ? v.get<double>() : NAN;
+                if (!(std::abs(d) <= 1e6))
+                    throw std::runtime_error(where + "/" + name +
+                                             ": expected a number of magnitude at most 1e6");
+                return float(d);
+            };
+            auto pair = [&](const char* name, float* two) {
+                if (!x.contains(name)) return;
+                const auto& v = x[name];
+                if (!v.is_array() || v.size() != 2)
+                    throw std::runtime_error(where + "/" + name + ": expected two numbers");
+                two[0] = number(v[0], std::string(name) + "/0");
+                two[1] = number(v[1], std::string(name) + "/1");
+            };
+            GltfUvTransform t;
+            pair("offset", t.offset);
+            pair("scale", t.scale);
+            if (x.contains("rotation")) t.rotation = number(x["rotation"], "rotation");
+            if (x.contains("texCoord")) {
+                const float c = number(x["texCoord"], "texCoord");
+                if (!(c >= 0 && c == std::floor(c)))
+                    throw std::runtime_error(where + "/texCoord: expected a uv set's index");
+                t.tex_coord = int(c);
+            }
+            out->push_back({key, t});
+        }
+        texture_transforms(value, at, out);
+    }
+}
+
 }  // namespace
+
+std::vector<std::vector<std::pair<std::string, GltfUvTransform>>> gltf_texture_transforms(
+    const json_reader::json& doc) {
+    std::vector<std::vector<std::pair<std::string, GltfUvTransform>>> out;
+    const auto materials = doc.find("materials");
+    if (materials == doc.end() || !materials->is_array()) return out;
+    for (size_t i = 0; i < materials->size(); ++i) {
+        out.emplace_back();
+        texture_transforms((*materials)[i], "/materials/" + std::to_string(i), &out.back());
+    }
+    return out;
+}
 
 std::vector<std::vector<std::string>> gltf_unread_material_extensions(
     const json_reader::json& doc) {

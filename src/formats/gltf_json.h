@@ -30,9 +30,24 @@ std::vector<float> gltf_emissive_strengths(const json_reader::json& doc);
 
 // Per material of `doc`, in the file's order: the extensions it uses that wavetrace does not
 // read, each named once in the order met (a material's own but KHR_materials_emissive_strength,
-// _ior, _transmission and _clearcoat, e.g. KHR_materials_sheen; any of its textures', e.g.
+// _ior, _transmission and _clearcoat, e.g. KHR_materials_sheen; its textures' but
 // KHR_texture_transform), so that none is dropped without a word.
 std::vector<std::vector<std::string>> gltf_unread_material_extensions(const json_reader::json& doc);
+
+// A texture's KHR_texture_transform: in glTF's uv space (v down the image),
+// uv' = offset + [[cos r, sin r], [-sin r, cos r]] (scale * uv), and the uv set it moves the
+// texture to (texCoord; -1: not given).
+struct GltfUvTransform {
+    float offset[2] = {0, 0};
+    float rotation = 0;  // radians
+    float scale[2] = {1, 1};
+    int tex_coord = -1;
+};
+// Per material of `doc`, in the file's order: the transform of each of its textures that has
+// one, with the texture's key ("baseColorTexture", "clearcoatNormalTexture", ...). Throws
+// std::runtime_error, naming the JSON pointer, for a value that is not a finite number.
+std::vector<std::vector<std::pair<std::string, GltfUvTransform>>> gltf_texture_transforms(
+    const json_reader::json& doc);
 
 // A perspective or orthographic camera where a node puts it, in world space: glTF cameras look
 // along their node's -z with +y up.

@@ -39,6 +39,8 @@ struct FileMaterial {
     struct Sampler {
         TextureWrap wrap_u = TextureWrap::Repeat, wrap_v = TextureWrap::Repeat;
         TextureFilter filter = TextureFilter::Bilinear;
+        // KHR_texture_transform in the mesh's uv space, as Texture::uv.
+        float uv[2][3] = {{1.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}};
     };
     Sampler kd_sampler, metallic_roughness_sampler, normal_sampler, emissive_sampler,
         transmission_sampler, clearcoat_sampler, clearcoat_roughness_sampler,

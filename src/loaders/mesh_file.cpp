@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <assimp/Importer.hpp>
 #include <cctype>
+#include <cmath>
 #include <new>
 #include <stdexcept>
 #include <string>
@@ -140,6 +141,33 @@ void read_gltf_material(const aiMaterial& m, FileMaterial& out) {
             out.other_maps.push_back(key);
 }
 
+// The texture of glTF key `key` (e.g. "baseColorTexture") moved by KHR_texture_transform t.
+// Assimp flips glTF's v (v down the image) to 1 - v, so in the mesh's uv space the transform
+// uv' = o + M uv, M = [[a, b], [c, d]] = R(r) S, becomes [[a, -b, b + o_u], [-c, d, 1 - d - o_v]].
+// A texture kept for another uv set (texCoord) is named: only the first is read.
+void apply_uv_transform(FileMaterial& fm, const std::string& key, const GltfUvTransform& t) {
+    FileMaterial::Sampler* s = key == "baseColorTexture"           ? &fm.kd_sampler
+                               : key == "metallicRoughnessTexture" ? &fm.metallic_roughness_sampler
+                               : key == "normalTexture"            ? &fm.normal_sampler
+                               : key == "emissiveTexture"          ? &fm.emissive_sampler
+                               : key == "transmissionTexture"      ? &fm.transmission_sampler
+                               : key == "clearcoatTexture"         ? &fm.clearcoat_sampler
+                               : key == "clearcoatRoughnessTexture"
+                                   ? &fm.clearcoat_roughness_sampler
+                               : key == "clearcoatNormalTexture" ? &fm.clearcoat_normal_sampler
+                                                                 : nullptr;
+    if (!s) return;  // a texture that is not read (warned about as such)
+    if (t.tex_coord > 0) fm.other_maps.push_back(key + "'s KHR_texture_transform texCoord");
+    const float c = std::cos(t.rotation), sn = std::sin(t.rotation);
+    const float a = c * t.scale[0], b = sn * t.scale[1], cc = -sn * t.scale[0], d = c * t.scale[1];
+    s->uv[0][0] = a;
+    s->uv[0][1] = -b;
+    s->uv[0][2] = b + t.offset[0];
+    s->uv[1][0] = -cc;
+    s->uv[1][1] = d;
+    s->uv[1][2] = 1.0f - d - t.offset[1];
+}
+
 FileMaterial read_material(const aiMaterial& m, bool gltf) {
     FileMaterial out;
     aiString name;
@@ -233,6 +261,9 @@ MeshFile read_mesh_file(const std::filesystem::path& path,
         const std::vector<float> strengths = gltf_emissive_strengths(gltf_doc.root);
         for (size_t m = 0; m < strengths.size() && m < out.materials.size(); ++m)
             out.materials[m].ke *= strengths[m];
+        const auto transforms = gltf_texture_transforms(gltf_doc.root);
+        for (size_t m = 0; m < transforms.size() && m < out.materials.size(); ++m)
+            for (const auto& [key, t] : transforms[m]) apply_uv_transform(out.materials[m], key, t);
         const auto unread = gltf_unread_material_extensions(gltf_doc.root);
         for (size_t m = 0; m < unread.size() && m < out.materials.size(); ++m)
             for (const std::string& name : unread[m]) out.materials[m].other_maps.push_back(name);

@@ -1311,6 +1311,7 @@ class Loader {
                 t.wrap_u = sampler.wrap_u;
                 t.wrap_v = sampler.wrap_v;
                 t.filter = sampler.filter;
+                std::copy(&sampler.uv[0][0], &sampler.uv[0][0] + 6, &t.uv[0][0]);
             }
             return id;
         };
