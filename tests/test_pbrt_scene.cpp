@@ -36,6 +36,31 @@ std::string error_of(const std::filesystem::path& path) {
     return "(no error)";
 }
 
+// A grid medium `name` of `type`, 2 x 1 x 1 samples over p0..p1 = [0 0 0]..[4 1 1] moved to
+// x 10..14, with `params` on the directive's second line (line 7 of the file), filling a sphere.
+std::filesystem::path grid_medium_scene(TempDir& dir,
+                                        const std::string& name,
+                                        const std::string& type,
+                                        const std::string& params) {
+    return dir.write("a.pbrt", R"(
+Camera "perspective"
+WorldBegin
+AttributeBegin
+  Translate 10 0 0
+  MakeNamedMedium ")" + name + R"(" "string type" ")" +
+                                   type +
+                                   R"(" "integer nx" 2 "integer ny" 1 "integer nz" 1
+    "point3 p0" [0 0 0] "point3 p1" [4 1 1] )" +
+                                   params + R"(
+AttributeEnd
+AttributeBegin
+  MediumInterface ")" + name + R"(" ""
+  Material "interface"
+  Shape "sphere" "float radius" 20
+AttributeEnd
+)");
+}
+
 std::string read(const std::filesystem::path& p) {
     std::ifstream in(p, std::ios::binary);
     std::stringstream s;
@@ -545,21 +570,10 @@ AttributeEnd
 TEST(PbrtScenes, UniformGridMediaAreDensityGrids) {
     TempDir dir;
     auto scene = [&](const std::string& density) {
-        return dir.write("a.pbrt", R"(
-Camera "perspective"
-WorldBegin
-AttributeBegin
-  Translate 10 0 0
-  MakeNamedMedium "smoke" "string type" "uniformgrid" "integer nx" 2 "integer ny" 1 "integer nz" 1
-    "float density" )" + density + R"( "point3 p0" [0 0 0] "point3 p1" [4 1 1]
-    "rgb sigma_a" [1 1 1] "rgb sigma_s" [3 3 3] "float scale" 0.5
-AttributeEnd
-AttributeBegin
-  MediumInterface "smoke" ""
-  Material "interface"
-  Shape "sphere" "float radius" 20
-AttributeEnd
-)");
+        return grid_medium_scene(
+            dir, "smoke", "uniformgrid",
+            "\"float density\" " + density +
+                R"( "rgb sigma_a" [1 1 1] "rgb sigma_s" [3 3 3] "float scale" 0.5)");
     };
     Scene s = load_scene(scene("[2 6]"), collecting());
     ASSERT_EQ(s.media.size(), 1u);
@@ -584,21 +598,7 @@ AttributeEnd
 TEST(PbrtScenes, RgbGridMediaAreThreeChannelGrids) {
     TempDir dir;
     auto scene = [&](const std::string& coefficients) {
-        return dir.write("a.pbrt", R"(
-Camera "perspective"
-WorldBegin
-AttributeBegin
-  Translate 10 0 0
-  MakeNamedMedium "dye" "string type" "rgbgrid" "integer nx" 2 "integer ny" 1 "integer nz" 1
-    "point3 p0" [0 0 0] "point3 p1" [4 1 1] "float scale" 0.5 )" +
-                                       coefficients + R"(
-AttributeEnd
-AttributeBegin
-  MediumInterface "dye" ""
-  Material "interface"
-  Shape "sphere" "float radius" 20
-AttributeEnd
-)");
+        return grid_medium_scene(dir, "dye", "rgbgrid", "\"float scale\" 0.5 " + coefficients);
     };
     Scene s = load_scene(
         scene(R"("rgb sigma_a" [1 2 3  0.5 0.5 0.5] "rgb sigma_s" [3 2 1  1.5 1.5 1.5])"),

@@ -13,8 +13,8 @@ using lanes::OneLane;
 
 namespace {
 
-// The lanes' view of b with its coat's normal, which the lane vertices' leave along the
-// shading normal.
+// The lanes' view of b, with its coat's own normal (LaneBsdf leaves every coat along the
+// shading normal, as lane vertices' are).
 lanes::MetallicRoughnessLanes<OneLane> one_lane(const BsdfParams& b) {
     lanes::MetallicRoughnessLanes<OneLane> mr = lanes::to_lanes(b).as_metallic_roughness();
     mr.coat_n = lanes::to_lanes(b.coat_normal_or_z());
