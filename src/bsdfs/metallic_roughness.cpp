@@ -28,6 +28,12 @@ Color metallic_roughness_eval(const BsdfParams& b, Vec3 wo, Vec3 wi, float* pdf)
         lanes::MetallicRoughnessEval(one_lane(b), lanes::to_lanes(wo), lanes::to_lanes(wi), pdf));
 }
 
+float coat_emission_weight(float clearcoat, float oc) {
+    lanes::MetallicRoughnessLanes<OneLane> mr{};
+    mr.clearcoat = clearcoat;
+    return 1.0f - clearcoat * lanes::CoatFresnel(mr, oc);
+}
+
 BsdfSample metallic_roughness_sample(const BsdfParams& b, Vec3 wo, float u_lobe, float u1,
                                      float u2) {
     BsdfSample s;

@@ -44,6 +44,11 @@ Color metallic_roughness_eval(const BsdfParams& b, Vec3 wo, Vec3 wi, float* pdf)
 BsdfSample metallic_roughness_sample(const BsdfParams& b, Vec3 wo, float u_lobe, float u1,
                                      float u2);
 
+// What a clearcoat of weight k lets through of the light emitted beneath it towards V, for oc
+// = N_c.V: 1 - k Fc, Fc as above (KHR_materials_clearcoat: the coat lies on top of the
+// emission, "darkened by the Fresnel term"); 1 - k 0.04 seen head-on.
+float coat_emission_weight(float clearcoat, float oc);
+
 // Schlick's reflectance at normal incidence of a dielectric of index `ior`: ((ior - 1) /
 // (ior + 1))^2, 0.04 at glTF's default 1.5.
 inline float schlick_f0(float ior) {

@@ -1361,11 +1361,8 @@ class Loader {
                     Color(1.0f), fm.clearcoat_normal_sampler);
         m.emission = texture(fm.map_emissive, "emissiveTexture", ImageChannels::Linear, fm.ke,
                              fm.emissive_sampler);
-        if (m.emission == kNone && max_component(fm.ke) > 0.0f) m.emission = scene_.add_solid(fm.ke);
-        // KHR_materials_clearcoat darkens the emission under a coat by 1 - k Fc(V); here the
-        // surface emits as if uncoated.
-        if (m.emission != kNone && m.clearcoat > 0.0f)
-            ignored.push_back("the clearcoat's darkening of the emission");
+        if (m.emission == kNone && max_component(fm.ke) > 0.0f)
+            m.emission = scene_.add_solid(fm.ke);
         m.two_sided = fm.double_sided;  // a double-sided surface emits from both sides
         // Alpha: the base colour's alpha (its factor's times its texture's and its vertices'), as
         // coverage. MASK cuts at alphaCutoff; BLEND lets that share of rays through (the

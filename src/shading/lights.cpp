@@ -4,8 +4,11 @@
 #include <cmath>
 
 #include "accel/intersect.h"
+#include "bsdfs/metallic_roughness.h"
 #include "sampling/warp.h"
 #include "scene/delta_lights.h"
+#include "scene/material_lookup.h"
+#include "scene/normal_maps.h"
 #include "shading/environment_light-inl.h"
 #include "shading/sphere_light-inl.h"
 #include "wavetrace/math/frame.h"
@@ -40,10 +43,12 @@ LightSet::LightSet(const Scene& scene, bool mis_compensation) {
         const Material& m = scene.materials[scene.prim_material(prim)];
         const Texture& e = scene.textures[m.emission];
         float lum = e.kind == TextureKind::Solid ? luminance(e.color) : 1.0f;
+        // The lanes' emitters emit one radiance in every direction.
+        const bool uniform = e.kind == TextureKind::Solid && !m.coats_emission();
         power.push_back(scene.prim_area(prim) * kPi * lum * (m.two_sided ? 2.0f : 1.0f));
         planar_of_.push_back(-1);
         const bool triangle = prim.kind() == PrimKind::Triangle;
-        if ((prim.kind() == PrimKind::Quad || triangle) && e.kind == TextureKind::Solid) {
+        if ((prim.kind() == PrimKind::Quad || triangle) && uniform) {
             // A quad's corner and edges, or a triangle's first vertex and the edges from it.
             Point3 q;
             Vec3 u, v;
@@ -73,7 +78,7 @@ LightSet::LightSet(const Scene& scene, bool mis_compensation) {
             c.triangle.push_back(triangle ? 1.0f : 0.0f);
         }
         sphere_of_.push_back(-1);
-        if (prim.kind() == PrimKind::Sphere && e.kind == TextureKind::Solid) {
+        if (prim.kind() == PrimKind::Sphere && uniform) {
             const Sphere& sp = scene.spheres[prim.index()];
             SphereEmitterColumns& c = sphere_columns_;
             sphere_of_.back() = static_cast<int32_t>(c.radius.size());
@@ -274,7 +279,7 @@ LightSample LightSet::sample(
         if (cos_l <= 0.0f) return ls;
         pdf_solid = uniform_area_to_solid_angle(dist2, cos_l, scene.prim_area(prim));
     }
-    ls.radiance = emitted_radiance(scene, sh);
+    ls.radiance = emitted_radiance(scene, sh, -ls.wi);
     ls.pdf = pdf_solid * select_prob;
     ls.prim = prim;
     ls.valid = std::isfinite(ls.pdf) && ls.pdf > 0.0f;
@@ -354,11 +359,20 @@ float LightSet::pdf_direction(const Scene& scene, Point3 ref, Vec3 wi) const {
     return delta_count_ == 0 ? pdf : pdf / area_fraction_;
 }
 
-Color emitted_radiance(const Scene& scene, const SurfaceHit& hit) {
+Color emitted_radiance(const Scene& scene, const SurfaceHit& hit, Vec3 wo) {
     if (hit.material == kNone) return {};
     const Material& m = scene.materials[hit.material];
     if (!m.is_emissive() || (!hit.front_face && !m.two_sided)) return {};
-    return eval_texture(scene, m.emission, hit.uv, hit.p);
+    const Color le = eval_texture(scene, m.emission, hit.uv, hit.p);
+    if (!m.coats_emission()) return le;
+    // The coat's weight and normal there, the normal turned to wo's side of the surface as the
+    // BSDF mirrors it from behind.
+    BsdfParams coat;
+    coat.clearcoat = m.clearcoat;
+    transmission_and_coat_at(scene, m, hit.texture_point(), &coat);
+    const Normal3 nc = coat_normal(scene, m, {hit.p, hit.ng, hit.ns, hit.uv, hit.dpdu, hit.dpdv});
+    const float oc = dot(nc, wo) * (dot(hit.ng, wo) < 0.0f ? -1.0f : 1.0f);
+    return le * coat_emission_weight(coat.clearcoat, oc);
 }
 
 }  // namespace wavetrace

@@ -161,9 +161,11 @@ class LightSet {
     EnvironmentView environment_view_;
 };
 
-// Radiance a surface emits towards the side the ray came from (0 unless the material emits;
-// one-sided emitters emit only on their front).
+// Radiance a surface emits towards wo (unit, away from the surface, on the side the ray came
+// from): 0 unless the material emits; one-sided emitters emit only on their front; under a
+// metallic-roughness material's clearcoat, darkened by the coat's Fresnel at wo
+// (coat_emission_weight), so that it depends on wo.
 struct SurfaceHit;
-Color emitted_radiance(const Scene& scene, const SurfaceHit& hit);
+Color emitted_radiance(const Scene& scene, const SurfaceHit& hit, Vec3 wo);
 
 }  // namespace wavetrace

@@ -393,7 +393,7 @@ SegmentResult resolve_segment(const Scene& scene,
         return r;
     }
     if (const Material& mat = scene.materials[s.material]; mat.is_emissive()) {
-        Color le = emitted_radiance(scene, s);
+        Color le = emitted_radiance(scene, s, -dir);
         if (max_component(le) > 0.0f) found(le, hit.prim, length(s.p - prev.p));
         // An emitter that also reflects (an albedo, e.g. an MTL light with Kd, or any emissive
         // material but diffuse_light): its emission is counted here and the path scatters on.

@@ -148,6 +148,11 @@ struct Material {
     bool needs_tangents() const { return has_normal_maps() || anisotropic(); }
 
     bool is_emissive() const { return emission != kNone; }
+    // Whether a clearcoat lies over its emission, which then depends on the direction it leaves
+    // in (KHR_materials_clearcoat; shading's emitted_radiance).
+    bool coats_emission() const {
+        return is_emissive() && kind == MaterialKind::MetallicRoughness && clearcoat > 0.0f;
+    }
     // Whether it may be one of a blend's materials: a hit chooses among those once its surface
     // is shaded, so what is decided before (what emits, is cut away, passes shadow rays, bounds
     // a medium or scatters in one) must be the blend's own.
