@@ -49,11 +49,6 @@ Color numeric_depth(const VolumeGrid& g, Color scale, Point3 o, Vec3 dir, float 
     return {float(sum[0]), float(sum[1]), float(sum[2])};
 }
 
-Vec3 random_direction(std::mt19937& rng) {
-    std::normal_distribution<float> n;
-    return normalize(Vec3{n(rng), n(rng), n(rng)});
-}
-
 TEST(VolumeGrids, OpticalDepthIsTheIntegralOfTheInterpolation) {
     std::mt19937 rng(7);
     const Color scale{1.0f, 0.5f, 2.0f};

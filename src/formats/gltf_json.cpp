@@ -395,7 +395,8 @@ void unread_extensions(const json_reader::json& j,
     }
 }
 
-// The transforms of the textures (keys ending in "Texture") in `j`, at any depth.
+// The transforms of the textures (keys ending in "Texture") in `j`, at any depth, and those
+// of the textures that read another uv set than the first (no transform but their uv set).
 void texture_transforms(const json_reader::json& j,
                         const std::string& pointer,
                         std::vector<std::pair<std::string, GltfUvTransform>>* out) {
@@ -404,6 +405,15 @@ void texture_transforms(const json_reader::json& j,
         if (key == "extras" || !value.is_object()) continue;
         const std::string at = pointer + "/" + key;
         const bool texture = key.size() > 7 && key.compare(key.size() - 7, 7, "Texture") == 0;
+        // The uv set a textureInfo names (texCoord), a transform's own overriding it.
+        auto uv_set = [](const json_reader::json& v, const std::string& where) {
+            const double d = v.is_number() ? v.get<double>() : NAN;
+            if (!(d >= 0 && d <= 1e6 && d == std::floor(d)))
+                throw std::runtime_error(where + "/texCoord: expected a uv set's index");
+            return int(d);
+        };
+        const int info_set =
+            texture && value.contains("texCoord") ? uv_set(value["texCoord"], at) : 0;
         if (texture && value.contains("extensions") && value["extensions"].is_object() &&
             value["extensions"].contains(kTextureTransform)) {
             const auto& x = value["extensions"][kTextureTransform];
@@ -428,12 +438,11 @@ void texture_transforms(const json_reader::json& j,
             pair("offset", t.offset);
             pair("scale", t.scale);
             if (x.contains("rotation")) t.rotation = number(x["rotation"], "rotation");
-            if (x.contains("texCoord")) {
-                const float c = number(x["texCoord"], "texCoord");
-                if (!(c >= 0 && c == std::floor(c)))
-                    throw std::runtime_error(where + "/texCoord: expected a uv set's index");
-                t.tex_coord = int(c);
-            }
+            t.tex_coord = x.contains("texCoord") ? uv_set(x["texCoord"], where) : info_set;
+            out->push_back({key, t});
+        } else if (info_set > 0) {
+            GltfUvTransform t;
+            t.tex_coord = info_set;
             out->push_back({key, t});
         }
         texture_transforms(value, at, out);

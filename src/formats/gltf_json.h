@@ -35,17 +35,18 @@ std::vector<float> gltf_emissive_strengths(const json_reader::json& doc);
 std::vector<std::vector<std::string>> gltf_unread_material_extensions(const json_reader::json& doc);
 
 // A texture's KHR_texture_transform: in glTF's uv space (v down the image),
-// uv' = offset + [[cos r, sin r], [-sin r, cos r]] (scale * uv), and the uv set it moves the
-// texture to (texCoord; -1: not given).
+// uv' = offset + [[cos r, sin r], [-sin r, cos r]] (scale * uv), and the uv set the texture
+// reads (TEXCOORD_n: the transform's texCoord, else the textureInfo's, else 0).
 struct GltfUvTransform {
     float offset[2] = {0, 0};
     float rotation = 0;  // radians
     float scale[2] = {1, 1};
-    int tex_coord = -1;
+    int tex_coord = 0;
 };
 // Per material of `doc`, in the file's order: the transform of each of its textures that has
-// one, with the texture's key ("baseColorTexture", "clearcoatNormalTexture", ...). Throws
-// std::runtime_error, naming the JSON pointer, for a value that is not a finite number.
+// one or reads a uv set other than the first (then the identity), with the texture's key
+// ("baseColorTexture", "clearcoatNormalTexture", ...). Throws std::runtime_error, naming the
+// JSON pointer, for a value that is not a finite number or a texCoord that is not an index.
 std::vector<std::vector<std::pair<std::string, GltfUvTransform>>> gltf_texture_transforms(
     const json_reader::json& doc);
 

@@ -144,7 +144,8 @@ void read_gltf_material(const aiMaterial& m, FileMaterial& out) {
 // The texture of glTF key `key` (e.g. "baseColorTexture") moved by KHR_texture_transform t.
 // Assimp flips glTF's v (v down the image) to 1 - v, so in the mesh's uv space the transform
 // uv' = o + M uv, M = [[a, b], [c, d]] = R(r) S, becomes [[a, -b, b + o_u], [-c, d, 1 - d - o_v]].
-// A texture kept for another uv set (texCoord) is named: only the first is read.
+// A texture that reads another uv set (texCoord) is named: only the first is imported, and
+// the texture reads that.
 void apply_uv_transform(FileMaterial& fm, const std::string& key, const GltfUvTransform& t) {
     FileMaterial::Sampler* s = key == "baseColorTexture"           ? &fm.kd_sampler
                                : key == "metallicRoughnessTexture" ? &fm.metallic_roughness_sampler
@@ -157,7 +158,9 @@ void apply_uv_transform(FileMaterial& fm, const std::string& key, const GltfUvTr
                                : key == "clearcoatNormalTexture" ? &fm.clearcoat_normal_sampler
                                                                  : nullptr;
     if (!s) return;  // a texture that is not read (warned about as such)
-    if (t.tex_coord > 0) fm.other_maps.push_back(key + "'s KHR_texture_transform texCoord");
+    if (t.tex_coord > 0)
+        fm.other_maps.push_back(key + "'s texCoord " + std::to_string(t.tex_coord) +
+                                " (read from TEXCOORD_0: no other uv set is imported)");
     const float c = std::cos(t.rotation), sn = std::sin(t.rotation);
     const float a = c * t.scale[0], b = sn * t.scale[1], cc = -sn * t.scale[0], d = c * t.scale[1];
     s->uv[0][0] = a;
