@@ -113,7 +113,8 @@ Vertex lane_vertex_at(Point3 p, Dim u, LaneKind kind) {
 // light was a sphere, in *maps those whose light was the environment map.
 void expect_light_samples_are_next_event(const Scene& scene,
                                          size_t* spheres,
-                                         size_t* maps = nullptr) {
+                                         size_t* maps = nullptr,
+                                         size_t* deltas = nullptr) {
     const LightSet lights(scene);
     const size_t n = 59;
     struct Case {
@@ -136,7 +137,7 @@ void expect_light_samples_are_next_event(const Scene& scene,
     }
     size_t appended = 0, skipped = 0;
     *spheres = 0;
-    size_t environment_rows = 0;
+    size_t environment_rows = 0, delta_rows = 0;
     Estimator config;
     config.strategy = Strategy::Mis;
     for (int64_t target : wide_simd_targets()) {
@@ -154,12 +155,15 @@ void expect_light_samples_are_next_event(const Scene& scene,
             const LightChoice light = lights.select(c.u.light_select);
             const int32_t planar = planar_light_sample_at(c.v, lights, light);
             const int32_t sphere = planar < 0 ? sphere_light_sample_at(c.v, lights, light) : -1;
-            const bool map =
-                planar < 0 && sphere < 0 && environment_light_sample_at(c.v, lights, light);
-            ASSERT_TRUE(planar >= 0 || sphere >= 0 || map);
+            const int32_t delta = delta_light_sample_at(is_lane_vertex(c.v), lights, light);
+            const bool map = planar < 0 && sphere < 0 && delta < 0 &&
+                             environment_light_sample_at(c.v, lights, light);
+            ASSERT_TRUE(planar >= 0 || sphere >= 0 || delta >= 0 || map);
             *spheres += sphere >= 0;
+            delta_rows += delta >= 0;
             environment_rows += map;
             block.environment[k] = map ? 1 : 0;
+            block.delta[k] = delta;
             store_queued_vertex(queue, k,
                                 {uint32_t(k),
                                  c.v.p,
@@ -219,6 +223,7 @@ void expect_light_samples_are_next_event(const Scene& scene,
     }
     use_wide_simd_target(0);
     if (maps) *maps = environment_rows;
+    if (deltas) *deltas = delta_rows;
     EXPECT_GT(appended, 0u);
     EXPECT_GT(skipped, 0u);  // back faces, directions below the surface
 }
@@ -464,6 +469,23 @@ TEST(Lanes, SphereLightSamplesAreNextEventOnEverySimdTarget) {
     size_t spheres;
     expect_light_samples_are_next_event(scene, &spheres);
     EXPECT_GT(spheres, 0u);
+}
+
+// Around a point and a directional light beside a quad light, so that vectors mix the kinds
+// (and the two delta lights, which are MIS-weighted 1: a BSDF density of 0).
+TEST(Lanes, DeltaLightSamplesAreNextEventOnEverySimdTarget) {
+    Scene scene;
+    const auto [a, b] = add_emitters(scene);
+    scene.add_quad({{-1, 2, -1}, {2, 0, 0}, {0, 0, 2}, a, kNone});
+    scene.lights.push_back(Light::point({0.5f, -3.0f, 1.0f}, Color(40.0f, 30.0f, 20.0f)));
+    Light sun;
+    sun.kind = Light::Kind::Directional;
+    sun.direction = normalize(Vec3(0.3f, -1.0f, -0.4f));
+    sun.intensity = Color(2.0f, 2.5f, 3.0f);
+    scene.lights.push_back(sun);
+    size_t spheres, deltas;
+    expect_light_samples_are_next_event(scene, &spheres, nullptr, &deltas);
+    EXPECT_GT(deltas, 10u);
 }
 
 // Under an environment map of either mapping, with a quad light beside it, so that vectors

@@ -520,6 +520,7 @@ HWY_INLINE void EnvironmentPointsByStage(D d,
 size_t SampleLights(LightSampleBlock* b,
                     const PlanarEmitterColumns* planars,
                     const SphereEmitterColumns* spheres,
+                    const DeltaLightColumns* deltas,
                     const EnvironmentView* environment,
                     Distribution2DTables environment_tables,
                     ShadowQueue* shadows,
@@ -535,7 +536,7 @@ size_t SampleLights(LightSampleBlock* b,
     const LightSampleQueue& q = *b->queue;
     const size_t at = b->first;
     PadTail<float>({b->select_prob}, n, Padded(n, N));
-    PadTail<int32_t>({b->lobe, b->planar, b->sphere, b->environment}, n, Padded(n, N));
+    PadTail<int32_t>({b->lobe, b->planar, b->sphere, b->delta, b->environment}, n, Padded(n, N));
     PadGlossyTail(b->glossy, n, Padded(n, N));
     const auto environment_at = [&](size_t k) {
         return hn::RebindMask(d, hn::Ne(hn::Load(di, b->environment + k), hn::Zero(di)));
@@ -561,10 +562,13 @@ size_t SampleLights(LightSampleBlock* b,
         // same), which saves the gathers.
         const auto planar = hn::Load(di, b->planar + k);
         const auto sphere = hn::Load(di, b->sphere + k);
+        const auto delta = hn::Load(di, b->delta + k);
         const auto has_planar = hn::RebindMask(d, hn::Gt(planar, hn::Set(di, -1)));
         const auto has_sphere = hn::RebindMask(d, hn::Gt(sphere, hn::Set(di, -1)));
+        const auto has_delta = hn::RebindMask(d, hn::Gt(delta, hn::Set(di, -1)));
         const auto has_environment = environment_at(k);
-        const auto has_light = hn::Or(hn::Or(has_planar, has_sphere), has_environment);
+        const auto has_light =
+            hn::Or(hn::Or(has_planar, has_sphere), hn::Or(has_delta, has_environment));
         if (hn::AllFalse(d, has_light)) continue;
         const LobeMasks<D> lobes = LobesAt(d, b->lobe, k);
         const F u1 = column(q.u1), u2 = column(q.u2);
@@ -597,15 +601,25 @@ size_t SampleLights(LightSampleBlock* b,
                 v.p, SphereLightFrom<L>(*spheres, fetcher(sphere), select_prob), u1, u2);
             point = any_planar ? SelectLightPoint<L>(has_sphere, on_sphere, point) : on_sphere;
         }
+        const bool any_delta = !hn::AllFalse(d, has_delta);
+        if (any_delta) {
+            const LightPoint<L> at_delta =
+                DeltaLightPoint(v.p, DeltaLightFrom<L>(*deltas, fetcher(delta), select_prob));
+            point = any_planar || any_sphere ? SelectLightPoint<L>(has_delta, at_delta, point)
+                                             : at_delta;
+        }
         if (!hn::AllFalse(d, has_environment)) {
             const LightPoint<L> map{
                 hn::RebindMask(d, hn::Ne(hn::Load(di, on_map.valid + k), hn::Zero(di))),
                 Load3(d, on_map.wi, k), hn::Set(d, kInfinity), hn::Load(d, on_map.pdf + k),
                 Load3(d, on_map.radiance, k)};
-            point =
-                any_planar || any_sphere ? SelectLightPoint<L>(has_environment, map, point) : map;
+            point = any_planar || any_sphere || any_delta
+                        ? SelectLightPoint<L>(has_environment, map, point)
+                        : map;
         }
-        const VertexLightSample<L> r = SampleTowards(v, point);
+        VertexLightSample<L> r = SampleTowards(v, point);
+        // No BSDF sample finds a point or directional light: their MIS weight is 1.
+        if (any_delta) r.pdf_bsdf = hn::IfThenZeroElse(has_delta, r.pdf_bsdf);
         // The rows that append, packed to the queue's next entries in row order (the rows past
         // n repeat row 0 and stay out).
         const auto append = hn::And(hn::FirstN(d, n - k), hn::And(has_light, r.valid));
@@ -774,7 +788,8 @@ size_t sample_lights_in_lanes(LightSampleBlock& b,
                               size_t first_shadow) {
     return HWY_DYNAMIC_DISPATCH(SampleLights)(
         &b, &lights.planar_emitter_columns(), &lights.sphere_emitter_columns(),
-        &lights.environment_view(), lights.environment_tables(), &shadows, first_shadow);
+        &lights.delta_light_columns(), &lights.environment_view(), lights.environment_tables(),
+        &shadows, first_shadow);
 }
 
 void environment_light_points(EnvironmentPointBlock& b, const LightSet& lights) {

@@ -231,12 +231,12 @@ struct LightSampleBlock {
     size_t first = 0, n = 0;
     bool geometric_side_test = true;  // Scene::geometric_side_test, for every row
     // the vertex's lobe (LaneLobe) and, for a conductor or a metallic-roughness surface, what
-    // the queue does not hold of its BSDF; the light, as its index among the
-    // LightSet's planar emitters or its sphere emitters (both -1: the row's light is another kind,
-    // not sampled here), and its selection probability
+    // the queue does not hold of its BSDF; the light, as its index among the LightSet's planar
+    // emitters, its sphere emitters or its point and directional lights (all -1 and environment
+    // 0: the row's light is another kind, not sampled here), and its selection probability
     alignas(64) int32_t lobe[kShadeChunk];
     GlossyRows glossy;
-    alignas(64) int32_t planar[kShadeChunk], sphere[kShadeChunk];
+    alignas(64) int32_t planar[kShadeChunk], sphere[kShadeChunk], delta[kShadeChunk];
     alignas(64) int32_t environment[kShadeChunk];  // 1: the light is the environment map
     alignas(64) float select_prob[kShadeChunk];
 };

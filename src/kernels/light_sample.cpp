@@ -1,8 +1,8 @@
 // The light_sample kernel: per chunk of its queue, each vertex's light chosen; the samples
-// towards quad and triangle lights, sphere lights seen from outside and the environment map
-// taken in SIMD lanes at lane vertices, every other in scalar code (sample_direct; a direction
-// on the environment map in lanes there too); the chunk's shadow rays appended, the lanes'
-// first.
+// towards quad and triangle lights, sphere lights seen from outside, point and directional
+// lights and the environment map taken in SIMD lanes at lane vertices, every other in scalar code
+// (sample_direct; a direction on the environment map in lanes there too); the chunk's shadow rays
+// appended, the lanes' first.
 #include <algorithm>
 
 #include "blocks/lane_kernels.h"
@@ -58,7 +58,8 @@ void cross_in_lane_shadows(const Scene& scene,
     size_t j = from;
     for (size_t row = 0; row < b.n && j < to; ++row) {
         const size_t i = b.first + row;
-        const bool in_lanes = b.planar[row] >= 0 || b.sphere[row] >= 0 || b.environment[row] != 0;
+        const bool in_lanes = b.planar[row] >= 0 || b.sphere[row] >= 0 || b.delta[row] >= 0 ||
+                              b.environment[row] != 0;
         if (!in_lanes || shadows.path[j] != q.path[i]) continue;  // no contribution
         shadows.media[j] = PackedMedia::pack(
             shadow_media(scene.medium_boundaries, shadows.media[j].unpack(), q.interior[i],
@@ -89,14 +90,15 @@ size_t light_sample(const WaveInputs& in,
         block.first = c;
         block.n = chunk_end - c;
         // Each vertex's light; the SIMD kernel takes the rows whose light is a quad, a triangle,
-        // a sphere seen from outside or the environment map, as next_event chooses, scalar code
-        // the others.
+        // a sphere seen from outside, a point or directional light or the environment map, as
+        // next_event chooses, scalar code the others.
         for (size_t i = c; i < chunk_end; ++i) {
             const size_t row = i - c;
             const LightChoice light = in.lights.select(queue.u_select[i]);
             block.lobe[row] = int32_t(lane_lobe(queue.kind[i]));
             block.select_prob[row] = light.probability;
             block.sphere[row] = -1;
+            block.delta[row] = -1;
             block.environment[row] = 0;
             const Normal3 ng = WAVETRACE_XYZ_AT(queue, ng, i);
             // A conductor's, a dielectric's or a metallic-roughness surface's BSDF comes from
@@ -119,6 +121,8 @@ size_t light_sample(const WaveInputs& in,
             block.sphere[row] =
                 sphere_light_sample_at(WAVETRACE_XYZ_AT(queue, p, i), lane, in.lights, light);
             if (block.sphere[row] >= 0) continue;
+            block.delta[row] = delta_light_sample_at(lane, in.lights, light);
+            if (block.delta[row] >= 0) continue;
             if (environment_light_sample_at(lane, in.lights, light)) {
                 block.environment[row] = 1;
                 continue;
@@ -156,8 +160,8 @@ size_t light_sample(const WaveInputs& in,
         s += lane_shadows;
         for (size_t i = c; i < chunk_end; ++i) {
             const size_t row = i - c;
-            if (block.planar[row] >= 0 || block.sphere[row] >= 0 || block.environment[row] != 0 ||
-                !scalar[row].valid)
+            if (block.planar[row] >= 0 || block.sphere[row] >= 0 || block.delta[row] >= 0 ||
+                block.environment[row] != 0 || !scalar[row].valid)
                 continue;
             const DirectSample& d = scalar[row];
             WT_DCHECK_LT(s, shadows.capacity);

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 
+#include "bsdfs/metallic_roughness.h"
 #include "bsdfs/principled.h"
+#include "scene/normal_maps.h"
 #include "wavetrace/scene/scene.h"
 #include "wavetrace/scene/texture.h"
 
@@ -94,6 +96,14 @@ void transmission_and_coat_at(const Scene& scene,
             m.clearcoat_roughness * unit_texture_at(scene, m.clearcoat_roughness_map, at).y;
         b->clearcoat_alpha = roughness * roughness;
     }
+}
+
+float emission_through_coat(const Scene& scene, const Material& m, const MappedPoint& at, Vec3 wo) {
+    BsdfParams coat;
+    coat.clearcoat = m.clearcoat;
+    transmission_and_coat_at(scene, m, {at.uv, at.p}, &coat);
+    const float oc = dot(coat_normal(scene, m, at), wo) * (dot(at.ng, wo) < 0.0f ? -1.0f : 1.0f);
+    return coat_emission_weight(coat.clearcoat, oc);
 }
 
 MaterialId blend_choice(const Scene& scene, MaterialId m, const TexturePoint& at, float u) {

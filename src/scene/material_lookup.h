@@ -51,6 +51,12 @@ void transmission_and_coat_at(const Scene& scene,
                               const TexturePoint& at,
                               BsdfParams* b);
 
+// What of a metallic-roughness material's emission leaves its surface at `at` towards wo (unit,
+// on the side it is seen from) under its clearcoat: 1 - k Fc (coat_emission_weight), the coat's
+// weight k and normal N_c at the point, N_c turned to wo's side as the BSDF mirrors it.
+struct MappedPoint;
+float emission_through_coat(const Scene& scene, const Material& m, const MappedPoint& at, Vec3 wo);
+
 // The material a hit on material m takes at texture point `at`, u uniform in
 // [0, 1): m itself unless it is a blend; a blend's second material where u < w (its weight
 // there), else its first, and so on down nested blends, u rescaled at each choice to stay

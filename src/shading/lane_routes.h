@@ -19,7 +19,8 @@ namespace wavetrace {
 bool takes_lane_step(const Estimator& config, const Vertex& v, const LightSet& lights);
 // A surface of such a BSDF without a mapped normal's shadowing (bump_alpha2 0, Vertex), or a
 // medium's isotropic phase function (ng = 0): the vertices the lane formulas of next-event
-// estimation towards quad, triangle, sphere and environment lights and of the continuation take.
+// estimation towards quad, triangle, sphere, point, directional and environment lights and of
+// the continuation take.
 inline bool is_lane_vertex(Normal3 ng, const BsdfParams& b, float bump_alpha2) {
     if (ng.x == 0 && ng.y == 0 && ng.z == 0) return b.kind == MaterialKind::Isotropic;
     return bump_alpha2 == 0.0f && is_lane_bsdf(b);
@@ -47,6 +48,11 @@ int32_t sphere_light_sample_at(Point3 p,
                                LightChoice choice);
 inline int32_t sphere_light_sample_at(const Vertex& v, const LightSet& lights, LightChoice choice) {
     return sphere_light_sample_at(v.p, is_lane_vertex(v), lights, choice);
+}
+// The same for a chosen point or directional light (DeltaLightPoint), as its index among the
+// LightSet's delta light columns, or -1.
+inline int32_t delta_light_sample_at(bool lane_vertex, const LightSet& lights, LightChoice choice) {
+    return lane_vertex ? lights.delta_light_index(choice) : -1;
 }
 // Whether the chosen light is an environment map, sampled at a lane vertex by
 // EnvironmentLightPoint (shading/environment_light-inl.h).

@@ -1,8 +1,8 @@
 // A light sample at a Lambertian or a glossy surface vertex (glossy-inl.h), or a vertex in a
 // medium of isotropic phase function, towards a quad or triangle light of constant radiance
-// (the light point, uniform by area, and its solid-angle density) or a point
-// sphere_light-inl.h or environment_light-inl.h found: the BSDF value and density and the
-// shadow ray; what next_event computes for such a vertex and light, written once over lanes.
+// (the light point, uniform by area, and its solid-angle density), a point or directional
+// light, or a point sphere_light-inl.h or environment_light-inl.h found: the BSDF value and
+// density and the shadow ray; what next_event computes for such a vertex and light, once.
 // Unweighted: the MIS weight is the caller's (the megakernel's loop, the wavefront's
 // mis_combine). The megakernel runs it with OneLane inside next_event; the wavefront's
 // light_sample kernel runs it over the queued vertices whose sample picked such a light
@@ -161,6 +161,44 @@ HWY_INLINE LightPoint<L> PlanarLightPoint(V3<typename L::F> ref,
     r.radiance = Select3<L>(emits, e.radiance, V3<F>{zero, zero, zero});
     r.valid = L::And(L::And(dist2 > zero, cos_l > zero), L::And(L::IsFinite(r.pdf), r.pdf > zero));
     r.valid = L::And(r.valid, MaxComponent<L>(r.radiance) > zero);
+    return r;
+}
+
+// A point or directional light of LightSet::delta_light_columns(), in lanes (each lane's own).
+template <class L>
+struct DeltaLightLanes {
+    V3<typename L::F> at;         // a point light's position; a directional light's -direction
+    V3<typename L::F> intensity;  // radiant intensity; a directional light's irradiance
+    typename L::M directional;
+    typename L::F select_prob;  // of picking this light
+};
+
+template <class L, class Fetch>
+HWY_INLINE DeltaLightLanes<L> DeltaLightFrom(const DeltaLightColumns& c,
+                                             Fetch fetch,
+                                             typename L::F select_prob) {
+    return {Fetch3<L>(fetch, c.at), Fetch3<L>(fetch, c.intensity),
+            fetch(c.directional) > L::Set(0.0f), select_prob};
+}
+
+// The light's one point: a point light at distance r along wi, arriving as I / r^2; a
+// directional light at infinity along -direction, arriving as its irradiance. A delta in
+// direction: the density is the selection probability (no BSDF sample finds the light: the
+// caller sets the BSDF density to 0, for an MIS weight of 1).
+template <class L>
+HWY_INLINE LightPoint<L> DeltaLightPoint(V3<typename L::F> ref, const DeltaLightLanes<L>& e) {
+    using F = typename L::F;
+    const F zero = L::Set(0.0f), one = L::Set(1.0f);
+    const V3<F> d = e.at - ref;
+    const F dist2 = Dot(d, d);
+    const F dist = L::Sqrt(dist2);
+    LightPoint<L> r;
+    r.wi = Select3<L>(e.directional, e.at, d * (one / dist));
+    r.dist = L::Select(e.directional, L::Set(kInfinity), dist);
+    r.pdf = e.select_prob;
+    r.radiance = Select3<L>(e.directional, e.intensity, e.intensity * (one / dist2));
+    const auto placed = L::Or(e.directional, L::And(dist2 > zero, L::IsFinite(dist)));
+    r.valid = L::And(L::And(placed, r.pdf > zero), MaxComponent<L>(r.radiance) > zero);
     return r;
 }
 

@@ -4,7 +4,6 @@
 #include <cmath>
 
 #include "accel/intersect.h"
-#include "bsdfs/metallic_roughness.h"
 #include "sampling/warp.h"
 #include "scene/delta_lights.h"
 #include "scene/material_lookup.h"
@@ -94,7 +93,20 @@ LightSet::LightSet(const Scene& scene, bool mis_compensation) {
     std::vector<float> area_power = power;
     const Aabb bounds = scene.bounds();
     const float scene_radius = bounds.empty() ? 1.0f : 0.5f * length(bounds.extent());
-    for (const Light& l : scene.lights) power.push_back(delta_light_power(scene, l, scene_radius));
+    for (const Light& l : scene.lights) {
+        power.push_back(delta_light_power(scene, l, scene_radius));
+        delta_of_.push_back(-1);
+        const bool directional = l.kind == Light::Kind::Directional;
+        if (!directional && l.kind != Light::Kind::Point) continue;
+        DeltaLightColumns& c = delta_columns_;
+        delta_of_.back() = static_cast<int32_t>(c.directional.size());
+        const Vec3 at = directional ? -l.direction : l.position;
+        for (int a = 0; a < 3; ++a) {
+            c.at[a].push_back(at[a]);
+            c.intensity[a].push_back(l.intensity[a]);
+        }
+        c.directional.push_back(directional ? 1.0f : 0.0f);
+    }
     delta_count_ = scene.lights.size();
     background_ = !scene.background.is_black();
     if (background_) {
@@ -201,13 +213,17 @@ LightSample LightSet::sample(
         const Light& l = scene.lights[i - emitters_.size()];
         ls.pdf = select_prob;
         ls.delta = true;
-        if (l.kind == Light::Kind::Directional) {  // irradiance from the one direction
-            ls.wi = -l.direction;
-            ls.radiance = l.intensity;
-            ls.valid = ls.pdf > 0.0f;
+        if (const int32_t k = delta_of_[i - emitters_.size()]; k >= 0) {  // point, directional
+            auto fetch = [&](const std::vector<float>& column) { return column[size_t(k)]; };
+            const lanes::LightPoint<OneLane> point = lanes::DeltaLightPoint(
+                to_lanes(ref), lanes::DeltaLightFrom<OneLane>(delta_columns_, fetch, select_prob));
+            ls.wi = to_vec3(point.wi);
+            ls.dist = point.dist;
+            ls.radiance = to_vec3(point.radiance);
+            ls.valid = point.valid;
             return ls;
         }
-        // Intensity / d^2 along the direction to the light.
+        // A spot's or projector's intensity / d^2 along the direction to the light.
         const Vec3 d = l.position - ref;
         const float dist2 = length_squared(d);
         if (!(dist2 > 0.0f)) return ls;
@@ -365,14 +381,8 @@ Color emitted_radiance(const Scene& scene, const SurfaceHit& hit, Vec3 wo) {
     if (!m.is_emissive() || (!hit.front_face && !m.two_sided)) return {};
     const Color le = eval_texture(scene, m.emission, hit.uv, hit.p);
     if (!m.coats_emission()) return le;
-    // The coat's weight and normal there, the normal turned to wo's side of the surface as the
-    // BSDF mirrors it from behind.
-    BsdfParams coat;
-    coat.clearcoat = m.clearcoat;
-    transmission_and_coat_at(scene, m, hit.texture_point(), &coat);
-    const Normal3 nc = coat_normal(scene, m, {hit.p, hit.ng, hit.ns, hit.uv, hit.dpdu, hit.dpdv});
-    const float oc = dot(nc, wo) * (dot(hit.ng, wo) < 0.0f ? -1.0f : 1.0f);
-    return le * coat_emission_weight(coat.clearcoat, oc);
+    return le *
+           emission_through_coat(scene, m, {hit.p, hit.ng, hit.ns, hit.uv, hit.dpdu, hit.dpdv}, wo);
 }
 
 }  // namespace wavetrace

@@ -59,6 +59,14 @@ struct SphereEmitterColumns {
     std::vector<float> centre[3], radius, radiance[3], two_sided;
 };
 
+// The point and directional lights (sampled in SIMD lanes, src/shading/light_sample-inl.h) as
+// columns, entry k for delta light k (delta_light_index()): a point light's position and
+// radiant intensity, or a directional light's direction towards it (-Light::direction) and
+// irradiance, and directional (1 or 0). Spots and projectors are not among them.
+struct DeltaLightColumns {
+    std::vector<float> at[3], intensity[3], directional;
+};
+
 // The LightSample of a direction sampled from the environment map (EnvironmentLightPoint's wi,
 // radiance and density, selection included): valid wherever the density is finite and positive,
 // radiance or not, since the one-sample strategies continue the path along it.
@@ -106,6 +114,12 @@ class LightSet {
         return choice.index < sphere_of_.size() ? sphere_of_[choice.index] : -1;
     }
     const SphereEmitterColumns& sphere_emitter_columns() const { return sphere_columns_; }
+    // The same for point and directional lights.
+    int32_t delta_light_index(LightChoice choice) const {
+        const size_t i = choice.index - emitters_.size();
+        return choice.index >= emitters_.size() && i < delta_of_.size() ? delta_of_[i] : -1;
+    }
+    const DeltaLightColumns& delta_light_columns() const { return delta_columns_; }
     // Whether the chosen light is an environment map (sampled by the lane formula
     // EnvironmentLightPoint, shading/light_sample-inl.h, from these two).
     bool is_environment(LightChoice choice) const {
@@ -143,6 +157,8 @@ class LightSet {
     PlanarEmitterColumns planar_columns_;
     std::vector<int32_t> sphere_of_;  // light i: index into sphere_columns_, or -1
     SphereEmitterColumns sphere_columns_;
+    std::vector<int32_t> delta_of_;  // Scene::lights[i]: index into delta_columns_, or -1
+    DeltaLightColumns delta_columns_;
     std::unordered_map<uint32_t, uint32_t> index_;  // PrimRef bits -> light index
     bool background_ = false;                       // the last light, if present
     size_t count_ = 0;

@@ -272,36 +272,40 @@ DirectSample next_event(const Scene& scene,
                         LightChoice choice) {
     const int32_t planar = planar_light_sample_at(v, lights, choice);
     const int32_t sphere = planar < 0 ? sphere_light_sample_at(v, lights, choice) : -1;
+    const int32_t delta = delta_light_sample_at(is_lane_vertex(v), lights, choice);
     const bool environment =
-        planar < 0 && sphere < 0 && environment_light_sample_at(v, lights, choice);
-    if (planar < 0 && sphere < 0 && !environment)
+        planar < 0 && sphere < 0 && delta < 0 && environment_light_sample_at(v, lights, choice);
+    if (planar < 0 && sphere < 0 && delta < 0 && !environment)
         return sample_direct(scene, lights, v, wo, choice, u.light_u, u.light_v);
     using lanes::to_lanes, lanes::to_vec3;
     const lanes::LightSampleVertex<OneLane> lv{
         to_lanes(v.p),           to_lanes(v.ng), to_lanes(v.frame.n), to_lanes(wo),
         lanes::to_lanes(v.bsdf), u.light_u,      u.light_v,           v.geometric_side_test};
-    const size_t k = size_t(planar >= 0 ? planar : sphere);
+    const size_t k = size_t(planar >= 0 ? planar : sphere >= 0 ? sphere : delta);
     auto fetch = [&](const std::vector<float>& column) { return column[k]; };
     const lanes::LightPoint<OneLane> point =
-        environment ? lanes::EnvironmentLightPoint<OneLane>(lights.environment_view(),
-                                                            lights.environment_tables(), u.light_u,
-                                                            u.light_v, choice.probability)
-        : planar >= 0
-            ? lanes::PlanarLightPoint(lv.p,
-                                    lanes::PlanarLightFrom<OneLane>(lights.planar_emitter_columns(),
-                                                                  fetch, choice.probability),
-                                    u.light_u, u.light_v)
-            : lanes::SphereLightPoint(
-                  lv.p,
-                  lanes::SphereLightFrom<OneLane>(lights.sphere_emitter_columns(), fetch,
-                                                  choice.probability),
-                  u.light_u, u.light_v);
+        delta >= 0 ? lanes::DeltaLightPoint(
+                         lv.p, lanes::DeltaLightFrom<OneLane>(lights.delta_light_columns(), fetch,
+                                                              choice.probability))
+        : environment ? lanes::EnvironmentLightPoint<OneLane>(
+                            lights.environment_view(), lights.environment_tables(), u.light_u,
+                            u.light_v, choice.probability)
+        : planar >= 0 ? lanes::PlanarLightPoint(
+                            lv.p,
+                            lanes::PlanarLightFrom<OneLane>(lights.planar_emitter_columns(), fetch,
+                                                            choice.probability),
+                            u.light_u, u.light_v)
+                      : lanes::SphereLightPoint(
+                            lv.p,
+                            lanes::SphereLightFrom<OneLane>(lights.sphere_emitter_columns(), fetch,
+                                                            choice.probability),
+                            u.light_u, u.light_v);
     const lanes::VertexLightSample<OneLane> r = lanes::SampleTowards(lv, point);
     DirectSample d;
     if (!r.valid) return d;
     d.value = to_vec3(r.value);
     d.pdf_light = r.pdf_light;
-    d.pdf_bsdf = r.pdf_bsdf;
+    d.pdf_bsdf = delta >= 0 ? 0.0f : r.pdf_bsdf;  // no BSDF sample finds a delta light
     d.shadow = Ray{to_vec3(r.origin), to_vec3(r.wi), 0.0f, r.tmax};
     d.valid = true;
     return d;
