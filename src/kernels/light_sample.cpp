@@ -82,6 +82,9 @@ size_t light_sample(const WaveInputs& in,
     block.queue = &queue;
     block.geometric_side_test = in.scene.geometric_side_test;
     DirectSample scalar[kShadeChunk];
+    // The BSDF of a row of another kind, as far as is_lane_vertex reads it: its kind and alphas,
+    // the rest as constructed (set once: a BsdfParams is large).
+    BsdfParams plain;
     EnvironmentPointBlock points;
     uint8_t point_row[kShadeChunk];  // the chunk row of each of points' rows
     size_t s = first_shadow;
@@ -106,16 +109,17 @@ size_t light_sample(const WaveInputs& in,
             const bool glossy_row = queue.kind[i] == MaterialKind::Conductor ||
                                     queue.kind[i] == MaterialKind::Dielectric ||
                                     queue.kind[i] == MaterialKind::MetallicRoughness;
-            BsdfParams bsdf;
+            bool lane;
             if (glossy_row) {
-                bsdf = queued_vertex(in.scene, queue, i).bsdf;
+                const BsdfParams bsdf = queued_vertex(in.scene, queue, i).bsdf;
+                lane = is_lane_vertex(ng, bsdf, queue.bump_alpha2[i]);
+                if (lane) block.glossy.set(row, bsdf);
             } else {
-                bsdf.kind = queue.kind[i];
-                bsdf.alpha = queue.alpha[i];
-                bsdf.alpha_v = queue.alpha_v[i];
+                plain.kind = queue.kind[i];
+                plain.alpha = queue.alpha[i];
+                plain.alpha_v = queue.alpha_v[i];
+                lane = is_lane_vertex(ng, plain, queue.bump_alpha2[i]);
             }
-            const bool lane = is_lane_vertex(ng, bsdf, queue.bump_alpha2[i]);
-            if (lane && glossy_row) block.glossy.set(row, bsdf);
             block.planar[row] = planar_light_sample_at(lane, in.lights, light);
             if (block.planar[row] >= 0) continue;
             block.sphere[row] =
