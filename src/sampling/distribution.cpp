@@ -26,10 +26,17 @@ Distribution1D::Distribution1D(std::span<const float> weights)
 }
 
 size_t Distribution1D::find(float u) const {
-    // The last i with cdf_[i] <= u, skipping zero-width entries.
-    auto it = std::upper_bound(cdf_.begin(), cdf_.end(), static_cast<double>(u));
-    size_t i = static_cast<size_t>(std::max<std::ptrdiff_t>(0, (it - cdf_.begin()) - 1));
-    return std::min(i, pdf_.size() - 1);
+    // The last i with cdf_[i] <= u, skipping zero-width entries: one less than the number of
+    // entries <= u. A short table (a scene's few lights) counts them without a branch, where a
+    // binary search's branches go either way at random; a long one searches.
+    const double x = static_cast<double>(u);
+    size_t count = 0;
+    if (cdf_.size() <= 16) {
+        for (const double c : cdf_) count += c <= x;
+    } else {
+        count = static_cast<size_t>(std::upper_bound(cdf_.begin(), cdf_.end(), x) - cdf_.begin());
+    }
+    return std::min(count == 0 ? 0 : count - 1, pdf_.size() - 1);
 }
 
 size_t Distribution1D::sample_discrete(float u, float* prob, float* remapped) const {
