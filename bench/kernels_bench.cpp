@@ -304,6 +304,7 @@ void fill(LambertianRows& r, LightSampleQueue& queue, LightSampleBlock& block) {
         block.lobe[k] = int32_t(LaneLobe::Lambertian);
         block.planar[k] = r.c.lights->planar_emitter_index(light);
         block.sphere[k] = -1;
+        block.delta[k] = -1;
         block.environment[k] = 0;
         block.select_prob[k] = light.probability;
     }
