@@ -38,15 +38,6 @@ BsdfSample specular_sample(const BsdfParams& b, Vec3 wo, float u_lobe) {
 
 }  // namespace
 
-bool BsdfParams::is_delta() const {
-    return kind == MaterialKind::Mirror || kind == MaterialKind::ThinDielectric ||
-           (kind == MaterialKind::Dielectric && alpha == 0.0f) ||
-           (kind == MaterialKind::Metal && alpha == 0.0f) ||
-           (kind == MaterialKind::Conductor && alpha == 0.0f && alpha_v == 0.0f) ||
-           (kind == MaterialKind::MetallicRoughness && metallic == 1.0f && alpha == 0.0f &&
-            (clearcoat == 0.0f || clearcoat_alpha == 0.0f));
-}
-
 float ggx_d(Vec3 h, float alpha) {
     return lanes::GgxD<OneLane>(h.z, alpha);
 }

@@ -58,7 +58,16 @@ struct BsdfParams {
     // as for MetallicRoughness, clearcoat_alpha the GTR1 alpha; the other lobes here.
     PrincipledLobes principled;
 
-    bool is_delta() const;  // every lobe is a Dirac delta: never light-sampled
+    // Every lobe is a Dirac delta: never light-sampled. Inline: both engines ask it at every
+    // vertex.
+    bool is_delta() const {
+        return kind == MaterialKind::Mirror || kind == MaterialKind::ThinDielectric ||
+               (kind == MaterialKind::Dielectric && alpha == 0.0f) ||
+               (kind == MaterialKind::Metal && alpha == 0.0f) ||
+               (kind == MaterialKind::Conductor && alpha == 0.0f && alpha_v == 0.0f) ||
+               (kind == MaterialKind::MetallicRoughness && metallic == 1.0f && alpha == 0.0f &&
+                (clearcoat == 0.0f || clearcoat_alpha == 0.0f));
+    }
     // Whether a metallic-roughness coat lies along the shading normal, and its normal.
     bool coat_along_normal() const { return coat_normal.x == 0.0f && coat_normal.y == 0.0f; }
     Vec3 coat_normal_or_z() const {
