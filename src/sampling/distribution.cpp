@@ -25,30 +25,6 @@ Distribution1D::Distribution1D(std::span<const float> weights)
     cdf_.back() = 1.0;
 }
 
-size_t Distribution1D::find(float u) const {
-    // The last i with cdf_[i] <= u, skipping zero-width entries: one less than the number of
-    // entries <= u. A short table (a scene's few lights) counts them without a branch, where a
-    // binary search's branches go either way at random; a long one searches.
-    const double x = static_cast<double>(u);
-    size_t count = 0;
-    if (cdf_.size() <= 16) {
-        for (const double c : cdf_) count += c <= x;
-    } else {
-        count = static_cast<size_t>(std::upper_bound(cdf_.begin(), cdf_.end(), x) - cdf_.begin());
-    }
-    return std::min(count == 0 ? 0 : count - 1, pdf_.size() - 1);
-}
-
-size_t Distribution1D::sample_discrete(float u, float* prob, float* remapped) const {
-    size_t i = find(u);
-    double width = cdf_[i + 1] - cdf_[i];
-    if (prob) *prob = probability(i);
-    if (remapped)
-        *remapped =
-            width > 0 ? std::min(0.99999994f, static_cast<float>((u - cdf_[i]) / width)) : 0.0f;
-    return i;
-}
-
 float Distribution1D::sample_continuous(float u, float* pdf, size_t* index) const {
     size_t i = find(u);
     double width = cdf_[i + 1] - cdf_[i];

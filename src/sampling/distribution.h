@@ -20,14 +20,35 @@ class Distribution1D {
     // Probability of choosing entry i (discrete).
     float probability(size_t i) const { return pdf_[i] / static_cast<float>(pdf_.size()); }
     // Discrete choice; *prob receives its probability and *remapped a fresh uniform number
-    // made from the rest of u.
-    size_t sample_discrete(float u, float* prob, float* remapped = nullptr) const;
+    // made from the rest of u. Inline: both engines choose a light with it at every vertex.
+    size_t sample_discrete(float u, float* prob, float* remapped = nullptr) const {
+        const size_t i = find(u);
+        const double width = cdf_[i + 1] - cdf_[i];
+        if (prob) *prob = probability(i);
+        if (remapped)
+            *remapped =
+                width > 0 ? std::min(0.99999994f, static_cast<float>((u - cdf_[i]) / width)) : 0.0f;
+        return i;
+    }
     // Continuous sample in [0, 1); *pdf is the density on [0, 1).
     float sample_continuous(float u, float* pdf, size_t* index = nullptr) const;
     float pdf_continuous(float x) const;
 
   private:
-    size_t find(float u) const;
+    // The last i with cdf_[i] <= u, skipping zero-width entries: one less than the number of
+    // entries <= u. A short table (a scene's few lights) counts them without a branch, where a
+    // binary search's branches go either way at random; a long one searches.
+    size_t find(float u) const {
+        const double x = static_cast<double>(u);
+        size_t count = 0;
+        if (cdf_.size() <= 16) {
+            for (const double c : cdf_) count += c <= x;
+        } else {
+            count =
+                static_cast<size_t>(std::upper_bound(cdf_.begin(), cdf_.end(), x) - cdf_.begin());
+        }
+        return std::min(count == 0 ? 0 : count - 1, pdf_.size() - 1);
+    }
     std::vector<float> pdf_;   // density on [0, 1) per entry: n w_i / sum w
     std::vector<double> cdf_;  // n + 1 entries, cdf_[0] = 0, cdf_[n] = 1
     float total_ = 0;

@@ -184,12 +184,6 @@ float LightSet::background_selection_probability() const {
     return background_ ? select_.probability(count_ - 1) : 0.0f;
 }
 
-LightChoice LightSet::select_in_table(float u_select) const {
-    LightChoice c;
-    c.index = select_.sample_discrete(u_select, &c.probability);
-    return c;
-}
-
 LightSample LightSet::sample_direction_light(
     const Scene& scene, Point3 ref, float u_select, float u1, float u2) const {
     if (!has_area_lights()) return {};

@@ -99,9 +99,12 @@ class LightSet {
     float background_selection_probability() const;
 
     // Picks a light with selection number u_select, in proportion to power (not empty()).
-    // Inline for the common case of one light, which needs no search of the table.
+    // Inline: both engines choose at every vertex.
     LightChoice select(float u_select) const {
-        return count_ == 1 ? LightChoice{0, only_probability_} : select_in_table(u_select);
+        if (count_ == 1) return {0, only_probability_};
+        LightChoice c;
+        c.index = select_.sample_discrete(u_select, &c.probability);
+        return c;
     }
     // The chosen light's index among the planar emitters if it is a quad or a triangle of
     // constant radiance, else -1.
@@ -169,7 +172,6 @@ class LightSet {
     Distribution1D area_select_;
     Distribution1D select_;
     float only_probability_ = 0.0f;  // select_'s probability of light 0, when it is the only one
-    LightChoice select_in_table(float u_select) const;
     // Over the environment image's texels: luminance (or its excess over the mean, with MIS
     // compensation) times the texel's solid angle.
     Distribution2D environment_;
