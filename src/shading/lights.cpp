@@ -7,8 +7,8 @@
 #include "sampling/warp.h"
 #include "scene/delta_lights.h"
 #include "scene/material_lookup.h"
-#include "scene/normal_maps.h"
 #include "shading/environment_light-inl.h"
+#include "shading/path_vertex.h"
 #include "shading/sphere_light-inl.h"
 #include "wavetrace/math/frame.h"
 #include "wavetrace/scene/scene.h"
@@ -375,8 +375,7 @@ Color emitted_radiance(const Scene& scene, const SurfaceHit& hit, Vec3 wo) {
     if (!m.is_emissive() || (!hit.front_face && !m.two_sided)) return {};
     const Color le = eval_texture(scene, m.emission, hit.uv, hit.p);
     if (!m.coats_emission()) return le;
-    return le *
-           emission_through_coat(scene, m, {hit.p, hit.ng, hit.ns, hit.uv, hit.dpdu, hit.dpdv}, wo);
+    return le * emission_through_coat(scene, m, mapped_point(hit), wo);
 }
 
 }  // namespace wavetrace

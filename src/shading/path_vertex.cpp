@@ -29,10 +29,6 @@ using lanes::OneLane;
 
 namespace {
 
-MappedPoint mapped_point(const SurfaceHit& hit) {
-    return {hit.p, hit.ng, hit.ns, hit.uv, hit.dpdu, hit.dpdv};
-}
-
 // The coat's normal at the hit in the shading frame f; out of line, so that the vertices
 // without one do not carry its code.
 [[gnu::noinline]] Vec3 coat_in_frame(const Scene& scene,

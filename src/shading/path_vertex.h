@@ -11,6 +11,7 @@
 #include "media/free_flight.h"
 #include "media/medium_stack.h"
 #include "sampling/sampler.h"
+#include "scene/normal_maps.h"
 #include "shading/lights.h"
 #include "shading/mis.h"
 #include "wavetrace/accel/bvh.h"
@@ -52,6 +53,11 @@ inline Frame rotated_frame(Normal3 n, float angle) {
     if (angle == 0.0f) return f;
     const float c = std::cos(angle), s = std::sin(angle);
     return {c * f.s + s * f.t, c * f.t - s * f.s, n};
+}
+
+// What the normal and bump maps read of a surface hit.
+inline MappedPoint mapped_point(const SurfaceHit& hit) {
+    return {hit.p, hit.ng, hit.ns, hit.uv, hit.dpdu, hit.dpdv};
 }
 
 // The vertex of a surface hit seen from direction wo (unit, back along the arriving ray).
