@@ -7,6 +7,7 @@
 #include <hwy/highway.h>
 
 #include <algorithm>
+#include <new>
 
 #include "accel/wide_bvh.h"
 #include "accel/wide_leaf_tests-inl.h"
@@ -29,11 +30,18 @@ HWY_INLINE void TraversePacket(
     const D d;
     const size_t N = hn::Lanes(d);
     HWY_ALIGN float a[12][kLeafBlockWidth] = {};
-    RayLanes single[kLeafBlockWidth];
+    // Each lane's single-ray constants, constructed in place: a RayLanes assigned from a
+    // temporary is copied in wide words just after its fields were stored one by one, and each
+    // such load waits for the stores to retire (a failed store-to-load forwarding) per ray.
+    union Singles {
+        Singles() {}
+        RayLanes at[kLeafBlockWidth];
+    } singles;
+    RayLanes* const single = singles.at;
     bool uniform = true;
     for (size_t l = 0; l < N; ++l) {
         const Ray& r = rays[l < n ? l : 0];
-        single[l] = RayLanes(r);
+        new (&single[l]) RayLanes(r);
         uniform = uniform && single[l].tri.kz == single[0].tri.kz;
         for (int k = 0; k < 3; ++k) {
             a[k][l] = r.o[k];

@@ -41,7 +41,6 @@ struct RayLanes {
     int near_lo[3];  // per axis: bounds row of the near plane (lo for inv_d >= 0, else hi)
     TriangleRay tri;
 
-    RayLanes() : RayLanes(Ray{{0, 0, 0}, {0, 0, 1}}) {}
     explicit RayLanes(const Ray& r) : ray(r), tri(r) {
         for (int a = 0; a < 3; ++a) {
             // 1/d with zero components replaced by a huge finite value of the same sign: the
