@@ -470,7 +470,9 @@ HWY_INLINE hn::Vec<D> LoadColumn(D d, const float* column, size_t k, size_t n) {
 // the columns u1(k), u2(k) and select_prob(k): EnvironmentLightPoint's, by stages. Every
 // vector's row of the map is found before any vector's column, and every column before the
 // directions and radiances, so that the vectors' cache misses (a row's guide and sums, its
-// texels) overlap where one vector's chain of dependent gathers would wait on each in turn.
+// texels) overlap where one vector's chain of dependent gathers would wait on each in turn;
+// between the first two stages each row's guide and sums are fetched ahead, by prefetches,
+// which unlike gathers wait on nothing.
 struct EnvironmentPoints {
     alignas(64) float wi[3][kShadeChunk], radiance[3][kShadeChunk];
     alignas(64) float pdf[kShadeChunk];
@@ -498,13 +500,17 @@ HWY_INLINE void EnvironmentPointsByStage(D d,
         hn::Store(SampleMarginal<L>(t, u2(k), &vk, &rk), d, pdf_uv + k);
         hn::Store(vk, d, v + k);
         hn::Store(rk, di, row + k);
+        PrefetchConditionalGuide<L>(t, rk, u1(k));
     }
+    for (size_t k = 0; k < n; k += N)
+        if (wanted(k)) PrefetchConditionalSums<L>(t, hn::Load(di, row + k), u1(k));
     for (size_t k = 0; k < n; k += N) {
         if (!wanted(k)) continue;
         hn::Vec<D> uk;
         const hn::Vec<D> pdf_u = SampleConditional<L>(t, hn::Load(di, row + k), u1(k), &uk);
         hn::Store(hn::Mul(hn::Load(d, pdf_uv + k), pdf_u), d, pdf_uv + k);
         hn::Store(uk, d, u + k);
+        PrefetchEnvironmentTexels<L>(e, uk, hn::Load(d, v + k));
     }
     for (size_t k = 0; k < n; k += N) {
         if (!wanted(k)) continue;
@@ -693,9 +699,20 @@ void EscapeRays(EscapeBlock* b,
     const size_t n = b->n;
     if (n == 0) return;
     PadTail3({b->dir}, n, Padded(n, N));
+    // Every vector's (u, v) first, its texels and density fetched ahead, then the lookups: the
+    // vectors' cache misses overlap.
+    HWY_ALIGN float u[kShadeChunk], v[kShadeChunk];
     for (size_t k = 0; k < n; k += N) {
-        const EscapedRay<L> r =
-            Escape<L>(*environment, tables, Load3(d, b->dir, k), hn::Set(d, select_prob), with_pdf);
+        hn::Vec<D> uk, vk;
+        EnvironmentUv<L>(*environment, Normalize<L>(Load3(d, b->dir, k)), &uk, &vk);
+        hn::Store(uk, d, u + k);
+        hn::Store(vk, d, v + k);
+        PrefetchEnvironmentTexels<L>(*environment, uk, vk);
+        if (with_pdf) PrefetchDistribution2DPdf<L>(tables, uk, vk);
+    }
+    for (size_t k = 0; k < n; k += N) {
+        const EscapedRay<L> r = Escape<L>(*environment, tables, hn::Load(d, u + k),
+                                          hn::Load(d, v + k), hn::Set(d, select_prob), with_pdf);
         Store3(d, r.radiance, b->radiance, k);
         hn::Store(r.pdf_light, d, b->pdf_light + k);
     }

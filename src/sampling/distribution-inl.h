@@ -26,6 +26,14 @@ HWY_INLINE typename L::F EntryDensity(typename L::F before,
     return (after - before) * L::Set(static_cast<float>(n)) / total;
 }
 
+// The entry of n that x in [0, 1) falls in (0 for x below 0 or not a number).
+template <class L>
+HWY_INLINE typename L::I EntryAt(typename L::F x, int n) {
+    const typename L::F zero = L::Set(0.0f);
+    const typename L::F scaled = L::Select(x > zero, x, zero) * L::Set(static_cast<float>(n));
+    return L::Trunc(L::Min(scaled, L::Set(static_cast<float>(n - 1))));
+}
+
 // A continuous sample in [0, 1) of the piecewise-constant density over n entries whose running
 // sums start at sums[first] (n + 1 of them, from 0), with the guide of g cells that starts at
 // guide[guide_first] (Distribution2DTables): the entry i is the last with sums[i] <= u sums[n],
@@ -48,9 +56,7 @@ HWY_INLINE typename L::F SampleSums(const float* sums,
     const F target = u * total;
     // u g is exact (g a power of two): u lies in [cell / g, (cell + 1) / g), so its target lies
     // between those of the cell's two cutpoints, and its entry between theirs.
-    const F u_cell = L::Select(u > L::Set(0.0f), u, L::Set(0.0f));  // cell 0 below 0, or NaN
-    const I cell = L::AddI(
-        guide_first, L::MinI(L::Trunc(u_cell * L::Set(static_cast<float>(g))), L::SetI(g - 1)));
+    const I cell = L::AddI(guide_first, EntryAt<L>(u, g));
     const I lo = L::GatherI(guide, cell), hi = L::GatherI(guide, L::AddI(cell, L::SetI(1)));
     I base = L::AddI(first, lo);
     I size = L::AddI(L::SubI(hi, lo), L::SetI(1));
@@ -91,6 +97,40 @@ HWY_INLINE typename L::F SampleConditional(const Distribution2DTables& t,
                          L::MulI(row, L::SetI(t.gu + 1)), t.gu, u1, u, &column);
 }
 
+// For a caller that takes many samples' second steps after their first (whose misses then
+// overlap): what SampleConditional will read for row `row` and u1, fetched ahead. First the
+// row's guide cell and total; then, once those have arrived, the sums the search starts
+// between.
+template <class L>
+HWY_INLINE void PrefetchConditionalGuide(const Distribution2DTables& t,
+                                         typename L::I row,
+                                         typename L::F u1) {
+    L::Prefetch(t.conditional_guide,
+                L::AddI(L::MulI(row, L::SetI(t.gu + 1)), EntryAt<L>(u1, t.gu)));
+    L::Prefetch(t.conditional, L::AddI(L::MulI(row, L::SetI(t.nu + 1)), L::SetI(t.nu)));
+}
+template <class L>
+HWY_INLINE void PrefetchConditionalSums(const Distribution2DTables& t,
+                                        typename L::I row,
+                                        typename L::F u1) {
+    using I = typename L::I;
+    const I cell = L::AddI(L::MulI(row, L::SetI(t.gu + 1)), EntryAt<L>(u1, t.gu));
+    const I first = L::MulI(row, L::SetI(t.nu + 1));
+    L::Prefetch(t.conditional, L::AddI(first, L::GatherI(t.conditional_guide, cell)));
+    L::Prefetch(t.conditional,
+                L::AddI(first, L::GatherI(t.conditional_guide, L::AddI(cell, L::SetI(1)))));
+}
+
+// For a caller that asks many densities after this (Distribution2DPdf): the entries of (u, v)
+// in the conditional sums fetched ahead (the marginal is small: it stays in cache).
+template <class L>
+HWY_INLINE void PrefetchDistribution2DPdf(const Distribution2DTables& t,
+                                          typename L::F u,
+                                          typename L::F v) {
+    L::Prefetch(t.conditional,
+                L::AddI(L::MulI(EntryAt<L>(v, t.nv), L::SetI(t.nu + 1)), EntryAt<L>(u, t.nu)));
+}
+
 // Both steps; returns the density on the unit square.
 template <class L>
 HWY_INLINE typename L::F SampleDistribution2D(const Distribution2DTables& t,
@@ -101,14 +141,6 @@ HWY_INLINE typename L::F SampleDistribution2D(const Distribution2DTables& t,
     typename L::I row;
     const typename L::F pdf_v = SampleMarginal<L>(t, u2, v, &row);
     return pdf_v * SampleConditional<L>(t, row, u1, u);
-}
-
-// The entry of n that x in [0, 1) falls in (0 for x below 0 or not a number).
-template <class L>
-HWY_INLINE typename L::I EntryAt(typename L::F x, int n) {
-    const typename L::F zero = L::Set(0.0f);
-    const typename L::F scaled = L::Select(x > zero, x, zero) * L::Set(static_cast<float>(n));
-    return L::Trunc(L::Min(scaled, L::Set(static_cast<float>(n - 1))));
 }
 
 // The density of the distribution at (u, v).

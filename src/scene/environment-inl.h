@@ -92,47 +92,82 @@ HWY_INLINE V3<typename L::F> EnvironmentDirection(const EnvironmentView& e,
     return FrameAxis<L>(e, 0) * w.x + FrameAxis<L>(e, 1) * w.y + FrameAxis<L>(e, 2) * w.z;
 }
 
-// Texel (x, y)'s RGB, gathered.
+// Texel (x, y)'s first float, and its RGB, gathered.
+template <class L>
+HWY_INLINE typename L::I TexelIndex(const EnvironmentView& e, typename L::I x, typename L::I y) {
+    return L::MulI(L::AddI(L::MulI(y, L::SetI(e.width)), x), L::SetI(3));
+}
 template <class L>
 HWY_INLINE V3<typename L::F> Texel(const EnvironmentView& e, typename L::I x, typename L::I y) {
-    const typename L::I i = L::MulI(L::AddI(L::MulI(y, L::SetI(e.width)), x), L::SetI(3));
+    const typename L::I i = TexelIndex<L>(e, x, y);
     return {L::Gather(e.texels, i), L::Gather(e.texels, L::AddI(i, L::SetI(1))),
             L::Gather(e.texels, L::AddI(i, L::SetI(2)))};
 }
 
-// The radiance at the map's (u, v), v = 0 at the top. Lat-long: bilinear between texel centres
-// at half-integer coordinates, wrapping in u and clamped in v (the top and bottom rows are the
-// poles, not neighbours); with rows_at_poles row j sits at v = j / (H - 1) instead of
-// (j + 1/2) / H. Equal-area: the texel (u, v) falls in.
+// The texels the radiance at the map's (u, v) is read from, v = 0 at the top, and their
+// weights. Lat-long: bilinear between texel centres at half-integer coordinates, wrapping in u
+// and clamped in v (the top and bottom rows are the poles, not neighbours); with rows_at_poles
+// row j sits at v = j / (H - 1) instead of (j + 1/2) / H. Equal-area: the texel (u, v) falls in
+// (x0 = x1, y0 = y1, weights 0).
 template <class L>
-HWY_INLINE V3<typename L::F> EnvironmentRadiance(const EnvironmentView& e,
-                                                 typename L::F u,
-                                                 typename L::F v) {
+struct EnvironmentTaps {
+    typename L::I x0, x1, y0, y1;
+    typename L::F tx, ty;  // the weights of x1 and of y1
+};
+template <class L>
+HWY_INLINE EnvironmentTaps<L> EnvironmentTapsAt(const EnvironmentView& e,
+                                                typename L::F u,
+                                                typename L::F v) {
     using F = typename L::F;
     using I = typename L::I;
     const F zero = L::Set(0.0f), one = L::Set(1.0f), half = L::Set(0.5f);
     const F w = L::Set(static_cast<float>(e.width)), h = L::Set(static_cast<float>(e.height));
     const I last_x = L::SetI(e.width - 1), last_y = L::SetI(e.height - 1);
-    const V3<F> scale{L::Set(e.scale[0]), L::Set(e.scale[1]), L::Set(e.scale[2])};
     u = FiniteOrZero<L>(u);
     v = FiniteOrZero<L>(v);
     if (e.equal_area) {
         const I x = L::MinI(L::Trunc(L::Min(L::Max(u, zero), one) * w), last_x);
         const I y = L::MinI(L::Trunc(L::Min(L::Max(v, zero), one) * h), last_y);
-        return Texel<L>(e, x, y) * scale;
+        return {x, x, y, y, zero, zero};
     }
     if (e.rows_at_poles) v = (v * (h - one) + half) / h;
     const F x = (u - L::Floor(u)) * w - half;  // in [-1/2, W - 1/2]
     const F y = L::Min(L::Max(v * h - half, zero), h - one);
     const F fx = L::Floor(x), fy = L::Floor(y);
-    const F tx = x - fx, ty = y - fy;
     // Columns -1 and W wrap to W - 1 and 0.
     const I x0 = L::Trunc(L::Select(fx < zero, w - one, fx));
     const I x1 = L::Trunc(L::Select(fx + one < w, fx + one, zero));
     const I y0 = L::Trunc(fy), y1 = L::MinI(L::AddI(y0, L::SetI(1)), last_y);
-    const V3<F> top = Texel<L>(e, x0, y0) * (one - tx) + Texel<L>(e, x1, y0) * tx;
-    const V3<F> bottom = Texel<L>(e, x0, y1) * (one - tx) + Texel<L>(e, x1, y1) * tx;
-    return (top * (one - ty) + bottom * ty) * scale;
+    return {x0, x1, y0, y1, x - fx, y - fy};
+}
+
+// The radiance at the map's (u, v) (EnvironmentTapsAt).
+template <class L>
+HWY_INLINE V3<typename L::F> EnvironmentRadiance(const EnvironmentView& e,
+                                                 typename L::F u,
+                                                 typename L::F v) {
+    using F = typename L::F;
+    const F one = L::Set(1.0f);
+    const V3<F> scale{L::Set(e.scale[0]), L::Set(e.scale[1]), L::Set(e.scale[2])};
+    const EnvironmentTaps<L> k = EnvironmentTapsAt<L>(e, u, v);
+    if (e.equal_area) return Texel<L>(e, k.x0, k.y0) * scale;
+    const V3<F> top = Texel<L>(e, k.x0, k.y0) * (one - k.tx) + Texel<L>(e, k.x1, k.y0) * k.tx;
+    const V3<F> bottom = Texel<L>(e, k.x0, k.y1) * (one - k.tx) + Texel<L>(e, k.x1, k.y1) * k.tx;
+    return (top * (one - k.ty) + bottom * k.ty) * scale;
+}
+
+// For a caller that looks up many (u, v) after this: their texels fetched ahead.
+template <class L>
+HWY_INLINE void PrefetchEnvironmentTexels(const EnvironmentView& e,
+                                          typename L::F u,
+                                          typename L::F v) {
+    const EnvironmentTaps<L> k = EnvironmentTapsAt<L>(e, u, v);
+    const auto at = [&](typename L::I x, typename L::I y) { return TexelIndex<L>(e, x, y); };
+    L::Prefetch(e.texels, at(k.x0, k.y0));
+    L::Prefetch(e.texels, at(k.x0, k.y1));
+    if (e.equal_area) return;
+    L::Prefetch(e.texels, L::AddI(at(k.x1, k.y0), L::SetI(2)));
+    L::Prefetch(e.texels, L::AddI(at(k.x1, k.y1), L::SetI(2)));
 }
 
 }  // namespace HWY_NAMESPACE

@@ -83,9 +83,9 @@ HWY_INLINE typename L::F EnvironmentPdf(const EnvironmentView& e,
     return EnvironmentPdfAt<L>(e, t, u, v);
 }
 
-// What a ray of direction d (any length) that leaves the scene finds: the map's radiance and,
-// with_pdf, the density with which the light sample of the vertex it left would have chosen
-// its direction (selection included), which MIS weighs the radiance by.
+// What a ray that leaves the scene towards the map's (u, v) (EnvironmentUv of its direction)
+// finds: the map's radiance and, with_pdf, the density with which the light sample of the vertex
+// it left would have chosen its direction (selection included), which MIS weighs the radiance by.
 template <class L>
 struct EscapedRay {
     V3<typename L::F> radiance;
@@ -94,11 +94,10 @@ struct EscapedRay {
 template <class L>
 HWY_INLINE EscapedRay<L> Escape(const EnvironmentView& e,
                                 const Distribution2DTables& t,
-                                V3<typename L::F> d,
+                                typename L::F u,
+                                typename L::F v,
                                 typename L::F select_prob,
                                 bool with_pdf) {
-    typename L::F u, v;
-    EnvironmentUv<L>(e, Normalize<L>(d), &u, &v);
     EscapedRay<L> r;
     r.radiance = EnvironmentRadiance<L>(e, u, v);
     r.pdf_light = with_pdf ? select_prob * EnvironmentPdfAt<L>(e, t, u, v) : L::Set(0.0f);
