@@ -15,6 +15,31 @@
 namespace wavetrace {
 namespace {
 
+// The BSDF of queue entry i, as next_event sees it.
+BsdfParams queued_bsdf(const Scene& scene, const LightSampleQueue& q, size_t i) {
+    BsdfParams b;
+    const MaterialId material = q.material[i];
+    if (material == kNone) {
+        b.kind = q.kind[i];
+        b.albedo = WAVETRACE_XYZ_AT(q, albedo, i);
+        b.alpha = q.alpha[i];
+        return b;
+    }
+    const Material& m = scene.materials[material];
+    b = material_bsdf(m, WAVETRACE_XYZ_AT(q, albedo, i));
+    // As the vertex's textures made them.
+    b.alpha = q.alpha[i];
+    b.alpha_v = q.alpha_v[i];
+    const TexturePoint at{{q.uv_u[i], q.uv_v[i]}, WAVETRACE_XYZ_AT(q, p, i)};
+    if (b.kind == MaterialKind::MetallicRoughness) {
+        b.metallic = q.metallic[i];
+        b.coat_normal = WAVETRACE_XYZ_AT(q, coat_n, i);
+        transmission_and_coat_at(scene, m, at, &b);
+    }
+    if (b.kind == MaterialKind::Principled) principled_at(scene, m, at.uv, at.p, &b);
+    return b;
+}
+
 // The vertex of queue entry i, as next_event sees it, but for its frame (which only
 // sample_direct needs: rotated_frame of the entry's ns and frame_angle, as shade's vertex had).
 Vertex queued_vertex(const Scene& scene, const LightSampleQueue& q, size_t i) {
@@ -25,24 +50,7 @@ Vertex queued_vertex(const Scene& scene, const LightSampleQueue& q, size_t i) {
     v.unbent = WAVETRACE_XYZ_AT(q, unbent, i);
     v.bump_alpha2 = q.bump_alpha2[i];
     v.material = q.material[i];
-    if (v.material != kNone) {
-        v.bsdf = material_bsdf(scene.materials[v.material], WAVETRACE_XYZ_AT(q, albedo, i));
-        // As the vertex's textures made them.
-        v.bsdf.alpha = q.alpha[i];
-        v.bsdf.alpha_v = q.alpha_v[i];
-        if (v.bsdf.kind == MaterialKind::MetallicRoughness) {
-            v.bsdf.metallic = q.metallic[i];
-            v.bsdf.coat_normal = WAVETRACE_XYZ_AT(q, coat_n, i);
-            transmission_and_coat_at(scene, scene.materials[v.material],
-                                     {{q.uv_u[i], q.uv_v[i]}, v.p}, &v.bsdf);
-        }
-        if (v.bsdf.kind == MaterialKind::Principled)
-            principled_at(scene, scene.materials[v.material], {q.uv_u[i], q.uv_v[i]}, v.p, &v.bsdf);
-        return v;
-    }
-    v.bsdf.kind = q.kind[i];
-    v.bsdf.albedo = WAVETRACE_XYZ_AT(q, albedo, i);
-    v.bsdf.alpha = q.alpha[i];
+    v.bsdf = queued_bsdf(scene, q, i);
     return v;
 }
 
@@ -111,7 +119,7 @@ size_t light_sample(const WaveInputs& in,
                                     queue.kind[i] == MaterialKind::MetallicRoughness;
             bool lane;
             if (glossy_row) {
-                const BsdfParams bsdf = queued_vertex(in.scene, queue, i).bsdf;
+                const BsdfParams bsdf = queued_bsdf(in.scene, queue, i);
                 lane = is_lane_vertex(ng, bsdf, queue.bump_alpha2[i]);
                 if (lane) block.glossy.set(row, bsdf);
             } else {
