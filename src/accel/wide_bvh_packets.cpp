@@ -29,7 +29,7 @@ HWY_INLINE void TraversePacket(
     const WideBvh& bvh, const Ray* rays, size_t n, Hit* hits, bool* occluded) {
     const D d;
     const size_t N = hn::Lanes(d);
-    HWY_ALIGN float a[12][kLeafBlockWidth] = {};
+    HWY_ALIGN float a[12][kLeafBlockWidth];  // the first N lanes of each row, all that is loaded
     // Each lane's single-ray constants, constructed in place: a RayLanes assigned from a
     // temporary is copied in wide words just after its fields were stored one by one, and each
     // such load waits for the stores to retire (a failed store-to-load forwarding) per ray.
