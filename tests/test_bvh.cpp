@@ -369,6 +369,20 @@ TEST(Bvh, ClosestHitMatchesBruteForceOnEverySimdTarget) {
     use_wide_simd_target(0);
 }
 
+// Listing the targets keeps the chosen one (Highway 1.0's SupportedTargets() made the best of
+// all the choice again: the bench's --simd, which lists them for Embree, was undone).
+TEST(Bvh, ListingTheSimdTargetsKeepsTheChosenOne) {
+    const std::vector<std::string> all = simd_targets();
+    ASSERT_FALSE(all.empty());
+    for (const std::string& target : all) {
+        ASSERT_TRUE(use_simd_target(target)) << target;
+        EXPECT_EQ(simd_targets(), all) << target;
+        EXPECT_EQ(std::string(simd_target()), target);
+    }
+    ASSERT_TRUE(use_simd_target(""));
+    EXPECT_EQ(std::string(simd_target()), all.front());
+}
+
 // Packets, and streams of single rays in one call, against single rays on the same rays, on
 // every SIMD target: camera rays in 4 x 2 pixel tiles (coherent, one Woop permutation per
 // packet), random rays (incoherent, mixed permutations), and shadow rays from a tile's hits

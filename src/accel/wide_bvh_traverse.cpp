@@ -208,8 +208,25 @@ const char* wide_simd_target() {
     return HWY_DYNAMIC_DISPATCH(TargetName)();
 }
 
+namespace {
+
+int64_t g_disabled = 0;  // the better targets use_simd_target turned off
+
+// Every target compiled in that this CPU runs, the best first. Highway 1.0's SupportedTargets()
+// makes the best of them the choice again before it applies DisableTargets' mask, so asking it
+// would undo use_simd_target: the mask is cleared to list them all, and the choice made again.
+std::vector<int64_t> runnable_targets() {
+    hwy::DisableTargets(0);
+    std::vector<int64_t> all = hwy::SupportedAndGeneratedTargets();
+    hwy::DisableTargets(g_disabled);
+    hwy::GetChosenTarget().Update(hwy::SupportedTargets());
+    return all;
+}
+
+}  // namespace
+
 std::vector<int64_t> wide_simd_targets() {
-    return hwy::SupportedAndGeneratedTargets();
+    return runnable_targets();
 }
 
 void use_wide_simd_target(int64_t target) {
@@ -219,7 +236,7 @@ void use_wide_simd_target(int64_t target) {
 
 std::vector<std::string> simd_targets() {
     std::vector<std::string> names;
-    for (int64_t t : hwy::SupportedAndGeneratedTargets()) names.push_back(hwy::TargetName(t));
+    for (int64_t t : runnable_targets()) names.push_back(hwy::TargetName(t));
     return names;
 }
 
@@ -228,17 +245,16 @@ bool use_simd_target(const std::string& name) {
         for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
         return s;
     };
-    // The targets the CPU runs, none disabled; then Highway's better targets (the lower bits)
-    // disabled, or the previous choice kept.
-    static int64_t disabled = 0;
-    hwy::DisableTargets(0);
+    // Highway's better targets (the lower bits) disabled, or none; a name not among the targets
+    // keeps the previous choice.
     int64_t chosen = -1;
-    for (int64_t t : hwy::SupportedAndGeneratedTargets())
+    for (int64_t t : runnable_targets())
         if (name.empty() ? chosen < 0 : lower(hwy::TargetName(t)) == lower(name)) chosen = t;
-    if (chosen >= 0) disabled = name.empty() ? 0 : chosen - 1;
-    hwy::DisableTargets(disabled);
+    if (chosen < 0) return false;
+    g_disabled = name.empty() ? 0 : chosen - 1;
+    hwy::DisableTargets(g_disabled);
     hwy::GetChosenTarget().Update(hwy::SupportedTargets());
-    return chosen >= 0;
+    return true;
 }
 
 }  // namespace wavetrace
