@@ -471,8 +471,8 @@ HWY_INLINE hn::Vec<D> LoadColumn(D d, const float* column, size_t k, size_t n) {
 // vector's row of the map is found before any vector's column, and every column before the
 // directions and radiances, so that the vectors' cache misses (a row's guide and sums, its
 // texels) overlap where one vector's chain of dependent gathers would wait on each in turn;
-// between the first two stages each row's guide and sums are fetched ahead, by prefetches,
-// which unlike gathers wait on nothing.
+// each stage also prefetches what the next reads (a row's guide cell and total, the sums its
+// search starts between, the texels), and a prefetch, unlike a gather, waits on nothing.
 struct EnvironmentPoints {
     alignas(64) float wi[3][kShadeChunk], radiance[3][kShadeChunk];
     alignas(64) float pdf[kShadeChunk];
@@ -704,7 +704,7 @@ void EscapeRays(EscapeBlock* b,
     HWY_ALIGN float u[kShadeChunk], v[kShadeChunk];
     for (size_t k = 0; k < n; k += N) {
         hn::Vec<D> uk, vk;
-        EnvironmentUv<L>(*environment, Normalize<L>(Load3(d, b->dir, k)), &uk, &vk);
+        EnvironmentUvOfRay<L>(*environment, Load3(d, b->dir, k), &uk, &vk);
         hn::Store(uk, d, u + k);
         hn::Store(vk, d, v + k);
         PrefetchEnvironmentTexels<L>(*environment, uk, vk);

@@ -90,11 +90,6 @@ struct OneLane {
     static I GatherI(const int32_t* base, I i) { return base[i]; }
     static I HalfI(I a) { return a >> 1; }  // a >= 0
     static bool AnyAbove(I a, int32_t b) { return a > b; }
-    // A hint that base[i] will be read soon (each lane's own).
-    template <class T>
-    static void Prefetch(const T* base, I i) {
-        __builtin_prefetch(base + i);
-    }
 
     static U64 Set64(uint64_t x) { return x; }
     static U64 Widen(U32 x) { return x; }
@@ -176,6 +171,8 @@ struct FloatLanes {
         return hn::GatherIndex(hn::RebindToSigned<D>(), base, i);
     }
     static HWY_INLINE I HalfI(I a) { return hn::ShiftRight<1>(a); }  // a >= 0
+    // A hint that base[i] will be read soon, each lane's own (the wavefront's staged kernels
+    // only: one lane has nothing to overlap).
     template <class T>
     static HWY_INLINE void Prefetch(const T* base, I i) {
         const hn::RebindToSigned<D> di;

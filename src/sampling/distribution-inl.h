@@ -87,14 +87,23 @@ HWY_INLINE typename L::F SampleMarginal(const Distribution2DTables& t,
     return SampleSums<L>(t.marginal, L::SetI(0), t.nv, t.marginal_guide, L::SetI(0), t.gv, u2, v,
                          row);
 }
+// Where row `row`'s running sums and its guide start in the conditional tables.
+template <class L>
+HWY_INLINE typename L::I RowSums(const Distribution2DTables& t, typename L::I row) {
+    return L::MulI(row, L::SetI(t.nu + 1));
+}
+template <class L>
+HWY_INLINE typename L::I RowGuide(const Distribution2DTables& t, typename L::I row) {
+    return L::MulI(row, L::SetI(t.gu + 1));
+}
 template <class L>
 HWY_INLINE typename L::F SampleConditional(const Distribution2DTables& t,
                                            typename L::I row,
                                            typename L::F u1,
                                            typename L::F* u) {
     typename L::I column;
-    return SampleSums<L>(t.conditional, L::MulI(row, L::SetI(t.nu + 1)), t.nu, t.conditional_guide,
-                         L::MulI(row, L::SetI(t.gu + 1)), t.gu, u1, u, &column);
+    return SampleSums<L>(t.conditional, RowSums<L>(t, row), t.nu, t.conditional_guide,
+                         RowGuide<L>(t, row), t.gu, u1, u, &column);
 }
 
 // For a caller that takes many samples' second steps after their first (whose misses then
@@ -105,17 +114,16 @@ template <class L>
 HWY_INLINE void PrefetchConditionalGuide(const Distribution2DTables& t,
                                          typename L::I row,
                                          typename L::F u1) {
-    L::Prefetch(t.conditional_guide,
-                L::AddI(L::MulI(row, L::SetI(t.gu + 1)), EntryAt<L>(u1, t.gu)));
-    L::Prefetch(t.conditional, L::AddI(L::MulI(row, L::SetI(t.nu + 1)), L::SetI(t.nu)));
+    L::Prefetch(t.conditional_guide, L::AddI(RowGuide<L>(t, row), EntryAt<L>(u1, t.gu)));
+    L::Prefetch(t.conditional, L::AddI(RowSums<L>(t, row), L::SetI(t.nu)));
 }
 template <class L>
 HWY_INLINE void PrefetchConditionalSums(const Distribution2DTables& t,
                                         typename L::I row,
                                         typename L::F u1) {
     using I = typename L::I;
-    const I cell = L::AddI(L::MulI(row, L::SetI(t.gu + 1)), EntryAt<L>(u1, t.gu));
-    const I first = L::MulI(row, L::SetI(t.nu + 1));
+    const I cell = L::AddI(RowGuide<L>(t, row), EntryAt<L>(u1, t.gu));
+    const I first = RowSums<L>(t, row);
     L::Prefetch(t.conditional, L::AddI(first, L::GatherI(t.conditional_guide, cell)));
     L::Prefetch(t.conditional,
                 L::AddI(first, L::GatherI(t.conditional_guide, L::AddI(cell, L::SetI(1)))));
@@ -127,8 +135,7 @@ template <class L>
 HWY_INLINE void PrefetchDistribution2DPdf(const Distribution2DTables& t,
                                           typename L::F u,
                                           typename L::F v) {
-    L::Prefetch(t.conditional,
-                L::AddI(L::MulI(EntryAt<L>(v, t.nv), L::SetI(t.nu + 1)), EntryAt<L>(u, t.nu)));
+    L::Prefetch(t.conditional, L::AddI(RowSums<L>(t, EntryAt<L>(v, t.nv)), EntryAt<L>(u, t.nu)));
 }
 
 // Both steps; returns the density on the unit square.
@@ -154,7 +161,7 @@ HWY_INLINE typename L::F Distribution2DPdf(const Distribution2DTables& t,
     const typename L::F pdf_v =
         EntryDensity<L>(L::Gather(t.marginal, row), L::Gather(t.marginal, L::AddI(row, one)),
                         L::Set(t.marginal[t.nv]), t.nv);
-    const I first = L::MulI(row, L::SetI(t.nu + 1));
+    const I first = RowSums<L>(t, row);
     const I column = L::AddI(first, EntryAt<L>(u, t.nu));
     const typename L::F pdf_u = EntryDensity<L>(
         L::Gather(t.conditional, column), L::Gather(t.conditional, L::AddI(column, one)),

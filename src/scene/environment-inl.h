@@ -104,6 +104,16 @@ HWY_INLINE V3<typename L::F> Texel(const EnvironmentView& e, typename L::I x, ty
             L::Gather(e.texels, L::AddI(i, L::SetI(2)))};
 }
 
+// The map's (u, v) that a ray of direction d, of any length, leaves the scene towards: what
+// both engines look up for an escaped ray.
+template <class L>
+HWY_INLINE void EnvironmentUvOfRay(const EnvironmentView& e,
+                                   V3<typename L::F> d,
+                                   typename L::F* u,
+                                   typename L::F* v) {
+    EnvironmentUv<L>(e, Normalize<L>(d), u, v);
+}
+
 // The texels the radiance at the map's (u, v) is read from, v = 0 at the top, and their
 // weights. Lat-long: bilinear between texel centres at half-integer coordinates, wrapping in u
 // and clamped in v (the top and bottom rows are the poles, not neighbours); with rows_at_poles

@@ -83,9 +83,9 @@ HWY_INLINE typename L::F EnvironmentPdf(const EnvironmentView& e,
     return EnvironmentPdfAt<L>(e, t, u, v);
 }
 
-// What a ray that leaves the scene towards the map's (u, v) (EnvironmentUv of its direction)
-// finds: the map's radiance and, with_pdf, the density with which the light sample of the vertex
-// it left would have chosen its direction (selection included), which MIS weighs the radiance by.
+// What a ray that leaves the scene towards the map's (u, v) (EnvironmentUvOfRay) finds: the
+// map's radiance and, with_pdf, the density with which the light sample of the vertex it left
+// would have chosen its direction (selection included), which MIS weighs the radiance by.
 template <class L>
 struct EscapedRay {
     V3<typename L::F> radiance;

@@ -374,9 +374,8 @@ SegmentResult resolve_segment(const Scene& scene,
         if (lights.has_environment()) {  // the formula the wavefront's shade runs in lanes
             const bool with_pdf = config.strategy == Strategy::Mis && !prev.counts_fully;
             float u, v;
-            lanes::EnvironmentUv<OneLane>(lights.environment_view(),
-                                          lanes::Normalize<OneLane>(lanes::to_lanes(ray.d)), &u,
-                                          &v);
+            lanes::EnvironmentUvOfRay<OneLane>(lights.environment_view(), lanes::to_lanes(ray.d),
+                                               &u, &v);
             const lanes::EscapedRay<OneLane> e =
                 lanes::Escape<OneLane>(lights.environment_view(), lights.environment_tables(), u, v,
                                        lights.background_selection_probability(), with_pdf);
