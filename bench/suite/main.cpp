@@ -34,6 +34,9 @@ int main(int argc, char** argv) {
         ->check(CLI::IsMember({"cornell", "everything", "bunny", "dragon", "veach-mis", "materials",
                                "dragon-envmap", "cornell-glass", "cornell-mirror", "cornell-smoke",
                                "cornell-mcguire"}));
+    app.add_option("--triangles", o.triangles,
+                   "scene_size: only the scenes grown to these triangle counts (repeatable)")
+        ->check(CLI::Range(size_t(1'000), size_t(100'000'000)));
     std::string sampler;
     app.add_option("--sampler", sampler,
                    "engines, waves, scaling: the sampler the renders draw from (default: the "

@@ -169,8 +169,9 @@ void bench_scene_size(const Options& o, Results& r) {
     const TriangleMesh dragon = largest_mesh(load_scene(o.scenes / "dragon.json"));
     const int all_threads = tbb::this_task_arena::max_concurrency();
     const std::vector<size_t> sizes =
-        o.quick ? std::vector<size_t>{10'000}
-                : std::vector<size_t>{10'000, 100'000, 1'000'000, 10'000'000};
+        !o.triangles.empty() ? o.triangles
+        : o.quick            ? std::vector<size_t>{10'000}
+                             : std::vector<size_t>{10'000, 100'000, 1'000'000, 10'000'000};
     for (size_t target : sizes) {
         const Scene scene = grown_scene(dragon, target);
         const size_t n = scene.triangles.size();

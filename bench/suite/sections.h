@@ -23,6 +23,7 @@ struct Options {
     int max_threads = 0;      // scaling goes 1 .. this (0: all hardware threads)
     std::filesystem::path scenes;
     std::vector<std::string> only;  // engines, scaling, error_time: these bench scenes only
+    std::vector<size_t> triangles;  // scene_size: these sizes only (default 10^4 .. 10^7)
     SamplerKind sampler = RenderRequest{}.sampler;  // engines, waves, scaling (--sampler)
 
     int repetitions() const { return quick ? 1 : reps; }
