@@ -1,19 +1,20 @@
 #!/usr/bin/env bash
-# Efficiency of renderer builds at equal samples: 1 / (relative MSE x time) against a converged
-# reference, the measure path termination is chosen by (docs/sampling.md).
+# Efficiency of renderer builds at equal samples or equal time: 1 / (relative MSE x time)
+# against a converged reference, the measure path termination is chosen by (docs/sampling.md).
 #
 #   tools/efficiency.sh SCENE REFERENCE SPP|SECONDSs SEEDS WAVETRACE...
 #
 # Renders SCENE with each WAVETRACE binary at SPP samples, seeds 1..SEEDS, two threads, the
-# binaries interleaved seed by seed; prints per binary the median render time, the mean relative
-# MSE (`wavetrace compare`'s) and their efficiency. A budget such as `25s` instead of SPP renders
-# for equal time (`--time-limit 25`: whole passes until the budget is spent), which is what a
-# user waits for where the error does not fall as 1/spp (the Sobol sampler's falls faster). A WAVETRACE may carry render options after
-# commas (`build/bin/wavetrace,--sampler,independent`) to compare settings of one build.
+# binaries interleaved seed by seed; prints per binary the median samples and render time, the
+# mean relative MSE (`wavetrace compare`'s) and their efficiency. A budget such as `25s` instead
+# of SPP renders for equal time (`--time-limit 25`: whole passes until the budget is spent),
+# which is what a user waits for where the error does not fall as 1/spp (the Sobol sampler's
+# falls faster). A WAVETRACE may carry render options after commas
+# (`build/bin/wavetrace,--sampler,independent`) to compare settings of one build.
 # SIZE=N in the environment renders N x N (the reference must be that size). A reference of our
 # own: `wavetrace render SCENE --spp 4096 --sampler sobol --seed 99 -o ref.exr`.
 set -euo pipefail
-[[ $# -ge 5 ]] || { echo "usage: $0 SCENE REFERENCE SPP SEEDS WAVETRACE..." >&2; exit 2; }
+[[ $# -ge 5 ]] || { echo "usage: $0 SCENE REFERENCE SPP|SECONDSs SEEDS WAVETRACE..." >&2; exit 2; }
 scene=$1 ref=$2 spp=$3 seeds=$4
 shift 4
 work=$(mktemp -d)
