@@ -570,31 +570,6 @@ TEST(Bvh, ShippedScenesHaveSaneTrees) {
     }
 }
 
-// Camera rays go as packets while the tree they walk fits a last-level cache (16 MiB), one by
-// one beyond it (Bvh::packets_pay): the shipped scenes' trees are far below it, a 500,000-
-// triangle grid's above.
-TEST(Bvh, PacketsPayWhileTheTreeIsCacheSized) {
-    for (const char* name : {"cornell", "dragon"}) {
-        const Scene scene = load_scene(scene_path(name));
-        EXPECT_TRUE(Bvh::build(scene).packets_pay()) << name;
-    }
-    Scene grid;
-    std::vector<Point3> pos;
-    std::vector<uint32_t> idx;
-    constexpr int kSide = 500;  // 2 triangles per cell
-    for (int y = 0; y <= kSide; ++y)
-        for (int x = 0; x <= kSide; ++x) pos.push_back({float(x), float(y), 0.01f * float(x % 7)});
-    for (uint32_t y = 0; y < kSide; ++y)
-        for (uint32_t x = 0; x < kSide; ++x) {
-            const uint32_t a = y * (kSide + 1) + x, b = a + 1, c = a + kSide + 1, d = c + 1;
-            idx.insert(idx.end(), {a, b, d, a, d, c});
-        }
-    grid.add_mesh({}, pos, {}, {}, idx);
-    const Bvh bvh = Bvh::build(grid);
-    EXPECT_GT(bvh.stats().wide_bytes, size_t(16) << 20);
-    EXPECT_FALSE(bvh.packets_pay());
-}
-
 namespace {
 
 // The VmFlags of the mapping that holds p (/proc/self/smaps), empty where none does.

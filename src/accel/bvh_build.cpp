@@ -273,13 +273,6 @@ void Bvh::intersect_packet(std::span<const Ray> rays, std::span<Hit> hits) const
                           hits.data());
 }
 
-bool Bvh::packets_pay() const {
-    // 16 MiB: about 350,000 triangles of a mesh. Measured on the grown dragon (AVX2): packets of
-    // camera rays trace 1.01x single rays at 10^5 triangles (4.7 MB walked) and 0.82x at 10^6.
-    constexpr size_t kCachedTreeBytes = size_t(16) << 20;
-    return stats_.wide_bytes <= kCachedTreeBytes;
-}
-
 void Bvh::occluded_packet(std::span<const Ray> rays, std::span<bool> occluded) const {
     wide_occluded_packet(layout_->wide, rays.data(), std::min(rays.size(), occluded.size()),
                          occluded.data());

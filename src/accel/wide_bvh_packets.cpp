@@ -7,10 +7,12 @@
 #include <hwy/highway.h>
 
 #include <algorithm>
+#include <bit>
 #include <new>
 
 #include "accel/wide_bvh.h"
 #include "accel/wide_leaf_tests-inl.h"
+#include "accel/wide_ray_walk-inl.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace wavetrace {
@@ -24,6 +26,13 @@ namespace hn = hwy::HWY_NAMESPACE;
 // leaf is tested against all rays at once with the lane functions above, so every ray gets the
 // hit the single-ray traversal gives it (ties aside). Rays whose major axes differ (Woop's
 // permutation is then not uniform over the packet) test triangle blocks one ray at a time.
+// A subtree that at most kLoneRays of the packet's rays enter is walked by each of them alone
+// (wide_ray_walk-inl.h), as in Embree's hybrid traversal (Benthin, Wald, Woop, Ernst and Mark,
+// "Combining Single and Packet-Ray Tracing for Arbitrary Ray Distributions on the Intel MIC
+// Architecture", TVCG 2012): where the rays diverge, a packet would test every box and
+// primitive for all lanes to serve one or two.
+inline constexpr int kLoneRays = 2;
+
 template <bool AnyHit>
 HWY_INLINE void TraversePacket(
     const WideBvh& bvh, const Ray* rays, size_t n, Hit* hits, bool* occluded) {
@@ -112,15 +121,28 @@ HWY_INLINE void TraversePacket(
     struct Entry {
         uint32_t code;
         float t_entry;  // the smallest entry distance among the rays that enter it
+        uint32_t rays;  // a bit per ray that enters it
     };
     Entry stack[Bvh::kStackSize * (kWideNodeWidth - 1) + 1];
     int sp = 0;
-    uint32_t code = 0;
+    uint32_t code = 0, code_rays = MaskBits(d, active);
     const V inf = hn::Set(d, kInfinity);
     const V widen = hn::Set(d, 1.0f + 2.0f * gamma(3));
 
     for (;;) {
-        if (!(code & kLeafChild)) {
+        const uint32_t walkers = code_rays & MaskBits(d, active);
+        if (std::popcount(walkers) <= kLoneRays) {
+            HWY_ALIGN float lane_t[kLeafBlockWidth];
+            hn::Store(tmax, d, lane_t);
+            for (uint32_t b = walkers; b != 0; b &= b - 1) {
+                const uint32_t l = static_cast<uint32_t>(__builtin_ctz(b));
+                Hit h;
+                if (WalkSubtree<AnyHit>(bvh, single[l], code, &lane_t[l], &h)) {
+                    const M lane = hn::And(hn::FirstN(d, l + 1), hn::Not(hn::FirstN(d, l)));
+                    record(lane, h.prim, hn::Set(d, h.t), hn::Set(d, h.u), hn::Set(d, h.v), false);
+                }
+            }
+        } else if (!(code & kLeafChild)) {
             const WideNode& node = bvh.nodes[code];
             Entry hit_children[kWideNodeWidth];
             int count = 0;
@@ -140,7 +162,7 @@ HWY_INLINE void TraversePacket(
                 if (hn::AllFalse(d, enter)) continue;
                 const float t_min =
                     hn::GetLane(hn::MinOfLanes(d, hn::IfThenElse(enter, t_near, inf)));
-                hit_children[count++] = {node.child[c], t_min};
+                hit_children[count++] = {node.child[c], t_min, MaskBits(d, enter)};
             }
             if (count > 0) {
                 // Farthest first onto the stack; take the nearest now.
@@ -150,6 +172,7 @@ HWY_INLINE void TraversePacket(
                         std::swap(hit_children[j - 1], hit_children[j]);
                 for (int i = 0; i < count - 1; ++i) stack[sp++] = hit_children[i];
                 code = hit_children[count - 1].code;
+                code_rays = hit_children[count - 1].rays;
                 continue;
             }
         } else {
@@ -230,6 +253,7 @@ HWY_INLINE void TraversePacket(
             const Entry e = stack[--sp];
             if (e.t_entry <= tmax_all) {
                 code = e.code;
+                code_rays = e.rays;
                 more = true;
                 break;
             }

@@ -1,7 +1,6 @@
 #pragma once
 
 #include <algorithm>
-#include <concepts>
 #include <span>
 
 #include "accel/intersector.h"
@@ -56,24 +55,21 @@ template <class T>
 concept PacketIntersector = Intersector<T> &&
     requires(const T& t, std::span<const Ray> rays, std::span<Hit> hits) {
     t.intersect_packet(rays, hits);
-    { t.packets_pay() } -> std::convertible_to<bool>;
 };
 
 // The same for coherent rays (a wave's camera rays, in 4x2 pixel tiles): traced as packets
-// where the intersector has them and they pay (Bvh::packets_pay), with the same hits as one
-// by one.
+// where the intersector has them, with the same hits as one by one. (Where a packet's rays
+// part ways, each walks on alone: wide_bvh_packets.cpp.)
 template <Intersector Tracer>
 void intersect_coherent(
     const Tracer& tracer, const RayQueue& rays, size_t begin, size_t end, HitQueue& hits) {
     if constexpr (PacketIntersector<Tracer>) {
-        if (tracer.packets_pay()) {
-            trace_in_batches(rays, begin, end, hits, [&](std::span<const Ray> r, std::span<Hit> h) {
-                tracer.intersect_packet(r, h);
-            });
-            return;
-        }
+        trace_in_batches(rays, begin, end, hits, [&](std::span<const Ray> r, std::span<Hit> h) {
+            tracer.intersect_packet(r, h);
+        });
+    } else {
+        intersect(tracer, rays, begin, end, hits);
     }
-    intersect(tracer, rays, begin, end, hits);
 }
 
 }  // namespace wavetrace

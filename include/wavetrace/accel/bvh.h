@@ -71,10 +71,6 @@ class Bvh {
     // rays (a pixel tile's camera rays, its shadow rays towards one light), the same results.
     void intersect_packet(std::span<const Ray> rays, std::span<Hit> hits) const;
     void occluded_packet(std::span<const Ray> rays, std::span<bool> occluded) const;
-    // Whether packets of coherent rays are faster than the same rays one by one: while the
-    // tree the rays walk fits in a last-level cache. Beyond it a packet's rays wait on the
-    // same node misses and part ways below them (docs/benchmarks.md, "Scene size").
-    bool packets_pay() const;
     // intersect / occluded of each of rays.size() rays (incoherent: no packets), in one call:
     // a stream of rays pays for the choice of SIMD target once, not once per ray.
     void intersect_each(std::span<const Ray> rays, std::span<Hit> hits) const;
