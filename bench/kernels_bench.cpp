@@ -52,12 +52,12 @@ struct Captured {
                                                      shadows_walk(scene)});
         n = kWave;
         q.resize(n);
-        generate(*in, 0, 0, 0, n, q.paths, q.rays);
+        generate(*in, WaveSamples{}, 0, 0, n, q.paths, q.rays);
         intersect(bvh, q.rays, 0, n, q.hits);
         unsorted = q;
         ranges = sort_by_material(scene, 0, n, q.key, q.paths, q.rays, q.hits);
         shaded = q;
-        found = shade(*in, 0, shaded.hits, 0, n, shaded.paths, shaded.rays, shaded.keep,
+        found = shade(*in, shaded.hits, 0, n, shaded.paths, shaded.rays, shaded.keep,
                       shaded.light_samples, 0, shaded.emissions, 0);
         shadows =
             light_sample(*in, shaded.light_samples, 0, found.light_samples, shaded.shadows, 0);
@@ -75,7 +75,7 @@ Captured& scene(const std::string& name) {
 void BM_Generate(benchmark::State& st, const char* name) {
     Captured& c = scene(name);
     WaveQueues q = c.q;
-    for (auto _ : st) generate(*c.in, 0, 0, 0, c.n, q.paths, q.rays);
+    for (auto _ : st) generate(*c.in, WaveSamples{}, 0, 0, c.n, q.paths, q.rays);
     st.SetItemsProcessed(st.iterations() * c.n);
 }
 
@@ -112,7 +112,7 @@ void BM_ShadeKind(benchmark::State& st, const char* name, int kind) {
         q.paths = c.q.paths;  // shade consumes path state and rays: restore them
         q.rays = c.q.rays;
         st.ResumeTiming();
-        benchmark::DoNotOptimize(shade(*c.in, 0, q.hits, begin, end, q.paths, q.rays, q.keep,
+        benchmark::DoNotOptimize(shade(*c.in, q.hits, begin, end, q.paths, q.rays, q.keep,
                                        q.light_samples, 0, q.emissions, 0));
     }
     st.SetItemsProcessed(st.iterations() * (end - begin));
@@ -207,11 +207,12 @@ void BM_CameraRays(benchmark::State& st, bool lanes, SamplerKind kind) {
     LambertianRows& r = lambertian_rows();
     const size_t n = r.v.size();
     const Sampler sampler = bench_sampler(kind);
+    const std::vector<uint32_t> sample(n, 0);
     CameraRayBlock block;
     for (auto _ : st) {
         if (lanes) {
-            draw_camera_rays(*r.c.camera, sampler, 0, r.pixel.data(), r.x.data(), r.y.data(), n,
-                             false, block);
+            draw_camera_rays(*r.c.camera, sampler, sample.data(), r.pixel.data(), r.x.data(),
+                             r.y.data(), n, false, block);
             benchmark::DoNotOptimize(block);
         } else {
             for (size_t k = 0; k < n; ++k)
@@ -226,10 +227,12 @@ void BM_VertexSamples(benchmark::State& st, bool lanes, SamplerKind kind) {
     LambertianRows& r = lambertian_rows();
     const size_t n = r.v.size();
     const Sampler sampler = bench_sampler(kind);
+    const std::vector<uint32_t> sample(n, 0);
     SampleBlock block;
     for (auto _ : st) {
         if (lanes) {
-            draw_vertex_samples(sampler, 0, r.pixel.data(), r.bounce.data(), n, true, false, block);
+            draw_vertex_samples(sampler, sample.data(), r.pixel.data(), r.bounce.data(), n, true,
+                                false, block);
             benchmark::DoNotOptimize(block);
         } else {
             for (size_t k = 0; k < n; ++k)

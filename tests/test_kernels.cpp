@@ -58,8 +58,11 @@ struct World {
     }
 
     // Entry i: a fresh path (pixel 10 + i) whose ray is `ray`, traced into the hit queue.
-    void start(size_t i, Ray ray) {
+    // Path i of pixel 10 + i, sample `sample`, on `ray`, with its hit.
+    void start(size_t i, Ray ray, uint32_t sample = 0) {
         q.paths.store(i, PathQueue::Entry{.pixel = static_cast<uint32_t>(10 + i),
+                                          .sample = sample,
+                                          .slot = static_cast<uint32_t>(i),
                                           .bounce = 0,
                                           .crossings = 0,
                                           .counts_fully = 1,
@@ -102,10 +105,12 @@ TEST(Kernels, PassOrderVisitsEveryPixelOnceInTiles) {
 
 TEST(Kernels, GenerateStartsPathsAtTheirPixelsWithCameraRays) {
     World w;
-    generate(*w.in, 5, 2, 0, 6, w.q.paths, w.q.rays);
+    generate(*w.in, WaveSamples{5, 1}, 2, 0, 6, w.q.paths, w.q.rays);
     for (uint32_t i = 0; i < 6; ++i) {
         const uint32_t pixel = pixel_in_pass_order(2 + i, 4, 3);
         EXPECT_EQ(w.q.paths.pixel[i], pixel);
+        EXPECT_EQ(w.q.paths.sample[i], 5u);
+        EXPECT_EQ(w.q.paths.slot[i], i);
         EXPECT_EQ(w.q.paths.bounce[i], 0);
         EXPECT_EQ(w.q.paths.counts_fully[i], 1);
         EXPECT_EQ(w.q.paths.beta[i], Color(1.0f));
@@ -116,6 +121,25 @@ TEST(Kernels, GenerateStartsPathsAtTheirPixelsWithCameraRays) {
         EXPECT_EQ(w.q.rays.origin[i], expect.o);
         EXPECT_EQ(w.q.rays.dir[i], expect.d);
         EXPECT_EQ(w.q.paths.prev_p[i], expect.o);
+    }
+}
+
+// Several samples of each pixel side by side: entries [4, 11) of a wave of the pixels visited
+// from the second on, samples 7, 8 and 9 of each: each its pixel's, sample's and slot's, with
+// the megakernel's camera ray of that sample.
+TEST(Kernels, GenerateCarriesSeveralSamplesOfAPixel) {
+    World w;
+    generate(*w.in, WaveSamples{7, 3}, 1, 4, 11, w.q.paths, w.q.rays);
+    for (uint32_t i = 4; i < 11; ++i) {
+        const uint32_t pixel = pixel_in_pass_order(1 + i / 3, 4, 3), sample = 7 + i % 3;
+        EXPECT_EQ(w.q.paths.pixel[i], pixel) << i;
+        EXPECT_EQ(w.q.paths.sample[i], sample) << i;
+        EXPECT_EQ(w.q.paths.slot[i], i);
+        const Ray expect =
+            generate_camera_ray(*w.camera, Sampler{w.config.seed}, pixel, sample,
+                                static_cast<int>(pixel % 4), static_cast<int>(pixel / 4));
+        EXPECT_EQ(w.q.rays.origin[i], expect.o) << i;
+        EXPECT_EQ(w.q.rays.dir[i], expect.d) << i;
     }
 }
 
@@ -165,11 +189,11 @@ TEST(Kernels, SortByMaterialMakesKindsContiguousAndMovesWholeEntries) {
 TEST(Kernels, ShadeQueuesALightSampleAndTheEmissionFoundAndContinues) {
     World w;
     const Point3 o{0.1f, 0.5f, 0.05f};
-    w.start(0, Ray{o, {0, -1, 0}});         // the floor below the light
-    w.start(1, Ray{o, {0, 1, 0}});          // the light's front
-    w.start(2, Ray{{0, 3, 0}, {1, 0, 0}});  // nothing: a black background
     const uint32_t sample = 3;
-    const ShadeCounts found = shade(*w.in, sample, w.q.hits, 0, 3, w.q.paths, w.q.rays, w.q.keep,
+    w.start(0, Ray{o, {0, -1, 0}}, sample);         // the floor below the light
+    w.start(1, Ray{o, {0, 1, 0}}, sample);          // the light's front
+    w.start(2, Ray{{0, 3, 0}, {1, 0, 0}}, sample);  // nothing: a black background
+    const ShadeCounts found = shade(*w.in, w.q.hits, 0, 3, w.q.paths, w.q.rays, w.q.keep,
                                     w.q.light_samples, 0, w.q.emissions, 0);
 
     // The floor: one light sample queued, the vertex as the megakernel resolves it.
@@ -213,9 +237,9 @@ TEST(Kernels, ShadeQueuesALightSampleAndTheEmissionFoundAndContinues) {
 TEST(Kernels, LightSampleAppendsTheMegakernelsShadowRay) {
     World w;
     const Point3 o{0.1f, 0.5f, 0.05f};
-    w.start(0, Ray{o, {0, -1, 0}});
     const uint32_t sample = 3;
-    const ShadeCounts found = shade(*w.in, sample, w.q.hits, 0, 1, w.q.paths, w.q.rays, w.q.keep,
+    w.start(0, Ray{o, {0, -1, 0}}, sample);
+    const ShadeCounts found = shade(*w.in, w.q.hits, 0, 1, w.q.paths, w.q.rays, w.q.keep,
                                     w.q.light_samples, 0, w.q.emissions, 0);
     ASSERT_EQ(found.light_samples, 1u);
     const size_t shadows = light_sample(*w.in, w.q.light_samples, 0, 1, w.q.shadows, 0);
@@ -244,7 +268,7 @@ TEST(Kernels, IntersectShadowSeesBlockersAndCountsRays) {
     // From the floor to the light: clear. From below the lower quad up to the light: blocked.
     store_shadow_ray(w.q.shadows, 0, {{0, 1e-3f, 0}, {0, 1, 0}, 0.99f, Color(1.0f), 1.0f, 0.0f, 0});
     store_shadow_ray(w.q.shadows, 1, {{0, -2, 0}, {0, 1, 0}, 2.99f, Color(1.0f), 1.0f, 0.0f, 1});
-    generate(*w.in, 0, 0, 0, 2, w.q.paths, w.q.rays);
+    generate(*w.in, WaveSamples{}, 0, 0, 2, w.q.paths, w.q.rays);
     const uint64_t rays =
         intersect_shadow(w.bvh, *w.in, w.q.shadows, 0, 2, w.q.transmittance);
     EXPECT_EQ(rays, 2u);
@@ -260,7 +284,7 @@ TEST(Kernels, MisCombineWeightsEachContributionAndAddsItToItsPath) {
         est.heuristic = MisHeuristic::Power;
         // Light at infinity by the balance heuristic, as under a compensated environment map.
         const MisHeuristics heuristics{MisHeuristic::Power, MisHeuristic::Balance};
-        generate(*w.in, 0, 0, 0, 6, w.q.paths, w.q.rays);
+        generate(*w.in, WaveSamples{}, 0, 0, 6, w.q.paths, w.q.rays);
         w.q.paths.radiance[2] = Color(1.0f);
         // Shadow rays with light and BSDF densities 2 and 1 (power heuristic: 4/5), one blocked,
         // one to infinity (balance heuristic: 2/3).
@@ -293,24 +317,46 @@ TEST(Kernels, MisCombineWeightsEachContributionAndAddsItToItsPath) {
     }
 }
 
-TEST(Kernels, AccumulateFilmAddsOnlyThePathsThatEnded) {
+TEST(Kernels, AccumulateFilmStoresOnlyThePathsThatEnded) {
     World w;
-    generate(*w.in, 0, 0, 0, 4, w.q.paths, w.q.rays);
-    for (size_t i = 0; i < 4; ++i) w.q.paths.radiance[i] = Color(float(i));
-    Film film(4, 3);
+    generate(*w.in, WaveSamples{}, 0, 0, 4, w.q.paths, w.q.rays);
+    std::swap(w.q.paths.slot[1], w.q.paths.slot[2]);  // as if sorted: slots travel with paths
+    for (size_t i = 0; i < 4; ++i) {
+        w.q.paths.radiance[i] = Color(float(i));
+        w.q.film.radiance[i] = Color(-1.0f);
+    }
     const uint8_t keep[] = {1, 0, 0, 1};
-    accumulate_film(w.q.paths, keep, 0, 4, film);
-    EXPECT_EQ(film.samples(0), 0u);
-    EXPECT_EQ(film.samples(1), 1u);
-    EXPECT_EQ(film.samples(2), 1u);
-    EXPECT_EQ(film.samples(3), 0u);
-    EXPECT_EQ(film.mean().at(2, 0), Color(2.0f));
+    accumulate_film(w.q.paths, keep, 0, 4, w.q.film);
+    EXPECT_EQ(w.q.film.radiance[0], Color(-1.0f));
+    EXPECT_EQ(w.q.film.radiance[1], Color(2.0f));
+    EXPECT_EQ(w.q.film.radiance[2], Color(1.0f));
+    EXPECT_EQ(w.q.film.radiance[3], Color(-1.0f));
+}
+
+// A wave's film reaches the image pixel by pixel, each pixel's samples in sample order: the
+// film's running sums then equal those of adding the samples one by one in that order.
+TEST(Kernels, AddToFilmAddsEachPixelsSamplesInOrder) {
+    World w;
+    const WaveSamples samples{0, 3};
+    WaveFilm wave_film{std::vector<Color>(6)};
+    for (size_t i = 0; i < 6; ++i) wave_film.radiance[i] = Color(float(1 + i * i));
+    Film film(4, 3), expect(4, 3);
+    add_to_film(*w.in, 2, samples, 0, 2, wave_film, film);
+    for (uint32_t p = 0; p < 2; ++p)
+        for (uint32_t j = 0; j < 3; ++j)
+            expect.add(static_cast<int>(pixel_in_pass_order(2 + p, 4, 3)),
+                       wave_film.radiance[p * 3 + j]);
+    for (int pixel = 0; pixel < 12; ++pixel) {
+        EXPECT_EQ(film.samples(pixel), expect.samples(pixel)) << pixel;
+        EXPECT_EQ(film.mean().at(pixel % 4, pixel / 4), expect.mean().at(pixel % 4, pixel / 4));
+    }
+    EXPECT_EQ(film.samples(static_cast<int>(pixel_in_pass_order(2, 4, 3))), 3u);
 }
 
 TEST(Kernels, CompactKeepsTheLiveEntriesInOrderAndWhole) {
     World w;
     const size_t n = 9;
-    generate(*w.in, 0, 0, 0, n, w.q.paths, w.q.rays);
+    generate(*w.in, WaveSamples{}, 0, 0, n, w.q.paths, w.q.rays);
     std::vector<uint8_t> keep = {0, 1, 1, 0, 0, 1, 0, 1, 0};
     std::vector<Point3> origin(n);
     for (size_t i = 0; i < n; ++i) w.q.rays.origin[i] = origin[i] = {float(i), 0, 0};
@@ -329,7 +375,7 @@ TEST(Kernels, CompactKeepsTheLiveEntriesInOrderAndWhole) {
 TEST(Kernels, CompactIntoMovesTheKeptEntriesOfARange) {
     World w;
     const size_t n = 9;
-    generate(*w.in, 0, 0, 0, n, w.q.paths, w.q.rays);
+    generate(*w.in, WaveSamples{}, 0, 0, n, w.q.paths, w.q.rays);
     WaveQueues next;
     next.resize(16);
     for (size_t i = 0; i < 16; ++i) next.paths.pixel[i] = 99;
@@ -401,11 +447,11 @@ TEST(Kernels, PackedMediaRoundTrip) {
 }
 
 // The queues' bytes per path in flight, from the declarations (docs/architecture.md counts
-// them): 106 for the path, its ray and its hit, 157 for a light sample, 60 for a shadow ray, 25
-// for emission found, 14 of per-entry scratch. A budget, so that a field added is a decision
-// (the last: a metallic-roughness coat's own normal, which a normal map at the hit gives and
-// the light sample cannot look up again without the hit's tangents).
-TEST(Kernels, QueuesTakeAtMost362BytesPerPath) {
-    EXPECT_LE(wavefront_bytes_per_path(), 362u);
+// them): 114 for the path, its ray and its hit, 157 for a light sample, 60 for a shadow ray, 25
+// for emission found, 26 of per-entry scratch and the wave's film. A budget, so that a field
+// added is a decision (the last: each path's sample index and slot in the wave's film, so that
+// a small image's wave carries several samples of a pixel).
+TEST(Kernels, QueuesTakeAtMost382BytesPerPath) {
+    EXPECT_LE(wavefront_bytes_per_path(), 382u);
     EXPECT_EQ(wavefront_bytes_per_path(), WaveQueues::bytes_per_path());
 }

@@ -316,11 +316,12 @@ TEST(Lanes, FrameAndOriginOffsetKeepTheirFormulas) {
 
 TEST(Lanes, VertexSamplesAreTheScalarOnesOnEverySimdTarget) {
     const size_t n = 61;  // not a multiple of any lane count
-    uint32_t pixel[kShadeChunk];
+    uint32_t pixel[kShadeChunk], sample[kShadeChunk];
     uint16_t bounce[kShadeChunk];
     for (size_t k = 0; k < n; ++k) {
         pixel[k] = static_cast<uint32_t>(k * 7919 + (k << 20));
         bounce[k] = static_cast<uint16_t>(k % 9);
+        sample[k] = static_cast<uint32_t>(13 + k % 7);  // across ZSobol's blocks of 8
     }
     for (int64_t target : wide_simd_targets()) {
         use_wide_simd_target(target);
@@ -330,24 +331,24 @@ TEST(Lanes, VertexSamplesAreTheScalarOnesOnEverySimdTarget) {
                              (one_sample ? " one-sample pairs" : ""));
                 const Sampler sampler{42, kind, 37, 23, 3};
                 SampleBlock block;
-                draw_vertex_samples(sampler, 17, pixel, bounce, n, one_sample, true, block);
+                draw_vertex_samples(sampler, sample, pixel, bounce, n, one_sample, true, block);
                 for (size_t k = 0; k < n; ++k) {
                     const VertexSamples one =
-                        vertex_samples(sampler, pixel[k], 17, bounce[k], one_sample);
+                        vertex_samples(sampler, pixel[k], sample[k], bounce[k], one_sample);
                     const VertexSamples lanes = block.at(k);
                     ASSERT_EQ(std::memcmp(&one, &lanes, sizeof one), 0) << "row " << k;
-                    ASSERT_TRUE(same_bits(
-                        one.light_select,
-                        sample_1d(sampler, pixel[k], 17, bounce_dim(bounce[k], kDimLightSelect))));
+                    ASSERT_TRUE(same_bits(one.light_select,
+                                          sample_1d(sampler, pixel[k], sample[k],
+                                                    bounce_dim(bounce[k], kDimLightSelect))));
                     // The optical depth of the segment the vertex starts: segment_flight's.
-                    const float u = sample_1d(sampler, pixel[k], 17,
+                    const float u = sample_1d(sampler, pixel[k], sample[k],
                                               bounce_dim(bounce[k] + 1, kDimMediumDistance));
                     ASSERT_TRUE(same_bits(block.next_flight[k], sample_free_flight(1.0f, u)))
                         << "row " << k;
                     // The megakernel draws it with the vertex's pairs when it asks for it.
                     float next_flight = -1.0f;
-                    const VertexSamples with_flight =
-                        vertex_samples(sampler, pixel[k], 17, bounce[k], one_sample, &next_flight);
+                    const VertexSamples with_flight = vertex_samples(
+                        sampler, pixel[k], sample[k], bounce[k], one_sample, &next_flight);
                     ASSERT_EQ(std::memcmp(&one, &with_flight, sizeof one), 0) << "row " << k;
                     ASSERT_TRUE(same_bits(next_flight, block.next_flight[k])) << "row " << k;
                 }
@@ -785,10 +786,11 @@ TEST(Lanes, CameraRaysAreTheScalarOnesOnEverySimdTarget) {
         camera.aperture = aperture;
         const CameraRays rays(camera, 37, 23);
         const size_t n = 45;
-        uint32_t pixel[kShadeChunk];
+        uint32_t pixel[kShadeChunk], sample[kShadeChunk];
         float x[kShadeChunk], y[kShadeChunk];
         for (size_t k = 0; k < n; ++k) {
             pixel[k] = static_cast<uint32_t>(k * 19 % (37 * 23));
+            sample[k] = static_cast<uint32_t>(1 + k % 6);  // across ZSobol's blocks of 4
             x[k] = static_cast<float>(pixel[k] % 37);
             y[k] = static_cast<float>(pixel[k] / 37);
         }
@@ -800,16 +802,16 @@ TEST(Lanes, CameraRaysAreTheScalarOnesOnEverySimdTarget) {
                              std::to_string(aperture) + " " + to_string(kind));
                 const Sampler sampler{5, kind, 37, 23, 2};
                 CameraRayBlock block;
-                draw_camera_rays(rays, sampler, 3, pixel, x, y, n, true, block);
+                draw_camera_rays(rays, sampler, sample, pixel, x, y, n, true, block);
                 for (size_t k = 0; k < n; ++k) {
-                    const Ray one =
-                        generate_camera_ray(rays, sampler, pixel[k], 3, int(x[k]), int(y[k]));
+                    const Ray one = generate_camera_ray(rays, sampler, pixel[k], sample[k],
+                                                        int(x[k]), int(y[k]));
                     EXPECT_TRUE(same_bits(one.o, {block.o[0][k], block.o[1][k], block.o[2][k]}))
                         << "row " << k;
                     EXPECT_TRUE(same_bits(one.d, {block.d[0][k], block.d[1][k], block.d[2][k]}))
                         << "row " << k;
                     const float u =
-                        sample_1d(sampler, pixel[k], 3, bounce_dim(0, kDimMediumDistance));
+                        sample_1d(sampler, pixel[k], sample[k], bounce_dim(0, kDimMediumDistance));
                     EXPECT_TRUE(same_bits(block.flight[k], sample_free_flight(1.0f, u)))
                         << "row " << k;
                 }

@@ -221,8 +221,9 @@ TEST(Wavefront, StageScheduleEqualsResidentBitForBit) {
 }
 
 // The guided schedule: the waves cover the pixels once, in order; none is larger than
-// wave_size, none smaller than 128 but where less is left; they shrink, and each takes at most
-// a share 1 / (2 threads) of what is left, so the last ones started are small.
+// wave_size or 1/64 of the image (but 32 pixels), none smaller than 128 but where less is left
+// or allowed; they shrink, and each takes at most a share 1 / (2 threads) of what is left, so
+// the last ones started are small.
 TEST(Wavefront, WavesCoverThePixelsOnceAndShrinkTowardsTheEnd) {
     for (size_t pixels :
          {size_t(1), size_t(100), size_t(851), size_t(320 * 320), size_t(1920 * 1080)})
@@ -236,7 +237,9 @@ TEST(Wavefront, WavesCoverThePixelsOnceAndShrinkTowardsTheEnd) {
                                        std::to_string(wave_size);
                 ASSERT_FALSE(waves.empty()) << at;
                 EXPECT_EQ(wavefront_wave_size(pixels, threads, wf), waves.front().n) << at;
-                const size_t most = std::min(wave_size, pixels);
+                const size_t most =
+                    std::min({wave_size, pixels, std::max<size_t>(pixels / 64, 32)});
+                EXPECT_EQ(wavefront_wave_pixels(pixels, wf), most) << at;
                 size_t first = 0;
                 for (size_t w = 0; w < waves.size(); ++w) {
                     const size_t left = pixels - first;
@@ -253,8 +256,17 @@ TEST(Wavefront, WavesCoverThePixelsOnceAndShrinkTowardsTheEnd) {
                 }
                 EXPECT_EQ(first, pixels) << at;
             }
-    // A 320² image on 16 threads starts with waves of 3,200 paths, not 100 (102,400 / 1,024).
-    EXPECT_EQ(wavefront_wave_size(320 * 320, 16, WavefrontOptions{}), size_t(3200));
+    // A 320² image on 16 threads starts with waves of 1,600 pixels (1/64 of it) and two samples
+    // of each, 3,200 paths, not 100 (102,400 / 1,024); a 48² image at 1,024 spp with waves of
+    // 36 pixels, 113 samples of each.
+    const WavefrontOptions wf;
+    EXPECT_EQ(wavefront_wave_size(320 * 320, 16, wf), size_t(1600));
+    const size_t paths = wavefront_wave_paths(1600, 320 * 320, 16, wf.wave_size);
+    EXPECT_EQ(wave_samples_per_pixel(1600, paths, 16) * 1600, 3200u);
+    EXPECT_EQ(wavefront_wave_size(48 * 48, 2, wf), size_t(36));
+    EXPECT_EQ(
+        wave_samples_per_pixel(36, wavefront_wave_paths(36, 48 * 48, 1024, wf.wave_size), 1024),
+        4096u / 36);
 }
 
 // An anisotropic conductor's roughness runs along dp/du: the light_sample kernel rebuilds that

@@ -63,7 +63,7 @@ HWY_INLINE void PadTail3(std::initializer_list<float (*)[kShadeChunk]> rows,
 
 void DrawCameraRays(const CameraFrame* camera,
                     const Sampler& sampler,
-                    uint32_t sample,
+                    const uint32_t* sample,
                     const uint32_t* pixel,
                     const float* x,
                     const float* y,
@@ -76,14 +76,15 @@ void DrawCameraRays(const CameraFrame* camera,
     const hn::Rebind<uint32_t, D64> d32;
     const hn::Rebind<float, D64> df;
     const size_t N = hn::Lanes(d64);
-    HWY_ALIGN uint32_t px[kShadeChunk];
+    HWY_ALIGN uint32_t px[kShadeChunk], sx[kShadeChunk];
     HWY_ALIGN float fx[kShadeChunk], fy[kShadeChunk];
     PadRows(pixel, n, px);
+    PadRows(sample, n, sx);
     PadRows(x, n, fx);
     PadRows(y, n, fy);
     for (size_t k = 0; k < n; k += N) {
         V3<hn::Vec<decltype(df)>> o, d;
-        const auto state = PathState<L>(sampler, hn::Load(d32, px + k), sample);
+        const auto state = PathState<L>(sampler, hn::Load(d32, px + k), hn::Load(d32, sx + k));
         SampledCameraRay<L>(*camera, state, hn::Load(df, fx + k), hn::Load(df, fy + k), &o, &d);
         if (flights)
             hn::Store(OpticalDepth<L>(SampleDim<L>(
@@ -127,7 +128,7 @@ HWY_INLINE void StoreVertexDims(DF df,
 // hash's words in 32-bit lanes (WordLanes), twice as many to a vector. SampleDim's and
 // SampleDimPair's numbers, bit for bit.
 void DrawSobolVertexSamples(const Sampler& sampler,
-                            uint32_t sample,
+                            const uint32_t* sx,
                             const uint32_t* px,
                             const uint32_t* first_dim,
                             size_t n,
@@ -144,11 +145,11 @@ void DrawSobolVertexSamples(const Sampler& sampler,
     const hn::Rebind<float, Words::D32> df;
     const size_t N = hn::Lanes(d64);
     for (size_t k = 0; k < n; k += 2 * N) {
-        const auto s0 = PathState<L>(sampler, hn::Load(dh, px + k), sample);
-        const auto s1 = PathState<L>(sampler, hn::Load(dh, px + k + N), sample);
+        const auto s0 = PathState<L>(sampler, hn::Load(dh, px + k), hn::Load(dh, sx + k));
+        const auto s1 = PathState<L>(sampler, hn::Load(dh, px + k + N), hn::Load(dh, sx + k + N));
         const auto first0 = hn::PromoteTo(d64, hn::Load(dh, first_dim + k));
         const auto first1 = hn::PromoteTo(d64, hn::Load(dh, first_dim + k + N));
-        const W::U64 reversed_index = Words::ReversedIndex(sampler.kind, sample, s0.key, s1.key);
+        const W::U64 reversed_index = Words::ReversedIndex(s0, s1);
         // Dimensions first + d and first + d + 1 (d even) of every row.
         const auto pair_dims = [&](uint32_t d, F* a, F* b) {
             const auto dims = hn::Set(d64, d);
@@ -176,7 +177,7 @@ void DrawSobolVertexSamples(const Sampler& sampler,
 #endif
 
 void DrawVertexSamples(const Sampler& sampler,
-                       uint32_t sample,
+                       const uint32_t* sample,
                        const uint32_t* pixel,
                        const uint16_t* bounce,
                        size_t n,
@@ -191,18 +192,19 @@ void DrawVertexSamples(const Sampler& sampler,
     const size_t N = hn::Lanes(d64);
     // Counters as 32-bit rows padded to whole vectors: the pixel and the bounce's first
     // dimension.
-    HWY_ALIGN uint32_t px[kShadeChunk], first_dim[kShadeChunk];
+    HWY_ALIGN uint32_t px[kShadeChunk], sx[kShadeChunk], first_dim[kShadeChunk];
     PadRows(pixel, n, px);
+    PadRows(sample, n, sx);
     for (size_t k = 0; k < kShadeChunk; ++k)
         first_dim[k] = bounce_dim(bounce[k < n ? k : 0], BounceDim(0));
 #if HWY_TARGET != HWY_SCALAR
     if (sampler.kind != SamplerKind::Independent) {
-        DrawSobolVertexSamples(sampler, sample, px, first_dim, n, one_sample, flights, out);
+        DrawSobolVertexSamples(sampler, sx, px, first_dim, n, one_sample, flights, out);
         return;
     }
 #endif
     for (size_t k = 0; k < n; k += N) {
-        const auto state = PathState<L>(sampler, hn::Load(d32, px + k), sample);
+        const auto state = PathState<L>(sampler, hn::Load(d32, px + k), hn::Load(d32, sx + k));
         const auto first = hn::PromoteTo(d64, hn::Load(d32, first_dim + k));
         StoreVertexDims(
             df, k, one_sample, flights,
@@ -764,7 +766,7 @@ HWY_EXPORT(MisWeights);
 
 void draw_camera_rays(const CameraRays& camera,
                       const Sampler& sampler,
-                      uint32_t sample,
+                      const uint32_t* sample,
                       const uint32_t* pixel,
                       const float* x,
                       const float* y,
@@ -776,7 +778,7 @@ void draw_camera_rays(const CameraRays& camera,
 }
 
 void draw_vertex_samples(const Sampler& sampler,
-                         uint32_t sample,
+                         const uint32_t* sample,
                          const uint32_t* pixel,
                          const uint16_t* bounce,
                          size_t n,

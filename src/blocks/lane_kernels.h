@@ -38,12 +38,12 @@ struct CameraRayBlock {
     alignas(64) float flight[kShadeChunk];  // segment_flight(.., 0), where drawn
 };
 
-// Rows k < n of `out`: generate_camera_ray(camera, sampler, pixel[k], sample, x[k], y[k]), bit
-// for bit, and with `flights` (a scene with media) the camera segment's optical depth
-// segment_flight(scene, sampler, pixel[k], sample, 0).
+// Rows k < n of `out`: generate_camera_ray(camera, sampler, pixel[k], sample[k], x[k], y[k]),
+// bit for bit, and with `flights` (a scene with media) the camera segment's optical depth
+// segment_flight(scene, sampler, pixel[k], sample[k], 0).
 void draw_camera_rays(const CameraRays& camera,
                       const Sampler& sampler,
-                      uint32_t sample,
+                      const uint32_t* sample,
                       const uint32_t* pixel,
                       const float* x,
                       const float* y,
@@ -63,11 +63,11 @@ struct SampleBlock {
     }
 };
 
-// Rows k < n of `out`: vertex_samples(sampler, pixel[k], sample, bounce[k], one_sample), bit
+// Rows k < n of `out`: vertex_samples(sampler, pixel[k], sample[k], bounce[k], one_sample), bit
 // for bit, and with `flights` (a scene with media) segment_flight(scene, sampler, pixel[k],
-// sample, bounce[k] + 1).
+// sample[k], bounce[k] + 1).
 void draw_vertex_samples(const Sampler& sampler,
-                         uint32_t sample,
+                         const uint32_t* sample,
                          const uint32_t* pixel,
                          const uint16_t* bounce,
                          size_t n,

@@ -14,17 +14,31 @@ namespace wavetrace {
 // 1 / (kGuidedShare threads) of what is left each, and small ones only at the end.
 constexpr size_t kGuidedShare = 2;
 constexpr size_t kMinWave = 128;
+// A wave covers at most 1/kImageShare of the image (and kMinImageWave pixels where that is
+// fewer): its paths' hits then lie in a small part of the scene, whose nodes and textures stay
+// in cache from path to path. A small image's wave carries several samples of each of its
+// pixels instead (wave_samples_per_pixel), as the megakernel keeps a tile's samples together.
+// Mitsuba's 48 x 48 sphere grid at 1,024 spp, one thread: 0.63 s with waves of half the image,
+// 0.49 s at 1/16, 0.44 s at 1/64 (the megakernel: 0.51 s); the 600 x 600 Cornell box rendered at
+// 128 x 128 or 256 x 256 is level or faster.
+constexpr size_t kImageShare = 64;
+constexpr size_t kMinImageWave = 32;
 
 namespace {
 
 // The size of the wave taken when `left` of `pixels` pixels are left.
 size_t guided_wave(size_t left, size_t pixels, size_t threads, const WavefrontOptions& wavefront) {
-    const size_t most = std::max<size_t>(1, std::min(wavefront.wave_size, pixels));
+    const size_t most = wavefront_wave_pixels(pixels, wavefront);
     const size_t parts = kGuidedShare * std::max<size_t>(threads, 1);
     return std::min(left, std::clamp((left + parts - 1) / parts, std::min(kMinWave, most), most));
 }
 
 }  // namespace
+
+size_t wavefront_wave_pixels(size_t pixels, const WavefrontOptions& wavefront) {
+    const size_t share = std::max(pixels / kImageShare, kMinImageWave);
+    return std::max<size_t>(1, std::min({wavefront.wave_size, pixels, share}));
+}
 
 std::vector<WaveRange> wavefront_waves(size_t pixels,
                                        size_t threads,
@@ -41,6 +55,11 @@ std::vector<WaveRange> wavefront_waves(size_t pixels,
 // The first wave is the largest: the share of what is left only shrinks.
 size_t wavefront_wave_size(size_t pixels, size_t threads, const WavefrontOptions& wavefront) {
     return pixels == 0 ? 1 : guided_wave(pixels, pixels, threads, wavefront);
+}
+
+size_t wavefront_wave_paths(size_t wave_pixels, size_t pixels, int spp, size_t paths_per_wave) {
+    const size_t most = std::min(paths_per_wave, pixels * size_t(std::max(spp, 1)));
+    return std::max(wave_pixels, most);
 }
 
 size_t wavefront_bytes_per_path() {

@@ -45,26 +45,41 @@ struct WaveRange {
 std::vector<WaveRange> wavefront_waves(size_t pixels,
                                        size_t threads,
                                        const WavefrontOptions& wavefront);
-// The most paths a thread carries at once in such a render: its first wave's size.
+// The most pixels a wave of a render of `pixels` pixels holds.
+size_t wavefront_wave_pixels(size_t pixels, const WavefrontOptions& wavefront);
+// The most pixels a thread carries at once in such a render: its first wave's size.
 size_t wavefront_wave_size(size_t pixels, size_t threads, const WavefrontOptions& wavefront);
+// The most paths a wave of `wave_pixels` pixels carries in a render of `pixels` pixels and
+// `spp` samples: as many as the wave size allows, several samples of each pixel where the
+// image has fewer pixels than that (the waves of a small image are then as large as a large
+// image's, and their paths as coherent: neighbours are samples of one pixel).
+size_t wavefront_wave_paths(size_t wave_pixels, size_t pixels, int spp, size_t paths_per_wave);
+// The samples per pixel the waves of a render, of at most `wave_pixels` pixels, carry at once
+// out of a pass's `count`, in queues of `capacity` paths. (The same for the small waves at the
+// end of a pass: they stay small, for balance.)
+inline uint32_t wave_samples_per_pixel(size_t wave_pixels, size_t capacity, int count) {
+    return static_cast<uint32_t>(
+        std::clamp<size_t>(capacity / std::max<size_t>(wave_pixels, 1), 1, size_t(count)));
+}
 namespace wavefront_detail {
 
-// Carries the wave of the pass's pixels [first, first + n) (in pass order) through all its
-// bounces and adds its paths to the film, one thread running every kernel; returns the rays
-// traced.
+// Carries the wave of the pass's pixels [first, first + pixels) (in pass order), `samples` of
+// each, through all its bounces and adds its paths to the film, one thread running every
+// kernel; returns the rays traced.
 template <Intersector Tracer>
 uint64_t run_wave(const WaveInputs& in,
                   const Tracer& bvh,
-                  uint32_t sample,
+                  WaveSamples samples,
                   uint32_t first,
-                  size_t n,
+                  size_t pixels,
                   bool sort,
                   WaveQueues& q,
                   Film& film) {
+    size_t n = pixels * samples.per_pixel;
     WT_CHECK_LE(n, q.paths.capacity);
     uint64_t rays = 0;
     const MisHeuristics heuristics = mis_heuristics(in.estimator, in.lights);
-    generate(in, sample, first, 0, n, q.paths, q.rays);
+    generate(in, samples, first, 0, n, q.paths, q.rays);
     for (bool camera_rays = true; n > 0; camera_rays = false) {
         if (camera_rays)
             intersect_coherent(bvh, q.rays, 0, n, q.hits);
@@ -72,8 +87,8 @@ uint64_t run_wave(const WaveInputs& in,
             intersect(bvh, q.rays, 0, n, q.hits);
         rays += n;
         if (sort) sort_by_material(in.scene, 0, n, q.key, q.paths, q.rays, q.hits);
-        const ShadeCounts found = shade(in, sample, q.hits, 0, n, q.paths, q.rays, q.keep,
-                                        q.light_samples, 0, q.emissions, 0);
+        const ShadeCounts found =
+            shade(in, q.hits, 0, n, q.paths, q.rays, q.keep, q.light_samples, 0, q.emissions, 0);
         const size_t shadows =
             light_sample(in, q.light_samples, 0, found.light_samples, q.shadows, 0);
         WT_DCHECK_LE(shadows, n);  // at most one shadow ray per path per bounce
@@ -81,11 +96,12 @@ uint64_t run_wave(const WaveInputs& in,
                                  camera_rays ? &q.hits : nullptr);
         mis_combine(in.estimator, heuristics, q.emissions, {0, found.emissions}, q.shadows,
                     q.transmittance, {0, shadows}, q.paths);
-        accumulate_film(q.paths, q.keep, 0, n, film);
+        accumulate_film(q.paths, q.keep, 0, n, q.film);
         const size_t left = compact(q.keep, n, q.paths, q.rays);
         WT_DCHECK_LE(left, n);
         n = left;
     }
+    add_to_film(in, first, samples, 0, pixels, q.film, film);
     return rays;
 }
 
@@ -132,19 +148,21 @@ void each_chunk(size_t n, const Body& body) {
 template <Intersector Tracer>
 uint64_t run_wave_in_stages(const WaveInputs& in,
                             const Tracer& bvh,
-                            uint32_t sample,
+                            WaveSamples samples,
                             uint32_t first,
-                            size_t n,
+                            size_t pixels,
                             bool sort,
                             StageWave& w,
                             Film& film) {
     WaveQueues& q = w.q;
+    size_t n = pixels * samples.per_pixel;
     WT_CHECK_LE(n, q.paths.capacity);
     auto& chunk = w.chunks;
     uint64_t rays = 0;
     const MisHeuristics heuristics = mis_heuristics(in.estimator, in.lights);
-    each_chunk(
-        n, [&](size_t, size_t b, size_t e) { generate(in, sample, first, b, e, q.paths, q.rays); });
+    each_chunk(n, [&](size_t, size_t b, size_t e) {
+        generate(in, samples, first, b, e, q.paths, q.rays);
+    });
     for (bool camera_rays = true; n > 0; camera_rays = false) {
         each_chunk(n, [&](size_t, size_t b, size_t e) {
             if (camera_rays)
@@ -158,8 +176,8 @@ uint64_t run_wave_in_stages(const WaveInputs& in,
                 sort_by_material(in.scene, b, e, q.key, q.paths, q.rays, q.hits);
             });
         each_chunk(n, [&](size_t c, size_t b, size_t e) {
-            chunk[c].found = shade(in, sample, q.hits, b, e, q.paths, q.rays, q.keep,
-                                   q.light_samples, b, q.emissions, b);
+            chunk[c].found = shade(in, q.hits, b, e, q.paths, q.rays, q.keep, q.light_samples, b,
+                                   q.emissions, b);
         });
         each_chunk(n, [&](size_t c, size_t b, size_t) {
             chunk[c].shadows = light_sample(in, q.light_samples, b,
@@ -175,7 +193,7 @@ uint64_t run_wave_in_stages(const WaveInputs& in,
                         q.shadows, q.transmittance, {b, b + chunk[c].shadows}, q.paths);
         });
         each_chunk(
-            n, [&](size_t, size_t b, size_t e) { accumulate_film(q.paths, q.keep, b, e, film); });
+            n, [&](size_t, size_t b, size_t e) { accumulate_film(q.paths, q.keep, b, e, q.film); });
         // Compaction as a parallel prefix sum: each chunk counts the paths it keeps, a scan of
         // the chunks' counts gives each chunk where its paths go, and the chunks move them there.
         each_chunk(n, [&](size_t c, size_t b, size_t e) {
@@ -198,6 +216,9 @@ uint64_t run_wave_in_stages(const WaveInputs& in,
         WT_DCHECK_LE(left, n);
         n = left;
     }
+    each_chunk(pixels, [&](size_t, size_t b, size_t e) {
+        add_to_film(in, first, samples, b, e, q.film, film);
+    });
     return rays;
 }
 
@@ -240,32 +261,42 @@ RenderStats wavefront(const Scene& scene,
         if (options.schedule == Schedule::Stage) {
             // The pass's pixels in consecutive waves of as many paths as the resident
             // schedule's threads hold at once at most.
-            const size_t wave = std::min(pixels, threads * std::max<size_t>(options.wave_size, 1));
+            const size_t wave = std::min(pixels, threads * wavefront_wave_pixels(pixels, options));
+            const size_t capacity =
+                wavefront_wave_paths(wave, pixels, request.spp, threads * options.wave_size);
             wavefront_detail::StageWave w;
-            w.resize(std::max<size_t>(wave, 1));
+            w.resize(std::max<size_t>(capacity, 1));
             return run_passes(request, film, observer, [&](uint32_t first_sample, int count) {
                 for (size_t first = 0; first < pixels; first += wave) {
                     const size_t n = std::min(wave, pixels - first);
-                    for (uint32_t sample = first_sample; sample < first_sample + uint32_t(count);
-                         ++sample)
+                    const uint32_t per_pixel = wave_samples_per_pixel(wave, capacity, count);
+                    const uint32_t end = first_sample + uint32_t(count);
+                    for (uint32_t s = first_sample; s < end; s += per_pixel)
                         rays += wavefront_detail::run_wave_in_stages(
-                            in, bvh, sample, static_cast<uint32_t>(first), n,
-                            options.sort_by_material, w, film);
+                            in, bvh, {s, std::min(per_pixel, end - s)},
+                            static_cast<uint32_t>(first), n, options.sort_by_material, w, film);
                     carried(n, count);
                 }
             });
         }
         const std::vector<WaveRange> waves = wavefront_waves(pixels, threads, options);
+        const size_t capacity = std::max<size_t>(
+            1, waves.empty()
+                   ? 1
+                   : wavefront_wave_paths(waves.front().n, pixels, request.spp, options.wave_size));
         tbb::enumerable_thread_specific<WaveQueues> queues([&] {
             WaveQueues q;
-            q.resize(waves.empty() ? 1 : waves.front().n);
+            q.resize(capacity);
             return q;
         });
         // A pass over all waves: each wave carries its pixels through the pass's samples in
-        // order, so every pixel receives its samples in sample order whatever the wave size, the
-        // thread count or which thread ran which wave. The waves are taken in their order (one
+        // order, several at once where its queues hold them, so every pixel receives its
+        // samples in sample order whatever the wave size, the thread count or which thread ran
+        // which wave. The waves are taken in their order (one
         // counter), so that the small ones at the end of the schedule are the last to start.
         return run_passes(request, film, observer, [&](uint32_t first_sample, int count) {
+            const uint32_t per_pixel =
+                wave_samples_per_pixel(waves.empty() ? 1 : waves.front().n, capacity, count);
             std::atomic<size_t> next{0};
             tbb::parallel_for(
                 tbb::blocked_range<size_t>(0, threads, 1),
@@ -275,11 +306,12 @@ RenderStats wavefront(const Scene& scene,
                     for (size_t w;
                          (w = next.fetch_add(1, std::memory_order_relaxed)) < waves.size();) {
                         const WaveRange wave = waves[w];
-                        for (uint32_t sample = first_sample;
-                             sample < first_sample + uint32_t(count); ++sample)
+                        const uint32_t end = first_sample + uint32_t(count);
+                        for (uint32_t s = first_sample; s < end; s += per_pixel)
                             traced += wavefront_detail::run_wave(
-                                in, bvh, sample, static_cast<uint32_t>(wave.first), wave.n,
-                                options.sort_by_material, q, film);
+                                in, bvh, {s, std::min(per_pixel, end - s)},
+                                static_cast<uint32_t>(wave.first), wave.n, options.sort_by_material,
+                                q, film);
                         carried(wave.n, count);
                     }
                     rays.fetch_add(traced, std::memory_order_relaxed);

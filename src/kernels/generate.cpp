@@ -47,7 +47,7 @@ void PassOrderWalk::next() {
 }
 
 void generate(const WaveInputs& in,
-              uint32_t sample,
+              WaveSamples samples,
               uint32_t first_index,
               size_t begin,
               size_t end,
@@ -58,17 +58,24 @@ void generate(const WaveInputs& in,
     const PackedMedia media = PackedMedia::pack(in.camera_media);
     const bool flights = !in.scene.media.empty();
     // Chunk by chunk: the pixels, their camera rays in SIMD lanes, then the path entries.
-    alignas(64) uint32_t pixel[kShadeChunk];
+    alignas(64) uint32_t pixel[kShadeChunk], sample[kShadeChunk];
     alignas(64) float x[kShadeChunk], y[kShadeChunk];
     CameraRayBlock camera;
     if (begin >= end) return;
-    PassOrderWalk walk(first_index + static_cast<uint32_t>(begin), width, height);
+    const uint32_t per_pixel = samples.per_pixel;
+    PassOrderWalk walk(first_index + static_cast<uint32_t>(begin / per_pixel), width, height);
+    uint32_t j = static_cast<uint32_t>(begin % per_pixel);  // the entry's sample of its pixel
     for (size_t c = begin; c < end; c += kShadeChunk) {
         const size_t n = std::min(kShadeChunk, end - c);
-        for (size_t k = 0; k < n; ++k, walk.next()) {
+        for (size_t k = 0; k < n; ++k) {
             pixel[k] = walk.y() * width + walk.x();
+            sample[k] = samples.first + j;
             x[k] = static_cast<float>(walk.x());
             y[k] = static_cast<float>(walk.y());
+            if (++j == per_pixel) {
+                j = 0;
+                walk.next();
+            }
         }
         draw_camera_rays(in.camera, in.sampler, sample, pixel, x, y, n, flights, camera);
         for (size_t k = 0; k < n; ++k) {
@@ -76,6 +83,8 @@ void generate(const WaveInputs& in,
             const Ray ray{{camera.o[0][k], camera.o[1][k], camera.o[2][k]},
                           {camera.d[0][k], camera.d[1][k], camera.d[2][k]}};
             paths.pixel[i] = pixel[k];
+            paths.sample[i] = sample[k];
+            paths.slot[i] = static_cast<uint32_t>(i);
             paths.bounce[i] = 0;
             paths.depth[i] = 0;
             paths.crossings[i] = 0;

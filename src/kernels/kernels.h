@@ -3,6 +3,7 @@
 // camera rays, per bounce:
 //   intersect -> [sort_by_material] -> shade -> light_sample -> intersect_shadow
 //   -> mis_combine -> accumulate_film (the paths that ended) -> compact
+// and once the wave's last path has ended, add_to_film.
 // A kernel that appends to a queue writes at most one entry per entry it reads, from a first
 // entry its caller gives, and returns how many it wrote: the resident schedule appends each
 // bounce's entries from 0, the stage schedule each chunk's from the chunk's own first entry
@@ -42,10 +43,13 @@ class PassOrderWalk {
     uint32_t dx_, dy_;          // the pixel within it
 };
 
-// Entries [begin, end) start sample `sample` of the pixels visited first_index + entry-th in
-// the pass: the path state and the camera ray.
+// Entries [begin, end) of a wave of the pixels visited first_index-th, first_index + 1-th, ...
+// in the pass, each carrying the samples `samples` side by side: entry i starts sample
+// samples.first + i % samples.per_pixel of the pixel visited (first_index + i /
+// samples.per_pixel)-th, its path state and camera ray. Its radiance goes to slot i of the
+// wave's film.
 void generate(const WaveInputs& in,
-              uint32_t sample,
+              WaveSamples samples,
               uint32_t first_index,
               size_t begin,
               size_t end,
@@ -79,7 +83,6 @@ struct ShadeCounts {
     size_t light_samples = 0, emissions = 0;  // entries appended
 };
 ShadeCounts shade(const WaveInputs& in,
-                  uint32_t sample,
                   const HitQueue& hits,
                   size_t begin,
                   size_t end,
@@ -114,10 +117,22 @@ void mis_combine(const Estimator& estimator,
                  EntryRange shadowed,
                  PathQueue& paths);
 
-// Adds the radiance of the paths that ended (keep[i] == 0) among entries [begin, end) to the
-// film.
-void accumulate_film(
-    const PathQueue& paths, std::span<const uint8_t> keep, size_t begin, size_t end, Film& film);
+// Stores the radiance of the paths that ended (keep[i] == 0) among entries [begin, end) in their
+// slots of the wave's film.
+void accumulate_film(const PathQueue& paths,
+                     std::span<const uint8_t> keep,
+                     size_t begin,
+                     size_t end,
+                     WaveFilm& film);
+// Once every path of the wave has ended: adds the wave's film to the image for the pixels
+// [begin, end) of the wave (generate's order), each pixel's samples in sample order.
+void add_to_film(const WaveInputs& in,
+                 uint32_t first_index,
+                 WaveSamples samples,
+                 size_t begin,
+                 size_t end,
+                 const WaveFilm& wave_film,
+                 Film& film);
 
 // Moves the entries with keep[i] != 0 among [0, n) to the front, in order; returns their count.
 size_t compact(std::span<const uint8_t> keep, size_t n, PathQueue& paths, RayQueue& rays);

@@ -547,7 +547,6 @@ void trace_media(const WaveInputs& in,
 }  // namespace
 
 ShadeCounts shade(const WaveInputs& in,
-                  uint32_t sample,
                   const HitQueue& hits,
                   size_t begin,
                   size_t end,
@@ -571,9 +570,9 @@ ShadeCounts shade(const WaveInputs& in,
     for (c.begin = begin; c.begin < end; c.begin += kShadeChunk) {
         c.end = std::min(end, c.begin + kShadeChunk);
         std::fill(keep.begin() + c.begin, keep.begin() + c.end, uint8_t(0));
-        draw_vertex_samples(in.sampler, sample, &paths.pixel[c.begin], &paths.bounce[c.begin],
-                            c.end - c.begin, reads_one_sample_pairs(in.estimator.strategy), flights,
-                            c.samples);
+        draw_vertex_samples(in.sampler, &paths.sample[c.begin], &paths.pixel[c.begin],
+                            &paths.bounce[c.begin], c.end - c.begin,
+                            reads_one_sample_pairs(in.estimator.strategy), flights, c.samples);
         if (media_in_lanes) trace_media(in, hits, paths, rays, c);
         if (prefetch) prefetch_chunk_vertices(in.scene, hits, c.begin, c.end, records);
         classify(in, hits, paths, c);

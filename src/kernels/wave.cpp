@@ -12,6 +12,7 @@ void WaveQueues::resize(size_t n) {
     transmittance.resize(n);
     keep.resize(n);
     key.resize(n);
+    film.radiance.resize(n);
 }
 
 }  // namespace wavetrace

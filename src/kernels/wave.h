@@ -1,6 +1,6 @@
-// The data a wave's kernels work on: read-only inputs and one thread's queues. A wave is the
-// range of pixels that a thread carries through every stage, one sample at a time, while it
-// stays in that core's cache; each kernel is a free function over a range of queue
+// The data a wave's kernels work on: read-only inputs and one thread's queues. A wave is a
+// range of pixels, with one or several samples of each, that a thread carries through every stage,
+// while it stays in that core's cache; each kernel is a free function over a range of queue
 // entries, taking the queues it reads const and the queues it writes mutable.
 #pragma once
 
@@ -33,6 +33,21 @@ struct WaveInputs {
     bool shadows_walk = true;  // shadows_walk(scene): shadow rays need more than an occlusion test
 };
 
+// The samples a wave carries of each of its pixels: [first, first + per_pixel), side by side
+// (a small image's wave holds several samples of a pixel, so that it is as large, and its
+// paths as coherent, as a large image's).
+struct WaveSamples {
+    uint32_t first = 0;
+    uint32_t per_pixel = 1;
+};
+
+// The radiance of a wave's paths, per slot (pixel times per_pixel plus sample), held until the
+// wave's last path ends: a pixel's samples end in any order, and the film must receive them in
+// sample order.
+struct WaveFilm {
+    std::vector<Color> radiance;
+};
+
 // Entries [begin, end) of a queue.
 struct EntryRange {
     size_t begin = 0, end = 0;
@@ -50,13 +65,14 @@ struct WaveQueues {
     std::vector<Color> transmittance;  // per shadow entry, from intersect_shadow
     std::vector<uint8_t> keep;         // per entry: 1 if the path goes on after shading
     std::vector<uint8_t> key;          // per entry: sort_by_material's scratch
+    WaveFilm film;                     // per entry at generation
 
     void resize(size_t wave_size);
     // Bytes of queue memory per path in flight, from the queues' field declarations.
     static constexpr size_t bytes_per_path() {
         return PathQueue::kBytesPerEntry + RayQueue::kBytesPerEntry + HitQueue::kBytesPerEntry +
                LightSampleQueue::kBytesPerEntry + ShadowQueue::kBytesPerEntry +
-               EmissionQueue::kBytesPerEntry + sizeof(Color) + 2 * sizeof(uint8_t);
+               EmissionQueue::kBytesPerEntry + 2 * sizeof(Color) + 2 * sizeof(uint8_t);
     }
 };
 

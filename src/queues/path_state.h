@@ -11,9 +11,10 @@
 
 namespace wavetrace {
 
-// The sample index is not here: a wave holds one pass, whose paths share it.
 #define WAVETRACE_PATH_FIELDS(F)                                                          \
     F(uint32_t, pixel, "film pixel index")                                                \
+    F(uint32_t, sample, "the path's sample index: which of the pixel's samples it is")    \
+    F(uint32_t, slot, "where the wave's film holds its radiance (WaveFilm)")              \
     F(uint16_t, bounce, "index of the vertex the current ray will reach (0: camera ray)") \
     F(uint16_t, depth, "that vertex's depth: bounce less the thin sheets passed")         \
     F(uint8_t, crossings, "medium boundaries crossed by the current segment")             \

@@ -56,7 +56,7 @@ void DrawBounceDims(const Sampler& sampler,
     const DrawnPairs& drawn = kDrawnPairs[one_sample ? 1 : 0][next_flight ? 1 : 0];
     // One path in every lane; lane j holds the (k + j)-th drawn pair p, dimensions first + 2p
     // and the next (lanes past the last pair compute numbers nobody reads).
-    const auto state = PathState<L>(sampler, hn::Set(d32, pixel), sample);
+    const auto state = PathState<L>(sampler, hn::Set(d32, pixel), hn::Set(d32, sample));
     HWY_ALIGN float a[kPairs + 1 + HWY_MAX_BYTES / 4], b[kPairs + 1 + HWY_MAX_BYTES / 4];
 #if HWY_TARGET != HWY_SCALAR
     if (sampler.kind != SamplerKind::Independent) {
@@ -64,8 +64,9 @@ void DrawBounceDims(const Sampler& sampler,
         // 32-bit lanes, twice as many to a vector (SobolWords, as DrawSobolVertexSamples).
         using Words = SobolWords<D64>;
         const hn::Rebind<float, Words::D32> dfw;
-        const auto reversed_index =
-            Words::ReversedIndex(sampler.kind, sample, state.key, state.key);
+        const auto reversed_index = sampler.kind == SamplerKind::ZSobol
+                                        ? Words::ReversedIndex(state, state)
+                                        : Words::W::Set64(ReverseBits32<OneLane>(sample));
         const auto hash = [&](size_t k) {
             return SobolPairHash<L>(
                 state, hn::Add(hn::Set(d64, uint64_t(first / 2)), hn::LoadU(d64, drawn.pair + k)));

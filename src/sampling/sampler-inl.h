@@ -37,16 +37,16 @@ HWY_INLINE typename L::U64 Hash32(typename L::U64 x) {
     return L::Xor(x, L::template ShiftRight<16>(x));
 }
 
-// The state all dimensions of path (pixel, sample) are drawn from.
+// The state all dimensions of path (pixel, sample) are drawn from, per lane.
 template <class L>
 struct SampleState {
     // Independent: the path's hash; Sobol: the pixel's; ZSobol: the path's index into the
     // one sequence: its pixel's Morton index above its sample's bits, digits shuffled.
     typename L::U64 key;
-    uint32_t sample;
+    typename L::U64 sample;
     SamplerKind kind;
-    // ZSobol: the hash of the seed and the sample's block.
-    uint64_t block_key = 0;
+    // ZSobol: the hash of the seed and the sample's block (else unused).
+    typename L::U64 block_key;
 };
 
 // ---- ZSobol (Ahmed & Wonka, "Screen-Space Blue-Noise Diffusion of Monte Carlo Sampling Error
@@ -92,14 +92,14 @@ constexpr DigitPermutations kDigitPermutations;
 // neighbouring pixels' errors cancel (blue noise).
 template <class L>
 HWY_INLINE typename L::U64 ShuffleDigits(typename L::U64 index,
-                                         uint32_t seed,
+                                         typename L::U64 seed,
                                          int digits,
                                          int odd) {
     using U64 = typename L::U64;
     const DigitPermutations& t = kDigitPermutations;
     auto hash = [&](U64 higher) {
         const U64 folded = L::Xor(higher, L::template ShiftRight<32>(higher));
-        return Hash32<L>(L::And64(L::Xor(folded, L::Set64(seed)), L::Set64(0xffffffffULL)));
+        return Hash32<L>(L::And64(L::Xor(folded, seed), L::Set64(0xffffffffULL)));
     };
     U64 out = L::Set64(0);
     for (int i = digits - 1; i >= odd; --i) {
@@ -129,10 +129,12 @@ HWY_INLINE typename L::U64 ShuffleDigits(typename L::U64 index,
 // The counters folded in one at a time through the mixer, so that neighbouring counters give
 // independent-looking values; the Sobol sampler hashes the pixel alone, its points being
 // indexed by the sample.
+// Each lane its own path: the wavefront carries several samples of a pixel in one wave.
 template <class L>
 HWY_INLINE SampleState<L> PathState(const Sampler& sampler,
                                     typename L::U32 pixel,
-                                    uint32_t sample) {
+                                    typename L::U32 sample) {
+    const typename L::U64 s64 = L::Widen(sample);
     if (sampler.kind == SamplerKind::ZSobol) {
         // The image's Morton indices run over a square of a power-of-two side; each pixel
         // holds 2^log2_spp consecutive indices, and sample s lies in block s >> log2_spp.
@@ -141,26 +143,28 @@ HWY_INLINE SampleState<L> PathState(const Sampler& sampler,
         const int log2_spp = sampler.log2_spp;
         const int side_bits =
             std::bit_width(static_cast<unsigned>(std::max({sampler.width, sampler.height, 1}) - 1));
-        const uint64_t in_block = sample & ((uint64_t(1) << log2_spp) - 1);
-        const uint64_t block = uint64_t(sample) >> log2_spp;
-        SampleState<L> s{
-            L::MapLanes(
-                pixel,
-                [&](uint32_t p) { return (Morton2(p % width, p / width) << log2_spp) | in_block; }),
-            sample, sampler.kind};
-        s.block_key = Mix64<OneLane>(Mix64<OneLane>(sampler.seed ^ 0x3c6ef372fe94f82bULL) + block);
-        s.key = ShuffleDigits<L>(s.key, uint32_t(s.block_key >> 32), side_bits + (log2_spp + 1) / 2,
-                                 log2_spp & 1);
-        return s;
+        const typename L::U64 in_block = L::And64(s64, L::Set64((uint64_t(1) << log2_spp) - 1));
+        const typename L::U64 block = L::ShiftRightSame(s64, log2_spp);
+        const typename L::U64 block_key = Mix64<L>(
+            L::Add64(L::Set64(Mix64<OneLane>(sampler.seed ^ 0x3c6ef372fe94f82bULL)), block));
+        const typename L::U64 index = L::Or64(
+            L::ShiftLeftSame(
+                L::MapLanes(pixel, [&](uint32_t p) { return Morton2(p % width, p / width); }),
+                log2_spp),
+            in_block);
+        return {ShuffleDigits<L>(index, L::template ShiftRight<32>(block_key),
+                                 side_bits + (log2_spp + 1) / 2, log2_spp & 1),
+                s64, sampler.kind, block_key};
     }
     if (sampler.kind == SamplerKind::Sobol) {
         const uint64_t seeded = Mix64<OneLane>(sampler.seed ^ 0x2545f4914f6cdd1dULL);
-        return {Mix64<L>(L::Xor(L::Set64(seeded), L::Widen(pixel))), sample, sampler.kind};
+        return {Mix64<L>(L::Xor(L::Set64(seeded), L::Widen(pixel))), s64, sampler.kind,
+                L::Set64(0)};
     }
     const uint64_t seeded = Mix64<OneLane>(sampler.seed ^ 0x9e3779b97f4a7c15ULL);
-    return {Mix64<L>(L::Xor(L::Set64(seeded),
-                            L::Or64(L::template ShiftLeft<32>(L::Widen(pixel)), L::Set64(sample)))),
-            sample, sampler.kind};
+    return {Mix64<L>(
+                L::Xor(L::Set64(seeded), L::Or64(L::template ShiftLeft<32>(L::Widen(pixel)), s64))),
+            s64, sampler.kind, L::Set64(0)};
 }
 
 // ---- Owen-scrambled Sobol points (Burley, "Practical Hash-based Owen Scrambling", JCGT 2020)
@@ -221,7 +225,7 @@ struct SobolPairState {
 template <class L>
 HWY_INLINE typename L::U64 SobolPairHash(const SampleState<L>& state, typename L::U64 pair) {
     const bool zsobol = state.kind == SamplerKind::ZSobol;
-    return Mix64<L>(L::Add64(zsobol ? L::Set64(state.block_key) : state.key, pair));
+    return Mix64<L>(L::Add64(zsobol ? state.block_key : state.key, pair));
 }
 
 // The pair's state from the bit-reversed index and the hash's two words, in any lanes of
@@ -239,7 +243,7 @@ HWY_INLINE SobolPairState<L> SobolPair(const SampleState<L>& state, typename L::
     const typename L::U64 reversed_index =
         state.kind == SamplerKind::ZSobol
             ? ReverseBits32<L>(L::And64(state.key, L::Set64(0xffffffffULL)))
-            : L::Set64(ReverseBits32<OneLane>(state.sample));
+            : ReverseBits32<L>(state.sample);
     return SobolPairFromHash<L>(reversed_index, L::And64(h, L::Set64(0xffffffffULL)),
                                 L::template ShiftRight<32>(h));
 }
@@ -279,14 +283,13 @@ struct SobolWords {
     static HWY_INLINE typename W::U64 High(U64 a, U64 b) {
         return hn::ConcatOdd(D32(), hn::BitCast(D32(), b), hn::BitCast(D32(), a));
     }
-    // The bit-reversed index of sample `sample` of the paths whose states' keys are key0, then
-    // key1 (ZSobol's index is the key's low word; Sobol's the sample's).
-    static HWY_INLINE typename W::U64 ReversedIndex(SamplerKind kind,
-                                                    uint32_t sample,
-                                                    U64 key0,
-                                                    U64 key1) {
-        return kind == SamplerKind::ZSobol ? W::ReverseBits32(Low(key0, key1))
-                                           : W::Set64(ReverseBits32<OneLane>(sample));
+    // The bit-reversed sample indices of the paths whose states are s0, then s1 (ZSobol's
+    // index is the key's low word; Sobol's the sample's).
+    template <class L>
+    static HWY_INLINE typename W::U64 ReversedIndex(const SampleState<L>& s0,
+                                                    const SampleState<L>& s1) {
+        return W::ReverseBits32(s0.kind == SamplerKind::ZSobol ? Low(s0.key, s1.key)
+                                                               : Low(s0.sample, s1.sample));
     }
     // Both dimensions of the pairs whose hashes (SobolPairHash) are h0, then h1.
     static HWY_INLINE void PairDims(typename W::U64 reversed_index, U64 h0, U64 h1, F* a, F* b) {
