@@ -74,8 +74,8 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
                     "render whole passes (one sample per pixel) until SECONDS have passed, then "
                     "write the image of the passes done");
     cmd->add_option("--wave-size", o.wave_size,
-                    "wavefront: paths a thread carries at once (default 4096, at most the pixel "
-                    "count)");
+                    "wavefront: paths a thread carries at once (default 4096; a small image's "
+                    "waves carry several samples of each pixel)");
     cmd->add_option("--schedule", o.schedule,
                     "wavefront: how threads share the kernels: resident (each thread carries its "
                     "own wave through every kernel) or stage (each kernel a parallel loop over one "

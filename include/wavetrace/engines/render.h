@@ -34,10 +34,10 @@ const char* to_string(Schedule s);
 std::optional<Schedule> parse_schedule(const std::string& name);
 
 struct WavefrontOptions {
-    // Most paths a thread carries through the kernels at once (a wave holds one sample of
-    // consecutive pixels, and the waves shrink towards the end of a pass). 4096 paths keep a
-    // wave's queues within a core's L2 cache. The stage schedule's one wave holds as many
-    // paths as all the threads' waves together.
+    // Most paths a thread carries through the kernels at once (a wave holds consecutive pixels,
+    // at most 1/64 of the image, and as many samples of each as fill it; the waves shrink
+    // towards the end of a pass). 4096 paths keep a wave's queues within a core's L2 cache.
+    // The stage schedule's one wave holds as many paths as all the threads' waves together.
     size_t wave_size = 4096;
     Schedule schedule = Schedule::Resident;
     // Whether each bounce's entries are reordered by material kind before shading. Off: shade
