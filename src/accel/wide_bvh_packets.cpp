@@ -33,6 +33,11 @@ namespace hn = hwy::HWY_NAMESPACE;
 // primitive for all lanes to serve one or two.
 inline constexpr int kLoneRays = 2;
 
+// Lane l alone.
+HWY_INLINE M LaneMask(D d, size_t l) {
+    return hn::And(hn::FirstN(d, l + 1), hn::Not(hn::FirstN(d, l)));
+}
+
 template <bool AnyHit>
 HWY_INLINE void TraversePacket(
     const WideBvh& bvh, const Ray* rays, size_t n, Hit* hits, bool* occluded) {
@@ -138,7 +143,7 @@ HWY_INLINE void TraversePacket(
                 const uint32_t l = static_cast<uint32_t>(__builtin_ctz(b));
                 Hit h;
                 if (WalkSubtree<AnyHit>(bvh, single[l], code, &lane_t[l], &h)) {
-                    const M lane = hn::And(hn::FirstN(d, l + 1), hn::Not(hn::FirstN(d, l)));
+                    const M lane = LaneMask(d, l);
                     record(lane, h.prim, hn::Set(d, h.t), hn::Set(d, h.u), hn::Set(d, h.v), false);
                 }
             }
@@ -195,7 +200,7 @@ HWY_INLINE void TraversePacket(
                             const uint32_t j = static_cast<uint32_t>(__builtin_ctz(bits));
                             if (bh.t[j] > lane_t[l]) continue;
                             lane_t[l] = bh.t[j];
-                            const M lane = hn::And(hn::FirstN(d, l + 1), hn::Not(hn::FirstN(d, l)));
+                            const M lane = LaneMask(d, l);
                             record(lane, b.ref[j], hn::Set(d, bh.t[j]), hn::Set(d, bh.u[j]),
                                    hn::Set(d, bh.v[j]), false);
                             if (AnyHit) break;

@@ -18,9 +18,7 @@ constexpr size_t kMinWave = 128;
 // fewer): its paths' hits then lie in a small part of the scene, whose nodes and textures stay
 // in cache from path to path. A small image's wave carries several samples of each of its
 // pixels instead (wave_samples_per_pixel), as the megakernel keeps a tile's samples together.
-// Mitsuba's 48 x 48 sphere grid at 1,024 spp, one thread: 0.63 s with waves of half the image,
-// 0.49 s at 1/16, 0.44 s at 1/64 (the megakernel: 0.51 s); the 600 x 600 Cornell box rendered at
-// 128 x 128 or 256 x 256 is level or faster.
+// (The share is measured in docs/benchmarks.md, "Small images".)
 constexpr size_t kImageShare = 64;
 constexpr size_t kMinImageWave = 32;
 
