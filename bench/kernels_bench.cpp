@@ -303,7 +303,7 @@ void fill(LambertianRows& r, LightSampleQueue& queue, LightSampleBlock& block) {
                                        r.u[k].light_select,
                                        r.u[k].light_u,
                                        r.u[k].light_v});
-        const LightChoice light = r.c.lights->select(r.u[k].light_select);
+        const LightChoice light = r.c.lights->select(r.u[k].light_select, v.p, v.ng);
         block.lobe[k] = int32_t(LaneLobe::Lambertian);
         block.planar[k] = r.c.lights->planar_emitter_index(light);
         block.sphere[k] = -1;

@@ -257,8 +257,9 @@ TEST(Kernels, LightSampleAppendsTheMegakernelsShadowRay) {
     EXPECT_EQ(w.q.shadows.pdf_light[0], d.pdf_light);
     EXPECT_EQ(w.q.shadows.pdf_bsdf[0], d.pdf_bsdf);
     // The same sample by the scalar route (sample_direct) agrees to rounding.
-    const DirectSample scalar = sample_direct(
-        w.scene, *w.lights, v, {0, 1, 0}, w.lights->select(u.light_select), u.light_u, u.light_v);
+    const DirectSample scalar =
+        sample_direct(w.scene, *w.lights, v, {0, 1, 0}, w.lights->select(u.light_select, v.p, v.ng),
+                      u.light_u, u.light_v);
     ASSERT_TRUE(scalar.valid);
     EXPECT_NEAR(scalar.pdf_light, d.pdf_light, 1e-5f * d.pdf_light);
 }
@@ -447,11 +448,11 @@ TEST(Kernels, PackedMediaRoundTrip) {
 }
 
 // The queues' bytes per path in flight, from the declarations (docs/architecture.md counts
-// them): 114 for the path, its ray and its hit, 157 for a light sample, 60 for a shadow ray, 25
+// them): 126 for the path, its ray and its hit, 157 for a light sample, 60 for a shadow ray, 25
 // for emission found, 26 of per-entry scratch and the wave's film. A budget, so that a field
-// added is a decision (the last: each path's sample index and slot in the wave's film, so that
-// a small image's wave carries several samples of a pixel).
-TEST(Kernels, QueuesTakeAtMost382BytesPerPath) {
-    EXPECT_LE(wavefront_bytes_per_path(), 382u);
+// added is a decision (the last: the previous vertex's normal, which chooses its light, for the
+// MIS weight of the emission its ray finds).
+TEST(Kernels, QueuesTakeAtMost394BytesPerPath) {
+    EXPECT_LE(wavefront_bytes_per_path(), 394u);
     EXPECT_EQ(wavefront_bytes_per_path(), WaveQueues::bytes_per_path());
 }

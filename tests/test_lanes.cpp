@@ -152,7 +152,7 @@ void expect_light_samples_are_next_event(const Scene& scene,
         for (size_t k = 0; k < n; ++k) {
             const Case& c = cases[k];
             ASSERT_TRUE(samples_lights(config, c.v, lights));
-            const LightChoice light = lights.select(c.u.light_select);
+            const LightChoice light = lights.select(c.u.light_select, c.v.p, c.v.ng);
             const int32_t planar = planar_light_sample_at(c.v, lights, light);
             const int32_t sphere = planar < 0 ? sphere_light_sample_at(c.v, lights, light) : -1;
             const int32_t delta = delta_light_sample_at(is_lane_vertex(c.v), lights, light);
@@ -512,7 +512,7 @@ TEST(Lanes, EnvironmentLightPointsAreLightSetSamplesOnEverySimdTarget) {
         Scene scene;
         add_environment(scene, 24, equal_area ? 24 : 12, equal_area);
         const LightSet lights(scene);
-        const LightChoice map = lights.select(0.5f);
+        const LightChoice map = lights.select(0.5f, Point3{0.0f}, Normal3{0.0f});
         ASSERT_TRUE(lights.is_environment(map));
         const size_t n = 53;
         for (int64_t target : wide_simd_targets()) {
@@ -564,13 +564,15 @@ TEST(Lanes, EscapedRaysAreResolveSegmentsOnEverySimdTarget) {
             SCOPED_TRACE(wide_simd_target());
             EscapeBlock b;
             b.n = n;
-            for (size_t k = 0; k < n; ++k)
+            const PreviousVertex prev{{0, 0, 0}, 0.5f, false};
+            for (size_t k = 0; k < n; ++k) {
                 for (int a = 0; a < 3; ++a) b.dir[a][k] = rays[k].d[a];
+                b.select_prob[k] = lights.background_selection_probability(prev.p, prev.n);
+            }
             escape_rays(b, lights, true);
             for (size_t k = 0; k < n; ++k) {
                 MediumStack media;
                 float flight = 0.0f;
-                const PreviousVertex prev{{0, 0, 0}, 0.5f, false};
                 const SegmentResult seg =
                     resolve_segment(scene, lights, config, rays[k], Hit{}, media, flight, prev);
                 ASSERT_EQ(seg.event, SegmentEvent::Emission) << "row " << k;

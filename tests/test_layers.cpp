@@ -32,6 +32,7 @@ const std::vector<std::string> kLayers = {
     "pbrt",         // pbrt-v4 scene files into our JSON document
     "loaders",      // scene files and mesh files into a Scene
     "accel",        // the BVH: build, wide layout, traversal, primitive tests
+    "lights",       // which light a vertex samples: lights' bounds, importance, selection
     "shading",      // what both engines share: surfaces, lights, MIS, media, path vertices
     "queues",       // the wavefront's structure-of-arrays queues
     "blocks",       // a chunk's lane blocks (SoA rows) and the SIMD kernels over them

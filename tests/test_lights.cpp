@@ -41,6 +41,7 @@ struct LightCase {
     Scene scene;
     Point3 ref;
     bool compensated = false;  // the LightSet's MIS compensation
+    Normal3 n{0.0f};           // at ref (its light selection); zero: a point in a medium
 };
 
 std::vector<LightCase> cases(const TempDir& dir) {
@@ -83,6 +84,11 @@ std::vector<LightCase> cases(const TempDir& dir) {
         MaterialId m = add_light(c.scene);
         c.scene.add_sphere({{0.5f, 1.2f, 1.0f}, 0.6f, m, kNone});
         c.scene.add_quad({{-1, -1, -1}, {2, 0, 0}, {0, 0.5f, 0}, m, kNone});
+        out.push_back(c);
+        // The same under a sky, seen from a surface: chosen by their importance there.
+        c.name = "two-lights-and-sky";
+        c.n = normalize(Vec3{0.3f, 1.0f, 0.2f});
+        c.scene.background.radiance = Color(0.2f);
         out.push_back(std::move(c));
     }
     {
@@ -165,11 +171,12 @@ TEST(Lights, SampledPdfAndRadianceAreConsistent) {
     for (LightCase& c : cases(dir)) {
         LightSet lights(c.scene, c.compensated);
         for (uint32_t i = 0; i < 3000; ++i) {
-            LightSample ls =
-                lights.sample(c.scene, c.ref, lights.select(u(3, i, 0)), u(3, i, 1), u(3, i, 2));
+            LightSample ls = lights.sample(c.scene, c.ref, lights.select(u(3, i, 0), c.ref, c.n),
+                                           u(3, i, 1), u(3, i, 2));
             ASSERT_TRUE(ls.valid) << c.name;
-            float pdf = ls.prim.valid() ? lights.pdf_prim(c.scene, c.ref, ls.prim, ls.wi, ls.dist)
-                                        : lights.pdf_background(c.scene, ls.wi);
+            float pdf = ls.prim.valid()
+                            ? lights.pdf_prim(c.scene, c.ref, c.n, ls.prim, ls.wi, ls.dist)
+                            : lights.pdf_background(c.scene, c.ref, c.n, ls.wi);
             EXPECT_NEAR(ls.pdf, pdf, 2e-3f * pdf) << c.name;
             if (c.name == "quad-behind") {
                 EXPECT_EQ(ls.radiance, Color(0.0f));
@@ -214,11 +221,12 @@ TEST(Lights, CompensationSamplesTheExcessOverTheMean) {
         auto dir_of = [&](int x, int y) {
             return environment_direction(bg, (x + 0.5f) / img.width, (y + 0.5f) / img.height);
         };
-        EXPECT_LT(compensated.pdf_background(c.scene, dir_of(10, 10)),
-                  0.01f * plain.pdf_background(c.scene, dir_of(10, 10)));
-        EXPECT_GT(compensated.pdf_background(c.scene, dir_of(40, 10)),
-                  plain.pdf_background(c.scene, dir_of(40, 10)));
-        EXPECT_GT(compensated.pdf_background(c.scene, dir_of(4, 22)), 0.0f);  // the floor
+        EXPECT_LT(compensated.pdf_background(c.scene, c.ref, c.n, dir_of(10, 10)),
+                  0.01f * plain.pdf_background(c.scene, c.ref, c.n, dir_of(10, 10)));
+        EXPECT_GT(compensated.pdf_background(c.scene, c.ref, c.n, dir_of(40, 10)),
+                  plain.pdf_background(c.scene, c.ref, c.n, dir_of(40, 10)));
+        EXPECT_GT(compensated.pdf_background(c.scene, c.ref, c.n, dir_of(4, 22)),
+                  0.0f);  // the floor
         // Its MIS weights: the balance heuristic, which the compensation is derived for.
         Estimator mis;
         mis.strategy = Strategy::Mis;
@@ -236,12 +244,16 @@ TEST(Lights, CompensationSamplesTheExcessOverTheMean) {
     constant.background.radiance = Color(1.0f);
     constant.background.image = constant.add_image(read_image(dir.path() / "grey.exr"));
     const Vec3 w = normalize(Vec3{0.3f, 0.5f, -0.2f});
-    EXPECT_EQ(LightSet(constant, true).pdf_background(constant, w),
-              LightSet(constant).pdf_background(constant, w));
+    const Point3 o{0.0f};
+    const Normal3 n{0.0f};
+    EXPECT_EQ(LightSet(constant, true).pdf_background(constant, o, n, w),
+              LightSet(constant).pdf_background(constant, o, n, w));
     EXPECT_FALSE(LightSet(constant, true).environment_compensated());
 }
 
-TEST(Lights, SelectionFollowsPower) {
+// Two quads facing +z: a bright one (radiance 3, area 1, power 3 pi) at z = 0 and a dim one
+// (radiance 1, area 2, power 2 pi) at z = 5.
+Scene two_quads() {
     Scene s;
     Material bright;
     bright.kind = MaterialKind::DiffuseLight;
@@ -249,11 +261,60 @@ TEST(Lights, SelectionFollowsPower) {
     Material dim = bright;
     dim.emission = s.add_solid(Color(1.0f));
     MaterialId b = s.add_material(bright), d = s.add_material(dim);
-    s.add_quad({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, b, kNone});  // power 3 pi
-    s.add_quad({{0, 0, 5}, {2, 0, 0}, {0, 1, 0}, d, kNone});  // power 2 pi
-    LightSet lights(s);
-    EXPECT_NEAR(lights.selection_probability(PrimRef::make(PrimKind::Quad, 0)), 0.6f, 1e-6f);
-    EXPECT_NEAR(lights.selection_probability(PrimRef::make(PrimKind::Quad, 1)), 0.4f, 1e-6f);
+    s.add_quad({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, b, kNone});
+    s.add_quad({{0, 0, 5}, {2, 0, 0}, {0, 1, 0}, d, kNone});
+    return s;
+}
+
+// A vertex chooses among a few lights by what each could bring it (light_bounds.h): from far
+// away along their normals in proportion to radiance x area, as power would; between them only
+// the light it is in front of; near the dim one mostly that one. The probabilities sum to 1,
+// and select() picks each light as often as its probability says.
+TEST(Lights, SelectionFollowsImportanceAtTheVertex) {
+    const Scene s = two_quads();
+    const LightSet lights(s);
+    const PrimRef bright = PrimRef::make(PrimKind::Quad, 0), dim = PrimRef::make(PrimKind::Quad, 1);
+    const Normal3 up{0, 0, 1}, none{0.0f};
+    const Point3 far{0.5f, 0.5f, 1000.0f};
+    EXPECT_NEAR(lights.selection_probability(bright, far, up), 0.6f, 0.01f);
+    EXPECT_NEAR(lights.selection_probability(dim, far, none), 0.4f, 0.01f);
+    const Point3 between{0.5f, 0.5f, 2.5f};  // behind the dim quad, which faces +z
+    EXPECT_EQ(lights.selection_probability(bright, between, up), 1.0f);
+    EXPECT_EQ(lights.selection_probability(dim, between, up), 0.0f);
+    const Point3 near_dim{1.0f, 0.5f, 5.5f};
+    EXPECT_GT(lights.selection_probability(dim, near_dim, up), 0.9f);
+    for (uint32_t i = 0; i < 200; ++i) {
+        const Point3 p{4.0f * u(5, i, 0) - 2.0f, 4.0f * u(5, i, 1) - 2.0f,
+                       8.0f * u(5, i, 2) - 1.0f};
+        const Normal3 n = i % 2 ? Normal3{0.0f} : sample_uniform_sphere(u(5, i, 3), u(5, i, 4));
+        const float pb = lights.selection_probability(bright, p, n);
+        EXPECT_NEAR(pb + lights.selection_probability(dim, p, n), 1.0f, 1e-6f) << i;
+        if (i % 20 != 0) continue;
+        int picks = 0;
+        const int m = 4000;
+        for (int k = 0; k < m; ++k) {
+            const LightChoice c = lights.select((k + 0.5f) / m, p, n);
+            picks += c.index == 0;
+            EXPECT_EQ(c.probability, c.index == 0 ? pb : lights.selection_probability(dim, p, n));
+        }
+        EXPECT_NEAR(picks / double(m), pb, 1.0 / m + 1e-6) << i;
+    }
+}
+
+// Beyond LightSelection::kLocalLights lights, the choice is in proportion to power everywhere.
+TEST(Lights, ManyLightsAreChosenByPower) {
+    Scene s = two_quads();
+    const MaterialId dim = s.quads[1].material;
+    for (size_t k = 2; k <= LightSelection::kLocalLights; ++k)
+        s.add_quad({{10.0f + k, 0, 0}, {1, 0, 0}, {0, 1, 0}, dim, kNone});  // power pi each
+    const LightSet lights(s);
+    const double total = 3 + 2 + (LightSelection::kLocalLights - 1);
+    for (const Point3 p : {Point3{0.5f, 0.5f, 2.5f}, Point3{20, 0, 1}}) {
+        EXPECT_NEAR(lights.selection_probability(PrimRef::make(PrimKind::Quad, 0), p, {0, 0, 1}),
+                    3 / total, 1e-6);
+        EXPECT_NEAR(lights.selection_probability(PrimRef::make(PrimKind::Quad, 1), p, {0, 0, 1}),
+                    2 / total, 1e-6);
+    }
 }
 
 // MIS is unbiased only while the density a light sample had equals the density that weighting
@@ -273,15 +334,18 @@ TEST(Lights, PdfOfEmissionFoundIsTheSamplersPdf) {
         size_t compared = 0;
         for (uint32_t i = 0; i < 2000; ++i) {
             const float us = u(17, i, 0), u1 = u(17, i, 1), u2 = u(17, i, 2);
-            const LightSample ls = lights.sample(c.scene, c.ref, lights.select(us), u1, u2);
+            const LightSample ls =
+                lights.sample(c.scene, c.ref, lights.select(us, c.ref, c.n), u1, u2);
             ASSERT_TRUE(ls.valid) << c.name;
             if (max_component(ls.radiance) <= 0.0f) continue;  // a back face: nothing is found
             const Ray ray{c.ref, ls.wi};
+            // Under a sky, a direction sampled from it may find one of the other lights first.
+            if (!ls.prim.valid() && bvh.intersect(ray).found()) continue;
             MediumStack media;
             float flight = 0.0f;
             const SegmentResult seg =
                 resolve_segment(c.scene, lights, mis, ray, bvh.intersect(ray), media, flight,
-                                PreviousVertex{c.ref, 1.0f, false});
+                                PreviousVertex{c.ref, 1.0f, false, c.n});
             ASSERT_EQ(seg.event, SegmentEvent::Emission) << c.name << " sample " << i;
             EXPECT_NEAR(seg.emission_pdf_light, ls.pdf, 1e-3f * ls.pdf) << c.name << " " << i;
 
@@ -295,18 +359,27 @@ TEST(Lights, PdfOfEmissionFoundIsTheSamplersPdf) {
             vs.light_u = u1;
             vs.light_v = u2;
             const DirectSample d = next_event(c.scene, lights, mis, v, ls.wi, vs);
+            // The vertex's normal may choose another light than c.n's: the light sample it takes.
+            const LightSample at_v =
+                lights.sample(c.scene, c.ref, lights.select(us, c.ref, v.ng), u1, u2);
+            if (!(max_component(at_v.radiance) > 0.0f) || !(dot(at_v.wi, v.ng) > 0.0f)) continue;
             ASSERT_TRUE(d.valid) << c.name << " " << i;
-            EXPECT_NEAR(d.pdf_light, ls.pdf, 1e-4f * ls.pdf) << c.name << " " << i;
+            EXPECT_NEAR(d.pdf_light, at_v.pdf, 1e-4f * at_v.pdf) << c.name << " " << i;
+            if (at_v.prim.bits != ls.prim.bits || !(at_v.wi == ls.wi)) continue;
             // Both techniques weigh the direction by one heuristic (the light sample's by its
             // shadow ray's length, the emission's by the segment's end), so that their weights
-            // sum to 1 for any BSDF density.
+            // sum to 1 for any BSDF density — the emission found after this vertex.
+            media = MediumStack{};
+            const SegmentResult seg_v =
+                resolve_segment(c.scene, lights, mis, ray, bvh.intersect(ray), media, flight,
+                                PreviousVertex{c.ref, 1.0f, false, v.ng});
             const MisHeuristics h = mis_heuristics(mis, lights);
             ASSERT_EQ(std::isinf(d.shadow.tmax), seg.at_infinity) << c.name << " " << i;
             const float pdf_bsdf = 0.7f * ls.pdf;
             EXPECT_NEAR(direct_weight(Strategy::Mis, h.of(std::isinf(d.shadow.tmax)), d.pdf_light,
                                       pdf_bsdf) +
                             emission_weight(Strategy::Mis, h.of(seg.at_infinity), false, pdf_bsdf,
-                                            seg.emission_pdf_light),
+                                            seg_v.emission_pdf_light),
                         1.0f, 1e-3f)
                 << c.name << " " << i;
             ++compared;
@@ -420,7 +493,8 @@ TEST(Lights, ClearcoatDarkensEmissionByItsFresnel) {
     for (const float cos_v : {1.0f, 0.6f, 0.2f, 0.05f}) {
         const Point3 ref{0.0f, -4.0f * std::sqrt(1.0f - cos_v * cos_v), 4.0f * cos_v};
         const double fc = 0.04 + 0.96 * std::pow(1.0 - cos_v, 5.0);
-        const LightSample ls = lights.sample(s, ref, lights.select(0.5f), 0.5f, 0.5f);
+        const LightSample ls =
+            lights.sample(s, ref, lights.select(0.5f, ref, Normal3{0.0f}), 0.5f, 0.5f);
         ASSERT_TRUE(ls.valid);
         ASSERT_NEAR(dot(-ls.wi, Vec3(0, 0, 1)), cos_v, 1e-5f);
         for (int a = 0; a < 3; ++a)

@@ -34,7 +34,7 @@ Batches capture(const Scene& scene, const Bvh& bvh, int side) {
         Point3 o = s.p + origin_offset(s.p) * n;
         b.diffuse.push_back(Ray{o, Frame::from_normal(n).to_world(local)});
         if (lights.empty()) continue;
-        LightSample ls = lights.sample(scene, o, lights.select(sample_1d(7, i, 0, 2)),
+        LightSample ls = lights.sample(scene, o, lights.select(sample_1d(7, i, 0, 2), o, n),
                                        sample_1d(7, i, 0, 3), sample_1d(7, i, 0, 4));
         if (ls.valid) b.shadow.push_back(Ray{o, ls.wi, 0.0f, ls.dist * (1.0f - 1e-4f)});
     }

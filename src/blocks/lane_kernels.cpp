@@ -692,7 +692,6 @@ void EnvironmentLightPoints(EnvironmentPointBlock* b,
 void EscapeRays(EscapeBlock* b,
                 const EnvironmentView* environment,
                 Distribution2DTables tables,
-                float select_prob,
                 bool with_pdf) {
     using D = hn::CappedTag<float, kShadeChunk>;
     using L = FloatLanes<D>;
@@ -701,6 +700,7 @@ void EscapeRays(EscapeBlock* b,
     const size_t n = b->n;
     if (n == 0) return;
     PadTail3({b->dir}, n, Padded(n, N));
+    if (with_pdf) PadTail<float>({b->select_prob}, n, Padded(n, N));
     // Every vector's (u, v) first, its texels and density fetched ahead, then the lookups: the
     // vectors' cache misses overlap.
     HWY_ALIGN float u[kShadeChunk], v[kShadeChunk];
@@ -713,8 +713,9 @@ void EscapeRays(EscapeBlock* b,
         if (with_pdf) PrefetchDistribution2DPdf<L>(tables, uk, vk);
     }
     for (size_t k = 0; k < n; k += N) {
-        const EscapedRay<L> r = Escape<L>(*environment, tables, hn::Load(d, u + k),
-                                          hn::Load(d, v + k), hn::Set(d, select_prob), with_pdf);
+        const EscapedRay<L> r =
+            Escape<L>(*environment, tables, hn::Load(d, u + k), hn::Load(d, v + k),
+                      with_pdf ? hn::Load(d, b->select_prob + k) : hn::Zero(d), with_pdf);
         Store3(d, r.radiance, b->radiance, k);
         hn::Store(r.pdf_light, d, b->pdf_light + k);
     }
@@ -818,8 +819,7 @@ void environment_light_points(EnvironmentPointBlock& b, const LightSet& lights) 
 
 void escape_rays(EscapeBlock& b, const LightSet& lights, bool with_pdf) {
     HWY_DYNAMIC_DISPATCH(EscapeRays)
-    (&b, &lights.environment_view(), lights.environment_tables(),
-     lights.background_selection_probability(), with_pdf);
+    (&b, &lights.environment_view(), lights.environment_tables(), with_pdf);
 }
 
 void direct_weights(Strategy strategy,

@@ -268,6 +268,7 @@ void environment_light_points(EnvironmentPointBlock& b, const LightSet& lights);
 // finds there, resolve_segment's (shading/environment_light-inl.h's Escape), bit for bit.
 struct EscapeBlock {
     alignas(64) float dir[3][kShadeChunk];       // in: the ray's direction, of any length
+    alignas(64) float select_prob[kShadeChunk];  // in, with_pdf: the background's selection
     alignas(64) float radiance[3][kShadeChunk];  // out: the map's radiance
     alignas(64) float pdf_light[kShadeChunk];    // out, with_pdf: the light sample's density
     size_t n = 0;

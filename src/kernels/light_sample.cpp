@@ -105,13 +105,14 @@ size_t light_sample(const WaveInputs& in,
         // next_event chooses, scalar code the others.
         for (size_t i = c; i < chunk_end; ++i) {
             const size_t row = i - c;
-            const LightChoice light = in.lights.select(queue.u_select[i]);
+            const Normal3 ng = WAVETRACE_XYZ_AT(queue, ng, i);
+            const LightChoice light =
+                in.lights.select(queue.u_select[i], WAVETRACE_XYZ_AT(queue, p, i), ng);
             block.lobe[row] = int32_t(lane_lobe(queue.kind[i]));
             block.select_prob[row] = light.probability;
             block.sphere[row] = -1;
             block.delta[row] = -1;
             block.environment[row] = 0;
-            const Normal3 ng = WAVETRACE_XYZ_AT(queue, ng, i);
             // A conductor's, a dielectric's or a metallic-roughness surface's BSDF comes from
             // its material.
             const bool glossy_row = queue.kind[i] == MaterialKind::Conductor ||

@@ -421,9 +421,16 @@ void escape_in_lanes(const WaveInputs& in, Chunk& c, ShadeOutputs& out) {
     if (rows.empty()) return;
     EscapeBlock& b = c.escapes;
     b.n = rows.size();
-    for (size_t k = 0; k < b.n; ++k)
-        for (int a = 0; a < 3; ++a) b.dir[a][k] = out.rays.dir[c.begin + rows[k]][a];
     const bool mis = in.estimator.strategy == Strategy::Mis;
+    for (size_t k = 0; k < b.n; ++k) {
+        const size_t i = c.begin + rows[k];
+        for (int a = 0; a < 3; ++a) b.dir[a][k] = out.rays.dir[i][a];
+        // Its MIS weight needs the density only where the previous vertex sampled lights.
+        b.select_prob[k] = mis && !out.paths.counts_fully[i]
+                               ? in.lights.background_selection_probability(out.paths.prev_p[i],
+                                                                            out.paths.prev_n[i])
+                               : 0.0f;
+    }
     escape_rays(b, in.lights, mis);
     for (size_t k = 0; k < b.n; ++k) {
         const size_t i = c.begin + rows[k];
@@ -520,7 +527,7 @@ void write_back_steps(const WaveInputs& in, const Chunk& c, ShadeOutputs& out) {
             out.paths.media[i] = PackedMedia::pack(media);
         }
         advance(i, out.paths.depth[i] + 1, b.next_eta_scale[k], block_row(b.weight, k),
-                {block_row(b.p, k), b.pdf[k], no_lights || b.delta[k] != 0},
+                {block_row(b.p, k), b.pdf[k], no_lights || b.delta[k] != 0, block_row(b.ng, k)},
                 Ray{block_row(b.origin, k), wi}, c.samples.next_flight[i - c.begin], out);
     }
 }

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "accel/intersect.h"
+#include "lights/light_bounds.h"
 #include "sampling/warp.h"
 #include "scene/delta_lights.h"
 #include "scene/material_lookup.h"
@@ -36,6 +37,7 @@ SphereCone sphere_cone(const Sphere& s, Point3 ref) {
 LightSet::LightSet(const Scene& scene, bool mis_compensation) {
     emitters_ = collect_emitters(scene);
     std::vector<float> power;
+    std::vector<LightBounds> light_bounds;
     for (uint32_t i = 0; i < emitters_.size(); ++i) {
         PrimRef prim = emitters_[i];
         index_[prim.bits] = i;
@@ -45,6 +47,7 @@ LightSet::LightSet(const Scene& scene, bool mis_compensation) {
         // The lanes' emitters emit one radiance in every direction.
         const bool uniform = e.kind == TextureKind::Solid && !m.coats_emission();
         power.push_back(scene.prim_area(prim) * kPi * lum * (m.two_sided ? 2.0f : 1.0f));
+        light_bounds.push_back(emitter_bounds(scene, prim, lum, m.two_sided || !uniform));
         planar_of_.push_back(-1);
         const bool triangle = prim.kind() == PrimKind::Triangle;
         if ((prim.kind() == PrimKind::Quad || triangle) && uniform) {
@@ -95,6 +98,7 @@ LightSet::LightSet(const Scene& scene, bool mis_compensation) {
     const float scene_radius = bounds.empty() ? 1.0f : 0.5f * length(bounds.extent());
     for (const Light& l : scene.lights) {
         power.push_back(delta_light_power(scene, l, scene_radius));
+        light_bounds.push_back(delta_light_bounds(scene, l, scene_radius));
         delta_of_.push_back(-1);
         const bool directional = l.kind == Light::Kind::Directional;
         if (!directional && l.kind != Light::Kind::Point) continue;
@@ -162,32 +166,36 @@ LightSet::LightSet(const Scene& scene, bool mis_compensation) {
         }
         power.push_back(4.0f * kPi * kPi * r * r * lum);
         area_power.push_back(power.back());
+        LightBounds b;
+        b.kind = LightBounds::Kind::Background;
+        b.phi = lum;
+        light_bounds.push_back(b);
     }
     count_ = power.size();
-    if (count_ > 0) select_ = Distribution1D(power);
-    if (count_ == 1) only_probability_ = select_.probability(0);
+    if (count_ > 0) selection_ = LightSelection(power, std::move(light_bounds));
     if (delta_count_ > 0 && !area_power.empty()) {
         area_select_ = Distribution1D(area_power);
         double share = 0;
         for (size_t i = 0; i < count_; ++i)
-            if (i < emitters || i >= emitters + delta_count_) share += select_.probability(i);
+            if (i < emitters || i >= emitters + delta_count_)
+                share += selection_.power_probability(i);
         area_fraction_ = static_cast<float>(share);
     }
 }
 
-float LightSet::selection_probability(PrimRef prim) const {
+float LightSet::selection_probability(PrimRef prim, Point3 p, Normal3 n) const {
     auto it = index_.find(prim.bits);
-    return it == index_.end() ? 0.0f : select_.probability(it->second);
+    return it == index_.end() ? 0.0f : selection_.probability(it->second, p, n);
 }
 
-float LightSet::background_selection_probability() const {
-    return background_ ? select_.probability(count_ - 1) : 0.0f;
+float LightSet::background_selection_probability(Point3 p, Normal3 n) const {
+    return background_ ? selection_.probability(count_ - 1, p, n) : 0.0f;
 }
 
 LightSample LightSet::sample_direction_light(
     const Scene& scene, Point3 ref, float u_select, float u1, float u2) const {
     if (!has_area_lights()) return {};
-    if (delta_count_ == 0) return sample(scene, ref, select(u_select), u1, u2);
+    if (delta_count_ == 0) return sample(scene, ref, selection_.select_by_power(u_select), u1, u2);
     // Among the other lights alone; its density's selection factor is the light's share of
     // their power, select_'s probability / area_fraction_ (pdf_direction).
     LightChoice c;
@@ -323,24 +331,29 @@ float LightSet::prim_pdf_given_selection(
     return uniform_area_to_solid_angle(dist * dist, cos_l, scene.prim_area(prim));
 }
 
-float LightSet::pdf_prim(const Scene& scene, Point3 ref, PrimRef prim, Vec3 wi, float dist) const {
-    float sel = selection_probability(prim);
+float LightSet::pdf_prim(
+    const Scene& scene, Point3 ref, Normal3 ref_n, PrimRef prim, Vec3 wi, float dist) const {
+    float sel = selection_probability(prim, ref, ref_n);
     return sel > 0.0f ? sel * prim_pdf_given_selection(scene, ref, prim, wi, dist) : 0.0f;
 }
 
-float LightSet::pdf_background(const Scene& scene, Vec3 wi) const {
+float LightSet::background_pdf_given_selection(const Scene& scene, Vec3 wi) const {
+    if (scene.background.kind == Background::Kind::Constant) return uniform_sphere_pdf();
+    return lanes::EnvironmentPdf<OneLane>(environment_view_, environment_.tables(), to_lanes(wi));
+}
+
+float LightSet::pdf_background(const Scene& scene, Point3 ref, Normal3 ref_n, Vec3 wi) const {
     if (!background_) return 0.0f;
-    float sel = background_selection_probability();
-    const Background& bg = scene.background;
-    if (bg.kind == Background::Kind::Constant) return sel * uniform_sphere_pdf();
-    return sel *
-           lanes::EnvironmentPdf<OneLane>(environment_view_, environment_.tables(), to_lanes(wi));
+    return background_selection_probability(ref, ref_n) * background_pdf_given_selection(scene, wi);
 }
 
 float LightSet::pdf_direction(const Scene& scene, Point3 ref, Vec3 wi) const {
-    float pdf = pdf_background(scene, wi);
+    float pdf = background_ ? selection_.power_probability(count_ - 1) *
+                                  background_pdf_given_selection(scene, wi)
+                            : 0.0f;
     Ray ray{ref, wi};
-    for (PrimRef prim : emitters_) {
+    for (size_t k = 0; k < emitters_.size(); ++k) {
+        const PrimRef prim = emitters_[k];
         PrimHit ph;
         bool hit = false;
         uint32_t i = prim.index();
@@ -362,7 +375,9 @@ float LightSet::pdf_direction(const Scene& scene, Point3 ref, Vec3 wi) const {
                 break;
             }
         }
-        if (hit && ph.t > 0.0f) pdf += pdf_prim(scene, ref, prim, wi, ph.t);
+        if (hit && ph.t > 0.0f)
+            pdf += selection_.power_probability(k) *
+                   prim_pdf_given_selection(scene, ref, prim, wi, ph.t);
     }
     // The densities above select among all lights; sample_direction_light among all but the
     // point lights.

@@ -2,10 +2,11 @@
 // MIS. Every emissive primitive is a light; so is every point light and a non-black background.
 //
 // Densities returned here include the probability of selecting the light, so they compare
-// directly with BSDF densities in MIS weights. Lights are selected in proportion to their
-// power (area x pi x luminance of the radiance, doubled if two-sided; textured emitters count
-// with luminance 1; a point light 4 pi x luminance of its intensity; the background as a sphere
-// of the scene's radius, 4 pi^2 r^2 L).
+// directly with BSDF densities in MIS weights. Next-event estimation selects a light by its
+// importance at the vertex where the scene has few lights (lights/light_selection.h), else in
+// proportion to power (area x pi x luminance of the radiance, doubled if two-sided; textured
+// emitters count with luminance 1; a point light 4 pi x luminance of its intensity; the
+// background as a sphere of the scene's radius, 4 pi^2 r^2 L).
 //
 // Point, spot and directional lights are deltas: a sample of one has "pdf" its selection
 // probability and "radiance" intensity / d^2 (times a spot's falloff; a directional light's
@@ -23,6 +24,8 @@
 #include <unordered_map>
 #include <vector>
 
+#include "lights/light_columns.h"
+#include "lights/light_selection.h"
 #include "sampling/distribution.h"
 #include "scene/environment_view.h"
 #include "wavetrace/math/constants.h"
@@ -43,30 +46,6 @@ struct LightSample {
     bool valid = false;
 };
 
-// The quad and triangle lights of constant radiance (the case next-event estimation at lane
-// vertices samples in SIMD lanes, src/shading/light_sample-inl.h) as columns, entry k for
-// planar emitter k (planar_emitter_index()): corner q, edges u and v (a triangle's p0, p1 - p0
-// and p2 - p0), the front normal n = normalize(cross(u, v)), the
-// area, the radiance, two_sided and triangle (1 or 0).
-struct PlanarEmitterColumns {
-    std::vector<float> q[3], u[3], v[3], n[3], radiance[3], area, two_sided, triangle;
-};
-
-// The sphere lights of constant radiance (sampled in SIMD lanes from outside the sphere,
-// src/shading/sphere_light-inl.h) as columns, entry k for sphere emitter k
-// (sphere_emitter_index()): centre, radius, radiance, and two_sided (1 or 0).
-struct SphereEmitterColumns {
-    std::vector<float> centre[3], radius, radiance[3], two_sided;
-};
-
-// The point and directional lights (sampled in SIMD lanes, src/shading/light_sample-inl.h) as
-// columns, entry k for delta light k (delta_light_index()): a point light's position and
-// radiant intensity, or a directional light's direction towards it (-Light::direction) and
-// irradiance, and directional (1 or 0). Spots and projectors are not among them.
-struct DeltaLightColumns {
-    std::vector<float> at[3], intensity[3], directional;
-};
-
 // The LightSample of a direction sampled from the environment map (EnvironmentLightPoint's wi,
 // radiance and density, selection included): valid wherever the density is finite and positive,
 // radiance or not, since the one-sample strategies continue the path along it.
@@ -79,11 +58,6 @@ inline LightSample environment_light_sample(Vec3 wi, Color radiance, float pdf) 
     return ls;
 }
 
-struct LightChoice {
-    size_t index = 0;
-    float probability = 0.0f;
-};
-
 class LightSet {
   public:
     LightSet() = default;
@@ -94,17 +68,15 @@ class LightSet {
     bool has_area_lights() const { return count_ > delta_count_; }
     size_t size() const { return count_; }
     bool has_background() const { return background_; }
-    // Probability that sampling picks this emissive primitive (0 if it is not a light).
-    float selection_probability(PrimRef prim) const;
-    float background_selection_probability() const;
+    // Probability that select() at (p, n) picks this emissive primitive (0 if it is not a
+    // light), or the background.
+    float selection_probability(PrimRef prim, Point3 p, Normal3 n) const;
+    float background_selection_probability(Point3 p, Normal3 n) const;
 
-    // Picks a light with selection number u_select, in proportion to power (not empty()).
-    // Inline: both engines choose at every vertex.
-    LightChoice select(float u_select) const {
-        if (count_ == 1) return {0, only_probability_};
-        LightChoice c;
-        c.index = select_.sample_discrete(u_select, &c.probability);
-        return c;
+    // Picks a light with selection number u_select for the vertex at p with geometric normal n
+    // (zero in a medium; not empty()). Inline: both engines choose at every vertex.
+    LightChoice select(float u_select, Point3 p, Normal3 n) const {
+        return selection_.select(u_select, p, n);
     }
     // The chosen light's index among the planar emitters if it is a quad or a triangle of
     // constant radiance, else -1.
@@ -142,11 +114,13 @@ class LightSet {
     // directions of the one-sample strategies, whose density is pdf_direction.
     LightSample sample_direction_light(
         const Scene& scene, Point3 ref, float u_select, float u1, float u2) const;
-    // Density with which sample() from `ref` produces direction wi hitting emitter `prim` at
-    // point p (distance dist). Zero for non-emitters.
-    float pdf_prim(const Scene& scene, Point3 ref, PrimRef prim, Vec3 wi, float dist) const;
-    // Density with which sample() produces background direction wi.
-    float pdf_background(const Scene& scene, Vec3 wi) const;
+    // Density with which a light sample from `ref` (geometric normal ref_n, zero in a medium),
+    // chosen by select(), produces direction wi hitting emitter `prim` at distance dist. Zero
+    // for non-emitters.
+    float pdf_prim(
+        const Scene& scene, Point3 ref, Normal3 ref_n, PrimRef prim, Vec3 wi, float dist) const;
+    // The same for background direction wi.
+    float pdf_background(const Scene& scene, Point3 ref, Normal3 ref_n, Vec3 wi) const;
     // Total density of direction wi from `ref` over all lights, ignoring occlusion: the
     // density sample_direction_light assigns to wi. O(number of emitters).
     float pdf_direction(const Scene& scene, Point3 ref, Vec3 wi) const;
@@ -154,6 +128,7 @@ class LightSet {
   private:
     float prim_pdf_given_selection(
         const Scene& scene, Point3 ref, PrimRef prim, Vec3 wi, float dist) const;
+    float background_pdf_given_selection(const Scene& scene, Vec3 wi) const;
 
     std::vector<PrimRef> emitters_;  // light i < emitters_.size()
     std::vector<int32_t> planar_of_;   // light i: index into planar_columns_, or -1
@@ -166,12 +141,12 @@ class LightSet {
     bool background_ = false;                       // the last light, if present
     size_t count_ = 0;
     size_t delta_count_ = 0;  // Scene::lights: lights emitters_.size() .. + delta_count_
-    // Without point lights 1 and select_; with them, the share of the other lights' power, and
-    // the selection among those alone (the background as entry emitters_.size()).
+    // For the one-sample strategies, by power: without point lights 1 and selection_'s power;
+    // with them, the share of the other lights' power, and the selection among those alone (the
+    // background as entry emitters_.size()).
     float area_fraction_ = 1.0f;
     Distribution1D area_select_;
-    Distribution1D select_;
-    float only_probability_ = 0.0f;  // select_'s probability of light 0, when it is the only one
+    LightSelection selection_;
     // Over the environment image's texels: luminance (or its excess over the mean, with MIS
     // compensation) times the texel's solid angle.
     Distribution2D environment_;

@@ -257,7 +257,7 @@ DirectSample next_event(const Scene& scene,
                         Vec3 wo,
                         const VertexSamples& u) {
     if (!samples_lights(config, v, lights)) return {};
-    return next_event(scene, lights, v, wo, u, lights.select(u.light_select));
+    return next_event(scene, lights, v, wo, u, lights.select(u.light_select, v.p, v.ng));
 }
 
 DirectSample next_event(const Scene& scene,
@@ -366,8 +366,9 @@ SegmentResult resolve_segment(const Scene& scene,
         r.event = SegmentEvent::Emission;
         r.emission = le;
         if (config.strategy == Strategy::Mis && !prev.counts_fully)
-            r.emission_pdf_light = prim.valid() ? lights.pdf_prim(scene, prev.p, prim, dir, dist)
-                                                : lights.pdf_background(scene, dir);
+            r.emission_pdf_light = prim.valid()
+                                       ? lights.pdf_prim(scene, prev.p, prev.n, prim, dir, dist)
+                                       : lights.pdf_background(scene, prev.p, prev.n, dir);
     };
     if (!hit.found()) {
         r.at_infinity = true;
@@ -376,9 +377,10 @@ SegmentResult resolve_segment(const Scene& scene,
             float u, v;
             lanes::EnvironmentUvOfRay<OneLane>(lights.environment_view(), lanes::to_lanes(ray.d),
                                                &u, &v);
-            const lanes::EscapedRay<OneLane> e =
-                lanes::Escape<OneLane>(lights.environment_view(), lights.environment_tables(), u, v,
-                                       lights.background_selection_probability(), with_pdf);
+            const lanes::EscapedRay<OneLane> e = lanes::Escape<OneLane>(
+                lights.environment_view(), lights.environment_tables(), u, v,
+                with_pdf ? lights.background_selection_probability(prev.p, prev.n) : 0.0f,
+                with_pdf);
             r.event = SegmentEvent::Emission;
             r.emission = lanes::to_vec3(e.radiance);
             r.emission_pdf_light = e.pdf_light;
@@ -474,7 +476,8 @@ PathStep continue_path(const Scene& scene,
     if (c.transmitted) media.cross(v.interior, dot(c.wi, v.ng) < 0.0f, scene.medium_boundaries);
     step.passed_sheet = c.transmitted && v.bsdf.kind == MaterialKind::ThinDielectric;
     step.prev = step.passed_sheet ? prev
-                                  : PreviousVertex{v.p, c.pdf_bsdf, c.delta || !can_sample_lights(v, lights)};
+                                  : PreviousVertex{v.p, c.pdf_bsdf,
+                                                   c.delta || !can_sample_lights(v, lights), v.ng};
     step.next = Ray{offset_origin(v, c.wi), c.wi};
     step.alive = true;
     return step;

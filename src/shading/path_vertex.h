@@ -192,6 +192,7 @@ struct PreviousVertex {
     Point3 p;
     float pdf_bsdf = 0.0f;
     bool counts_fully = true;  // camera ray, or a vertex that could not sample lights
+    Normal3 n{0.0f};           // geometric normal (zero in a medium): its light selection
 };
 
 enum class SegmentEvent : uint8_t {
