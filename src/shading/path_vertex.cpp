@@ -452,7 +452,7 @@ PathStep continue_path(const Scene& scene,
         if (!r.alive) return step;
         step.weight = to_vec3(r.weight);
         // Emission found after a delta lobe counts fully: no light sample could have found it.
-        step.prev = {v.p, r.pdf, r.delta || lights.empty()};
+        step.prev = {v.p, r.pdf, r.delta || lights.empty(), v.ng};
         step.next = Ray{to_vec3(r.origin), to_vec3(r.wi)};
         step.eta_scale = r.eta_scale;
         if (r.transmitted)
