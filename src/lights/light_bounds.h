@@ -9,6 +9,8 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
+#include <vector>
 
 #include "wavetrace/math/vec3.h"
 #include "wavetrace/scene/ids.h"
@@ -36,14 +38,22 @@ struct LightBounds {
     float phi = 0.0f;
 };
 
-// The light's importance at point p with normal n (zero in a medium): for a bounded light
-// phi cos(theta') / d^2 times the cosine at p (|cos|: the point may transmit), both angles
-// less the angle its sphere subtends from p, and d^2 at least half the radius squared (so
-// that A / d^2 stays below 2 pi); a directional light's phi |cos|; a background's pi phi at a
-// surface, 4 pi phi in a medium (where a bounded light's has no cosine at the point either).
-// The cosine at p is at least 1/16, since a shading normal may see light the geometric normal
-// grazes. Zero only where the light sends nothing: behind a one-sided face, outside a cone.
-float light_importance(const LightBounds& b, Point3 p, Normal3 n);
+// The light's importance at point p with normal n (zero in a medium), computed in lanes
+// (lights/light_importance-inl.h): for a bounded light phi cos(theta') / d^2 times the cosine
+// at p (|cos|: the point may transmit), both angles less the angle its sphere subtends from p,
+// and d^2 at least half the radius squared (so that A / d^2 stays below 2 pi); a directional
+// light's phi |cos|; a background's pi phi at a surface, 4 pi phi in a medium (where a bounded
+// light's has no cosine at p either). The cosine at p is at least 1/16, since a shading normal
+// may see light the geometric normal grazes. Zero only where the light sends nothing: behind a
+// one-sided face, outside a cone.
+
+// LightBounds of several lights as columns, for the lanes: entry k light k, padded to a whole
+// number of vectors with lights of importance zero.
+struct LightBoundsColumns {
+    std::vector<float> centre[3], axis[3], radius2, cos_o, sin_o, cos_e, two_sided, phi, kind;
+    size_t size() const { return phi.size(); }
+};
+LightBoundsColumns light_bounds_columns(std::span<const LightBounds> bounds, size_t padded);
 
 struct Scene;
 struct Light;

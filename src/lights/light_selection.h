@@ -27,13 +27,16 @@ class LightSelection {
     // Local importance pays for its cost per vertex (every light's bounds evaluated) up to this
     // many lights.
     static constexpr size_t kLocalLights = 32;
+    // The columns are padded to a multiple of the widest vector's lanes.
+    static constexpr size_t kLanesAtMost = 16;
+    static_assert(kLocalLights % kLanesAtMost == 0);
 
     LightSelection() = default;
     // Light i's power and bounds (both of the same size, not empty; power not all zero).
     LightSelection(std::span<const float> power, std::vector<LightBounds> bounds);
 
     size_t size() const { return power_.size(); }
-    bool local() const { return !bounds_.empty(); }
+    bool local() const { return columns_.size() > 0; }
 
     // Picks a light with u for the vertex at p with normal n (zero in a medium). Inline: both
     // engines choose at every vertex.
@@ -55,11 +58,12 @@ class LightSelection {
 
   private:
     LightChoice select_local(float u, Point3 p, Normal3 n) const;
-    // Every light's importance at (p, n) into w (size() entries); their sum.
+    // Every light's importance at (p, n) into w (columns_.size() entries, in lanes); the sum of
+    // the first size(), in order.
     float importances(Point3 p, Normal3 n, float* w) const;
 
     Distribution1D power_;
-    std::vector<LightBounds> bounds_;  // empty: by power alone
+    LightBoundsColumns columns_;  // empty: by power alone
 };
 
 }  // namespace wavetrace
