@@ -301,6 +301,52 @@ TEST(Lights, SelectionFollowsImportanceAtTheVertex) {
     }
 }
 
+// The emissive triangles of one material are one group, however many (here 40, more than
+// kLocalLights): the group is chosen by its importance, its triangles by their area.
+TEST(Lights, AMeshLightIsOneGroupChosenByImportance) {
+    Scene s = two_quads();
+    const MaterialId dim = s.quads[1].material;
+    s.quads.pop_back();
+    std::vector<Point3> positions;
+    std::vector<uint32_t> indices;
+    for (uint32_t k = 0; k < 40; ++k) {  // a strip at z = 5 facing +z, triangles of two sizes
+        const float x = float(k), w = k % 2 ? 0.5f : 1.0f;
+        positions.insert(positions.end(), {{x, 0, 5}, {x + w, 0, 5}, {x, 1, 5}});
+        indices.insert(indices.end(), {3 * k, 3 * k + 1, 3 * k + 2});
+    }
+    s.add_mesh({.material = dim}, positions, {}, {}, indices);
+    const LightSet lights(s);
+    ASSERT_EQ(lights.size(), 41u);
+    auto tri = [](uint32_t k) { return PrimRef::make(PrimKind::Triangle, k); };
+    const PrimRef quad = PrimRef::make(PrimKind::Quad, 0);
+    for (uint32_t i = 0; i < 100; ++i) {
+        const Point3 p{40.0f * u(9, i, 0) - 5.0f, 4.0f * u(9, i, 1) - 2.0f,
+                       8.0f * u(9, i, 2) - 1.0f};
+        const Normal3 n = i % 2 ? Normal3{0.0f} : sample_uniform_sphere(u(9, i, 3), u(9, i, 4));
+        double total = lights.selection_probability(quad, p, n);
+        for (uint32_t k = 0; k < 40; ++k) total += lights.selection_probability(tri(k), p, n);
+        EXPECT_NEAR(total, 1.0, 1e-5) << i;
+        const float p0 = lights.selection_probability(tri(0), p, n);
+        if (p0 > 0.0f) {  // the big triangles twice the small ones, wherever p is
+            EXPECT_NEAR(lights.selection_probability(tri(1), p, n) / p0, 0.5f, 1e-5f) << i;
+        }
+        const int m = 2000;
+        int picks = 0;
+        for (int k = 0; k < m; ++k) {
+            const LightChoice c = lights.select((k + 0.5f) / m, p, n);
+            picks += c.index == 40;  // the quad, after the triangles (collect_emitters)
+            if (c.index < 40) {
+                EXPECT_EQ(c.probability, lights.selection_probability(tri(c.index), p, n));
+            }
+        }
+        EXPECT_NEAR(picks / double(m), lights.selection_probability(quad, p, n), 1.0 / m + 1e-6)
+            << i;
+    }
+    // From below the strip (which faces up), behind it: mostly the quad (the group's sphere,
+    // 20 across, relaxes the strip's cone; a light of its own there would get none).
+    EXPECT_GT(lights.selection_probability(quad, {0.5f, 0.5f, 2.5f}, {0, 0, 1}), 0.9f);
+}
+
 // Beyond LightSelection::kLocalLights lights, the choice is in proportion to power everywhere.
 TEST(Lights, ManyLightsAreChosenByPower) {
     Scene s = two_quads();

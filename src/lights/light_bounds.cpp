@@ -79,6 +79,32 @@ LightBounds delta_light_bounds(const Scene& scene, const Light& l, float scene_r
     return b;
 }
 
+LightBounds union_of(std::span<const LightBounds> members) {
+    if (members.size() == 1) return members[0];
+    Vec3 lo{kInfinity}, hi{-kInfinity};
+    for (const LightBounds& m : members)
+        for (int a = 0; a < 3; ++a) {
+            lo[a] = std::min(lo[a], m.centre[a] - m.radius);
+            hi[a] = std::max(hi[a], m.centre[a] + m.radius);
+        }
+    LightBounds u = members[0];
+    u.centre = 0.5f * (lo + hi);
+    u.radius = 0.0f;
+    u.phi = 0.0f;
+    for (const LightBounds& m : members) {
+        u.radius = std::max(u.radius, length(m.centre - u.centre) + m.radius);
+        u.phi += m.phi;
+        const bool same_cone = m.cos_theta_o == u.cos_theta_o && m.cos_theta_e == u.cos_theta_e &&
+                               m.two_sided == u.two_sided && dot(m.axis, u.axis) >= 0.9999f;
+        if (!same_cone) {
+            u.cos_theta_o = -1.0f;
+            u.sin_theta_o = 0.0f;
+            u.cos_theta_e = 0.0f;
+        }
+    }
+    return u;
+}
+
 LightBoundsColumns light_bounds_columns(std::span<const LightBounds> bounds, size_t padded) {
     LightBoundsColumns c;
     LightBounds none;

@@ -55,6 +55,11 @@ struct LightBoundsColumns {
 };
 LightBoundsColumns light_bounds_columns(std::span<const LightBounds> bounds, size_t padded);
 
+// Bounds that hold all of `members` (not empty): a sphere around theirs, the sum of their phi,
+// and their common cone where they all face one way (a planar light's triangles), else every
+// direction. Bounded lights only.
+LightBounds union_of(std::span<const LightBounds> members);
+
 struct Scene;
 struct Light;
 

@@ -5,8 +5,10 @@
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/highway.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <unordered_map>
 
 #include "lights/light_importance-inl.h"
 #include "util/check.h"
@@ -46,37 +48,86 @@ namespace wavetrace {
 
 HWY_EXPORT(LightImportances);
 
-LightSelection::LightSelection(std::span<const float> power, std::vector<LightBounds> bounds)
+LightSelection::LightSelection(std::span<const float> power,
+                               std::span<const LightBounds> bounds,
+                               std::span<const uint32_t> group_key)
     : power_(power) {
     WT_CHECK_EQ(power.size(), bounds.size());
-    if (bounds.size() > 1 && bounds.size() <= kLocalLights)
-        columns_ = light_bounds_columns(
-            bounds, (bounds.size() + kLanesAtMost - 1) / kLanesAtMost * kLanesAtMost);
+    WT_CHECK_EQ(power.size(), group_key.size());
+    std::unordered_map<uint32_t, uint32_t> group_of_key;
+    std::vector<uint32_t> group;
+    uint32_t groups = 0;
+    for (uint32_t key : group_key) {
+        if (key == kOwnGroup) {
+            group.push_back(groups++);
+            continue;
+        }
+        const auto [it, added] = group_of_key.try_emplace(key, groups);
+        group.push_back(it->second);
+        groups += added ? 1 : 0;
+    }
+    if (groups < 2 || groups > kLocalLights) return;
+    group_ = std::move(group);
+    lights_of_.resize(groups);
+    rank_.resize(group_.size());
+    for (uint32_t i = 0; i < group_.size(); ++i) {
+        rank_[i] = static_cast<uint32_t>(lights_of_[group_[i]].size());
+        lights_of_[group_[i]].push_back(i);
+    }
+    std::vector<LightBounds> group_bounds;
+    for (const std::vector<uint32_t>& lights : lights_of_) {
+        std::vector<LightBounds> members;
+        std::vector<float> member_power;
+        for (uint32_t i : lights) {
+            members.push_back(bounds[i]);
+            member_power.push_back(power[i]);
+        }
+        group_bounds.push_back(union_of(members));
+        // A group of no power (all its lights black) keeps uniform weights: importance zero.
+        bool any = false;
+        for (float w : member_power) any = any || w > 0.0f;
+        if (!any) std::fill(member_power.begin(), member_power.end(), 1.0f);
+        within_.emplace_back(member_power);
+    }
+    columns_ = light_bounds_columns(group_bounds,
+                                    (groups + kLanesAtMost - 1) / kLanesAtMost * kLanesAtMost);
 }
 
 float LightSelection::importances(Point3 p, Normal3 n, float* w) const {
     HWY_DYNAMIC_DISPATCH(LightImportances)(&columns_, p, n, w);
     float sum = 0.0f;
-    for (size_t i = 0; i < size(); ++i) sum += w[i];
+    for (size_t g = 0; g < lights_of_.size(); ++g) sum += w[g];
     return sum;
 }
 
-// Where no light's importance is positive and finite (a point behind every one-sided light,
-// in the dark: no light sends it anything), by power.
+// Where no group's importance is positive and finite (a point behind every one-sided light,
+// in the dark: no light sends it anything), by power. The part of u within the chosen group's
+// share chooses its light.
 LightChoice LightSelection::select_local(float u, Point3 p, Normal3 n) const {
     alignas(64) std::array<float, kLocalLights> w;
     const float sum = importances(p, n, w.data());
     if (!(sum > 0.0f) || !std::isfinite(sum)) return select_by_power(u);
     const float target = u * sum;
     float below = 0.0f;
-    size_t last = 0;  // the last light of positive importance
-    for (size_t i = 0; i < size(); ++i) {
-        if (!(w[i] > 0.0f)) continue;
-        last = i;
-        below += w[i];
-        if (target < below) return {i, w[i] / sum};
+    size_t g = lights_of_.size();  // the group chosen
+    size_t last = 0;               // the last group of positive importance
+    for (size_t k = 0; k < lights_of_.size(); ++k) {
+        if (!(w[k] > 0.0f)) continue;
+        last = k;
+        if (target < below + w[k]) {
+            g = k;
+            break;
+        }
+        below += w[k];
     }
-    return {last, w[last] / sum};  // u * sum rounded up to the sum
+    if (g == lights_of_.size()) {  // u * sum rounded up to the sum
+        g = last;
+        below = sum - w[g];
+    }
+    const float within_u = std::clamp((target - below) / w[g], 0.0f, 0.99999994f);
+    float p_within;
+    const size_t r = within_[g].sample_discrete(within_u, &p_within);
+    return {lights_of_[g][r], w[g] / sum * p_within};
 }
 
 float LightSelection::probability(size_t i, Point3 p, Normal3 n) const {
@@ -84,7 +135,8 @@ float LightSelection::probability(size_t i, Point3 p, Normal3 n) const {
     alignas(64) std::array<float, kLocalLights> w;
     const float sum = importances(p, n, w.data());
     if (!(sum > 0.0f) || !std::isfinite(sum)) return power_.probability(i);
-    return w[i] / sum;
+    const uint32_t g = group_[i];
+    return w[g] / sum * within_[g].probability(rank_[i]);
 }
 
 }  // namespace wavetrace

@@ -1,13 +1,16 @@
 // Which light a vertex samples. In proportion to the lights' power — the same choice at every
-// point, a table lookup — or, for a scene of at most kLocalLights lights, in proportion to
-// their importance at the vertex (light_bounds.h): a light far away, facing away or outside
-// its cone is chosen less, and the lights that do light the point share the samples by what
-// each brings. pbrt-v4's exhaustive light sampler chooses likewise; a BVH over the lights'
-// bounds (its default, Conty Estevez and Kulla 2018) would carry the idea to many lights,
+// point, a table lookup — or, for a scene of at most kLocalLights light groups, a group in
+// proportion to its importance at the vertex (light_bounds.h), then a light of the group by
+// power: a light far away, facing away or outside its cone is chosen less, and the lights that
+// do light the point share the samples by what each brings. A group is one light, or the
+// emissive triangles of one material (a mesh light, whose triangles the group's bounds hold
+// together). pbrt-v4's exhaustive light sampler chooses likewise; a BVH over the lights'
+// bounds (its default, Conty Estevez and Kulla 2018) would carry the idea to many groups,
 // which here keep the power.
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -24,16 +27,20 @@ struct LightChoice {
 
 class LightSelection {
   public:
-    // Local importance pays for its cost per vertex (every light's bounds evaluated) up to this
-    // many lights.
+    // Local importance pays for its cost per vertex (every group's bounds evaluated) up to this
+    // many groups.
     static constexpr size_t kLocalLights = 32;
     // The columns are padded to a multiple of the widest vector's lanes.
     static constexpr size_t kLanesAtMost = 16;
     static_assert(kLocalLights % kLanesAtMost == 0);
 
     LightSelection() = default;
-    // Light i's power and bounds (both of the same size, not empty; power not all zero).
-    LightSelection(std::span<const float> power, std::vector<LightBounds> bounds);
+    // Light i's power, bounds and group key (all of the same size, not empty; power not all
+    // zero): the lights of one key other than kOwnGroup form a group, each other light its own.
+    static constexpr uint32_t kOwnGroup = ~0u;
+    LightSelection(std::span<const float> power,
+                   std::span<const LightBounds> bounds,
+                   std::span<const uint32_t> group_key);
 
     size_t size() const { return power_.size(); }
     bool local() const { return columns_.size() > 0; }
@@ -58,12 +65,16 @@ class LightSelection {
 
   private:
     LightChoice select_local(float u, Point3 p, Normal3 n) const;
-    // Every light's importance at (p, n) into w (columns_.size() entries, in lanes); the sum of
-    // the first size(), in order.
+    // Every group's importance at (p, n) into w (columns_.size() entries, in lanes); the sum
+    // over the groups, in order.
     float importances(Point3 p, Normal3 n, float* w) const;
 
     Distribution1D power_;
-    LightBoundsColumns columns_;  // empty: by power alone
+    LightBoundsColumns columns_;                    // per group; empty: by power alone
+    std::vector<uint32_t> group_;                   // light i's group
+    std::vector<uint32_t> rank_;                    // light i's place among its group's lights
+    std::vector<std::vector<uint32_t>> lights_of_;  // group g's lights, in order
+    std::vector<Distribution1D> within_;            // group g: its lights by power
 };
 
 }  // namespace wavetrace

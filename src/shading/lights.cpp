@@ -38,6 +38,8 @@ LightSet::LightSet(const Scene& scene, bool mis_compensation) {
     emitters_ = collect_emitters(scene);
     std::vector<float> power;
     std::vector<LightBounds> light_bounds;
+    // Each light its own group, but the emissive triangles of one material (a mesh light) one.
+    std::vector<uint32_t> group;
     for (uint32_t i = 0; i < emitters_.size(); ++i) {
         PrimRef prim = emitters_[i];
         index_[prim.bits] = i;
@@ -48,8 +50,9 @@ LightSet::LightSet(const Scene& scene, bool mis_compensation) {
         const bool uniform = e.kind == TextureKind::Solid && !m.coats_emission();
         power.push_back(scene.prim_area(prim) * kPi * lum * (m.two_sided ? 2.0f : 1.0f));
         light_bounds.push_back(emitter_bounds(scene, prim, lum, m.two_sided || !uniform));
-        planar_of_.push_back(-1);
         const bool triangle = prim.kind() == PrimKind::Triangle;
+        group.push_back(triangle ? scene.prim_material(prim) : LightSelection::kOwnGroup);
+        planar_of_.push_back(-1);
         if ((prim.kind() == PrimKind::Quad || triangle) && uniform) {
             // A quad's corner and edges, or a triangle's first vertex and the edges from it.
             Point3 q;
@@ -99,6 +102,7 @@ LightSet::LightSet(const Scene& scene, bool mis_compensation) {
     for (const Light& l : scene.lights) {
         power.push_back(delta_light_power(scene, l, scene_radius));
         light_bounds.push_back(delta_light_bounds(scene, l, scene_radius));
+        group.push_back(LightSelection::kOwnGroup);
         delta_of_.push_back(-1);
         const bool directional = l.kind == Light::Kind::Directional;
         if (!directional && l.kind != Light::Kind::Point) continue;
@@ -170,9 +174,10 @@ LightSet::LightSet(const Scene& scene, bool mis_compensation) {
         b.kind = LightBounds::Kind::Background;
         b.phi = lum;
         light_bounds.push_back(b);
+        group.push_back(LightSelection::kOwnGroup);
     }
     count_ = power.size();
-    if (count_ > 0) selection_ = LightSelection(power, std::move(light_bounds));
+    if (count_ > 0) selection_ = LightSelection(power, light_bounds, group);
     if (delta_count_ > 0 && !area_power.empty()) {
         area_select_ = Distribution1D(area_power);
         double share = 0;
