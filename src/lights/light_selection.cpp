@@ -124,6 +124,7 @@ LightChoice LightSelection::select_local(float u, Point3 p, Normal3 n) const {
         g = last;
         below = sum - w[g];
     }
+    if (lights_of_[g].size() == 1) return {lights_of_[g][0], w[g] / sum};
     const float within_u = std::clamp((target - below) / w[g], 0.0f, 0.99999994f);
     float p_within;
     const size_t r = within_[g].sample_discrete(within_u, &p_within);
@@ -136,6 +137,7 @@ float LightSelection::probability(size_t i, Point3 p, Normal3 n) const {
     const float sum = importances(p, n, w.data());
     if (!(sum > 0.0f) || !std::isfinite(sum)) return power_.probability(i);
     const uint32_t g = group_[i];
+    if (lights_of_[g].size() == 1) return w[g] / sum;
     return w[g] / sum * within_[g].probability(rank_[i]);
 }
 
