@@ -40,12 +40,14 @@ struct LightBoundsLanes {
 };
 
 // The importance at p (normal n; surface: n is not zero) of the lights in the lanes, as
-// light_bounds.h states it.
+// light_bounds.h states it. Without `cones` every light emits in every direction (cos_o -1),
+// and the same result comes with less work.
 template <class L>
 HWY_INLINE typename L::F LightImportance(const LightBoundsLanes<L>& b,
                                          V3<typename L::F> p,
                                          V3<typename L::F> n,
-                                         bool surface) {
+                                         bool surface,
+                                         bool cones) {
     using F = typename L::F;
     const F zero = L::Set(0.0f), one = L::Set(1.0f);
     const F min_cos_at_point = L::Set(1.0f / 16.0f);
@@ -58,16 +60,21 @@ HWY_INLINE typename L::F LightImportance(const LightBoundsLanes<L>& b,
     const F sin_b = L::Sqrt(sin2_b), cos_b = L::Sqrt(L::Max(one - sin2_b, zero));
     const F d = L::Sqrt(d2);
     const V3<F> wn = Select3<L>(d > zero, w * (one / d), b.axis);
-    // theta' = max(theta_w - theta_o - theta_b, 0), theta_w between the axis and wn.
-    F cos_w = Dot(b.axis, wn);
-    cos_w = L::Select(b.two_sided > zero, L::Abs(cos_w), cos_w);
-    const F sin_w = L::Sqrt(L::Max(one - cos_w * cos_w, zero));
-    const F cos_x = CosOfDifference<L>(cos_w, sin_w, b.cos_o, b.sin_o);
-    const F sin_x = SinOfDifference<L>(cos_w, sin_w, b.cos_o, b.sin_o);
-    const auto cone = b.cos_o > L::Set(-1.0f);
-    const F cos_p = L::Select(cone, CosOfDifference<L>(cos_x, sin_x, cos_b, sin_b), one);
+    F cos_p = one;
+    auto beyond = zero > one;  // outside the cone: none (no lane, yet)
+    if (cones) {
+        // theta' = max(theta_w - theta_o - theta_b, 0), theta_w between the axis and wn.
+        F cos_w = Dot(b.axis, wn);
+        cos_w = L::Select(b.two_sided > zero, L::Abs(cos_w), cos_w);
+        const F sin_w = L::Sqrt(L::Max(one - cos_w * cos_w, zero));
+        const F cos_x = CosOfDifference<L>(cos_w, sin_w, b.cos_o, b.sin_o);
+        const F sin_x = SinOfDifference<L>(cos_w, sin_w, b.cos_o, b.sin_o);
+        const auto cone = b.cos_o > L::Set(-1.0f);
+        cos_p = L::Select(cone, CosOfDifference<L>(cos_x, sin_x, cos_b, sin_b), one);
+        beyond = L::And(cone, cos_p < b.cos_e);
+    }
     F importance = b.phi * cos_p / L::Max(L::Max(d2, L::Set(0.5f) * b.radius2), L::Set(1e-20f));
-    importance = L::Select(L::And(cone, cos_p < b.cos_e), zero, importance);
+    importance = L::Select(beyond, zero, importance);
     F directional = b.phi, background = b.phi * L::Set(4.0f * kPi);
     if (surface) {
         const F cos_i = L::Abs(Dot(n, wn));

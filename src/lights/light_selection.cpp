@@ -17,7 +17,7 @@ HWY_BEFORE_NAMESPACE();
 namespace wavetrace {
 namespace HWY_NAMESPACE {
 
-void LightImportances(const LightBoundsColumns* c, Point3 p, Normal3 n, float* w) {
+void LightImportances(const LightBoundsColumns* c, bool cones, Point3 p, Normal3 n, float* w) {
     using D = hn::CappedTag<float, LightSelection::kLanesAtMost>;
     using L = FloatLanes<D>;
     using F = hn::Vec<D>;
@@ -35,7 +35,7 @@ void LightImportances(const LightBoundsColumns* c, Point3 p, Normal3 n, float* w
         const LightBoundsLanes<L> b{load3(c->centre, k),   load3(c->axis, k), load(c->radius2, k),
                                     load(c->cos_o, k),     load(c->sin_o, k), load(c->cos_e, k),
                                     load(c->two_sided, k), load(c->phi, k),   load(c->kind, k)};
-        hn::StoreU(LightImportance<L>(b, pl, nl, surface), d, w + k);
+        hn::StoreU(LightImportance<L>(b, pl, nl, surface, cones), d, w + k);
     }
 }
 
@@ -89,12 +89,13 @@ LightSelection::LightSelection(std::span<const float> power,
         if (!any) std::fill(member_power.begin(), member_power.end(), 1.0f);
         within_.emplace_back(member_power);
     }
+    for (const LightBounds& b : group_bounds) cones_ = cones_ || b.cos_theta_o > -1.0f;
     columns_ = light_bounds_columns(group_bounds,
                                     (groups + kLanesAtMost - 1) / kLanesAtMost * kLanesAtMost);
 }
 
 float LightSelection::importances(Point3 p, Normal3 n, float* w) const {
-    HWY_DYNAMIC_DISPATCH(LightImportances)(&columns_, p, n, w);
+    HWY_DYNAMIC_DISPATCH(LightImportances)(&columns_, cones_, p, n, w);
     float sum = 0.0f;
     for (size_t g = 0; g < lights_of_.size(); ++g) sum += w[g];
     return sum;

@@ -71,6 +71,7 @@ class LightSelection {
 
     Distribution1D power_;
     LightBoundsColumns columns_;                    // per group; empty: by power alone
+    bool cones_ = false;                            // whether any group emits within a cone
     std::vector<uint32_t> group_;                   // light i's group
     std::vector<uint32_t> rank_;                    // light i's place among its group's lights
     std::vector<std::vector<uint32_t>> lights_of_;  // group g's lights, in order
