@@ -59,8 +59,8 @@ struct Captured {
         shaded = q;
         found = shade(*in, shaded.hits, 0, n, shaded.paths, shaded.rays, shaded.keep,
                       shaded.light_samples, 0, shaded.emissions, 0);
-        shadows =
-            light_sample(*in, shaded.light_samples, 0, found.light_samples, shaded.shadows, 0);
+        shadows = light_sample(*in, shaded.light_samples, 0, found.light_samples, shaded.shadows, 0,
+                               shaded.paths);
         intersect_shadow(bvh, *in, shaded.shadows, 0, shadows, shaded.transmittance);
     }
 };
@@ -123,7 +123,7 @@ void BM_LightSample(benchmark::State& st, const char* name) {
     WaveQueues q = c.shaded;
     for (auto _ : st)
         benchmark::DoNotOptimize(
-            light_sample(*c.in, q.light_samples, 0, c.found.light_samples, q.shadows, 0));
+            light_sample(*c.in, q.light_samples, 0, c.found.light_samples, q.shadows, 0, q.paths));
     st.SetItemsProcessed(st.iterations() * c.found.light_samples);
 }
 

@@ -175,8 +175,8 @@ TEST(Lights, SampledPdfAndRadianceAreConsistent) {
                                            u(3, i, 1), u(3, i, 2));
             ASSERT_TRUE(ls.valid) << c.name;
             float pdf = ls.prim.valid()
-                            ? lights.pdf_prim(c.scene, c.ref, c.n, ls.prim, ls.wi, ls.dist)
-                            : lights.pdf_background(c.scene, c.ref, c.n, ls.wi);
+                            ? lights.pdf_prim(c.scene, c.ref, c.n, 0.0f, ls.prim, ls.wi, ls.dist)
+                            : lights.pdf_background(c.scene, c.ref, c.n, 0.0f, ls.wi);
             EXPECT_NEAR(ls.pdf, pdf, 2e-3f * pdf) << c.name;
             if (c.name == "quad-behind") {
                 EXPECT_EQ(ls.radiance, Color(0.0f));
@@ -221,11 +221,11 @@ TEST(Lights, CompensationSamplesTheExcessOverTheMean) {
         auto dir_of = [&](int x, int y) {
             return environment_direction(bg, (x + 0.5f) / img.width, (y + 0.5f) / img.height);
         };
-        EXPECT_LT(compensated.pdf_background(c.scene, c.ref, c.n, dir_of(10, 10)),
-                  0.01f * plain.pdf_background(c.scene, c.ref, c.n, dir_of(10, 10)));
-        EXPECT_GT(compensated.pdf_background(c.scene, c.ref, c.n, dir_of(40, 10)),
-                  plain.pdf_background(c.scene, c.ref, c.n, dir_of(40, 10)));
-        EXPECT_GT(compensated.pdf_background(c.scene, c.ref, c.n, dir_of(4, 22)),
+        EXPECT_LT(compensated.pdf_background(c.scene, c.ref, c.n, 0.0f, dir_of(10, 10)),
+                  0.01f * plain.pdf_background(c.scene, c.ref, c.n, 0.0f, dir_of(10, 10)));
+        EXPECT_GT(compensated.pdf_background(c.scene, c.ref, c.n, 0.0f, dir_of(40, 10)),
+                  plain.pdf_background(c.scene, c.ref, c.n, 0.0f, dir_of(40, 10)));
+        EXPECT_GT(compensated.pdf_background(c.scene, c.ref, c.n, 0.0f, dir_of(4, 22)),
                   0.0f);  // the floor
         // Its MIS weights: the balance heuristic, which the compensation is derived for.
         Estimator mis;
@@ -246,8 +246,8 @@ TEST(Lights, CompensationSamplesTheExcessOverTheMean) {
     const Vec3 w = normalize(Vec3{0.3f, 0.5f, -0.2f});
     const Point3 o{0.0f};
     const Normal3 n{0.0f};
-    EXPECT_EQ(LightSet(constant, true).pdf_background(constant, o, n, w),
-              LightSet(constant).pdf_background(constant, o, n, w));
+    EXPECT_EQ(LightSet(constant, true).pdf_background(constant, o, n, 0.0f, w),
+              LightSet(constant).pdf_background(constant, o, n, 0.0f, w));
     EXPECT_FALSE(LightSet(constant, true).environment_compensated());
 }
 
@@ -296,6 +296,9 @@ TEST(Lights, SelectionFollowsImportanceAtTheVertex) {
             const LightChoice c = lights.select((k + 0.5f) / m, p, n);
             picks += c.index == 0;
             EXPECT_EQ(c.probability, c.index == 0 ? pb : lights.selection_probability(dim, p, n));
+            // The same from the choice's sum, with one light's importance evaluated.
+            EXPECT_NEAR(lights.selection_probability(c.index == 0 ? bright : dim, p, n, c.total),
+                        c.probability, 1e-6f * c.probability);
         }
         EXPECT_NEAR(picks / double(m), pb, 1.0 / m + 1e-6) << i;
     }
@@ -335,9 +338,10 @@ TEST(Lights, AMeshLightIsOneGroupChosenByImportance) {
         for (int k = 0; k < m; ++k) {
             const LightChoice c = lights.select((k + 0.5f) / m, p, n);
             picks += c.index == 40;  // the quad, after the triangles (collect_emitters)
-            if (c.index < 40) {
-                EXPECT_EQ(c.probability, lights.selection_probability(tri(c.index), p, n));
-            }
+            const PrimRef chosen = c.index < 40 ? tri(uint32_t(c.index)) : quad;
+            EXPECT_EQ(c.probability, lights.selection_probability(chosen, p, n));
+            EXPECT_NEAR(lights.selection_probability(chosen, p, n, c.total), c.probability,
+                        1e-6f * c.probability);
         }
         EXPECT_NEAR(picks / double(m), lights.selection_probability(quad, p, n), 1.0 / m + 1e-6)
             << i;

@@ -91,7 +91,8 @@ Color ray_color(PathContext<Tracer>& ctx,
 
         // Next-event estimation: a shadow ray to a light sample, weighted for the strategy.
         Color radiance = emission;
-        if (const DirectSample d = next_event(ctx.scene, ctx.lights, cfg, v, seg.wo, u); d.valid) {
+        const DirectSample d = next_event(ctx.scene, ctx.lights, cfg, v, seg.wo, u);
+        if (d.valid) {
             const float w =
                 direct_weight(cfg.strategy, ctx.heuristics.of(std::isinf(d.shadow.tmax)),
                               d.pdf_light, d.pdf_bsdf);
@@ -109,6 +110,7 @@ Color ray_color(PathContext<Tracer>& ctx,
         // The continuation, recursively.
         PathStep step = continue_path(ctx.scene, ctx.lights, cfg, v, seg.wo, prev, depth, beta,
                                       eta_scale, media, u.continuation, u.roulette);
+        if (!step.passed_sheet) step.prev.select_total = d.select_total;
         const int next_depth = wavetrace::next_depth(bounce, depth, step);
         if (!step.alive || next_depth >= cfg.max_depth) return radiance;
         const Color weight = flight_weight * step.weight;

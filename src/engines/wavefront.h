@@ -90,7 +90,7 @@ uint64_t run_wave(const WaveInputs& in,
         const ShadeCounts found =
             shade(in, q.hits, 0, n, q.paths, q.rays, q.keep, q.light_samples, 0, q.emissions, 0);
         const size_t shadows =
-            light_sample(in, q.light_samples, 0, found.light_samples, q.shadows, 0);
+            light_sample(in, q.light_samples, 0, found.light_samples, q.shadows, 0, q.paths);
         WT_DCHECK_LE(shadows, n);  // at most one shadow ray per path per bounce
         rays += intersect_shadow(bvh, in, q.shadows, 0, shadows, q.transmittance,
                                  camera_rays ? &q.hits : nullptr);
@@ -180,8 +180,8 @@ uint64_t run_wave_in_stages(const WaveInputs& in,
                                    q.emissions, b);
         });
         each_chunk(n, [&](size_t c, size_t b, size_t) {
-            chunk[c].shadows = light_sample(in, q.light_samples, b,
-                                            b + chunk[c].found.light_samples, q.shadows, b);
+            chunk[c].shadows = light_sample(
+                in, q.light_samples, b, b + chunk[c].found.light_samples, q.shadows, b, q.paths);
         });
         each_chunk(n, [&](size_t c, size_t b, size_t) {
             chunk[c].shadow_rays =

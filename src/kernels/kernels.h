@@ -96,13 +96,16 @@ ShadeCounts shade(const WaveInputs& in,
 
 // Entries [begin, end) of the light-sample queue: picks each vertex's light and a point on it,
 // evaluates the BSDF towards it and appends the shadow ray with its unweighted contribution
-// and both densities at shadows[first_shadow + k]. Returns the shadow rays appended.
+// and both densities at shadows[first_shadow + k]; where the vertex is its path's previous
+// vertex (not a thin sheet passed), the choice's importance sum in the path's prev_total.
+// Returns the shadow rays appended.
 size_t light_sample(const WaveInputs& in,
                     const LightSampleQueue& queue,
                     size_t begin,
                     size_t end,
                     ShadowQueue& shadows,
-                    size_t first_shadow);
+                    size_t first_shadow,
+                    PathQueue& paths);
 
 // Weights and adds to their paths the emission found (entries `found` of emissions) and each
 // shadow ray's contribution times its transmittance (entries `shadowed`): the MIS weights of

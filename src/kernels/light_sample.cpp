@@ -84,7 +84,8 @@ size_t light_sample(const WaveInputs& in,
                     size_t begin,
                     size_t end,
                     ShadowQueue& shadows,
-                    size_t first_shadow) {
+                    size_t first_shadow,
+                    PathQueue& paths) {
     WT_DCHECK_LE(end, queue.capacity);
     LightSampleBlock block;
     block.queue = &queue;
@@ -106,8 +107,10 @@ size_t light_sample(const WaveInputs& in,
         for (size_t i = c; i < chunk_end; ++i) {
             const size_t row = i - c;
             const Normal3 ng = WAVETRACE_XYZ_AT(queue, ng, i);
-            const LightChoice light =
-                in.lights.select(queue.u_select[i], WAVETRACE_XYZ_AT(queue, p, i), ng);
+            const Point3 p = WAVETRACE_XYZ_AT(queue, p, i);
+            const LightChoice light = in.lights.select(queue.u_select[i], p, ng);
+            if (const uint32_t path = queue.path[i]; paths.prev_p[path] == p)
+                paths.prev_total[path] = light.total;
             block.lobe[row] = int32_t(lane_lobe(queue.kind[i]));
             block.select_prob[row] = light.probability;
             block.sphere[row] = -1;

@@ -426,10 +426,11 @@ void escape_in_lanes(const WaveInputs& in, Chunk& c, ShadeOutputs& out) {
         const size_t i = c.begin + rows[k];
         for (int a = 0; a < 3; ++a) b.dir[a][k] = out.rays.dir[i][a];
         // Its MIS weight needs the density only where the previous vertex sampled lights.
-        b.select_prob[k] = mis && !out.paths.counts_fully[i]
-                               ? in.lights.background_selection_probability(out.paths.prev_p[i],
-                                                                            out.paths.prev_n[i])
-                               : 0.0f;
+        b.select_prob[k] =
+            mis && !out.paths.counts_fully[i]
+                ? in.lights.background_selection_probability(
+                      out.paths.prev_p[i], out.paths.prev_n[i], out.paths.prev_total[i])
+                : 0.0f;
     }
     escape_rays(b, in.lights, mis);
     for (size_t k = 0; k < b.n; ++k) {

@@ -125,11 +125,11 @@ LightChoice LightSelection::select_local(float u, Point3 p, Normal3 n) const {
         g = last;
         below = sum - w[g];
     }
-    if (lights_of_[g].size() == 1) return {lights_of_[g][0], w[g] / sum};
+    if (lights_of_[g].size() == 1) return {lights_of_[g][0], w[g] / sum, sum};
     const float within_u = std::clamp((target - below) / w[g], 0.0f, 0.99999994f);
     float p_within;
     const size_t r = within_[g].sample_discrete(within_u, &p_within);
-    return {lights_of_[g][r], w[g] / sum * p_within};
+    return {lights_of_[g][r], w[g] / sum * p_within, sum};
 }
 
 float LightSelection::probability(size_t i, Point3 p, Normal3 n) const {
@@ -140,6 +140,27 @@ float LightSelection::probability(size_t i, Point3 p, Normal3 n) const {
     const uint32_t g = group_[i];
     if (lights_of_[g].size() == 1) return w[g] / sum;
     return w[g] / sum * within_[g].probability(rank_[i]);
+}
+
+float LightSelection::probability(size_t i, Point3 p, Normal3 n, float total) const {
+    if (!local() || !(total > 0.0f) || !std::isfinite(total)) return probability(i, p, n);
+    using L = HWY_NAMESPACE::OneLane;
+    const uint32_t g = group_[i];
+    const LightBoundsColumns& c = columns_;
+    const HWY_NAMESPACE::LightBoundsLanes<L> b{{c.centre[0][g], c.centre[1][g], c.centre[2][g]},
+                                               {c.axis[0][g], c.axis[1][g], c.axis[2][g]},
+                                               c.radius2[g],
+                                               c.cos_o[g],
+                                               c.sin_o[g],
+                                               c.cos_e[g],
+                                               c.two_sided[g],
+                                               c.phi[g],
+                                               c.kind[g]};
+    const bool surface = n.x != 0.0f || n.y != 0.0f || n.z != 0.0f;
+    const float w =
+        HWY_NAMESPACE::LightImportance<L>(b, {p.x, p.y, p.z}, {n.x, n.y, n.z}, surface, cones_);
+    if (lights_of_[g].size() == 1) return w / total;
+    return w / total * within_[g].probability(rank_[i]);
 }
 
 }  // namespace wavetrace

@@ -23,6 +23,7 @@ namespace wavetrace {
 struct LightChoice {
     size_t index = 0;
     float probability = 0.0f;
+    float total = 0.0f;  // chosen by importance: the groups' sum at the vertex, else 0
 };
 
 class LightSelection {
@@ -54,6 +55,9 @@ class LightSelection {
     }
     // The probability that select(·, p, n) picks light i.
     float probability(size_t i, Point3 p, Normal3 n) const;
+    // The same where select() at (p, n) returned `total` (LightChoice::total): one group's
+    // importance evaluated rather than all of them (the same number, up to rounding).
+    float probability(size_t i, Point3 p, Normal3 n, float total) const;
 
     // The choice in proportion to power alone, everywhere, and its probabilities.
     LightChoice select_by_power(float u) const {

@@ -24,6 +24,7 @@ namespace wavetrace {
     F(Color, radiance, "radiance gathered so far")                                        \
     F(Point3, prev_p, "previous vertex: position (MIS density of emission found)")        \
     F(Normal3, prev_n, "previous vertex: geometric normal, zero in a medium (the same)")  \
+    F(float, prev_total, "previous vertex: its light choice's importance sum (the same)") \
     F(float, prev_pdf, "previous vertex: BSDF density of the current ray's direction")    \
     F(PackedMedia, media, "media the current ray travels in")                             \
     F(float, flight, "optical depth the current segment may still travel in media")
@@ -31,11 +32,12 @@ namespace wavetrace {
 WAVETRACE_SOA(PathQueue, WAVETRACE_PATH_FIELDS);
 
 inline PreviousVertex previous_vertex(const PathQueue& q, size_t i) {
-    return {q.prev_p[i], q.prev_pdf[i], q.counts_fully[i] != 0, q.prev_n[i]};
+    return {q.prev_p[i], q.prev_pdf[i], q.counts_fully[i] != 0, q.prev_n[i], q.prev_total[i]};
 }
 inline void set_previous_vertex(PathQueue& q, size_t i, const PreviousVertex& v) {
     q.prev_p[i] = v.p;
     q.prev_n[i] = v.n;
+    q.prev_total[i] = v.select_total;
     q.prev_pdf[i] = v.pdf_bsdf;
     q.counts_fully[i] = v.counts_fully;
 }

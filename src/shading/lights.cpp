@@ -188,13 +188,13 @@ LightSet::LightSet(const Scene& scene, bool mis_compensation) {
     }
 }
 
-float LightSet::selection_probability(PrimRef prim, Point3 p, Normal3 n) const {
+float LightSet::selection_probability(PrimRef prim, Point3 p, Normal3 n, float total) const {
     auto it = index_.find(prim.bits);
-    return it == index_.end() ? 0.0f : selection_.probability(it->second, p, n);
+    return it == index_.end() ? 0.0f : selection_.probability(it->second, p, n, total);
 }
 
-float LightSet::background_selection_probability(Point3 p, Normal3 n) const {
-    return background_ ? selection_.probability(count_ - 1, p, n) : 0.0f;
+float LightSet::background_selection_probability(Point3 p, Normal3 n, float total) const {
+    return background_ ? selection_.probability(count_ - 1, p, n, total) : 0.0f;
 }
 
 LightSample LightSet::sample_direction_light(
@@ -336,9 +336,14 @@ float LightSet::prim_pdf_given_selection(
     return uniform_area_to_solid_angle(dist * dist, cos_l, scene.prim_area(prim));
 }
 
-float LightSet::pdf_prim(
-    const Scene& scene, Point3 ref, Normal3 ref_n, PrimRef prim, Vec3 wi, float dist) const {
-    float sel = selection_probability(prim, ref, ref_n);
+float LightSet::pdf_prim(const Scene& scene,
+                         Point3 ref,
+                         Normal3 ref_n,
+                         float ref_total,
+                         PrimRef prim,
+                         Vec3 wi,
+                         float dist) const {
+    float sel = selection_probability(prim, ref, ref_n, ref_total);
     return sel > 0.0f ? sel * prim_pdf_given_selection(scene, ref, prim, wi, dist) : 0.0f;
 }
 
@@ -347,9 +352,11 @@ float LightSet::background_pdf_given_selection(const Scene& scene, Vec3 wi) cons
     return lanes::EnvironmentPdf<OneLane>(environment_view_, environment_.tables(), to_lanes(wi));
 }
 
-float LightSet::pdf_background(const Scene& scene, Point3 ref, Normal3 ref_n, Vec3 wi) const {
+float LightSet::pdf_background(
+    const Scene& scene, Point3 ref, Normal3 ref_n, float ref_total, Vec3 wi) const {
     if (!background_) return 0.0f;
-    return background_selection_probability(ref, ref_n) * background_pdf_given_selection(scene, wi);
+    return background_selection_probability(ref, ref_n, ref_total) *
+           background_pdf_given_selection(scene, wi);
 }
 
 float LightSet::pdf_direction(const Scene& scene, Point3 ref, Vec3 wi) const {

@@ -69,9 +69,9 @@ class LightSet {
     size_t size() const { return count_; }
     bool has_background() const { return background_; }
     // Probability that select() at (p, n) picks this emissive primitive (0 if it is not a
-    // light), or the background.
-    float selection_probability(PrimRef prim, Point3 p, Normal3 n) const;
-    float background_selection_probability(Point3 p, Normal3 n) const;
+    // light), or the background; total: LightChoice::total of that select() if known, else 0.
+    float selection_probability(PrimRef prim, Point3 p, Normal3 n, float total = 0.0f) const;
+    float background_selection_probability(Point3 p, Normal3 n, float total = 0.0f) const;
 
     // Picks a light with selection number u_select for the vertex at p with geometric normal n
     // (zero in a medium; not empty()). Inline: both engines choose at every vertex.
@@ -114,13 +114,19 @@ class LightSet {
     // directions of the one-sample strategies, whose density is pdf_direction.
     LightSample sample_direction_light(
         const Scene& scene, Point3 ref, float u_select, float u1, float u2) const;
-    // Density with which a light sample from `ref` (geometric normal ref_n, zero in a medium),
-    // chosen by select(), produces direction wi hitting emitter `prim` at distance dist. Zero
-    // for non-emitters.
-    float pdf_prim(
-        const Scene& scene, Point3 ref, Normal3 ref_n, PrimRef prim, Vec3 wi, float dist) const;
+    // Density with which a light sample from `ref` (geometric normal ref_n, zero in a medium;
+    // ref_total as selection_probability's), chosen by select(), produces direction wi hitting
+    // emitter `prim` at distance dist. Zero for non-emitters.
+    float pdf_prim(const Scene& scene,
+                   Point3 ref,
+                   Normal3 ref_n,
+                   float ref_total,
+                   PrimRef prim,
+                   Vec3 wi,
+                   float dist) const;
     // The same for background direction wi.
-    float pdf_background(const Scene& scene, Point3 ref, Normal3 ref_n, Vec3 wi) const;
+    float pdf_background(
+        const Scene& scene, Point3 ref, Normal3 ref_n, float ref_total, Vec3 wi) const;
     // Total density of direction wi from `ref` over all lights, ignoring occlusion: the
     // density sample_direction_light assigns to wi. O(number of emitters).
     float pdf_direction(const Scene& scene, Point3 ref, Vec3 wi) const;

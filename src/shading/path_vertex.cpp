@@ -257,7 +257,10 @@ DirectSample next_event(const Scene& scene,
                         Vec3 wo,
                         const VertexSamples& u) {
     if (!samples_lights(config, v, lights)) return {};
-    return next_event(scene, lights, v, wo, u, lights.select(u.light_select, v.p, v.ng));
+    const LightChoice light = lights.select(u.light_select, v.p, v.ng);
+    DirectSample d = next_event(scene, lights, v, wo, u, light);
+    d.select_total = light.total;
+    return d;
 }
 
 DirectSample next_event(const Scene& scene,
@@ -366,9 +369,10 @@ SegmentResult resolve_segment(const Scene& scene,
         r.event = SegmentEvent::Emission;
         r.emission = le;
         if (config.strategy == Strategy::Mis && !prev.counts_fully)
-            r.emission_pdf_light = prim.valid()
-                                       ? lights.pdf_prim(scene, prev.p, prev.n, prim, dir, dist)
-                                       : lights.pdf_background(scene, prev.p, prev.n, dir);
+            r.emission_pdf_light =
+                prim.valid()
+                    ? lights.pdf_prim(scene, prev.p, prev.n, prev.select_total, prim, dir, dist)
+                    : lights.pdf_background(scene, prev.p, prev.n, prev.select_total, dir);
     };
     if (!hit.found()) {
         r.at_infinity = true;
@@ -379,7 +383,9 @@ SegmentResult resolve_segment(const Scene& scene,
                                                &u, &v);
             const lanes::EscapedRay<OneLane> e = lanes::Escape<OneLane>(
                 lights.environment_view(), lights.environment_tables(), u, v,
-                with_pdf ? lights.background_selection_probability(prev.p, prev.n) : 0.0f,
+                with_pdf
+                    ? lights.background_selection_probability(prev.p, prev.n, prev.select_total)
+                    : 0.0f,
                 with_pdf);
             r.event = SegmentEvent::Emission;
             r.emission = lanes::to_vec3(e.radiance);

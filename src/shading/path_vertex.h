@@ -124,6 +124,7 @@ struct DirectSample {
     float pdf_bsdf = 0.0f;
     Ray shadow;  // unit direction, tmax just short of the light
     bool valid = false;
+    float select_total = 0.0f;  // the light choice's (LightChoice::total), valid or not
 };
 DirectSample sample_direct(const Scene& scene,
                            const LightSet& lights,
@@ -193,6 +194,7 @@ struct PreviousVertex {
     float pdf_bsdf = 0.0f;
     bool counts_fully = true;  // camera ray, or a vertex that could not sample lights
     Normal3 n{0.0f};           // geometric normal (zero in a medium): its light selection
+    float select_total = 0.0f;  // ... and its LightChoice::total
 };
 
 enum class SegmentEvent : uint8_t {
