@@ -304,6 +304,59 @@ TEST(Lights, SelectionFollowsImportanceAtTheVertex) {
     }
 }
 
+// The wavefront chooses a chunk's lights at once, the importances with the vertices in lanes:
+// the same choices, bit for bit, as one vertex at a time (the megakernel's), for vertices on
+// surfaces and in media, lights with and without cones, groups of one light and of several,
+// and points that no light reaches (by power).
+TEST(Lights, ChoosingManyVerticesAtOnceEqualsOneByOne) {
+    Scene s = two_quads();
+    std::vector<Point3> positions;
+    std::vector<uint32_t> indices;
+    for (uint32_t k = 0; k < 6; ++k) {  // a mesh light of six triangles: one group
+        const float x = float(k);
+        positions.insert(positions.end(), {{x, 0, -3}, {x + 1, 0, -3}, {x, 1, -3}});
+        indices.insert(indices.end(), {3 * k, 3 * k + 1, 3 * k + 2});
+    }
+    s.add_mesh({.material = s.quads[1].material}, positions, {}, {}, indices);
+    Light spot;
+    spot.kind = Light::Kind::Spot;
+    spot.position = {-3, 0, 2};
+    spot.direction = normalize(Vec3{1, 0, -1});
+    spot.intensity = Color{20.0f};
+    s.lights.push_back(spot);
+    const LightSet lights(s);
+    const LightSelection& selection = lights.selection();
+    ASSERT_TRUE(selection.local());
+    const size_t n = 61;  // not a whole number of vectors
+    float u_select[n], p[3][n], ng[3][n];
+    for (uint32_t i = 0; i < n; ++i) {
+        u_select[i] = u(11, i, 0);
+        const Point3 q{10.0f * u(11, i, 1) - 5.0f, 4.0f * u(11, i, 2) - 2.0f,
+                       10.0f * u(11, i, 3) - 5.0f};
+        const Normal3 m =
+            i % 3 == 0 ? Normal3{0.0f} : sample_uniform_sphere(u(11, i, 4), u(11, i, 5));
+        for (int a = 0; a < 3; ++a) {
+            p[a][i] = q[a];
+            ng[a][i] = m[a];
+        }
+    }
+    // Far behind every one-sided light and outside the spot's cone: no importance anywhere.
+    p[0][7] = 3.0f, p[1][7] = 0.5f, p[2][7] = -20.0f;
+    ng[0][7] = 0.0f, ng[1][7] = 0.0f, ng[2][7] = 1.0f;
+    const float* const p_rows[3] = {p[0], p[1], p[2]};
+    const float* const n_rows[3] = {ng[0], ng[1], ng[2]};
+    LightChoice at_once[n];
+    selection.select_rows(u_select, p_rows, n_rows, n, at_once);
+    EXPECT_EQ(at_once[7].total, 0.0f);  // chosen by power
+    for (uint32_t i = 0; i < n; ++i) {
+        const LightChoice one =
+            lights.select(u_select[i], {p[0][i], p[1][i], p[2][i]}, {ng[0][i], ng[1][i], ng[2][i]});
+        EXPECT_EQ(at_once[i].index, one.index) << i;
+        EXPECT_EQ(at_once[i].probability, one.probability) << i;
+        EXPECT_EQ(at_once[i].total, one.total) << i;
+    }
+}
+
 // The emissive triangles of one material are one group, however many (here 40, more than
 // kLocalLights): the group is chosen by its importance, its triangles by their area.
 TEST(Lights, AMeshLightIsOneGroupChosenByImportance) {

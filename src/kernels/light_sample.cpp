@@ -101,6 +101,13 @@ size_t light_sample(const WaveInputs& in,
         const size_t chunk_end = std::min(end, c + kShadeChunk);
         block.first = c;
         block.n = chunk_end - c;
+        static_assert(kShadeChunk <= LightSelection::kRowsAtOnce);
+        LightChoice choices[kShadeChunk];
+        {
+            const float* const p[3] = {&queue.p_x[c], &queue.p_y[c], &queue.p_z[c]};
+            const float* const ng[3] = {&queue.ng_x[c], &queue.ng_y[c], &queue.ng_z[c]};
+            in.lights.selection().select_rows(&queue.u_select[c], p, ng, block.n, choices);
+        }
         // Each vertex's light; the SIMD kernel takes the rows whose light is a quad, a triangle,
         // a sphere seen from outside, a point or directional light or the environment map, as
         // next_event chooses, scalar code the others.
@@ -108,7 +115,7 @@ size_t light_sample(const WaveInputs& in,
             const size_t row = i - c;
             const Normal3 ng = WAVETRACE_XYZ_AT(queue, ng, i);
             const Point3 p = WAVETRACE_XYZ_AT(queue, p, i);
-            const LightChoice light = in.lights.select(queue.u_select[i], p, ng);
+            const LightChoice& light = choices[row];
             if (const uint32_t path = queue.path[i]; paths.prev_p[path] == p)
                 paths.prev_total[path] = light.total;
             block.lobe[row] = int32_t(lane_lobe(queue.kind[i]));

@@ -39,14 +39,15 @@ struct LightBoundsLanes {
     typename L::F radius2, cos_o, sin_o, cos_e, two_sided, phi, kind;
 };
 
-// The importance at p (normal n; surface: n is not zero) of the lights in the lanes, as
-// light_bounds.h states it. Without `cones` every light emits in every direction (cos_o -1),
-// and the same result comes with less work.
+// The importance at p (normal n; surface: the lanes where n is not zero) of the lights in the
+// lanes, as light_bounds.h states it: one vertex and a light in each lane, or one light and a
+// vertex in each. Without `cones` every light emits in every direction (cos_o -1), and the
+// same result comes with less work.
 template <class L>
 HWY_INLINE typename L::F LightImportance(const LightBoundsLanes<L>& b,
                                          V3<typename L::F> p,
                                          V3<typename L::F> n,
-                                         bool surface,
+                                         typename L::M surface,
                                          bool cones) {
     using F = typename L::F;
     const F zero = L::Set(0.0f), one = L::Set(1.0f);
@@ -76,13 +77,16 @@ HWY_INLINE typename L::F LightImportance(const LightBoundsLanes<L>& b,
     F importance = b.phi * cos_p / L::Max(L::Max(d2, L::Set(0.5f) * b.radius2), L::Set(1e-20f));
     importance = L::Select(beyond, zero, importance);
     F directional = b.phi, background = b.phi * L::Set(4.0f * kPi);
-    if (surface) {
+    if (L::Any(surface)) {
         const F cos_i = L::Abs(Dot(n, wn));
         const F sin_i = L::Sqrt(L::Max(one - cos_i * cos_i, zero));
-        importance =
-            importance * L::Max(CosOfDifference<L>(cos_i, sin_i, cos_b, sin_b), min_cos_at_point);
-        directional = b.phi * L::Max(L::Abs(Dot(b.axis, n)), min_cos_at_point);
-        background = b.phi * L::Set(kPi);
+        importance = L::Select(
+            surface,
+            importance * L::Max(CosOfDifference<L>(cos_i, sin_i, cos_b, sin_b), min_cos_at_point),
+            importance);
+        directional = L::Select(surface, b.phi * L::Max(L::Abs(Dot(b.axis, n)), min_cos_at_point),
+                                directional);
+        background = L::Select(surface, b.phi * L::Set(kPi), background);
     }
     importance = L::Max(importance, zero);
     const F kind = b.kind;

@@ -23,7 +23,7 @@ void LightImportances(const LightBoundsColumns* c, bool cones, Point3 p, Normal3
     using F = hn::Vec<D>;
     const D d;
     const size_t N = hn::Lanes(d);
-    const bool surface = n.x != 0.0f || n.y != 0.0f || n.z != 0.0f;
+    const auto surface = n.x != 0.0f || n.y != 0.0f || n.z != 0.0f ? L::All() : L::Not(L::All());
     const V3<F> pl{hn::Set(d, p.x), hn::Set(d, p.y), hn::Set(d, p.z)};
     const V3<F> nl{hn::Set(d, n.x), hn::Set(d, n.y), hn::Set(d, n.z)};
     auto load3 = [&](const std::vector<float>(&xyz)[3], size_t k) {
@@ -39,6 +39,40 @@ void LightImportances(const LightBoundsColumns* c, bool cones, Point3 p, Normal3
     }
 }
 
+// The importances of `groups` groups at `count` vertices (rows of p and n, padded to whole
+// vectors), a vector of vertices at a time: w[g * kRowsAtOnce + r].
+void LightImportancesOfRows(const LightBoundsColumns* c,
+                            size_t groups,
+                            bool cones,
+                            const float (*p)[LightSelection::kRowsAtOnce],
+                            const float (*n)[LightSelection::kRowsAtOnce],
+                            size_t count,
+                            float* w) {
+    using D = hn::CappedTag<float, LightSelection::kLanesAtMost>;
+    using L = FloatLanes<D>;
+    using F = hn::Vec<D>;
+    const D d;
+    const size_t N = hn::Lanes(d);
+    const F zero = hn::Zero(d);
+    for (size_t r = 0; r < count; r += N) {
+        const V3<F> pl{hn::Load(d, p[0] + r), hn::Load(d, p[1] + r), hn::Load(d, p[2] + r)};
+        const V3<F> nl{hn::Load(d, n[0] + r), hn::Load(d, n[1] + r), hn::Load(d, n[2] + r)};
+        const auto surface =
+            hn::Or(hn::Or(hn::Ne(nl.x, zero), hn::Ne(nl.y, zero)), hn::Ne(nl.z, zero));
+        for (size_t g = 0; g < groups; ++g) {
+            auto set3 = [&](const std::vector<float>(&xyz)[3]) {
+                return V3<F>{hn::Set(d, xyz[0][g]), hn::Set(d, xyz[1][g]), hn::Set(d, xyz[2][g])};
+            };
+            auto set = [&](const std::vector<float>& x) { return hn::Set(d, x[g]); };
+            const LightBoundsLanes<L> b{set3(c->centre),   set3(c->axis), set(c->radius2),
+                                        set(c->cos_o),     set(c->sin_o), set(c->cos_e),
+                                        set(c->two_sided), set(c->phi),   set(c->kind)};
+            hn::Store(LightImportance<L>(b, pl, nl, surface, cones), d,
+                      w + g * LightSelection::kRowsAtOnce + r);
+        }
+    }
+}
+
 }  // namespace HWY_NAMESPACE
 }  // namespace wavetrace
 HWY_AFTER_NAMESPACE();
@@ -47,6 +81,7 @@ HWY_AFTER_NAMESPACE();
 namespace wavetrace {
 
 HWY_EXPORT(LightImportances);
+HWY_EXPORT(LightImportancesOfRows);
 
 LightSelection::LightSelection(std::span<const float> power,
                                std::span<const LightBounds> bounds,
@@ -74,6 +109,8 @@ LightSelection::LightSelection(std::span<const float> power,
         rank_[i] = static_cast<uint32_t>(lights_of_[group_[i]].size());
         lights_of_[group_[i]].push_back(i);
     }
+    for (const std::vector<uint32_t>& lights : lights_of_)
+        single_.push_back(lights.size() == 1 ? lights[0] : ~0u);
     std::vector<LightBounds> group_bounds;
     for (const std::vector<uint32_t>& lights : lights_of_) {
         std::vector<LightBounds> members;
@@ -102,34 +139,71 @@ float LightSelection::importances(Point3 p, Normal3 n, float* w) const {
 }
 
 // Where no group's importance is positive and finite (a point behind every one-sided light,
-// in the dark: no light sends it anything), by power. The part of u within the chosen group's
-// share chooses its light.
+// in the dark: no light sends it anything), by power.
 LightChoice LightSelection::select_local(float u, Point3 p, Normal3 n) const {
     alignas(64) std::array<float, kLocalLights> w;
     const float sum = importances(p, n, w.data());
     if (!(sum > 0.0f) || !std::isfinite(sum)) return select_by_power(u);
+    return choose(u, w.data(), 1, sum);
+}
+
+void LightSelection::select_rows(const float* u,
+                                 const float* const p[3],
+                                 const float* const n[3],
+                                 size_t count,
+                                 LightChoice* out) const {
+    WT_DCHECK_LE(count, kRowsAtOnce);
+    if (!local()) {
+        for (size_t r = 0; r < count; ++r) out[r] = select(u[r], {}, {});
+        return;
+    }
+    // The vertices padded to whole vectors (the padding's importances are not read).
+    alignas(64) float pr[3][kRowsAtOnce] = {}, nr[3][kRowsAtOnce] = {};
+    for (int a = 0; a < 3; ++a) {
+        std::copy(p[a], p[a] + count, pr[a]);
+        std::copy(n[a], n[a] + count, nr[a]);
+    }
+    alignas(64) std::array<float, kLocalLights * kRowsAtOnce> w;
+    const size_t groups = lights_of_.size();
+    HWY_DYNAMIC_DISPATCH(LightImportancesOfRows)
+    (&columns_, groups, cones_, pr, nr, count, w.data());
+    for (size_t r = 0; r < count; ++r) {
+        float sum = 0.0f;  // in group order, as importances() sums
+        for (size_t g = 0; g < groups; ++g) sum += w[g * kRowsAtOnce + r];
+        out[r] = !(sum > 0.0f) || !std::isfinite(sum)
+                     ? select_by_power(u[r])
+                     : choose(u[r], w.data() + r, kRowsAtOnce, sum);
+    }
+}
+
+// The group whose share of [0, sum) holds u * sum, its importances summed in order (without a
+// branch per group, which a random u makes unpredictable); the part of u within that share
+// chooses its light.
+LightChoice LightSelection::choose(float u, const float* w, size_t stride, float sum) const {
+    const size_t groups = lights_of_.size();
     const float target = u * sum;
-    float below = 0.0f;
-    size_t g = lights_of_.size();  // the group chosen
-    size_t last = 0;               // the last group of positive importance
-    for (size_t k = 0; k < lights_of_.size(); ++k) {
-        if (!(w[k] > 0.0f)) continue;
+    float below = 0.0f, below_chosen = 0.0f;
+    size_t g = groups;  // the group chosen
+    size_t last = 0;    // the last group of positive importance
+    for (size_t k = 0; k < groups; ++k) {
+        const float wk = w[k * stride];
+        if (!(wk > 0.0f)) continue;
         last = k;
-        if (target < below + w[k]) {
-            g = k;
-            break;
-        }
-        below += w[k];
+        const bool take = g == groups && target < below + wk;
+        g = take ? k : g;
+        below_chosen = take ? below : below_chosen;
+        below += wk;
     }
-    if (g == lights_of_.size()) {  // u * sum rounded up to the sum
+    if (g == groups) {  // u * sum rounded up to the sum
         g = last;
-        below = sum - w[g];
+        below_chosen = sum - w[g * stride];
     }
-    if (lights_of_[g].size() == 1) return {lights_of_[g][0], w[g] / sum, sum};
-    const float within_u = std::clamp((target - below) / w[g], 0.0f, 0.99999994f);
+    const float wg = w[g * stride];
+    if (single_[g] != ~0u) return {single_[g], wg / sum, sum};
+    const float within_u = std::clamp((target - below_chosen) / wg, 0.0f, 0.99999994f);
     float p_within;
     const size_t r = within_[g].sample_discrete(within_u, &p_within);
-    return {lights_of_[g][r], w[g] / sum * p_within, sum};
+    return {lights_of_[g][r], wg / sum * p_within, sum};
 }
 
 float LightSelection::probability(size_t i, Point3 p, Normal3 n) const {
@@ -156,7 +230,7 @@ float LightSelection::probability(size_t i, Point3 p, Normal3 n, float total) co
                                                c.two_sided[g],
                                                c.phi[g],
                                                c.kind[g]};
-    const bool surface = n.x != 0.0f || n.y != 0.0f || n.z != 0.0f;
+    const bool surface = n.x != 0.0f || n.y != 0.0f || n.z != 0.0f;  // OneLane's mask
     const float w =
         HWY_NAMESPACE::LightImportance<L>(b, {p.x, p.y, p.z}, {n.x, n.y, n.z}, surface, cones_);
     if (lights_of_[g].size() == 1) return w / total;

@@ -34,6 +34,9 @@ class LightSelection {
     // The columns are padded to a multiple of the widest vector's lanes.
     static constexpr size_t kLanesAtMost = 16;
     static_assert(kLocalLights % kLanesAtMost == 0);
+    // The most vertices select_rows takes at once.
+    static constexpr size_t kRowsAtOnce = 64;
+    static_assert(kRowsAtOnce % kLanesAtMost == 0);
 
     LightSelection() = default;
     // Light i's power, bounds and group key (all of the same size, not empty; power not all
@@ -53,6 +56,15 @@ class LightSelection {
         if (local()) return select_local(u, p, n);
         return select_by_power(u);
     }
+    // select() of `count` vertices (at most kRowsAtOnce): u[r], p and n the r-th of their
+    // rows (x, y, z). The same choices, bit for bit; the importances are taken with the vertices
+    // in lanes, a group at a time, which fills the vectors where there are fewer groups than
+    // lanes.
+    void select_rows(const float* u,
+                     const float* const p[3],
+                     const float* const n[3],
+                     size_t count,
+                     LightChoice* out) const;
     // The probability that select(·, p, n) picks light i.
     float probability(size_t i, Point3 p, Normal3 n) const;
     // The same where select() at (p, n) returned `total` (LightChoice::total): one group's
@@ -69,6 +81,9 @@ class LightSelection {
 
   private:
     LightChoice select_local(float u, Point3 p, Normal3 n) const;
+    // The choice by u among the groups of importance w[g * stride] (sum: their sum in order,
+    // positive and finite), then of a light in the group by power.
+    LightChoice choose(float u, const float* w, size_t stride, float sum) const;
     // Every group's importance at (p, n) into w (columns_.size() entries, in lanes); the sum
     // over the groups, in order.
     float importances(Point3 p, Normal3 n, float* w) const;
@@ -79,6 +94,7 @@ class LightSelection {
     std::vector<uint32_t> group_;                   // light i's group
     std::vector<uint32_t> rank_;                    // light i's place among its group's lights
     std::vector<std::vector<uint32_t>> lights_of_;  // group g's lights, in order
+    std::vector<uint32_t> single_;                  // group g's light if it has one, else ~0
     std::vector<Distribution1D> within_;            // group g: its lights by power
 };
 

@@ -57,6 +57,8 @@ class LightSet {
     LightChoice select(float u_select, Point3 p, Normal3 n) const {
         return selection_.select(u_select, p, n);
     }
+    // The choice itself, for the lights of many vertices at once (select_rows).
+    const LightSelection& selection() const { return selection_; }
     // The chosen light's index among the planar emitters if it is a quad or a triangle of
     // constant radiance, else -1.
     int32_t planar_emitter_index(LightChoice choice) const {
