@@ -10,6 +10,7 @@
 #include <cmath>
 #include <unordered_map>
 
+#include "lights/group_choice-inl.h"
 #include "lights/light_importance-inl.h"
 #include "util/check.h"
 
@@ -40,20 +41,25 @@ void LightImportances(const LightBoundsColumns* c, bool cones, Point3 p, Normal3
 }
 
 // The importances of `groups` groups at `count` vertices (rows of p and n, padded to whole
-// vectors), a vector of vertices at a time: w[g * kRowsAtOnce + r].
-void LightImportancesOfRows(const LightBoundsColumns* c,
-                            size_t groups,
-                            bool cones,
-                            const float (*p)[LightSelection::kRowsAtOnce],
-                            const float (*n)[LightSelection::kRowsAtOnce],
-                            size_t count,
-                            float* w) {
+// vectors), a vector of vertices at a time, into w[g * kRowsAtOnce + r], and the choice of a
+// group by u[r] (ChooseGroup) into the rows of `choice`.
+void GroupChoicesOfRows(const LightBoundsColumns* c,
+                        size_t groups,
+                        bool cones,
+                        const float (*p)[LightSelection::kRowsAtOnce],
+                        const float (*n)[LightSelection::kRowsAtOnce],
+                        const float* u,
+                        size_t count,
+                        float* w,
+                        LightSelection::GroupChoiceRows* choice) {
     using D = hn::CappedTag<float, LightSelection::kLanesAtMost>;
     using L = FloatLanes<D>;
     using F = hn::Vec<D>;
     const D d;
+    const hn::RebindToSigned<D> di;
     const size_t N = hn::Lanes(d);
     const F zero = hn::Zero(d);
+    constexpr size_t K = LightSelection::kRowsAtOnce;
     for (size_t r = 0; r < count; r += N) {
         const V3<F> pl{hn::Load(d, p[0] + r), hn::Load(d, p[1] + r), hn::Load(d, p[2] + r)};
         const V3<F> nl{hn::Load(d, n[0] + r), hn::Load(d, n[1] + r), hn::Load(d, n[2] + r)};
@@ -67,9 +73,14 @@ void LightImportancesOfRows(const LightBoundsColumns* c,
             const LightBoundsLanes<L> b{set3(c->centre),   set3(c->axis), set(c->radius2),
                                         set(c->cos_o),     set(c->sin_o), set(c->cos_e),
                                         set(c->two_sided), set(c->phi),   set(c->kind)};
-            hn::Store(LightImportance<L>(b, pl, nl, surface, cones), d,
-                      w + g * LightSelection::kRowsAtOnce + r);
+            hn::Store(LightImportance<L>(b, pl, nl, surface, cones), d, w + g * K + r);
         }
+        const GroupChoiceLanes<L> g = ChooseGroup<L>(
+            groups, [&](size_t k) { return hn::Load(d, w + k * K + r); }, hn::Load(d, u + r));
+        hn::Store(g.sum, d, choice->sum + r);
+        hn::Store(g.below, d, choice->below + r);
+        hn::Store(g.group, di, choice->group + r);
+        hn::Store(g.last, di, choice->last + r);
     }
 }
 
@@ -81,7 +92,7 @@ HWY_AFTER_NAMESPACE();
 namespace wavetrace {
 
 HWY_EXPORT(LightImportances);
-HWY_EXPORT(LightImportancesOfRows);
+HWY_EXPORT(GroupChoicesOfRows);
 
 LightSelection::LightSelection(std::span<const float> power,
                                std::span<const LightBounds> bounds,
@@ -142,9 +153,12 @@ float LightSelection::importances(Point3 p, Normal3 n, float* w) const {
 // in the dark: no light sends it anything), by power.
 LightChoice LightSelection::select_local(float u, Point3 p, Normal3 n) const {
     alignas(64) std::array<float, kLocalLights> w;
-    const float sum = importances(p, n, w.data());
-    if (!(sum > 0.0f) || !std::isfinite(sum)) return select_by_power(u);
-    return choose(u, w.data(), 1, sum);
+    HWY_DYNAMIC_DISPATCH(LightImportances)(&columns_, cones_, p, n, w.data());
+    namespace lanes = HWY_NAMESPACE;
+    const lanes::GroupChoiceLanes<lanes::OneLane> c = lanes::ChooseGroup<lanes::OneLane>(
+        lights_of_.size(), [&](size_t g) { return w[g]; }, u);
+    if (!(c.sum > 0.0f) || !std::isfinite(c.sum)) return select_by_power(u);
+    return light_of_group(u, c.sum, c.group, c.last, c.below, w.data(), 1);
 }
 
 void LightSelection::select_rows(const float* u,
@@ -157,50 +171,41 @@ void LightSelection::select_rows(const float* u,
         for (size_t r = 0; r < count; ++r) out[r] = select(u[r], {}, {});
         return;
     }
-    // The vertices padded to whole vectors (the padding's importances are not read).
-    alignas(64) float pr[3][kRowsAtOnce] = {}, nr[3][kRowsAtOnce] = {};
+    // The vertices padded to whole vectors (the padding's results are not read).
+    alignas(64) float pr[3][kRowsAtOnce] = {}, nr[3][kRowsAtOnce] = {}, ur[kRowsAtOnce] = {};
     for (int a = 0; a < 3; ++a) {
         std::copy(p[a], p[a] + count, pr[a]);
         std::copy(n[a], n[a] + count, nr[a]);
     }
+    std::copy(u, u + count, ur);
     alignas(64) std::array<float, kLocalLights * kRowsAtOnce> w;
-    const size_t groups = lights_of_.size();
-    HWY_DYNAMIC_DISPATCH(LightImportancesOfRows)
-    (&columns_, groups, cones_, pr, nr, count, w.data());
-    for (size_t r = 0; r < count; ++r) {
-        float sum = 0.0f;  // in group order, as importances() sums
-        for (size_t g = 0; g < groups; ++g) sum += w[g * kRowsAtOnce + r];
-        out[r] = !(sum > 0.0f) || !std::isfinite(sum)
+    GroupChoiceRows c;
+    HWY_DYNAMIC_DISPATCH(GroupChoicesOfRows)
+    (&columns_, lights_of_.size(), cones_, pr, nr, ur, count, w.data(), &c);
+    for (size_t r = 0; r < count; ++r)
+        out[r] = !(c.sum[r] > 0.0f) || !std::isfinite(c.sum[r])
                      ? select_by_power(u[r])
-                     : choose(u[r], w.data() + r, kRowsAtOnce, sum);
-    }
+                     : light_of_group(u[r], c.sum[r], c.group[r], c.last[r], c.below[r],
+                                      w.data() + r, kRowsAtOnce);
 }
 
-// The group whose share of [0, sum) holds u * sum, its importances summed in order (without a
-// branch per group, which a random u makes unpredictable); the part of u within that share
-// chooses its light.
-LightChoice LightSelection::choose(float u, const float* w, size_t stride, float sum) const {
-    const size_t groups = lights_of_.size();
-    const float target = u * sum;
-    float below = 0.0f, below_chosen = 0.0f;
-    size_t g = groups;  // the group chosen
-    size_t last = 0;    // the last group of positive importance
-    for (size_t k = 0; k < groups; ++k) {
-        const float wk = w[k * stride];
-        if (!(wk > 0.0f)) continue;
-        last = k;
-        const bool take = g == groups && target < below + wk;
-        g = take ? k : g;
-        below_chosen = take ? below : below_chosen;
-        below += wk;
-    }
-    if (g == groups) {  // u * sum rounded up to the sum
-        g = last;
-        below_chosen = sum - w[g * stride];
+// The group ChooseGroup chose (group_choice-inl.h; `last` where u * sum rounded up to the sum),
+// then the part of u within the group's share chooses its light, by power.
+LightChoice LightSelection::light_of_group(float u,
+                                           float sum,
+                                           int32_t group,
+                                           int32_t last,
+                                           float below,
+                                           const float* w,
+                                           size_t stride) const {
+    size_t g = static_cast<size_t>(group);
+    if (g == lights_of_.size()) {
+        g = static_cast<size_t>(last);
+        below = sum - w[g * stride];
     }
     const float wg = w[g * stride];
     if (single_[g] != ~0u) return {single_[g], wg / sum, sum};
-    const float within_u = std::clamp((target - below_chosen) / wg, 0.0f, 0.99999994f);
+    const float within_u = std::clamp((u * sum - below) / wg, 0.0f, 0.99999994f);
     float p_within;
     const size_t r = within_[g].sample_discrete(within_u, &p_within);
     return {lights_of_[g][r], wg / sum * p_within, sum};

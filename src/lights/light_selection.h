@@ -65,6 +65,11 @@ class LightSelection {
                      const float* const n[3],
                      size_t count,
                      LightChoice* out) const;
+    // The group choices of select_rows' vertices (group_choice-inl.h's GroupChoiceLanes).
+    struct GroupChoiceRows {
+        alignas(64) float sum[kRowsAtOnce], below[kRowsAtOnce];
+        alignas(64) int32_t group[kRowsAtOnce], last[kRowsAtOnce];
+    };
     // The probability that select(·, p, n) picks light i.
     float probability(size_t i, Point3 p, Normal3 n) const;
     // The same where select() at (p, n) returned `total` (LightChoice::total): one group's
@@ -81,9 +86,13 @@ class LightSelection {
 
   private:
     LightChoice select_local(float u, Point3 p, Normal3 n) const;
-    // The choice by u among the groups of importance w[g * stride] (sum: their sum in order,
-    // positive and finite), then of a light in the group by power.
-    LightChoice choose(float u, const float* w, size_t stride, float sum) const;
+    LightChoice light_of_group(float u,
+                               float sum,
+                               int32_t group,
+                               int32_t last,
+                               float below,
+                               const float* w,
+                               size_t stride) const;
     // Every group's importance at (p, n) into w (columns_.size() entries, in lanes); the sum
     // over the groups, in order.
     float importances(Point3 p, Normal3 n, float* w) const;
