@@ -1,5 +1,5 @@
 // The ray-sphere test (intersect_sphere, which runs the one-lane instance), written once over
-// lanes for the light samples towards spheres (shading/sphere_light-inl.h). The BVH's block test
+// lanes for the light samples towards spheres (lights/sphere_light-inl.h). The BVH's block test
 // (SphereLanes in wide_leaf_tests-inl.h) performs the same operations in the same order. Per-target
 // header, see math/lanes-inl.h.
 #if defined(WAVETRACE_ACCEL_SPHERE_HIT_INL_H_) == defined(HWY_TARGET_TOGGLE)

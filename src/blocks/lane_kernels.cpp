@@ -9,15 +9,15 @@
 #include <initializer_list>
 
 #include "bsdfs/metallic_roughness.h"
+#include "lights/environment_light-inl.h"
+#include "lights/light_sample-inl.h"
+#include "lights/sphere_light-inl.h"
 #include "math/lanes-inl.h"
 #include "media/medium_flight-inl.h"
 #include "sampling/sampler-inl.h"
 #include "scene/camera_ray-inl.h"
 #include "scene/surface_point-inl.h"
-#include "shading/environment_light-inl.h"
-#include "shading/light_sample-inl.h"
 #include "shading/mis-inl.h"
-#include "shading/sphere_light-inl.h"
 #include "shading/surface_step-inl.h"
 #include "util/check.h"
 

@@ -3,7 +3,7 @@
 // points and normals of surface hits (scene/surface_point-inl.h), the continuation
 // (shading/surface_step-inl.h) of Lambertian, glossy (bsdfs/glossy-inl.h) and isotropic-phase
 // vertices, their light samples towards quad, triangle, sphere and environment lights
-// (shading/light_sample-inl.h, shading/environment_light-inl.h), and the environment's radiance
+// (lights/light_sample-inl.h, lights/environment_light-inl.h), and the environment's radiance
 // for rays that leave the scene. The formulas are the ones the megakernel runs in one lane;
 // these run them a vector at a time, on the best target the CPU has (Highway's dynamic
 // dispatch), with the same bits.
@@ -223,7 +223,7 @@ void step_vertices(VertexBlock& b);
 
 // Light samples of rows [first, first + n) of the light-sample queue towards a quad or triangle
 // light of constant radiance, a sphere light of constant radiance seen from outside, or the
-// environment map: next_event's sample (shading/light_sample-inl.h), unweighted, bit for bit.
+// environment map: next_event's sample (lights/light_sample-inl.h), unweighted, bit for bit.
 // The vertices are read from the queue where they are; the block holds what the kernel adds per
 // row.
 struct LightSampleBlock {
@@ -265,7 +265,7 @@ struct EnvironmentPointBlock {
 void environment_light_points(EnvironmentPointBlock& b, const LightSet& lights);
 
 // Rays of a chunk that leave the scene under an environment map (SoA, rows k < n): what each
-// finds there, resolve_segment's (shading/environment_light-inl.h's Escape), bit for bit.
+// finds there, resolve_segment's (lights/environment_light-inl.h's Escape), bit for bit.
 struct EscapeBlock {
     alignas(64) float dir[3][kShadeChunk];       // in: the ray's direction, of any length
     alignas(64) float select_prob[kShadeChunk];  // in, with_pdf: the background's selection

@@ -29,7 +29,7 @@ inline bool is_lane_vertex(const Vertex& v) {
     return is_lane_vertex(v.ng, v.bsdf, v.bump_alpha2);
 }
 
-// The light next_event samples at v in SIMD lanes (shading/light_sample-inl.h), as its index
+// The light next_event samples at v in SIMD lanes (lights/light_sample-inl.h), as its index
 // among the LightSet's planar emitters, or -1: at a lane vertex (is_lane_vertex) that
 // samples_lights(), a chosen quad or triangle of constant radiance.
 inline int32_t planar_light_sample_at(bool lane_vertex,
@@ -41,7 +41,7 @@ inline int32_t planar_light_sample_at(const Vertex& v, const LightSet& lights, L
     return planar_light_sample_at(is_lane_vertex(v), lights, choice);
 }
 // The same for a chosen sphere of constant radiance with the vertex at p outside it
-// (shading/sphere_light-inl.h), as its index among the LightSet's sphere emitters, or -1.
+// (lights/sphere_light-inl.h), as its index among the LightSet's sphere emitters, or -1.
 int32_t sphere_light_sample_at(Point3 p,
                                bool lane_vertex,
                                const LightSet& lights,
@@ -55,7 +55,7 @@ inline int32_t delta_light_sample_at(bool lane_vertex, const LightSet& lights, L
     return lane_vertex ? lights.delta_light_index(choice) : -1;
 }
 // Whether the chosen light is an environment map, sampled at a lane vertex by
-// EnvironmentLightPoint (shading/environment_light-inl.h).
+// EnvironmentLightPoint (lights/environment_light-inl.h).
 inline bool environment_light_sample_at(bool lane_vertex,
                                         const LightSet& lights,
                                         LightChoice choice) {

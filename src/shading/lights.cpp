@@ -4,13 +4,13 @@
 #include <cmath>
 
 #include "accel/intersect.h"
+#include "lights/environment_light-inl.h"
 #include "lights/light_bounds.h"
+#include "lights/sphere_light-inl.h"
 #include "sampling/warp.h"
 #include "scene/delta_lights.h"
 #include "scene/material_lookup.h"
-#include "shading/environment_light-inl.h"
 #include "shading/path_vertex.h"
-#include "shading/sphere_light-inl.h"
 #include "wavetrace/math/frame.h"
 #include "wavetrace/scene/scene.h"
 #include "wavetrace/shading/surface.h"

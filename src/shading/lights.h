@@ -77,7 +77,7 @@ class LightSet {
     }
     const DeltaLightColumns& delta_light_columns() const { return delta_columns_; }
     // Whether the chosen light is an environment map (sampled by the lane formula
-    // EnvironmentLightPoint, shading/light_sample-inl.h, from these two).
+    // EnvironmentLightPoint, lights/light_sample-inl.h, from these two).
     bool is_environment(LightChoice choice) const {
         return has_environment() && choice.index == count_ - 1;
     }

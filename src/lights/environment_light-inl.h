@@ -3,17 +3,17 @@
 // direction, and what a ray that leaves the scene finds. LightSet and resolve_segment run the
 // one-lane instances (and with them the megakernel), the wavefront's light_sample and shade
 // kernels the same formulas in SIMD lanes. Per-target header, see math/lanes-inl.h.
-#if defined(WAVETRACE_SHADING_ENVIRONMENT_LIGHT_INL_H_) == defined(HWY_TARGET_TOGGLE)
-#ifdef WAVETRACE_SHADING_ENVIRONMENT_LIGHT_INL_H_
-#undef WAVETRACE_SHADING_ENVIRONMENT_LIGHT_INL_H_
+#if defined(WAVETRACE_LIGHTS_ENVIRONMENT_LIGHT_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef WAVETRACE_LIGHTS_ENVIRONMENT_LIGHT_INL_H_
+#undef WAVETRACE_LIGHTS_ENVIRONMENT_LIGHT_INL_H_
 #else
-#define WAVETRACE_SHADING_ENVIRONMENT_LIGHT_INL_H_
+#define WAVETRACE_LIGHTS_ENVIRONMENT_LIGHT_INL_H_
 #endif
 
+#include "lights/light_sample-inl.h"
 #include "math/lanes-inl.h"
 #include "sampling/distribution-inl.h"
 #include "scene/environment-inl.h"
-#include "shading/light_sample-inl.h"
 #include "wavetrace/math/constants.h"
 
 HWY_BEFORE_NAMESPACE();
@@ -108,4 +108,4 @@ HWY_INLINE EscapedRay<L> Escape(const EnvironmentView& e,
 }  // namespace wavetrace
 HWY_AFTER_NAMESPACE();
 
-#endif  // WAVETRACE_SHADING_ENVIRONMENT_LIGHT_INL_H_
+#endif  // WAVETRACE_LIGHTS_ENVIRONMENT_LIGHT_INL_H_

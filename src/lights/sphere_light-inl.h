@@ -5,17 +5,17 @@
 // sample at Lambertian and metal vertices (SphereLightPoint), and the wavefront's shade kernel
 // runs it a vector of vertices at a time (blocks/lane_kernels.cpp). Per-target header, see
 // math/lanes-inl.h.
-#if defined(WAVETRACE_SHADING_SPHERE_LIGHT_INL_H_) == defined(HWY_TARGET_TOGGLE)
-#ifdef WAVETRACE_SHADING_SPHERE_LIGHT_INL_H_
-#undef WAVETRACE_SHADING_SPHERE_LIGHT_INL_H_
+#if defined(WAVETRACE_LIGHTS_SPHERE_LIGHT_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef WAVETRACE_LIGHTS_SPHERE_LIGHT_INL_H_
+#undef WAVETRACE_LIGHTS_SPHERE_LIGHT_INL_H_
 #else
-#define WAVETRACE_SHADING_SPHERE_LIGHT_INL_H_
+#define WAVETRACE_LIGHTS_SPHERE_LIGHT_INL_H_
 #endif
 
 #include "accel/sphere_hit-inl.h"
+#include "lights/light_columns.h"
+#include "lights/light_sample-inl.h"
 #include "math/lanes-inl.h"
-#include "shading/light_sample-inl.h"
-#include "shading/lights.h"
 #include "scene/surface_point-inl.h"
 #include "wavetrace/math/constants.h"
 
@@ -122,4 +122,4 @@ HWY_INLINE LightPoint<L> SphereLightPoint(V3<typename L::F> ref,
 }  // namespace wavetrace
 HWY_AFTER_NAMESPACE();
 
-#endif  // WAVETRACE_SHADING_SPHERE_LIGHT_INL_H_
+#endif  // WAVETRACE_LIGHTS_SPHERE_LIGHT_INL_H_

@@ -7,19 +7,19 @@
 // mis_combine). The megakernel runs it with OneLane inside next_event; the wavefront's
 // light_sample kernel runs it over the queued vertices whose sample picked such a light
 // (blocks/lane_kernels.cpp). Per-target header, see math/lanes-inl.h.
-#if defined(WAVETRACE_SHADING_LIGHT_SAMPLE_INL_H_) == defined(HWY_TARGET_TOGGLE)
-#ifdef WAVETRACE_SHADING_LIGHT_SAMPLE_INL_H_
-#undef WAVETRACE_SHADING_LIGHT_SAMPLE_INL_H_
+#if defined(WAVETRACE_LIGHTS_LIGHT_SAMPLE_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef WAVETRACE_LIGHTS_LIGHT_SAMPLE_INL_H_
+#undef WAVETRACE_LIGHTS_LIGHT_SAMPLE_INL_H_
 #else
-#define WAVETRACE_SHADING_LIGHT_SAMPLE_INL_H_
+#define WAVETRACE_LIGHTS_LIGHT_SAMPLE_INL_H_
 #endif
 
 #include "bsdfs/diffuse-inl.h"
 #include "bsdfs/geometric_side-inl.h"
 #include "bsdfs/glossy-inl.h"
+#include "lights/light_columns.h"
 #include "math/lanes-inl.h"
 #include "sampling/warp-inl.h"
-#include "shading/lights.h"
 #include "wavetrace/math/constants.h"
 
 HWY_BEFORE_NAMESPACE();
@@ -51,8 +51,8 @@ HWY_INLINE V3<typename L::F> Fetch3(Fetch fetch, const std::vector<float>* colum
 // (one entry in scalar code; a gather or a broadcast over vectors).
 template <class L, class Fetch>
 HWY_INLINE PlanarLightLanes<L> PlanarLightFrom(const PlanarEmitterColumns& c,
-                                           Fetch fetch,
-                                           typename L::F select_prob) {
+                                               Fetch fetch,
+                                               typename L::F select_prob) {
     return {Fetch3<L>(fetch, c.q),
             Fetch3<L>(fetch, c.u),
             Fetch3<L>(fetch, c.v),
@@ -138,9 +138,9 @@ HWY_INLINE LightPoint<L> SelectLightPoint(typename L::M m,
 // sample_uniform_triangle (sampling/warp.h) warps the square.
 template <class L>
 HWY_INLINE LightPoint<L> PlanarLightPoint(V3<typename L::F> ref,
-                                        const PlanarLightLanes<L>& e,
-                                        typename L::F u1,
-                                        typename L::F u2) {
+                                          const PlanarLightLanes<L>& e,
+                                          typename L::F u1,
+                                          typename L::F u2) {
     using F = typename L::F;
     const F zero = L::Set(0.0f), one = L::Set(1.0f);
     LightPoint<L> r;
@@ -250,4 +250,4 @@ HWY_INLINE VertexLightSample<L> SampleTowards(const LightSampleVertex<L>& v,
 }  // namespace wavetrace
 HWY_AFTER_NAMESPACE();
 
-#endif  // WAVETRACE_SHADING_LIGHT_SAMPLE_INL_H_
+#endif  // WAVETRACE_LIGHTS_LIGHT_SAMPLE_INL_H_
