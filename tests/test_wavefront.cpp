@@ -145,6 +145,42 @@ TEST(Wavefront, EqualsTheMegakernelOnMitsubasScenes) {
     }
 }
 
+// Where no ray can find a light (point lights only, a black background), the ray that would end
+// a path at max_depth finds nothing and is not traced (ray_may_bring_light): at max_depth 2 a
+// floor under a point light costs each engine its camera ray and one shadow ray per path. With
+// an area light in the scene that ray is traced again, for the emission it may find.
+TEST(Wavefront, NoRayEndsAPathWhereNoRayFindsLight) {
+    Scene s;
+    Material floor;
+    floor.kind = MaterialKind::Lambertian;
+    floor.albedo = s.add_solid(Color(0.5f));
+    s.add_quad({{-50, 0, -50}, {0, 0, 100}, {100, 0, 0}, s.add_material(floor), kNone});
+    s.camera.look_from = {0, 3, -3};
+    s.camera.look_at = {0, 0, 0};
+    s.camera.vfov = 20;  // every camera ray meets the floor
+    Light point;
+    point.position = {0, 2, 0};
+    point.intensity = Color(5.0f);
+    s.lights.push_back(point);
+    RenderRequest c = config(Strategy::Mis, 16, 16, 4);
+    c.estimator.max_depth = 2;
+    for (const bool lamp : {false, true}) {
+        if (lamp) {  // facing the floor
+            Material m;
+            m.kind = MaterialKind::DiffuseLight;
+            m.emission = s.add_solid(Color(2.0f));
+            s.add_quad({{-1, 4, -1}, {2, 0, 0}, {0, 0, 2}, s.add_material(m), kNone});
+        }
+        const Bvh bvh = Bvh::build(s);
+        RenderStats mk, wv;
+        megakernel_film(s, bvh, c, &mk);
+        wavefront_film(s, bvh, c, {}, &wv);
+        ASSERT_EQ(mk.paths, 16u * 16u * 4u);
+        for (const RenderStats& st : {mk, wv})
+            EXPECT_EQ(st.rays, (lamp ? 3 : 2) * st.paths) << lamp;
+    }
+}
+
 TEST(Wavefront, BitIdenticalForAnyThreadCountAndWaveSize) {
     Scene scene = load_scene(scene_path("cornell-smoke"));
     Bvh bvh = Bvh::build(scene);

@@ -112,7 +112,7 @@ Color ray_color(PathContext<Tracer>& ctx,
                                       eta_scale, media, u.continuation, u.roulette);
         if (!step.passed_sheet) step.prev.select_total = d.select_total;
         const int next_depth = wavetrace::next_depth(bounce, depth, step);
-        if (!step.alive || next_depth >= cfg.max_depth) return radiance;
+        if (!step.alive || !ray_may_bring_light(cfg, ctx.lights, next_depth)) return radiance;
         const Color weight = flight_weight * step.weight;
         return radiance + weight * ray_color(ctx, step.next, bounce + 1, next_depth, media,
                                              step.prev, beta * step.weight, step.eta_scale,

@@ -407,7 +407,7 @@ void resolve_in_scalar(const WaveInputs& in, const HitQueue& hits, Chunk& c, Sha
                                             out.paths.eta_scale[i], media, u.continuation,
                                             u.roulette);
         const int next_depth = wavetrace::next_depth(bounce, depth, step);
-        if (!step.alive || next_depth >= cfg.max_depth) continue;
+        if (!step.alive || !ray_may_bring_light(cfg, in.lights, next_depth)) continue;
         out.paths.media[i] = PackedMedia::pack(media);
         advance(i, next_depth, step.eta_scale, step.weight, step.prev, step.next,
                 c.samples.next_flight[row], out);
@@ -520,6 +520,7 @@ void write_back_steps(const WaveInputs& in, const Chunk& c, ShadeOutputs& out) {
     for (size_t k = 0; k < b.n; ++k) {
         if (b.alive[k] == 0) continue;
         const size_t i = b.entry[k];
+        if (!ray_may_bring_light(in.estimator, in.lights, out.paths.depth[i] + 1)) continue;
         const Vec3 wi = block_row(b.wi, k);
         if (b.transmitted[k] != 0) {
             MediumStack media = out.paths.media[i].unpack();

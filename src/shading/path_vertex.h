@@ -309,8 +309,16 @@ inline bool may_scatter(const Estimator& config, int depth) {
 inline bool may_continue(const Estimator& config, const Vertex& v, int depth) {
     return may_scatter(config, depth) || v.bsdf.kind == MaterialKind::ThinDielectric;
 }
+// Whether a ray to a vertex of depth `depth` can still bring light: below max_depth, and where
+// no ray finds a light (the scene's lights all points, spots and directional lights, the
+// background black), only if that vertex may scatter and sample one in turn. The ray that ends
+// a path at max_depth is traced for the emission it finds: in such a scene none, so the path
+// ends before it (Mitsuba's `direct`-style scenes, max_depth 2, trace half the rays).
+inline bool ray_may_bring_light(const Estimator& config, const LightSet& lights, int depth) {
+    return depth < config.max_depth && (lights.has_area_lights() || may_scatter(config, depth));
+}
 // The depth of the vertex that `step`, taken at vertex `bounce` of depth `depth`, leads to; the
-// path ends there unless it is below config.max_depth.
+// path ends there unless ray_may_bring_light.
 inline int next_depth(int bounce, int depth, const PathStep& step) {
     return step.passed_sheet && bounce - depth < kMaxSheetPasses ? depth : depth + 1;
 }
