@@ -20,7 +20,7 @@ void bench_bvh(const Options& o, Results& r) {
                     "ours_packet_mrays", "ours_packet_over_embree_packet16"});
     r.table("bvh_build", {"scene", "primitives", "ours_ms", "embree_medium_ms", "embree_high_ms"});
     const int all_threads = tbb::this_task_arena::max_concurrency();
-    for (const char* name : {"cornell", "everything", "dragon"}) {
+    for (const char* name : {"cornell", "everything", "dragon", "cornell-mcguire"}) {
         Scene scene = load_scene(o.scenes / (std::string(name) + ".json"));
         Bvh bvh = Bvh::build(scene);
         EmbreeMirror embree(scene, RTC_BUILD_QUALITY_MEDIUM, /*robust=*/false);
