@@ -39,6 +39,21 @@ struct LightBoundsLanes {
     typename L::F radius2, cos_o, sin_o, cos_e, two_sided, phi, kind;
 };
 
+// The bounds of LightBoundsColumns entries in lanes: get(column) gives a column's lanes (a load
+// of consecutive entries, one entry broadcast, or one entry for OneLane).
+template <class L, class Get>
+HWY_INLINE LightBoundsLanes<L> LightBoundsFrom(const LightBoundsColumns& c, Get get) {
+    return {{get(c.centre[0]), get(c.centre[1]), get(c.centre[2])},
+            {get(c.axis[0]), get(c.axis[1]), get(c.axis[2])},
+            get(c.radius2),
+            get(c.cos_o),
+            get(c.sin_o),
+            get(c.cos_e),
+            get(c.two_sided),
+            get(c.phi),
+            get(c.kind)};
+}
+
 // The importance at p (normal n; surface: the lanes where n is not zero) of the lights in the
 // lanes, as light_bounds.h states it: one vertex and a light in each lane, or one light and a
 // vertex in each. Without `cones` every light emits in every direction (cos_o -1), and the

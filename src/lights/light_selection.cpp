@@ -27,15 +27,9 @@ void LightImportances(const LightBoundsColumns* c, bool cones, Point3 p, Normal3
     const auto surface = n.x != 0.0f || n.y != 0.0f || n.z != 0.0f ? L::All() : L::Not(L::All());
     const V3<F> pl{hn::Set(d, p.x), hn::Set(d, p.y), hn::Set(d, p.z)};
     const V3<F> nl{hn::Set(d, n.x), hn::Set(d, n.y), hn::Set(d, n.z)};
-    auto load3 = [&](const std::vector<float>(&xyz)[3], size_t k) {
-        return V3<F>{hn::LoadU(d, xyz[0].data() + k), hn::LoadU(d, xyz[1].data() + k),
-                     hn::LoadU(d, xyz[2].data() + k)};
-    };
-    auto load = [&](const std::vector<float>& x, size_t k) { return hn::LoadU(d, x.data() + k); };
     for (size_t k = 0; k + N <= c->size(); k += N) {
-        const LightBoundsLanes<L> b{load3(c->centre, k),   load3(c->axis, k), load(c->radius2, k),
-                                    load(c->cos_o, k),     load(c->sin_o, k), load(c->cos_e, k),
-                                    load(c->two_sided, k), load(c->phi, k),   load(c->kind, k)};
+        const LightBoundsLanes<L> b = LightBoundsFrom<L>(
+            *c, [&](const std::vector<float>& x) { return hn::LoadU(d, x.data() + k); });
         hn::StoreU(LightImportance<L>(b, pl, nl, surface, cones), d, w + k);
     }
 }
@@ -66,13 +60,8 @@ void GroupChoicesOfRows(const LightBoundsColumns* c,
         const auto surface =
             hn::Or(hn::Or(hn::Ne(nl.x, zero), hn::Ne(nl.y, zero)), hn::Ne(nl.z, zero));
         for (size_t g = 0; g < groups; ++g) {
-            auto set3 = [&](const std::vector<float>(&xyz)[3]) {
-                return V3<F>{hn::Set(d, xyz[0][g]), hn::Set(d, xyz[1][g]), hn::Set(d, xyz[2][g])};
-            };
-            auto set = [&](const std::vector<float>& x) { return hn::Set(d, x[g]); };
-            const LightBoundsLanes<L> b{set3(c->centre),   set3(c->axis), set(c->radius2),
-                                        set(c->cos_o),     set(c->sin_o), set(c->cos_e),
-                                        set(c->two_sided), set(c->phi),   set(c->kind)};
+            const LightBoundsLanes<L> b = LightBoundsFrom<L>(
+                *c, [&](const std::vector<float>& x) { return hn::Set(d, x[g]); });
             hn::Store(LightImportance<L>(b, pl, nl, surface, cones), d, w + g * K + r);
         }
         const GroupChoiceLanes<L> g = ChooseGroup<L>(
@@ -225,16 +214,8 @@ float LightSelection::probability(size_t i, Point3 p, Normal3 n, float total) co
     if (!local() || !(total > 0.0f) || !std::isfinite(total)) return probability(i, p, n);
     using L = HWY_NAMESPACE::OneLane;
     const uint32_t g = group_[i];
-    const LightBoundsColumns& c = columns_;
-    const HWY_NAMESPACE::LightBoundsLanes<L> b{{c.centre[0][g], c.centre[1][g], c.centre[2][g]},
-                                               {c.axis[0][g], c.axis[1][g], c.axis[2][g]},
-                                               c.radius2[g],
-                                               c.cos_o[g],
-                                               c.sin_o[g],
-                                               c.cos_e[g],
-                                               c.two_sided[g],
-                                               c.phi[g],
-                                               c.kind[g]};
+    const HWY_NAMESPACE::LightBoundsLanes<L> b = HWY_NAMESPACE::LightBoundsFrom<L>(
+        columns_, [&](const std::vector<float>& x) { return x[g]; });
     const bool surface = n.x != 0.0f || n.y != 0.0f || n.z != 0.0f;  // OneLane's mask
     const float w =
         HWY_NAMESPACE::LightImportance<L>(b, {p.x, p.y, p.z}, {n.x, n.y, n.z}, surface, cones_);
