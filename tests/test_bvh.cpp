@@ -314,6 +314,32 @@ TEST(Bvh, WideCollapseCostsNoMoreThanOpeningTheLargestChildFirst) {
     EXPECT_LT(dp, 0.99 * largest);
 }
 
+// The binary build charges a node a quarter of a wide node's visit (bvh_build.cpp) because a
+// wide node stands for about four binary ones: the binary tree's interior nodes weighted by
+// their areas, as the SAH weighs them, over the wide tree's nodes weighted by theirs.
+TEST(Bvh, AWideNodeStandsForAboutFourBinaryNodes) {
+    for (const char* name : {"dragon", "bunny", "everything"}) {
+        Scene scene = load_scene(scene_path(name));
+        Bvh bvh = Bvh::build(scene);
+        const auto& nodes = bvh.layout().nodes;
+        double binary = 0;
+        for (const BvhNode& n : nodes)
+            if (!n.is_leaf()) binary += n.bounds().half_area();
+        double wide = nodes[0].bounds().half_area();  // the root's; the others' from their slots
+        for (const WideNode& node : bvh.layout().wide.nodes)
+            for (int c = 0; c < kWideNodeWidth; ++c) {
+                const uint32_t code = node.child[c];
+                if (code == kEmptyChild || (code & kLeafChild)) continue;
+                wide += Aabb{{node.bounds[0][c], node.bounds[2][c], node.bounds[4][c]},
+                             {node.bounds[1][c], node.bounds[3][c], node.bounds[5][c]}}
+                            .half_area();
+            }
+        std::printf("%s: %.2f binary nodes per wide node, by area\n", name, binary / wide);
+        EXPECT_GT(binary / wide, 3.0) << name;
+        EXPECT_LT(binary / wide, 5.0) << name;
+    }
+}
+
 // The wide traversal against a scalar loop over every primitive with the scalar tests of
 // intersect.cpp, on every SIMD target this CPU runs: the same nearest t, the same primitive
 // (ties aside) and the same barycentrics, bit for bit, so images do not depend on the CPU.
