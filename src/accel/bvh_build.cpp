@@ -180,22 +180,28 @@ class Builder {
 
   private:
     Bins bin(const Binner& binner, uint32_t begin, uint32_t end) const {
-        auto bin_range = [&](uint32_t b, uint32_t e, Bins bins) {
+        // Into `bins` in place: the bins are kilobytes, and most nodes are small, so copying
+        // them in and out would cost more than binning their primitives.
+        auto bin_range = [&](uint32_t b, uint32_t e, Bins& bins) {
             for (uint32_t i = b; i < e; ++i)
                 for (int axis = 0; axis < 3; ++axis) {
                     Bin& bin = bins[axis][binner.bin_of(prims_[i].centroid[axis], axis)];
                     bin.box.grow(prims_[i].box);
                     bin.count.add(prims_[i].ref);
                 }
-            return bins;
         };
-        if (end - begin <= config_.parallel_threshold) return bin_range(begin, end, Bins{});
+        if (end - begin <= config_.parallel_threshold) {
+            Bins bins;
+            bin_range(begin, end, bins);
+            return bins;
+        }
         // Merging bins is exact (min/max and integer sums), so the result is the same for
         // any split of the range among threads.
         return tbb::parallel_reduce(
             tbb::blocked_range<uint32_t>(begin, end, 1024), Bins{},
             [&](const tbb::blocked_range<uint32_t>& r, Bins bins) {
-                return bin_range(r.begin(), r.end(), bins);
+                bin_range(r.begin(), r.end(), bins);
+                return bins;
             },
             [](Bins a, const Bins& b) {
                 for (int axis = 0; axis < 3; ++axis)
