@@ -62,12 +62,13 @@ struct KindCounts {
 // node, whose one visit tests all eight boxes. Weighted by area as the SAH weighs them, a wide
 // node stands for about four binary ones (3.9 in the dragon, the bunny and `everything`: test
 // Bvh.AWideNodeStandsForAboutFourBinaryNodes), so a binary node is charged a quarter of the
-// traversal cost. At the full cost the binary tree kept
-// leaves of a dozen triangles where splitting them would have cost no visit at all, only free
-// slots of the wide node above (the McGuire box: three leaves in one node of eight slots); the
-// collapse, which weighs wide nodes and leaves at their own costs, merges back what does not
-// pay.
-constexpr float kBinaryNodesPerWideNode = 4.0f;
+// traversal cost. At the full cost the binary tree kept leaves of a dozen triangles where
+// splitting them would have cost no visit at all, only free slots of the wide node above (the
+// McGuire box: three leaves in one node of eight slots); the collapse, which weighs wide nodes
+// and leaves at their own costs, merges back what does not pay.
+float binary_node_cost(const BvhBuildConfig& config) {
+    return config.traversal_cost / 4.0f;
+}
 
 constexpr int kMaxBins = 64;
 // Past this depth the build splits at the median, which bounds the depth of any tree by
@@ -104,9 +105,7 @@ struct Split {
 class Builder {
   public:
     Builder(std::vector<BuildPrim>& prims, const BvhBuildConfig& config)
-        : prims_(prims),
-          config_(config),
-          node_cost_(config.traversal_cost / kBinaryNodesPerWideNode) {}
+        : prims_(prims), config_(config), node_cost_(binary_node_cost(config)) {}
 
     std::unique_ptr<BuildNode> build(uint32_t begin, uint32_t end, int depth) const {
         auto node = std::make_unique<BuildNode>();
@@ -342,7 +341,7 @@ Bvh Bvh::build(const Scene& scene, const BvhBuildConfig& config) {
                 config.intersection_cost * blocks(n.count, config.block_width) * rel_area;
             return index;
         }
-        stats.sah_cost += config.traversal_cost / kBinaryNodesPerWideNode * rel_area;
+        stats.sah_cost += binary_node_cost(config) * rel_area;
         self(self, *n.left, depth + 1);
         uint32_t right = self(self, *n.right, depth + 1);
         bvh.layout_->nodes[index].offset = right;
