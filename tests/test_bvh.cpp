@@ -146,6 +146,12 @@ TEST(Bvh, EveryLeafHoldsOneKind) {
     EXPECT_TRUE(leaves_of_one_kind(mixed_scene(6000)));
 }
 
+// The box of slot c of a wide node (its SoA bound lanes).
+Aabb slot_box(const WideNode& n, int c) {
+    return {{n.bounds[0][c], n.bounds[2][c], n.bounds[4][c]},
+            {n.bounds[1][c], n.bounds[3][c], n.bounds[5][c]}};
+}
+
 // The wide layout walked from its root: every primitive sits in exactly one lane of one leaf
 // block, unused lanes and slots are marked, and every child box contains what lies below it.
 struct WideChecker {
@@ -166,8 +172,7 @@ struct WideChecker {
         max_depth = std::max(max_depth, depth);
         const WideNode& node = wide.nodes[index];
         for (int c = 0; c < kWideNodeWidth; ++c) {
-            Aabb box{{node.bounds[0][c], node.bounds[2][c], node.bounds[4][c]},
-                     {node.bounds[1][c], node.bounds[3][c], node.bounds[5][c]}};
+            const Aabb box = slot_box(node, c);
             uint32_t code = node.child[c];
             if (code == kEmptyChild) {
                 for (int a = 0; a < 3; ++a) EXPECT_GT(box.lo[a], box.hi[a]) << "empty slot";
@@ -181,9 +186,7 @@ struct WideChecker {
             const WideNode& child = wide.nodes[code];
             for (int k = 0; k < kWideNodeWidth; ++k) {
                 if (child.child[k] == kEmptyChild) continue;
-                Aabb inner{{child.bounds[0][k], child.bounds[2][k], child.bounds[4][k]},
-                           {child.bounds[1][k], child.bounds[3][k], child.bounds[5][k]}};
-                EXPECT_TRUE(box.contains(inner));
+                EXPECT_TRUE(box.contains(slot_box(child, k)));
             }
             visit_node(code, depth + 1);
         }
@@ -234,11 +237,7 @@ TEST(Bvh, WideLayoutHoldsEachPrimitiveOnceAndBoundsNest) {
 // each leaf's box area times its blocks (the costs are BvhBuildConfig's, both 1).
 double wide_sah_cost(const WideBvh& wide) {
     double cost = 0;
-    auto area = [](const WideNode& n, int c) {
-        Aabb box{{n.bounds[0][c], n.bounds[2][c], n.bounds[4][c]},
-                 {n.bounds[1][c], n.bounds[3][c], n.bounds[5][c]}};
-        return double(box.half_area());
-    };
+    auto area = [](const WideNode& n, int c) { return double(slot_box(n, c).half_area()); };
     auto visit = [&](auto&& self, uint32_t index) -> void {
         const WideNode& node = wide.nodes[index];
         for (int c = 0; c < kWideNodeWidth; ++c) {
@@ -330,9 +329,7 @@ TEST(Bvh, AWideNodeStandsForAboutFourBinaryNodes) {
             for (int c = 0; c < kWideNodeWidth; ++c) {
                 const uint32_t code = node.child[c];
                 if (code == kEmptyChild || (code & kLeafChild)) continue;
-                wide += Aabb{{node.bounds[0][c], node.bounds[2][c], node.bounds[4][c]},
-                             {node.bounds[1][c], node.bounds[3][c], node.bounds[5][c]}}
-                            .half_area();
+                wide += slot_box(node, c).half_area();
             }
         std::printf("%s: %.2f binary nodes per wide node, by area\n", name, binary / wide);
         EXPECT_GT(binary / wide, 3.0) << name;
