@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <cmath>
+#include <limits>
 #include <memory>
 
 #include "accel/bvh_layout.h"
@@ -16,9 +18,23 @@
 namespace wavetrace {
 namespace {
 
+// A primitive's binning keys: its centroid on the three axes, and (key 3) log2 of its box's
+// half area. The size key lets the SAH part large primitives from small ones where no plane
+// through the centroids can: a ground through a model, a medium's boundary sphere around a
+// scene (`everything`'s fog), whose centroids lie among the model's on every axis. Parted only
+// at the leaves, such a primitive makes every node on its way down as large as itself.
+constexpr int kKeys = 4;
+
+// Finite for any box: an empty or flat one (area 0, NaN) counts as 1e-30, an overflowed one
+// as the largest float.
+float size_key(const Aabb& box) {
+    const float a = box.half_area();
+    return std::log2(a > 1e-30f ? std::min(a, std::numeric_limits<float>::max()) : 1e-30f);
+}
+
 struct BuildPrim {
     Aabb box;
-    Vec3 centroid;
+    float key[kKeys];
     PrimRef ref;
 };
 
@@ -80,24 +96,42 @@ struct Bin {
     Aabb box;
     KindCounts count;
 };
-using Bins = std::array<std::array<Bin, kMaxBins>, 3>;
+using Bins = std::array<std::array<Bin, kMaxBins>, kKeys>;
+
+// The range of each key over a node's primitives.
+struct KeyRange {
+    float lo[kKeys], hi[kKeys];
+
+    KeyRange() {
+        std::fill(std::begin(lo), std::end(lo), kInfinity);
+        std::fill(std::begin(hi), std::end(hi), -kInfinity);
+    }
+    void grow(const BuildPrim& p) {
+        for (int k = 0; k < kKeys; ++k) {
+            lo[k] = std::min(lo[k], p.key[k]);
+            hi[k] = std::max(hi[k], p.key[k]);
+        }
+    }
+    float extent(int k) const { return hi[k] - lo[k]; }
+};
 
 struct Binner {
-    Aabb centroids;
+    KeyRange keys;
     int bins;
-    // The bin of centroid coordinate c on `axis`; binning and partitioning must agree on it.
-    // An axis along which all centroids coincide puts everything in bin 0 (it is never split
-    // on; 0 * (bins / 0) would be NaN, whose conversion to int is undefined).
-    int bin_of(float c, int axis) const {
-        float lo = centroids.lo[axis], extent = centroids.hi[axis] - centroids.lo[axis];
+    int used;  // keys [0, used) are binned: 3, or 4 with the size key
+    // The bin of p on key k; binning and partitioning must agree on it. A key on which all
+    // primitives coincide puts everything in bin 0 (it is never split on; 0 * (bins / 0)
+    // would be NaN, whose conversion to int is undefined).
+    int bin_of(const BuildPrim& p, int k) const {
+        float extent = keys.extent(k);
         if (!(extent > 0.0f)) return 0;
-        float b = (c - lo) * (static_cast<float>(bins) / extent);
+        float b = (p.key[k] - keys.lo[k]) * (static_cast<float>(bins) / extent);
         return std::clamp(static_cast<int>(std::min(b, static_cast<float>(bins - 1))), 0, bins - 1);
     }
 };
 
 struct Split {
-    int axis;
+    int key;
     int split;  // primitives in bins [0, split) go left
     float cost;
 };
@@ -109,11 +143,11 @@ class Builder {
 
     std::unique_ptr<BuildNode> build(uint32_t begin, uint32_t end, int depth) const {
         auto node = std::make_unique<BuildNode>();
-        Aabb centroids;
+        KeyRange keys;
         KindCounts kinds;
         for (uint32_t i = begin; i < end; ++i) {
             node->box.grow(prims_[i].box);
-            centroids.grow(prims_[i].centroid);
+            keys.grow(prims_[i]);
             kinds.add(prims_[i].ref);
         }
         uint32_t n = end - begin;
@@ -146,67 +180,75 @@ class Builder {
         if (n == 1) return make_leaf();
 
         const bool fits_leaf = n <= static_cast<uint32_t>(config_.max_leaf_size);
-        Vec3 extent = centroids.extent();
-        int widest = max_dimension(extent);
+        int widest = 0;
+        for (int axis = 1; axis < 3; ++axis)
+            if (keys.extent(axis) > keys.extent(widest)) widest = axis;
         uint32_t mid = begin + n / 2;  // the median split, used when SAH cannot split
-        bool sah_split = extent[widest] > 0.0f && depth < kMedianSplitDepth;
+        // The size key only where a primitive's box has a quarter of the node's area: only
+        // there can parting it by size pay; elsewhere it would add a third to the binning.
+        const bool by_size = keys.extent(3) > 0.0f && keys.hi[3] >= size_key(node->box) - 2.0f;
+        bool sah_split = (keys.extent(widest) > 0.0f || by_size) && depth < kMedianSplitDepth;
         if (sah_split) {
-            Binner binner{centroids, std::clamp(config_.bins, 2, kMaxBins)};
-            Bins bins = bin(binner, begin, end);
+            Binner binner{keys, std::clamp(config_.bins, 2, kMaxBins), by_size ? 4 : 3};
+            // Each thread's one set of bins: nothing between the binning and best_split runs
+            // another node's build on this thread, and a node's bins are not needed after.
+            thread_local Bins bins;
+            bin(binner, begin, end, bins);
             Split best = best_split(binner, bins, node->box);
             float leaf_cost = config_.intersection_cost * kinds.blocks(config_.block_width);
             if (fits_leaf && leaf_cost <= best.cost) return make_leaf();
             if (best.cost < kInfinity) {
                 auto it = std::partition(
-                    prims_.begin() + begin, prims_.begin() + end, [&](const BuildPrim& p) {
-                        return binner.bin_of(p.centroid[best.axis], best.axis) < best.split;
-                    });
+                    prims_.begin() + begin, prims_.begin() + end,
+                    [&](const BuildPrim& p) { return binner.bin_of(p, best.key) < best.split; });
                 mid = static_cast<uint32_t>(it - prims_.begin());
             } else {
                 sah_split = false;
             }
         }
         if (!sah_split) {
-            // All centroids coincide (or the tree is too deep): split at the median instead.
+            // All keys coincide (or the tree is too deep): split at the median instead.
             if (fits_leaf) return make_leaf();
             std::nth_element(prims_.begin() + begin, prims_.begin() + mid, prims_.begin() + end,
                              [widest](const BuildPrim& a, const BuildPrim& b) {
-                                 return a.centroid[widest] < b.centroid[widest];
+                                 return a.key[widest] < b.key[widest];
                              });
         }
         return children(mid);
     }
 
   private:
-    Bins bin(const Binner& binner, uint32_t begin, uint32_t end) const {
-        // Into `bins` in place: the bins are kilobytes, and most nodes are small, so copying
-        // them in and out would cost more than binning their primitives.
+    // The bins of [begin, end) into out's [0, binner.used) x [0, binner.bins).
+    void bin(const Binner& binner, uint32_t begin, uint32_t end, Bins& out) const {
         auto bin_range = [&](uint32_t b, uint32_t e, Bins& bins) {
             for (uint32_t i = b; i < e; ++i)
-                for (int axis = 0; axis < 3; ++axis) {
-                    Bin& bin = bins[axis][binner.bin_of(prims_[i].centroid[axis], axis)];
+                for (int k = 0; k < binner.used; ++k) {
+                    Bin& bin = bins[k][binner.bin_of(prims_[i], k)];
                     bin.box.grow(prims_[i].box);
                     bin.count.add(prims_[i].ref);
                 }
         };
         if (end - begin <= config_.parallel_threshold) {
-            Bins bins;
-            bin_range(begin, end, bins);
-            return bins;
+            // Only the bins in use are cleared: all of them are kilobytes, and most nodes
+            // are small.
+            for (int k = 0; k < binner.used; ++k) std::fill_n(out[k].begin(), binner.bins, Bin{});
+            bin_range(begin, end, out);
+            return;
         }
         // Merging bins is exact (min/max and integer sums), so the result is the same for
-        // any split of the range among threads.
-        return tbb::parallel_reduce(
+        // any split of the range among threads. (While it runs, this thread may build other
+        // nodes, with its own thread_local bins: `out` is written after.)
+        out = tbb::parallel_reduce(
             tbb::blocked_range<uint32_t>(begin, end, 1024), Bins{},
             [&](const tbb::blocked_range<uint32_t>& r, Bins bins) {
                 bin_range(r.begin(), r.end(), bins);
                 return bins;
             },
             [](Bins a, const Bins& b) {
-                for (int axis = 0; axis < 3; ++axis)
+                for (int k = 0; k < kKeys; ++k)
                     for (int i = 0; i < kMaxBins; ++i) {
-                        a[axis][i].box.grow(b[axis][i].box);
-                        a[axis][i].count += b[axis][i].count;
+                        a[k][i].box.grow(b[k][i].box);
+                        a[k][i].count += b[k][i].count;
                     }
                 return a;
             });
@@ -216,29 +258,33 @@ class Builder {
     Split best_split(const Binner& binner, const Bins& bins, const Aabb& box) const {
         Split best{0, 1, kInfinity};
         float inv_area = 1.0f / std::max(box.half_area(), 1e-30f);
-        for (int axis = 0; axis < 3; ++axis) {
-            if (binner.centroids.extent()[axis] <= 0.0f) continue;
-            int nb = binner.bins;
-            std::array<float, kMaxBins> right_cost{};
-            std::array<uint32_t, kMaxBins> right_count{};
+        for (int k = 0; k < binner.used; ++k) {
+            if (!(binner.keys.extent(k) > 0.0f)) continue;
+            // Only the bins that hold primitives: a split between two of them costs the same
+            // wherever among the empty bins between them it falls, and the first such index
+            // (the one the partition uses) is the one after the left bin. A small node fills
+            // few of its bins.
+            std::array<int, kMaxBins> full;
+            int m = 0;
+            for (int i = 0; i < binner.bins; ++i)
+                if (bins[k][i].count.total() > 0) full[m++] = i;
+            std::array<float, kMaxBins> right_cost;
             Aabb acc;
             KindCounts count;
-            for (int i = nb - 1; i > 0; --i) {
-                acc.grow(bins[axis][i].box);
-                count += bins[axis][i].count;
-                right_cost[i] = acc.half_area() * count.blocks(config_.block_width);
-                right_count[i] = count.total();
+            for (int j = m - 1; j > 0; --j) {
+                acc.grow(bins[k][full[j]].box);
+                count += bins[k][full[j]].count;
+                right_cost[j] = acc.half_area() * count.blocks(config_.block_width);
             }
             acc = Aabb{};
             count = KindCounts{};
-            for (int i = 1; i < nb; ++i) {
-                acc.grow(bins[axis][i - 1].box);
-                count += bins[axis][i - 1].count;
+            for (int j = 1; j < m; ++j) {
+                acc.grow(bins[k][full[j - 1]].box);
+                count += bins[k][full[j - 1]].count;
                 float cost = node_cost_ + config_.intersection_cost * inv_area *
                                               (acc.half_area() * count.blocks(config_.block_width) +
-                                               right_cost[i]);
-                bool both_sides = count.total() > 0 && right_count[i] > 0;
-                if (both_sides && cost < best.cost) best = {axis, i, cost};
+                                               right_cost[j]);
+                if (cost < best.cost) best = {k, full[j - 1] + 1, cost};
             }
         }
         return best;
@@ -311,7 +357,8 @@ Bvh Bvh::build(const Scene& scene, const BvhBuildConfig& config) {
         for (size_t i = 0; i < n; ++i) {
             PrimRef ref = PrimRef::make(kind, static_cast<uint32_t>(i));
             Aabb box = scene.prim_bounds(ref);
-            prims.push_back({box, box.center(), ref});
+            const Vec3 c = box.center();
+            prims.push_back({box, {c.x, c.y, c.z, size_key(box)}, ref});
         }
     };
     add(PrimKind::Triangle, scene.triangles.size());
