@@ -184,8 +184,8 @@ class Builder {
         for (int axis = 1; axis < 3; ++axis)
             if (keys.extent(axis) > keys.extent(widest)) widest = axis;
         uint32_t mid = begin + n / 2;  // the median split, used when SAH cannot split
-        // The size key only where a primitive's box has a quarter of the node's area: only
-        // there can parting it by size pay; elsewhere it would add a third to the binning.
+        // The size key only where a primitive's box has a quarter of the node's area, where
+        // parting by size can pay; elsewhere it would add a third to the binning for little.
         const bool by_size = keys.extent(3) > 0.0f && keys.hi[3] >= size_key(node->box) - 2.0f;
         bool sah_split = (keys.extent(widest) > 0.0f || by_size) && depth < kMedianSplitDepth;
         if (sah_split) {
