@@ -76,12 +76,12 @@ struct KindCounts {
 
 // Rays walk the wide tree, not this one: the collapse folds three binary levels into one wide
 // node, whose one visit tests all eight boxes. Weighted by area as the SAH weighs them, a wide
-// node stands for about four binary ones (3.9 in the dragon, the bunny and `everything`: test
-// Bvh.AWideNodeStandsForAboutFourBinaryNodes), so a binary node is charged a quarter of the
-// traversal cost. At the full cost the binary tree kept leaves of a dozen triangles where
-// splitting them would have cost no visit at all, only free slots of the wide node above (the
-// McGuire box: three leaves in one node of eight slots); the collapse, which weighs wide nodes
-// and leaves at their own costs, merges back what does not pay.
+// node stands for about four binary ones (3.6-4.9 below the roots of the dragon, the bunny
+// and `everything`: test Bvh.AWideNodeStandsForAboutFourBinaryNodes), so a binary node is
+// charged a quarter of the traversal cost. At the full cost the binary tree kept leaves of a
+// dozen triangles where splitting them would have cost no visit at all, only free slots of the
+// wide node above (the McGuire box: three leaves in one node of eight slots); the collapse,
+// which weighs wide nodes and leaves at their own costs, merges back what does not pay.
 float binary_node_cost(const BvhBuildConfig& config) {
     return config.traversal_cost / 4.0f;
 }
