@@ -19,31 +19,18 @@ bool intersect_sphere(const Ray& ray, Point3 center, float radius, PrimHit* hit)
 }
 
 bool intersect_quad(const Ray& ray, Point3 q, Vec3 u, Vec3 v, PrimHit* hit) {
-    // The plane's t = num / denom and the hit's planar coordinates (p - q = alpha u + beta v,
-    // solved with w = n / (n.n)) are tested scaled by denom, before any division: with p' =
-    // (o - q) denom + num d = (ray.at(t) - q) denom, alpha denom = w . (p' x v) and beta denom
-    // = w . (u x p'). Most rays miss most quads they are tested against, and the division is
-    // the test's slowest operation; it is left to the hits (as Moeller and Trumbore's
-    // triangle test leaves it).
-    const Vec3 n = cross(u, v);
+    Vec3 n = cross(u, v);
     float denom = dot(n, ray.d);
-    float num = dot(n, q - ray.o);
-    const Vec3 p = (ray.o - q) * denom + num * ray.d;
-    const Vec3 w = n / dot(n, n);
+    if (denom == 0.0f) return false;  // parallel to the plane
+    float t = dot(n, q - ray.o) / denom;
+    if (!(t >= ray.tmin && t <= ray.tmax)) return false;
+    // Planar coordinates of the hit: p - q = alpha u + beta v, solved with w = n / (n.n).
+    Vec3 p = ray.at(t) - q;
+    Vec3 w = n / dot(n, n);
     float alpha = dot(w, cross(p, v));
     float beta = dot(w, cross(u, p));
-    if (std::signbit(denom)) {  // all four change sign, exactly: then denom > 0
-        denom = -denom;
-        num = -num;
-        alpha = -alpha;
-        beta = -beta;
-    }
-    if (!(denom > 0.0f && num >= ray.tmin * denom && num <= ray.tmax * denom && alpha >= 0.0f &&
-          alpha <= denom && beta >= 0.0f && beta <= denom))
-        return false;  // parallel to the plane (denom 0), outside [tmin, tmax] or the edges
-    const float t = num / denom;
-    if (!(t >= ray.tmin && t <= ray.tmax)) return false;
-    *hit = {t, alpha / denom, beta / denom};
+    if (!(alpha >= 0.0f && alpha <= 1.0f && beta >= 0.0f && beta <= 1.0f)) return false;
+    *hit = {t, alpha, beta};
     return true;
 }
 

@@ -219,40 +219,32 @@ HWY_INLINE M QuadLanes(D d,
                        V* t_out,
                        V* u_out,
                        V* v_out) {
-    const V zero = hn::Zero(d);
-    V denom = hn::Add(hn::Add(hn::Mul(p.nx, dx), hn::Mul(p.ny, dy)), hn::Mul(p.nz, dz));
-    V num = hn::Add(hn::Add(hn::Mul(p.nx, hn::Sub(p.qx, ox)), hn::Mul(p.ny, hn::Sub(p.qy, oy))),
-                    hn::Mul(p.nz, hn::Sub(p.qz, oz)));
-    // p' = (o - q) denom + num d = (ray.at(t) - q) denom; alpha denom = w . (p' x v),
-    // beta denom = w . (u x p').
-    const V px = hn::Add(hn::Mul(hn::Sub(ox, p.qx), denom), hn::Mul(num, dx));
-    const V py = hn::Add(hn::Mul(hn::Sub(oy, p.qy), denom), hn::Mul(num, dy));
-    const V pz = hn::Add(hn::Mul(hn::Sub(oz, p.qz), denom), hn::Mul(num, dz));
+    const V zero = hn::Zero(d), one = hn::Set(d, 1.0f);
+    const V denom = hn::Add(hn::Add(hn::Mul(p.nx, dx), hn::Mul(p.ny, dy)), hn::Mul(p.nz, dz));
+    const V num =
+        hn::Add(hn::Add(hn::Mul(p.nx, hn::Sub(p.qx, ox)), hn::Mul(p.ny, hn::Sub(p.qy, oy))),
+                hn::Mul(p.nz, hn::Sub(p.qz, oz)));
+    const V t = hn::Div(num, denom);
+    M ok = hn::And(active, hn::Ne(denom, zero));
+    ok = hn::And(ok, hn::And(hn::Ge(t, tmin), hn::Le(t, tmax)));
+    if (hn::AllFalse(d, ok)) return ok;
+    // p = ray.at(t) - q, then alpha = w . (p x v), beta = w . (u x p).
+    const V px = hn::Sub(hn::Add(ox, hn::Mul(t, dx)), p.qx);
+    const V py = hn::Sub(hn::Add(oy, hn::Mul(t, dy)), p.qy);
+    const V pz = hn::Sub(hn::Add(oz, hn::Mul(t, dz)), p.qz);
     const V pv_x = hn::Sub(hn::Mul(py, p.vz), hn::Mul(pz, p.vy));
     const V pv_y = hn::Sub(hn::Mul(pz, p.vx), hn::Mul(px, p.vz));
     const V pv_z = hn::Sub(hn::Mul(px, p.vy), hn::Mul(py, p.vx));
     const V up_x = hn::Sub(hn::Mul(p.uy, pz), hn::Mul(p.uz, py));
     const V up_y = hn::Sub(hn::Mul(p.uz, px), hn::Mul(p.ux, pz));
     const V up_z = hn::Sub(hn::Mul(p.ux, py), hn::Mul(p.uy, px));
-    V alpha = hn::Add(hn::Add(hn::Mul(p.wx, pv_x), hn::Mul(p.wy, pv_y)), hn::Mul(p.wz, pv_z));
-    V beta = hn::Add(hn::Add(hn::Mul(p.wx, up_x), hn::Mul(p.wy, up_y)), hn::Mul(p.wz, up_z));
-    // Where denom < 0, all four change sign (exactly): then denom > 0 and the tests read
-    // as for t = num / denom, alpha, beta in their intervals.
-    const V sign = hn::And(denom, hn::Set(d, -0.0f));
-    denom = hn::Xor(denom, sign);
-    num = hn::Xor(num, sign);
-    alpha = hn::Xor(alpha, sign);
-    beta = hn::Xor(beta, sign);
-    M ok = hn::And(active, hn::Gt(denom, zero));
-    ok = hn::And(ok, hn::And(hn::Ge(num, hn::Mul(tmin, denom)), hn::Le(num, hn::Mul(tmax, denom))));
-    ok = hn::And(ok, hn::And(hn::And(hn::Ge(alpha, zero), hn::Le(alpha, denom)),
-                             hn::And(hn::Ge(beta, zero), hn::Le(beta, denom))));
-    if (hn::AllFalse(d, ok)) return ok;
-    const V t = hn::Div(num, denom);
+    const V alpha = hn::Add(hn::Add(hn::Mul(p.wx, pv_x), hn::Mul(p.wy, pv_y)), hn::Mul(p.wz, pv_z));
+    const V beta = hn::Add(hn::Add(hn::Mul(p.wx, up_x), hn::Mul(p.wy, up_y)), hn::Mul(p.wz, up_z));
     *t_out = t;
-    *u_out = hn::Div(alpha, denom);
-    *v_out = hn::Div(beta, denom);
-    return hn::And(ok, hn::And(hn::Ge(t, tmin), hn::Le(t, tmax)));
+    *u_out = alpha;
+    *v_out = beta;
+    return hn::And(ok, hn::And(hn::And(hn::Ge(alpha, zero), hn::Le(alpha, one)),
+                               hn::And(hn::Ge(beta, zero), hn::Le(beta, one))));
 }
 
 // The cancellation-free sphere test (see intersect_sphere); a = dot(d, d).
