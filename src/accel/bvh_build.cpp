@@ -180,9 +180,7 @@ class Builder {
         if (n == 1) return make_leaf();
 
         const bool fits_leaf = n <= static_cast<uint32_t>(config_.max_leaf_size);
-        int widest = 0;
-        for (int axis = 1; axis < 3; ++axis)
-            if (keys.extent(axis) > keys.extent(widest)) widest = axis;
+        const int widest = max_dimension({keys.extent(0), keys.extent(1), keys.extent(2)});
         uint32_t mid = begin + n / 2;  // the median split, used when SAH cannot split
         // The size key only where a primitive's box has a quarter of the node's area, where
         // parting by size can pay; elsewhere it would add a third to the binning for little.
@@ -244,9 +242,9 @@ class Builder {
                 bin_range(r.begin(), r.end(), bins);
                 return bins;
             },
-            [](Bins a, const Bins& b) {
-                for (int k = 0; k < kKeys; ++k)
-                    for (int i = 0; i < kMaxBins; ++i) {
+            [&binner](Bins a, const Bins& b) {
+                for (int k = 0; k < binner.used; ++k)
+                    for (int i = 0; i < binner.bins; ++i) {
                         a[k][i].box.grow(b[k][i].box);
                         a[k][i].count += b[k][i].count;
                     }
